@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs, from Debian packages, everything eskin's build and tests need.
+# Idempotent: only missing packages are installed (apt-get update first).
+set -euo pipefail
+pkgs=(
+  build-essential cmake ninja-build pkg-config git
+  verilator libsystemc-dev
+  libeigen3-dev libgtest-dev libgmock-dev googletest
+  libyaml-cpp-dev libcli11-dev libfmt-dev
+  libfftw3-dev libsndfile1-dev
+  yosys nextpnr-ice40 fpga-icestorm
+)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "bootstrap: all ${#pkgs[@]} packages present"
+  exit 0
+fi
+echo "bootstrap: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update
+$SUDO apt-get install -y --no-install-recommends "${missing[@]}"
