@@ -25,7 +25,9 @@ struct NeuronConfig {
   std::string preset = "RA";  // RS IB CH FS LTS TC RZ (Izhikevich 2003) or RA
   double dt_ms = 1.0 / 35.0;  // integration step (one ADC sample at 35 kHz)
   NeuronInput input = NeuronInput::Level;
-  double input_scale = 1.0;   // taxel units -> input units (before gain K)
+  // Taxel value (calibrated, conductance fraction g in 0..1) -> input units
+  // before the gain K: a firm press (g ~ 0.5) then drives I = K * 5.
+  double input_scale = 10.0;
 };
 
 }  // namespace eskin
