@@ -8,7 +8,7 @@ pkgs=(
   libeigen3-dev libgtest-dev libgmock-dev googletest
   libyaml-cpp-dev libcli11-dev libfmt-dev
   libfftw3-dev libsndfile1-dev
-  yosys nextpnr-ice40 fpga-icestorm
+  yosys nextpnr-ice40 fpga-icestorm jq
 )
 missing=()
 for p in "${pkgs[@]}"; do

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Synthesises one rtl/ module for the iCE40 UP5K with Yosys (multipliers on
+# SB_MAC16: -dsp) and, with --pnr, places and routes it with nextpnr-ice40
+# and checks that it fits and meets the clock it needs.
+#
+#   scripts/synth_ice40.sh TOP [--param NAME=VALUE]... [--pnr] [--freq MHZ]
+#                              [--pcf FILE] [--out DIR]
+#
+# Prints one line of figures: LUTs (ICESTORM_LC), DSPs, BRAMs, SPRAMs and,
+# after place and route, the achieved Fmax against the requested clock.
+# Exits non-zero if Yosys fails, the design does not fit, or Fmax < freq.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+top=${1:?usage: synth_ice40.sh TOP [--param N=V]... [--pnr] [--freq MHZ] [--pcf F] [--out DIR]}
+shift
+params=() pnr=0 freq=12 pcf="" out=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --param) params+=("$2"); shift 2 ;;
+    --pnr) pnr=1; shift ;;
+    --freq) freq=$2; shift 2 ;;
+    --pcf) pcf=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    *) echo "synth_ice40.sh: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+done
+out=${out:-$root/build/synth/$top}
+mkdir -p "$out"
+chparam=""
+for p in "${params[@]+"${params[@]}"}"; do
+  chparam+="chparam -set ${p%%=*} ${p#*=} $top; "
+done
+# Every rtl/*.v is read so the top can instantiate any module.
+reads=""
+for v in "$root"/rtl/*.v; do reads+="read_verilog -sv $v; "; done
+yosys -q -l "$out/yosys.log" -p "$reads hierarchy -top $top; $chparam \
+  synth_ice40 -dsp -top $top -json $out/$top.json; tee -o $out/stat.txt stat" >/dev/null
+cells() { { grep -E "^\s+$1\s" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}'; }
+lc=$(cells SB_LUT4); dsp=$(cells SB_MAC16); bram=$(cells SB_RAM40_4K); spram=$(cells SB_SPRAM256KA)
+ff=$({ grep -E "^\s+SB_DFF" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}')
+line="$top: yosys LUT4 $lc, FF $ff, DSP $dsp/8, BRAM $bram/30, SPRAM $spram/4"
+if [ "$pnr" -eq 1 ]; then
+  pcfarg=(--pcf-allow-unconstrained)
+  [ -n "$pcf" ] && pcfarg=(--pcf "$pcf")
+  nextpnr-ice40 --up5k --package sg48 --json "$out/$top.json" --asc "$out/$top.asc" \
+    "${pcfarg[@]}" --freq "$freq" --report "$out/report.json" --seed 1 -q \
+    >"$out/nextpnr.log" 2>&1 || { tail -20 "$out/nextpnr.log" >&2; exit 1; }
+  used=$(jq '.utilization.ICESTORM_LC.used' "$out/report.json")
+  avail=$(jq '.utilization.ICESTORM_LC.available' "$out/report.json")
+  # Fmax is keyed by the internal clock net name, not the port name.
+  fmax=$(jq '[.fmax[].achieved] | min' "$out/report.json")
+  line+=", placed LC $used/$avail, Fmax $(printf '%.1f' "$fmax") MHz (need $freq)"
+  if awk -v a="$fmax" -v f="$freq" 'BEGIN {exit !(a < f)}'; then
+    echo "$line"; echo "synth_ice40.sh: $top misses timing: $fmax < $freq MHz" >&2; exit 1
+  fi
+fi
+echo "$line"
