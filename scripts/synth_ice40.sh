@@ -30,10 +30,11 @@ chparam=""
 for p in "${params[@]+"${params[@]}"}"; do
   chparam+="chparam -set ${p%%=*} ${p#*=} $top; "
 done
-# Every rtl/*.v is read so the top can instantiate any module.
-reads=""
-for v in "$root"/rtl/*.v; do reads+="read_verilog -sv $v; "; done
-yosys -q -l "$out/yosys.log" -p "$reads hierarchy -top $top; $chparam \
+# The top comes from rtl/TOP.v (or a path given as TOP); the modules it
+# instantiates are found as rtl/NAME.v by `hierarchy -libdir`.
+src="$root/rtl/$top.v"
+case "$top" in *.v) src=$top; top=$(basename "$top" .v) ;; esac
+yosys -q -l "$out/yosys.log" -p "read_verilog -sv $src; hierarchy -libdir $root/rtl -top $top; $chparam \
   synth_ice40 -dsp -top $top -json $out/$top.json; tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+$1\s" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}'; }
 lc=$(cells SB_LUT4); dsp=$(cells SB_MAC16); bram=$(cells SB_RAM40_4K); spram=$(cells SB_SPRAM256KA)
