@@ -13,6 +13,8 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 top=${1:?usage: synth_ice40.sh TOP [--param N=V]... [--pnr] [--freq MHZ] [--pcf F] [--out DIR]}
 shift
+src="$root/rtl/$top.v"
+case "$top" in *.v) src=$(realpath "$top"); top=$(basename "$top" .v) ;; esac
 params=() pnr=0 freq=12 pcf="" out=""
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -32,8 +34,6 @@ for p in "${params[@]+"${params[@]}"}"; do
 done
 # The top comes from rtl/TOP.v (or a path given as TOP); the modules it
 # instantiates are found as rtl/NAME.v by `hierarchy -libdir`.
-src="$root/rtl/$top.v"
-case "$top" in *.v) src=$top; top=$(basename "$top" .v) ;; esac
 yosys -q -l "$out/yosys.log" -p "read_verilog -sv $src; hierarchy -libdir $root/rtl -top $top; $chparam \
   synth_ice40 -dsp -top $top -json $out/$top.json; tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+$1\s" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}'; }
