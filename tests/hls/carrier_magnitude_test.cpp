@@ -17,9 +17,18 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <random>
+#include <vector>
+
+#include "hls/sdft_bank.h"
+#include "hls/sdft_bank_config.h"
+#include "host/golden/sdft_bank.h"
+#include "sim/scene.h"
+#include "sim/world_model.h"
 
 namespace {
 
@@ -116,6 +125,89 @@ TEST(CarrierMagnitude, PushPassesIndexAndLast) {
   EXPECT_EQ(out.k, 5);
   EXPECT_TRUE(out.last);
   EXPECT_EQ(out.mag, 13u);
+}
+
+// Default scene through hls sdft_bank -> carrier_magnitude, compared with
+// the golden magnitude (2/N |window sum|, double) of the same samples.
+// Units: the kernel's mag is |acc| / 2^SHIFT, and |acc| approximates G |sum|
+// (G = 1 - 2^-(CW-1), sdft_bank's coefficient gain), so the golden-unit
+// estimate is M = (2/N) 2^SHIFT mag / G. Bound, by the triangle inequality:
+//   |M - golden| <= (2/N) 2^(SHIFT-1) / G             (this kernel: 1/2 LSB)
+//                 + sdft_amplitude_error_bound(...)   (sdft_bank's own bound,
+//                   derived in tests/hls/sdft_bank_test.cpp)
+//                 + 1e-6 (the golden Exact variant's double rounding,
+//                   ~1e-16 sqrt(n) N max|x|, far below).
+// Both halves are also checked separately: |2^SHIFT mag - |acc|| <= 2^(SHIFT-1)
+// on every token of the real stream.
+template <int SHIFT>
+double golden_scene_max_error(const std::vector<int32_t>& xs, const eskin::sim::Scene& scene,
+                              double min_ratio) {
+  using Bank = eskin::hls::SdftBank<6, 32>;  // XW 13, CW 16, TW 10, ACC_W 24
+  using Mag = eskin::hls::CarrierMagnitude<24, 16, SHIFT>;
+  const auto freqs = scene.skin.carrier_freqs_hz();
+  const double fs = scene.skin.adc.rate_hz;
+  Bank::Config cfg;
+  EXPECT_TRUE(eskin::hls::make_sdft_bank_config<Bank>(freqs, fs, cfg).ok());
+  Bank bank;
+  EXPECT_TRUE(bank.configure(cfg));
+  auto golden = eskin::golden::make_sdft_bank(scene.decoder.variant, freqs, fs, scene.decoder);
+  const int n_win = 32;
+  const double g = (std::ldexp(1.0, 15) - 1) / std::ldexp(1.0, 15);
+  int32_t xmax = 0;
+  for (int32_t x : xs) xmax = std::max(xmax, std::abs(x));
+  const double sdft_bound = eskin::hls::sdft_amplitude_error_bound(eskin::hls::SdftWidths{}, xmax);
+  const double mag_bound = 2.0 / n_win * std::ldexp(1.0, SHIFT - 1) / g;
+  const double bound = mag_bound + sdft_bound + 1e-6;
+  Bank::Token out[6];
+  const Mag mag;
+  double max_err = 0, max_amp = 0;
+  for (size_t n = 0; n < xs.size(); ++n) {
+    EXPECT_EQ(bank.push(xs[n], out), 6);
+    golden->push(double(xs[n]));
+    for (int k = 0; k < 6; ++k) {
+      eskin::hls::CarrierMagnitudeIn in{out[k].k, out[k].re, out[k].im, out[k].last};
+      eskin::hls::CarrierMagnitudeOut o;
+      mag.push(in, o);
+      const double scaled = std::ldexp(double(o.mag), SHIFT);
+      const double acc = std::hypot(double(out[k].re), double(out[k].im));
+      EXPECT_LE(std::fabs(scaled - acc), std::ldexp(1.0, SHIFT - 1) + 1e-9) << "sample " << n;
+      const double m = 2.0 / n_win * scaled / g;
+      const double err = std::fabs(m - golden->magnitude(k));
+      max_err = std::max(max_err, err);
+      max_amp = std::max(max_amp, golden->magnitude(k));
+      if (err > bound) {
+        ADD_FAILURE() << "sample " << n << " carrier " << k << ": " << m << " vs golden "
+                      << golden->magnitude(k) << ", bound " << bound;
+        return max_err;
+      }
+    }
+  }
+  // Not vacuous: the scene's largest carrier is min_ratio times the bound.
+  EXPECT_GT(max_amp, min_ratio * bound);
+  std::printf("SHIFT %d: bound %.4f LSB (this kernel %.4f), largest amplitude %.2f\n", SHIFT,
+              bound, mag_bound, max_amp);
+  return max_err;
+}
+
+TEST(CarrierMagnitudeGolden, DefaultScene) {
+  const auto scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  ASSERT_EQ(scene.skin.carriers(), 6);
+  ASSERT_EQ(scene.decoder.window, 32);
+  eskin::sim::WorldModel world(scene);
+  const std::vector<int> codes = world.all_codes();
+  ASSERT_GT(codes.size(), 10000u);
+  const int mid = int(std::lround(scene.skin.adc.mid_code()));
+  std::vector<int32_t> xs;
+  for (int c : codes) xs.push_back(c - mid);
+  // SHIFT 2: 13-bit samples, N = 32 give |re|, |im| <= 2^17, so the
+  // magnitude <= 2^17.5 / 4 < 2^16: no saturation, finest resolution.
+  const double e2 = golden_scene_max_error<2>(xs, scene, 20.0);
+  // The default SHIFT 8 (for full 24-bit sums): coarser, bound scales.
+  const double e8 = golden_scene_max_error<8>(xs, scene, 5.0);
+  EXPECT_GT(e8, e2);
+  RecordProperty("max_abs_error_lsb_shift2", std::to_string(e2));
+  RecordProperty("max_abs_error_lsb_shift8", std::to_string(e8));
+  std::printf("max |hls - golden| (ADC LSB): SHIFT 2: %.4f, SHIFT 8: %.4f\n", e2, e8);
 }
 
 }  // namespace
