@@ -18,9 +18,13 @@
 //
 // Conditioning: kappa = condition number (2-norm) of the weighted basis
 // sqrt(H)*B; G has kappa^2, so rounding in the sums is amplified by up to
-// kappa^2 in theta. Construction throws ConfigError("decoder.window") when
-// 2K+1 exceeds the samples with nonzero weight or kappa > max_condition
-// (carriers too close for the window), naming the closest carrier pair.
+// kappa^2 in theta, and noise in the window by up to ~kappa/sqrt(2) more
+// than for orthogonal carriers. Orthogonal (bin-centred, rectangular) gives
+// kappa = sqrt(2); the thesis carriers at N = 32: 1.85 (Hann 1.98); two
+// carriers 0.18 bin apart: ~7, 0.09 bin: ~13.5 (kappa ~ 1.2/spacing in bins).
+// Construction throws ConfigError("decoder.window") when 2K+1 exceeds the
+// samples with nonzero weight or kappa > max_condition (default 10: carriers
+// too close for the window), naming the closest carrier pair.
 #pragma once
 
 #include <Eigen/Dense>
@@ -31,8 +35,9 @@ namespace eskin::golden {
 
 class CarrierDemix {
  public:
+  static constexpr double kDefaultMaxCondition = 10.0;
   CarrierDemix(const std::vector<double>& freqs_hz, double fs_hz, int window, bool hann,
-               double max_condition = 1e4);
+               double max_condition = kDefaultMaxCondition);
 
   int carriers() const { return int(freqs_.size()); }
   int window() const { return n_; }
