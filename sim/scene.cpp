@@ -590,7 +590,7 @@ Scene parse_scene(const std::string& text, const std::string& file) {
   sc.neuron = read_neuron(r, root["neuron"], sc.skin);
   sc.duration_s = r.ranged(root["duration_s"], "duration_s", 0, 1e9 / sc.skin.adc.rate_hz, true,
                            "(0, " + num(1e9 / sc.skin.adc.rate_hz) + "] s (at most 1e9 samples)");
-  if (root["stimuli"]) read_stimuli(r, root["stimuli"], sc);
+  if (root["stimuli"] && !root["stimuli"].IsNull()) read_stimuli(r, root["stimuli"], sc);
   sc.outputs = read_outputs(r, root["outputs"]);
   return sc;
 }

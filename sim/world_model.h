@@ -18,7 +18,8 @@
 // stimulus ever touches passes no carrier (g = 0) and is skipped. With
 // noise_rms_v = 0 no noise is drawn. Deterministic for a seed
 // (std::mt19937_64; phases and noise come from separate streams, so the noise
-// level does not change the phases).
+// level does not change the phases). One WorldModel per thread: the const
+// queries reuse internal scratch buffers.
 #pragma once
 
 #include <cstddef>

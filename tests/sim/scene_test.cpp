@@ -264,6 +264,33 @@ TEST(Scene, LoadSkinReadsSkinOfASceneFile) {
   EXPECT_EQ(k.adc.rate_hz, 70000);
 }
 
+// A skin-only file (no duration, no stimuli) and other top-level keys are fine
+// for load_skin; the skin itself is checked as strictly as in a scene.
+TEST(Scene, ParseSkinOfASkinOnlyFile) {
+  SkinConfig k = parse_skin(
+      "skin:\n  rows: 2\n  cols: 4\n  carriers: auto\n  adc: {rate_hz: 70000}\n"
+      "decoder: {window: 64}\nnotes: free text\n",
+      "skin.yaml");
+  EXPECT_EQ(k.rows, 2);
+  EXPECT_EQ(k.carriers(), 6);
+  const double bin = 70000.0 / 64;
+  EXPECT_DOUBLE_EQ(k.row_freq_hz[0], bin);  // plan_carriers starts at bin 1
+  EXPECT_DOUBLE_EQ(k.adc.offset_v, 1.65);   // default: half of full scale
+  try {
+    parse_skin("skin:\n  rows: 2\n  cols: 2\n  carriers: auto\n  amp_gian: 1\n", "skin.yaml");
+    FAIL() << "accepted a typo";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 5) << e.what();
+    EXPECT_EQ(e.field(), "skin.amp_gian") << e.what();
+  }
+}
+
+TEST(Scene, EmptyStimuliIsSilence) {
+  Scene s = parse_scene("duration_s: 0.01\nskin: {rows: 1, cols: 1, carriers: auto}\nstimuli:\n",
+                        "quiet.yaml");
+  EXPECT_TRUE(s.presses.empty() && s.slides.empty());
+}
+
 TEST(Scene, LoadSkinRejectsFileWithoutSkin) {
   EXPECT_THROW(parse_skin("name: x\n", "noskin.yaml"), SceneError);
 }
