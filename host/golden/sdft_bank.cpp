@@ -15,7 +15,7 @@ uint64_t phase_increment(double f_hz, double fs_hz) {
 }
 
 double phase_angle(uint64_t phase) {
-  return 2.0 * M_PI * std::ldexp(double(int64_t(phase)), -64);
+  return 2.0 * M_PI * (double(int64_t(phase)) * 0x1p-64);  // exact power-of-two scaling
 }
 
 std::vector<double> window_weights(int n, bool hann) {
@@ -108,7 +108,7 @@ class SlidingBank : public SdftBank {
 class LsDemixBank : public SdftBank {
  public:
   LsDemixBank(const std::vector<double>& freqs, double fs, int n, bool hann)
-      : demix_(freqs, fs, n, hann), hann_(hann), amp_(freqs.size()) {
+      : demix_(freqs, fs, n, hann), hann_(hann), amp_(freqs.size()), sums_at_(freqs.size() + 1) {
     std::vector<double> lines = freqs;
     lines.push_back(0.0);
     sums_ = std::make_unique<ExactSums>(make_taps(lines, fs, n, hann), fs, n);
@@ -134,15 +134,14 @@ class LsDemixBank : public SdftBank {
   void update() const {
     if (!stale_) return;
     const int k = carriers();
-    std::vector<std::complex<double>> p(size_t(k) + 1);
-    for (int l = 0; l <= k; ++l) p[size_t(l)] = windowed_sum(*sums_, l, hann_);
-    demix_.solve(p.data(), p[size_t(k)].real(), amp_.data(), &dc_);
+    for (int l = 0; l <= k; ++l) sums_at_[size_t(l)] = windowed_sum(*sums_, l, hann_);
+    demix_.solve(sums_at_.data(), sums_at_[size_t(k)].real(), amp_.data(), &dc_);
     stale_ = false;
   }
   CarrierDemix demix_;
   bool hann_;
   std::unique_ptr<ExactSums> sums_;
-  mutable std::vector<std::complex<double>> amp_;
+  mutable std::vector<std::complex<double>> amp_, sums_at_;
   mutable double dc_ = 0.0;
   mutable bool stale_ = false;
 };

@@ -55,7 +55,8 @@ class ExactSums : public SlidingSums {
  private:
   SampleWindow win_;
   std::vector<uint64_t> inc_;
-  std::vector<std::complex<double>> acc_;  // sum of x[m]*exp(-j*theta_t(m))
+  std::vector<std::complex<double>> acc_;     // sum of x[m]*exp(-j*theta_t(m))
+  std::vector<std::complex<double>> oldest_;  // exp(j*theta_t(s)), s = oldest sample
 };
 
 // Recursive form y <- (r*z)*y + x_new - (r*z)^N * x_old (z = e^{jw}, both
