@@ -45,7 +45,10 @@
 //             the rounding of its own additions (a random walk of ~eps*|sum|
 //             steps, about eps*sqrt(n)*N*max|x| after n samples). The output
 //             is rotated by exp(+j*theta(s)) to the oldest-sample reference.
-//             Frequency quantisation fs/2^64 is negligible.
+//             64 rather than 32 phase bits: with 2^32 the frequency would be
+//             off by up to fs/2^33 and the phase across one window by up to
+//             N*2*pi/2^33 (~2e-8 rad at N = 32), too coarse for a reference
+//             that must agree with Direct to ~1e-12; 2^64 makes it ~1e-17.
 //   LsDemix   joint least squares of all carriers + DC over the window
 //             (CarrierDemix in carrier_demix.h, fed by Exact sums): removes
 //             the cross-talk of off-bin carriers. Requires 2K+1 <= N.
