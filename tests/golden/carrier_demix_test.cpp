@@ -61,7 +61,7 @@ TEST(CarrierDemix, RecoversThesisAmplitudesAndDc) {
             cd want = std::polar(a[size_t(k)], w_of(kThesis[size_t(k)]) * s + phi[size_t(k)]);
             worst = std::max(worst, std::abs(bank->amplitude(k) - want) / a[size_t(k)]);
           }
-          EXPECT_NEAR(bank->dc(), d, 1e-6 * 10.0);
+          EXPECT_NEAR(bank->dc(), d, 1e-6 * 10.0);  // 1e-6 of the smallest amplitude
         }
         EXPECT_LT(worst, 1e-6) << "N=" << n << " hann=" << hann;
         if (trial == 0) std::printf("  max relative amplitude error %.3e\n", worst);
