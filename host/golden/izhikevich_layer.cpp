@@ -78,6 +78,22 @@ void WeightedIzhikevichLayer::step(const std::vector<int>& pre_spiked, std::vect
   layer_.step(drive_.data(), spiked);
 }
 
+void receptor_input(const NeuronConfig& cfg, const Eigen::MatrixXd& g,
+                    const Eigen::MatrixXd& g_prev, double frame_ms, std::vector<double>& out) {
+  if (!(frame_ms > 0.0))
+    throw ConfigError("neuron.frame_ms", "expected > 0 ms, got " + std::to_string(frame_ms));
+  const bool change = cfg.input == NeuronInput::RectifiedChange;
+  if (change && (g_prev.rows() != g.rows() || g_prev.cols() != g.cols()))
+    throw ConfigError("neuron.g_prev", "expected a " + std::to_string(g.rows()) + "x" +
+                                           std::to_string(g.cols()) + " previous frame");
+  out.resize(size_t(g.size()));
+  size_t k = 0;
+  for (Eigen::Index i = 0; i < g.rows(); ++i)
+    for (Eigen::Index j = 0; j < g.cols(); ++j, ++k)
+      out[k] = change ? cfg.input_scale * std::max(0.0, (g(i, j) - g_prev(i, j)) / frame_ms)
+                      : cfg.input_scale * g(i, j);
+}
+
 SpikeStats spike_stats(const std::vector<double>& t) {
   SpikeStats s;
   s.count = t.size();

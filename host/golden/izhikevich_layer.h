@@ -93,6 +93,16 @@ class WeightedIzhikevichLayer {
   Eigen::VectorXd s_, drive_;
 };
 
+// Receptor-layer input per taxel, row-major (rows * cols values), from the
+// corrected taxel g-matrix of this frame and of the previous frame, as
+// NeuronConfig::input says:
+//   Level:           input = input_scale * g
+//   RectifiedChange: input = input_scale * max(0, (g - g_prev) / frame_ms)
+//                    (change per ms: responds to onsets, silent when held)
+// Throws eskin::ConfigError if frame_ms <= 0 or the matrices differ in size.
+void receptor_input(const NeuronConfig& cfg, const Eigen::MatrixXd& g,
+                    const Eigen::MatrixXd& g_prev, double frame_ms, std::vector<double>& out);
+
 // Spike-train features (thesis §4.3): count, mean inter-spike interval and
 // its sample variance (n - 1 denominator, as MATLAB var). With fewer than 2
 // spikes the mean is 0; with fewer than 3 the variance is 0.

@@ -336,6 +336,25 @@ TEST(IzhikevichLayer, SpikeStats) {
   EXPECT_EQ(s.var_isi_ms2, 0.0);
 }
 
+// Receptor input by hand (input_scale 10, frame 0.5 ms), row-major:
+// Level -> 10 g; RectifiedChange -> 10 max(0, dg) / 0.5 ms = 20 max(0, dg).
+// Values are exact binary fractions, so equality is exact.
+TEST(IzhikevichLayer, ReceptorInputModes) {
+  Eigen::MatrixXd g(2, 2), prev(2, 2);
+  g << 0.5, 0.25, 0.0, 1.0;
+  prev << 0.25, 0.5, 0.0, 0.75;
+  eskin::NeuronConfig cfg;
+  cfg.input_scale = 10.0;
+  std::vector<double> out;
+  cfg.input = eskin::NeuronInput::Level;
+  receptor_input(cfg, g, prev, 0.5, out);
+  EXPECT_EQ(out, (std::vector<double>{5.0, 2.5, 0.0, 10.0}));
+  cfg.input = eskin::NeuronInput::RectifiedChange;
+  receptor_input(cfg, g, prev, 0.5, out);
+  EXPECT_EQ(out, (std::vector<double>{5.0, 0.0, 0.0, 5.0}));
+  EXPECT_THROW(receptor_input(cfg, g, prev, 0.0, out), eskin::ConfigError);
+}
+
 TEST(IzhikevichLayer, UnknownPresetListsValidNames) {
   try {
     izhikevich_preset("XX");
