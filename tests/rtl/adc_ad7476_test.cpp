@@ -1,0 +1,246 @@
+// rtl/adc_ad7476.v against the AD7476A pin model sim/ad7476_model.h.
+//
+// Bounds and why:
+//  * Exact sample sequence: every token equals the code the model served for
+//    that conversion (m_t = conversion index), for the scene's codes at
+//    35 kSPS (12 MHz clock, 6 MHz SCLK) and for random full-range 12-bit
+//    codes at 1 MSPS on two channels (40 MHz clock, 20 MHz SCLK). The model
+//    returns random levels wherever the datasheet leaves SDATA undefined, so
+//    a wrong sampling instant shows up as wrong codes.
+//  * Zero timing violations in both legal configurations (the model checks
+//    every datasheet limit it knows, listed in its header).
+//  * Exact cycles: CS falls every round(CLK_HZ/SAMPLE_HZ) clocks (343 at
+//    12 MHz/35 kSPS, 40 at 40 MHz/1 MSPS); m_valid rises 31*H clocks after
+//    CS falls: the 16th SCLK falling edge is driven 31 H clocks after CS
+//    (t2 = H, then 15 periods of 2 H) and the code is registered on that
+//    same clock edge, H = SCLK_DIV.
+//  * Back-pressure: a stalled consumer loses whole samples, never corrupts
+//    one: delivered tokens match codes[m_t], data stable while valid &&
+//    !ready, and every completed conversion is accounted for exactly:
+//    completed = delivered + overruns + (1 if a token is still pending).
+//  * Negative controls: 24 MHz SCLK is reported as a tSCLK violation; a
+//    1.2 MSPS rate at 20 MHz SCLK as tQUIET and tACQ violations. And the
+//    model alone: a reader sampling at the SCLK rising edge at 20 MHz (25 ns
+//    after the falling edge, before the 40 ns access time) reads wrong
+//    codes; one sampling just before each falling edge reads them all.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "Vadc_ad7476.h"
+#include "Vadc_ad7476_badrate.h"
+#include "Vadc_ad7476_badsclk.h"
+#include "Vadc_ad7476_fast.h"
+#include "sim/ad7476_model.h"
+#include "sim/scene.h"
+#include "sim/world_model.h"
+
+using eskin::sim::Ad7476Model;
+
+namespace {
+
+struct Token { uint32_t t; std::vector<uint16_t> codes; };
+
+struct Result {
+  std::vector<Token> tokens;
+  std::vector<uint64_t> cs_fall_edges, valid_rise_edges;
+  std::vector<std::string> violations;
+  size_t violation_count = 0;
+  uint32_t overruns = 0;
+  size_t completed = 0;  // conversions with all 16 clocks (the model's count)
+  bool pending = false;  // m_valid still high at the end
+  bool stable_ok = true;
+};
+
+template <class M>
+Result run(double clk_hz, int nch, const std::vector<std::vector<uint16_t>>& codes,
+           size_t n_tokens, double p_ready, uint64_t seed, uint64_t max_edges) {
+  auto m = std::make_unique<M>();
+  std::vector<Ad7476Model> adc;
+  for (int c = 0; c < nch; ++c) adc.emplace_back(codes[size_t(c)], eskin::sim::Ad7476Timing{}, seed + c);
+  std::mt19937_64 rng(seed);
+  std::bernoulli_distribution ready(p_ready);
+  const double tc = 1e9 / clk_hz;
+  Result r;
+  m->clk = 0; m->rst = 1; m->en = 0; m->m_ready = 0; m->sdata = 0;
+  for (int i = 0; i < 3; ++i) { m->clk = 1; m->eval(); m->clk = 0; m->eval(); }
+  m->rst = 0; m->en = 1;
+  bool prev_cs = true, prev_valid = false, stalled = false;
+  uint64_t held_data = 0; uint32_t held_t = 0;
+  for (uint64_t edge = 1; edge <= max_edges && r.tokens.size() < n_tokens; ++edge) {
+    const double t = double(edge) * tc;
+    const bool rdy = ready(rng);
+    m->m_ready = rdy;
+    uint32_t sd = 0;
+    for (int c = 0; c < nch; ++c) sd |= uint32_t(adc[size_t(c)].sdata(t)) << c;
+    m->sdata = sd;
+    m->eval();
+    if (m->m_valid) {
+      if (stalled && (uint64_t(m->m_data) != held_data || m->m_t != held_t)) r.stable_ok = false;
+      if (rdy) {
+        Token k{m->m_t, {}};
+        for (int c = 0; c < nch; ++c) k.codes.push_back(uint16_t((uint64_t(m->m_data) >> (12 * c)) & 0xFFF));
+        r.tokens.push_back(k);
+        stalled = false;
+      } else {
+        stalled = true; held_data = uint64_t(m->m_data); held_t = m->m_t;
+      }
+    }
+    m->clk = 1; m->eval();
+    m->clk = 0; m->eval();
+    for (int c = 0; c < nch; ++c) adc[size_t(c)].drive(t, m->cs_n, m->sclk);
+    if (prev_cs && !m->cs_n) r.cs_fall_edges.push_back(edge);
+    if (!prev_valid && m->m_valid) r.valid_rise_edges.push_back(edge);
+    prev_cs = m->cs_n; prev_valid = m->m_valid;
+  }
+  for (auto& a : adc) {
+    r.violations.insert(r.violations.end(), a.violations().begin(), a.violations().end());
+    r.violation_count += a.violation_count();
+  }
+  r.completed = adc[0].conversions();
+  r.pending = m->m_valid;
+  r.overruns = m->overruns;
+  return r;
+}
+
+std::vector<uint16_t> random_codes(size_t n, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<uint16_t> v{0, 4095, 0xAAA, 0x555, 0x800, 0x7FF};
+  while (v.size() < n) v.push_back(uint16_t(rng() & 0xFFF));
+  return v;
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += x + "\n";
+  return s;
+}
+
+void expect_exact(const Result& r, const std::vector<std::vector<uint16_t>>& codes, size_t n) {
+  ASSERT_EQ(r.tokens.size(), n);
+  for (size_t i = 0; i < n; ++i) {
+    ASSERT_EQ(r.tokens[i].t, i);
+    for (size_t c = 0; c < codes.size(); ++c)
+      ASSERT_EQ(r.tokens[i].codes[c], codes[c][i]) << "sample " << i << " channel " << c;
+  }
+}
+
+void expect_cycles(const Result& r, uint64_t period, uint64_t h) {
+  ASSERT_GE(r.cs_fall_edges.size(), 3u);
+  for (size_t i = 1; i < r.cs_fall_edges.size(); ++i)
+    ASSERT_EQ(r.cs_fall_edges[i] - r.cs_fall_edges[i - 1], period);
+  for (size_t i = 0; i < r.valid_rise_edges.size() && i < r.cs_fall_edges.size(); ++i)
+    ASSERT_EQ(r.valid_rise_edges[i] - r.cs_fall_edges[i], 31 * h);
+}
+
+}  // namespace
+
+TEST(AdcAd7476, SceneCodesAt35kSps) {
+  eskin::sim::WorldModel world(eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml"));
+  std::vector<uint16_t> codes;
+  int code;
+  while (codes.size() < 1500 && world.next(code)) codes.push_back(uint16_t(code));
+  ASSERT_EQ(codes.size(), 1500u);
+  const size_t n = codes.size() - 1;
+  const auto r = run<Vadc_ad7476>(12e6, 1, {codes}, n, 1.0, 1, 400 * 1500);
+  EXPECT_EQ(r.violation_count, 0u) << joined(r.violations);
+  expect_exact(r, {codes}, n);
+  expect_cycles(r, (12000000 + 17500) / 35000, 1);
+  EXPECT_EQ(r.overruns, 0u);
+}
+
+TEST(AdcAd7476, RandomCodesAt1MspsTwoChannels) {
+  const size_t n = 4000;
+  const std::vector<std::vector<uint16_t>> codes{random_codes(n + 1, 2), random_codes(n + 1, 3)};
+  const auto r = run<Vadc_ad7476_fast>(40e6, 2, codes, n, 1.0, 2, 41 * (n + 2));
+  EXPECT_EQ(r.violation_count, 0u) << joined(r.violations);
+  expect_exact(r, codes, n);
+  expect_cycles(r, 40, 1);
+}
+
+TEST(AdcAd7476, BackPressureDropsWholeSamplesAndCountsThem) {
+  const size_t n = 600;
+  const auto codes = random_codes(4 * n, 4);
+  // Ready only 0.2% of cycles: a token waits ~500 cycles, beyond the 343-cycle period.
+  const auto r = run<Vadc_ad7476>(12e6, 1, {codes}, n, 0.002, 5, 343 * 3 * n);
+  ASSERT_EQ(r.tokens.size(), n);
+  EXPECT_TRUE(r.stable_ok);
+  uint32_t skipped = 0;
+  for (size_t i = 0; i < n; ++i) {
+    ASSERT_EQ(r.tokens[i].codes[0], codes[r.tokens[i].t]);
+    if (i) {
+      ASSERT_GT(r.tokens[i].t, r.tokens[i - 1].t);
+      skipped += r.tokens[i].t - r.tokens[i - 1].t - 1;
+    }
+  }
+  EXPECT_GT(skipped, 0u);
+  EXPECT_GE(r.overruns, skipped);
+  EXPECT_EQ(r.completed, r.tokens.size() + r.overruns + (r.pending ? 1 : 0));
+  EXPECT_EQ(r.violation_count, 0u);
+}
+
+TEST(AdcAd7476, NegativeControlSclkTooFast) {
+  const auto codes = random_codes(100, 6);
+  const auto r = run<Vadc_ad7476_badsclk>(48e6, 1, {codes}, 50, 1.0, 6, 48 * 60);
+  EXPECT_GT(r.violation_count, 0u);
+  ASSERT_FALSE(r.violations.empty());
+  EXPECT_NE(r.violations[0].find("tSCLK (fSCLK max 20 MHz)"), std::string::npos) << r.violations[0];
+}
+
+TEST(AdcAd7476, NegativeControlSampleRateTooHigh) {
+  const auto codes = random_codes(100, 7);
+  const auto r = run<Vadc_ad7476_badrate>(40e6, 1, {codes}, 50, 1.0, 7, 40 * 60);
+  const std::string all = joined(r.violations);
+  EXPECT_NE(all.find("tQUIET"), std::string::npos) << all;
+  EXPECT_NE(all.find("tACQ"), std::string::npos) << all;
+  EXPECT_EQ(all.find("tSCLK"), std::string::npos) << all;  // SCLK itself is legal
+}
+
+// The model alone, hand-driven at 20 MHz SCLK (25 ns half periods): reading
+// each bit at the rising edge (25 ns after the falling edge, inside the
+// t7..t4 = 10..40 ns undefined window) must give wrong codes; reading just
+// before each falling edge (t7 hold) gives the right ones.
+TEST(Ad7476Model, UndefinedWindowIsNotReadable) {
+  const auto codes = random_codes(64, 8);
+  for (bool at_rise : {false, true}) {
+    Ad7476Model adc(codes);
+    double t = 1000;
+    size_t wrong = 0;
+    for (size_t s = 0; s < codes.size(); ++s) {
+      adc.drive(t, false, true);  // CS falls
+      uint16_t word = 0;
+      uint16_t leading = 0;
+      for (int k = 1; k <= 16; ++k) {
+        const double fall = t + 25 + 50.0 * (k - 1);
+        int bit;
+        if (at_rise) {
+          adc.drive(fall, false, false);
+          bit = adc.sdata(fall + 25);
+          adc.drive(fall + 25, false, true);
+        } else {
+          bit = adc.sdata(fall);  // just before the edge
+          adc.drive(fall, false, false);
+          adc.drive(fall + 25, false, true);
+        }
+        if (k <= 4) leading = uint16_t(leading << 1 | bit);
+        else word = uint16_t(word << 1 | bit);
+      }
+      adc.drive(t + 800, true, true);
+      t += 1000;
+      if (!at_rise) {
+        EXPECT_EQ(leading, 0);
+      }
+      if (word != codes[s]) ++wrong;
+    }
+    EXPECT_EQ(adc.violation_count(), 0u) << joined(adc.violations());
+    if (at_rise) {
+      EXPECT_GT(wrong, codes.size() / 2);
+    } else {
+      EXPECT_EQ(wrong, 0u);
+    }
+  }
+}
