@@ -1,0 +1,297 @@
+// sdft_bank: exact sliding DFT of up to K_MAX carriers over an N-sample
+// window. Bit-exact implementation of hls/sdft_bank.h (number formats,
+// rounding and the exactness argument are stated there):
+//   acc_k += R(x[n] * C(th)) - R(x[n-N] * C(th - N inc))      (re)
+//   acc_k += R(x[n] * -S(th)) - R(x[n-N] * -S(th - N inc))    (im)
+//
+// Datapath: one signed XW x CW multiplier (one SB_MAC16 for XW, CW <= 16)
+// used four times per carrier, one quarter-sine ROM read per cycle, all state
+// in block RAM: window buffer N x XW, phase and increment K x 32, sums
+// K x ACC_W (re and im). The ROM is filled at elaboration by qsin(), the
+// same integer function as sdft_quarter_sine() in the HLS header.
+//
+// Schedule per sample (state: cycles):
+//   IDLE  in_ready = 1 (configured, no cfg_valid); handshake latches x[n]
+//   OLD   1: x[n-N] <- window[wp]; window[wp] <- x[n]; read carrier 0
+//   C1..C6 per carrier, 6 cycles:
+//     C1 latch phase/inc/sums; ROM <- cos(th)
+//     C2 th_old = th - N inc; ROM <- -sin(th);   re += R(x[n] C)
+//     C3 ROM <- cos(th_old);                      im += R(x[n] -S)
+//     C4 ROM <- -sin(th_old);                     re -= R(x[n-N] C)
+//     C5                                          im -= R(x[n-N] -S)
+//     C6 write back th + inc and the sums, load the output register (waits
+//        here while a previous token is not taken); read the next carrier
+// Timing without back-pressure: token k is valid 8 + 6 k cycles after the
+// input handshake cycle (latency 8); the next sample is accepted 6 K + 2
+// cycles after the previous one (II = 38 for K = 6, 194 for K = 32; at
+// 12 MHz and 35 kHz there are 342 cycles per sample).
+//
+// Configuration: write the increments through cfg (valid/ready, accepted in
+// IDLE), one carrier per token, cfg_k < K_MAX; the token with cfg_last sets
+// K = cfg_k + 1 and clears the window, phases and sums (max(N, 2^KB) cycles
+// in CLEAR), as SdftBank::configure() does. Until the first cfg_last no
+// sample is accepted.
+module sdft_bank #(
+    parameter integer K_MAX = 6,
+    parameter integer N = 32,
+    parameter integer XW = 13,
+    parameter integer CW = 16,
+    parameter integer TW = 10,
+    parameter integer ACC_W = 24,
+    parameter integer K_W = 8
+) (
+    input  wire             clk,
+    input  wire             rst,        // synchronous, active high
+    input  wire             in_valid,
+    output wire             in_ready,
+    input  wire [XW-1:0]    in_x,       // signed sample (code - mid)
+    input  wire             cfg_valid,
+    output wire             cfg_ready,
+    /* verilator lint_off UNUSEDSIGNAL */
+    input  wire [K_W-1:0]   cfg_k,      // low KB bits used (cfg_k < K_MAX)
+    /* verilator lint_on UNUSEDSIGNAL */
+    input  wire [31:0]      cfg_inc,    // phase increment, 2^32 = one cycle
+    input  wire             cfg_last,
+    output reg              out_valid,
+    input  wire             out_ready,
+    output reg  [K_W-1:0]   out_k,
+    output reg  [ACC_W-1:0] out_re,     // signed window sum
+    output reg  [ACC_W-1:0] out_im,     // signed window sum
+    output reg              out_last
+);
+  localparam integer KB = (K_MAX > 1) ? $clog2(K_MAX) : 1;  // carrier address
+  localparam integer KD = 1 << KB;                          // RAM depth
+  localparam integer NB = (N > 1) ? $clog2(N) : 1;          // window address
+  localparam integer QB = TW - 2;                           // ROM address
+  localparam integer Q = 1 << QB;
+  localparam integer CLR = (N > KD) ? N : KD;               // CLEAR cycles
+  localparam integer CB = $clog2(CLR + 1);
+  localparam integer PW = XW + CW;                          // product width
+  localparam [CW-1:0] AMP = {1'b0, {(CW - 1){1'b1}}};       // A = 2^(CW-1)-1
+  localparam [TW-1:0] QUARTER = {2'b01, {QB{1'b0}}};        // Q as TW bits
+  localparam signed [63:0] Q64 = 64'(Q);
+  localparam [NB-1:0] WP_LAST = NB'(N - 1);
+  localparam [31:0] N32 = 32'(N);
+  localparam [PW-1:0] HALF = {{(PW - CW + 1){1'b0}}, 1'b1, {(CW - 2){1'b0}}};
+
+  localparam [3:0] S_CLEAR = 4'd0, S_IDLE = 4'd1, S_OLD = 4'd2, S_C1 = 4'd3,
+                   S_C2 = 4'd4, S_C3 = 4'd5, S_C4 = 4'd6, S_C5 = 4'd7, S_C6 = 4'd8;
+  reg [3:0] state;
+  reg [CB-1:0] clr_cnt;
+  reg configured;
+  reg [KB-1:0] k, klast;
+  reg [NB-1:0] wp;
+
+  // Quarter-sine ROM value i: the integer Taylor series of
+  // sdft_quarter_sine() (Q.30, eight terms, truncating division).
+  function automatic [CW-2:0] qsin(input integer i);
+    reg signed [63:0] x, x2, t, s, a;
+    integer n;
+    begin
+      x = (64'sd1686629713 * 64'(i) + Q64 / 64'sd2) / Q64;
+      x2 = (x * x) >>> 30;
+      t = x;
+      s = x;
+      for (n = 1; n <= 8; n = n + 1) begin
+        t = -(((t * x2) >>> 30) / 64'((2 * n) * (2 * n + 1)));
+        s = s + t;
+      end
+      a = (64'sd1 <<< (CW - 1)) - 64'sd1;
+      s = (s * a + (64'sd1 <<< 29)) >>> 30;
+      qsin = s[CW-2:0];
+    end
+  endfunction
+
+  // v * N mod 2^32 as shifts and adds (no DSP for a constant; one shift
+  // when N is a power of two).
+  function automatic [31:0] times_n(input [31:0] v);
+    integer b;
+    begin
+      times_n = 32'd0;
+      for (b = 0; b < 32; b = b + 1)
+        if (N32[b]) times_n = times_n + (v << b);
+    end
+  endfunction
+
+  reg [CW-2:0] rom [0:Q-1];
+  integer ri;
+  initial begin
+    for (ri = 0; ri < Q; ri = ri + 1) rom[ri] = qsin(ri);
+  end
+
+  // ---- memories (one write port, one registered read port each) ----
+  // no_rw_check: no read result is used from a cycle that writes the same
+  // address (window: OLD writes wp after x_old was latched; state: C6 writes
+  // k while reading k + 1; CLEAR and config writes precede the reads in C1),
+  // so Yosys needs no collision bypass logic.
+  (* no_rw_check *) reg [XW-1:0] win [0:N-1];
+  (* no_rw_check *) reg [31:0] inc_mem [0:KD-1];
+  (* no_rw_check *) reg [31:0] ph_mem [0:KD-1];
+  (* no_rw_check *) reg [ACC_W-1:0] re_mem [0:KD-1];
+  (* no_rw_check *) reg [ACC_W-1:0] im_mem [0:KD-1];
+  reg [XW-1:0] win_q;
+  reg [31:0] inc_q, ph_q;
+  reg [ACC_W-1:0] re_q, im_q;
+
+  reg [XW-1:0] x_new, x_old;
+  reg [31:0] ph_r, inc_r, pho_r;
+  reg [ACC_W-1:0] re_r, im_r;
+
+  wire in_fire = in_valid && in_ready;
+  wire cfg_fire = cfg_valid && cfg_ready;
+  wire out_free = !out_valid || out_ready;
+  wire advance = (state == S_C6) && out_free;
+
+  wire [KB-1:0] ra = (state == S_C6) ? k + 1'b1 : k;  // next carrier in C6
+  wire clearing = state == S_CLEAR;
+  wire st_we = clearing || advance;  // phase and sums
+  wire [KB-1:0] st_wa = clearing ? clr_cnt[KB-1:0] : k;
+  wire [31:0] ph_wd = clearing ? 32'd0 : ph_r + inc_r;
+  wire [ACC_W-1:0] re_wd = clearing ? {ACC_W{1'b0}} : re_r;
+  wire [ACC_W-1:0] im_wd = clearing ? {ACC_W{1'b0}} : im_r;
+  wire win_we = (clearing && clr_cnt < CB'(N)) || state == S_OLD;
+  wire [NB-1:0] win_wa = clearing ? clr_cnt[NB-1:0] : wp;
+  wire [XW-1:0] win_wd = clearing ? {XW{1'b0}} : x_new;
+
+  always @(posedge clk) begin
+    if (win_we) win[win_wa] <= win_wd;
+    win_q <= win[wp];
+  end
+  always @(posedge clk) begin
+    if (cfg_fire) inc_mem[cfg_k[KB-1:0]] <= cfg_inc;
+    inc_q <= inc_mem[ra];
+  end
+  always @(posedge clk) begin
+    if (st_we) ph_mem[st_wa] <= ph_wd;
+    ph_q <= ph_mem[ra];
+  end
+  always @(posedge clk) begin
+    if (st_we) re_mem[st_wa] <= re_wd;
+    re_q <= re_mem[ra];
+  end
+  always @(posedge clk) begin
+    if (st_we) im_mem[st_wa] <= im_wd;
+    im_q <= im_mem[ra];
+  end
+
+  // ---- sine lookup: issue (address) one cycle, value the next ----
+  /* verilator lint_off UNUSEDSIGNAL */
+  reg [31:0] lk_ph;  // only the top TW+1 bits select the table entry
+  reg lk_cos, lk_neg;
+  always @(*) begin
+    case (state)
+      S_C1: begin lk_ph = ph_q; lk_cos = 1'b1; lk_neg = 1'b0; end
+      S_C2: begin lk_ph = ph_r; lk_cos = 1'b0; lk_neg = 1'b1; end
+      S_C3: begin lk_ph = pho_r; lk_cos = 1'b1; lk_neg = 1'b0; end
+      default: begin lk_ph = pho_r; lk_cos = 1'b0; lk_neg = 1'b1; end
+    endcase
+  end
+  wire [TW:0] lk_top = lk_ph[31:31-TW] + 1'b1;  // round half up to TW bits
+  /* verilator lint_on UNUSEDSIGNAL */
+  wire [TW-1:0] lk_idx = lk_cos ? lk_top[TW:1] + QUARTER : lk_top[TW:1];
+  wire [QB-1:0] lk_o = lk_idx[QB-1:0];
+  wire lk_mirror = lk_idx[TW-2];                 // quadrants 1 and 3
+  wire [QB-1:0] rom_a = lk_mirror ? -lk_o : lk_o;
+  reg [CW-2:0] rom_q;
+  reg full_q, neg_q;
+  always @(posedge clk) begin
+    rom_q <= rom[rom_a];
+    full_q <= lk_mirror && lk_o == {QB{1'b0}};  // sin(pi/2) = A, not in ROM
+    neg_q <= lk_idx[TW-1] ^ lk_neg;
+  end
+  wire [CW-1:0] mag = full_q ? AMP : {1'b0, rom_q};
+  wire [CW-1:0] coef = neg_q ? -mag : mag;
+
+  // ---- the one multiplier, rounded term R(x * c) ----
+  wire use_old = state == S_C4 || state == S_C5;
+  wire signed [XW-1:0] mul_x = use_old ? x_old : x_new;
+  wire signed [CW-1:0] mul_c = coef;
+  wire signed [PW-1:0] prod = mul_x * mul_c;
+  wire [PW-1:0] prod_r = prod + HALF;
+  wire [ACC_W-1:0] term = {{(ACC_W - XW - 1){prod_r[PW-1]}}, prod_r[PW-1:CW-1]};
+
+  // ---- control ----
+  assign cfg_ready = state == S_IDLE;
+  assign in_ready = state == S_IDLE && configured && !cfg_valid;
+
+  always @(posedge clk) begin
+    if (rst) begin
+      state <= S_CLEAR;
+      clr_cnt <= {CB{1'b0}};
+      configured <= 1'b0;
+      klast <= {KB{1'b0}};
+      k <= {KB{1'b0}};
+      wp <= {NB{1'b0}};
+    end else begin
+      case (state)
+        S_CLEAR: begin
+          clr_cnt <= clr_cnt + 1'b1;
+          if (clr_cnt == CB'(CLR - 1)) state <= S_IDLE;
+        end
+        S_IDLE: begin
+          if (cfg_fire && cfg_last) begin
+            klast <= cfg_k[KB-1:0];
+            configured <= 1'b1;
+            wp <= {NB{1'b0}};
+            clr_cnt <= {CB{1'b0}};
+            state <= S_CLEAR;
+          end else if (in_fire) begin
+            x_new <= in_x;
+            k <= {KB{1'b0}};
+            state <= S_OLD;
+          end
+        end
+        S_OLD: begin
+          x_old <= win_q;
+          wp <= (wp == WP_LAST) ? {NB{1'b0}} : wp + 1'b1;
+          state <= S_C1;
+        end
+        S_C1: begin
+          ph_r <= ph_q;
+          inc_r <= inc_q;
+          re_r <= re_q;
+          im_r <= im_q;
+          state <= S_C2;
+        end
+        S_C2: begin
+          pho_r <= ph_r - times_n(inc_r);
+          re_r <= re_r + term;
+          state <= S_C3;
+        end
+        S_C3: begin
+          im_r <= im_r + term;
+          state <= S_C4;
+        end
+        S_C4: begin
+          re_r <= re_r - term;
+          state <= S_C5;
+        end
+        S_C5: begin
+          im_r <= im_r - term;
+          state <= S_C6;
+        end
+        S_C6: begin
+          if (out_free) begin
+            k <= k + 1'b1;
+            state <= (k == klast) ? S_IDLE : S_C1;
+          end
+        end
+        default: state <= S_CLEAR;
+      endcase
+    end
+  end
+
+  always @(posedge clk) begin
+    if (rst) begin
+      out_valid <= 1'b0;
+    end else if (advance) begin
+      out_valid <= 1'b1;
+      out_k <= K_W'(k);
+      out_re <= re_r;
+      out_im <= im_r;
+      out_last <= k == klast;
+    end else if (out_ready) begin
+      out_valid <= 1'b0;
+    end
+  end
+endmodule
