@@ -41,6 +41,13 @@ template class eskin::hls::TaxelReconstruct<3, 3>;
 template class eskin::hls::IzhikevichLayer<9>;
 #endif
 
+#if __has_include("hls/ghost_filter.h")
+#include "hls/ghost_filter.h"
+template class eskin::hls::GhostFilter<3, 3, 4>;
+#endif
+
 #if __has_include("hls/carrier_demix.h")
 #include "hls/carrier_demix.h"
+template class eskin::hls::CarrierDemix<6, 32>;
+template struct eskin::hls::CarrierDemixConfig<6>;
 #endif
