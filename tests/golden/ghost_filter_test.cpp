@@ -83,7 +83,7 @@ double run_and_check_no_ghost(GhostFilter& f, const std::vector<Touch>& ts, doub
 // and pairs its own row and column; each site then owns its row and column,
 // so both modes' values equal g up to a sqrt/solve rounding: 1e-9 is far
 // above that (~1e-15) and far below any ghost (>= 0.35).
-TEST(GhostFilter, ThesisThreeStaggeredTouchesExactlyThreeSites) {
+TEST(GoldenGhostFilter, ThesisThreeStaggeredTouchesExactlyThreeSites) {
   const int R = 10, C = 10;
   struct Run {
     double frame_ms, ramp_ms;
@@ -116,7 +116,7 @@ TEST(GhostFilter, ThesisThreeStaggeredTouchesExactlyThreeSites) {
 // Release: once a touch lifts, its line amplitudes drop to 0, so its site
 // value (0) is below release and the site must go; the others stay exact
 // (bound 1e-9 as above).
-TEST(GhostFilter, LiftedTouchIsReleased) {
+TEST(GoldenGhostFilter, LiftedTouchIsReleased) {
   for (bool improved : {false, true}) {
     auto ts = thesis_touches(0.0);
     ts[1].t_off_ms = 32.0;
@@ -137,7 +137,7 @@ TEST(GhostFilter, LiftedTouchIsReleased) {
 // each its own value: bound 1e-9 (exact data, full-rank 2-site system).
 // Thesis mode uses sqrt(r_2 c_6) = sqrt(0.8 * 0.3) = 0.49 for a 0.3 touch:
 // the documented over-estimate on shared lines (asserted > 0.1 off).
-TEST(GhostFilter, SharedRowImprovedExactThesisOverestimates) {
+TEST(GoldenGhostFilter, SharedRowImprovedExactThesisOverestimates) {
   std::vector<Touch> ts = {{2, 3, 0.5, 0.0}, {2, 6, 0.3, 5.0 / 35.0}};
   for (bool improved : {false, true}) {
     GhostFilterConfig cfg;
@@ -163,7 +163,7 @@ TEST(GhostFilter, SharedRowImprovedExactThesisOverestimates) {
 // so any other pairing leaves a row/column mismatch >= |g_a - g_b| / 2 >
 // pair_tol -- improved mode finds exactly the true sites with values within
 // 1e-9 (exact data, full-rank system).
-TEST(GhostFilter, SimultaneousTouchesGhostRates) {
+TEST(GoldenGhostFilter, SimultaneousTouchesGhostRates) {
   const int R = 10, C = 10, cases = 1500;
   std::mt19937 rng(20231122);
   std::uniform_int_distribution<int> pos(0, 9);
@@ -233,7 +233,7 @@ TEST(GhostFilter, SimultaneousTouchesGhostRates) {
 // must say so, lose no touch, and report the minimum-norm split g/2 on all
 // four corners (that split reproduces every line exactly: 2 * g/2 = g; the
 // 1e-12 ridge biases it by ~1e-12, bound 1e-9).
-TEST(GhostFilter, EqualRectangleIsAmbiguous) {
+TEST(GoldenGhostFilter, EqualRectangleIsAmbiguous) {
   GhostFilter f(4, 4, GhostFilterConfig{});
   Eigen::MatrixXd truth = Eigen::MatrixXd::Zero(4, 4);
   truth(0, 1) = truth(2, 3) = 0.4;
@@ -249,7 +249,7 @@ TEST(GhostFilter, EqualRectangleIsAmbiguous) {
 // enumerating all supports of a 4-column problem and keeping the best
 // feasible one gives the reference. Both solve well-conditioned random
 // systems, so they agree to rounding: bound 1e-9.
-TEST(GhostFilter, NnlsMatchesBruteForce) {
+TEST(GoldenGhostFilter, NnlsMatchesBruteForce) {
   std::mt19937 rng(7);
   std::normal_distribution<double> nd(0.0, 1.0);
   for (int trial = 0; trial < 200; ++trial) {
@@ -281,7 +281,7 @@ TEST(GhostFilter, NnlsMatchesBruteForce) {
 }
 
 // Bad sizes and settings name the field.
-TEST(GhostFilter, ConfigErrorsNameTheField) {
+TEST(GoldenGhostFilter, ConfigErrorsNameTheField) {
   GhostFilterConfig bad;
   bad.lookback = 0;
   try {

@@ -71,7 +71,7 @@ std::vector<double> paper_step(const std::string& preset) {
 
 // RS: single spikes (no ISI < 10 ms), spike-frequency adaptation (last ISI
 // >= 1.5x the first), then tonic (last three ISIs within 5%).
-TEST(IzhikevichLayer, RegularSpikingAdapts) {
+TEST(GoldenIzhikevichLayer, RegularSpikingAdapts) {
   auto t = paper_step("RS");
   auto d = isis(t);
   ASSERT_GE(t.size(), 5u);
@@ -84,7 +84,7 @@ TEST(IzhikevichLayer, RegularSpikingAdapts) {
 
 // IB: an initial burst (first two ISIs < 6 ms, i.e. >= 3 spikes) then tonic
 // single spikes (every later ISI > 20 ms).
-TEST(IzhikevichLayer, IntrinsicallyBurstingBurstThenTonic) {
+TEST(GoldenIzhikevichLayer, IntrinsicallyBurstingBurstThenTonic) {
   auto d = isis(paper_step("IB"));
   ASSERT_GE(d.size(), 6u);
   EXPECT_LT(d[0], 6.0);
@@ -95,7 +95,7 @@ TEST(IzhikevichLayer, IntrinsicallyBurstingBurstThenTonic) {
 // CH: repeated bursts, i.e. a bimodal ISI: >= 4 pauses (ISI > 30 ms), at
 // least twice as many intra-burst ISIs (< 6 ms) as pauses (>= 3 spikes per
 // burst on average), and every pause is followed by a short ISI (a burst).
-TEST(IzhikevichLayer, ChatteringRepeatedBursts) {
+TEST(GoldenIzhikevichLayer, ChatteringRepeatedBursts) {
   auto d = isis(paper_step("CH"));
   size_t pauses = 0, shorts = 0;
   for (size_t k = 0; k < d.size(); ++k) {
@@ -113,7 +113,7 @@ TEST(IzhikevichLayer, ChatteringRepeatedBursts) {
 
 // FS: high-rate tonic firing with little adaptation: steady ISI < 10 ms
 // (> 100 Hz), at most 2x the first ISI, and >= 4x RS's steady rate.
-TEST(IzhikevichLayer, FastSpikingHighRateLittleAdaptation) {
+TEST(GoldenIzhikevichLayer, FastSpikingHighRateLittleAdaptation) {
   auto d = isis(paper_step("FS"));
   auto rs = isis(paper_step("RS"));
   ASSERT_GE(d.size(), 10u);
@@ -125,7 +125,7 @@ TEST(IzhikevichLayer, FastSpikingHighRateLittleAdaptation) {
 
 // LTS: high-frequency start (first ISI < 5 ms), strong adaptation (steady ISI
 // > 3x the first), then tonic (last five ISIs within 10% of their mean).
-TEST(IzhikevichLayer, LowThresholdSpikingStartsFastThenAdapts) {
+TEST(GoldenIzhikevichLayer, LowThresholdSpikingStartsFastThenAdapts) {
   auto d = isis(paper_step("LTS"));
   ASSERT_GE(d.size(), 10u);
   EXPECT_LT(d.front(), 5.0);
@@ -138,7 +138,7 @@ TEST(IzhikevichLayer, LowThresholdSpikingStartsFastThenAdapts) {
 // (b) silent during a hyperpolarising step (I = -10, 100..300 ms) and a
 // rebound burst on release: >= 2 spikes within 40 ms with first ISI < 15
 // ms, then silence again (none after 350 ms).
-TEST(IzhikevichLayer, ThalamoCorticalTonicAndReboundBurst) {
+TEST(GoldenIzhikevichLayer, ThalamoCorticalTonicAndReboundBurst) {
   auto d = isis(paper_step("TC"));
   ASSERT_GE(d.size(), 20u);
   EXPECT_LT(*std::max_element(d.begin(), d.end()), 2.0 * *std::min_element(d.begin(), d.end()));
@@ -168,7 +168,7 @@ TEST(IzhikevichLayer, ThalamoCorticalTonicAndReboundBurst) {
 // With v0 = -65, u0 = b v0 (the project's initial state) RZ starts off its
 // rest and fires once near 21 ms before settling, so every protocol starts
 // after 300 ms of rest (the oscillation decays as exp(-0.05 t)).
-TEST(IzhikevichLayer, ResonatorOscillatesAndResonates) {
+TEST(GoldenIzhikevichLayer, ResonatorOscillatesAndResonates) {
   const auto rz = izhikevich_preset("RZ");
   auto crossings = [](const IzhikevichParams& p, double v_rest, double amp) {
     IzhikevichLayer layer(1, p, kDt);
@@ -221,7 +221,7 @@ TEST(IzhikevichLayer, ResonatorOscillatesAndResonates) {
 // RA (thesis Table 4.1: tau 0.97, K 9): a held input of 0.5 (I = K * 0.5 =
 // 4.5) makes it fire (>= 10 spikes) and adapt (mean of the last three ISIs
 // >= 1.3x the first ISI); nothing before the step.
-TEST(IzhikevichLayer, RapidlyAdaptingFiresAndAdapts) {
+TEST(GoldenIzhikevichLayer, RapidlyAdaptingFiresAndAdapts) {
   const auto ra = izhikevich_preset("RA");
   EXPECT_EQ(ra.tau, 0.97);
   EXPECT_EQ(ra.gain, 9.0);
@@ -236,7 +236,7 @@ TEST(IzhikevichLayer, RapidlyAdaptingFiresAndAdapts) {
 // +1e12, -1e12 and alternating +-1e12 (times the gain) keep v in [-1000,
 // 1000] and u in [-1e6, 1e6] (the documented clamps), finite; +1e12 fires
 // (I saturates at +1e4, and dv >= dt * (1e4 - ...) crosses 30 mV quickly).
-TEST(IzhikevichLayer, ExtremeInputsStayFiniteAndInRange) {
+TEST(GoldenIzhikevichLayer, ExtremeInputsStayFiniteAndInRange) {
   const double dts[] = {0.25, 1.0 / 35.0};
   for (const std::string& name : izhikevich_preset_names()) {
     for (double dt : dts) {
@@ -277,7 +277,7 @@ TEST(IzhikevichLayer, ExtremeInputsStayFiniteAndInRange) {
 //   dv = 0.5 (0.04 * 3782.25 - 307.5 + 140 + 13 + 10) = 3.395 -> v = -58.105
 //   du = 0.5 * 0.02 (0.2 * -61.5 + 13) = 0.007 -> u = -12.993
 // Bound 1e-12: a handful of roundings of numbers ~100.
-TEST(IzhikevichLayer, EulerStepByHand) {
+TEST(GoldenIzhikevichLayer, EulerStepByHand) {
   IzhikevichLayer layer(1, izhikevich_preset("RS"), 0.5);
   std::vector<int> s;
   double x = 10.0;
@@ -300,7 +300,7 @@ TEST(IzhikevichLayer, EulerStepByHand) {
 // (I = 16.75) v' = 0.04 (v + 62.5)^2 + (I - 16.25) >= 0.5, so v gains
 // >= 0.125 mV per 0.25 ms step and must reach 30 within 190 ms.
 // Presynaptic spikes held on every step make the current W s constant.
-TEST(IzhikevichLayer, WeightedLayerFiresIffAboveRheobase) {
+TEST(GoldenIzhikevichLayer, WeightedLayerFiresIffAboveRheobase) {
   IzhikevichParams p;
   p.a = 0.02, p.b = 0.0, p.c = -65.0, p.d = 2.0, p.tau = 1.0, p.gain = 1.0;
   auto fires = [&](double w0, double w1, std::vector<int> pre) {
@@ -325,7 +325,7 @@ TEST(IzhikevichLayer, WeightedLayerFiresIffAboveRheobase) {
 
 // ISI features by hand: times 0, 10, 30, 60 -> ISIs 10, 20, 30, mean 20,
 // sample variance (100 + 0 + 100) / 2 = 100. Exact in double.
-TEST(IzhikevichLayer, SpikeStats) {
+TEST(GoldenIzhikevichLayer, SpikeStats) {
   SpikeStats s = spike_stats({0.0, 10.0, 30.0, 60.0});
   EXPECT_EQ(s.count, 4u);
   EXPECT_EQ(s.mean_isi_ms, 20.0);
@@ -339,7 +339,7 @@ TEST(IzhikevichLayer, SpikeStats) {
 // Receptor input by hand (input_scale 10, frame 0.5 ms), row-major:
 // Level -> 10 g; RectifiedChange -> 10 max(0, dg) / 0.5 ms = 20 max(0, dg).
 // Values are exact binary fractions, so equality is exact.
-TEST(IzhikevichLayer, ReceptorInputModes) {
+TEST(GoldenIzhikevichLayer, ReceptorInputModes) {
   Eigen::MatrixXd g(2, 2), prev(2, 2);
   g << 0.5, 0.25, 0.0, 1.0;
   prev << 0.25, 0.5, 0.0, 0.75;
@@ -355,7 +355,7 @@ TEST(IzhikevichLayer, ReceptorInputModes) {
   EXPECT_THROW(receptor_input(cfg, g, prev, 0.0, out), eskin::ConfigError);
 }
 
-TEST(IzhikevichLayer, UnknownPresetListsValidNames) {
+TEST(GoldenIzhikevichLayer, UnknownPresetListsValidNames) {
   try {
     izhikevich_preset("XX");
     FAIL() << "XX accepted";

@@ -39,7 +39,7 @@ double p_top(const Conductance& c) {
 
 // Bound: exact equality. T_ij = r_i c_j is one double multiplication of the
 // given values, so the result must be the correctly rounded product.
-TEST(TaxelReconstruct, ProductIsOuterProduct) {
+TEST(GoldenTaxelReconstruct, ProductIsOuterProduct) {
   Eigen::VectorXd r(3), c(2);
   r << 1.0, 0.5, 0.0;
   c << 0.25, 3.0;
@@ -60,7 +60,7 @@ TEST(TaxelReconstruct, ProductIsOuterProduct) {
 // The steepest inverse here, saturating at p = 10 p_half, has dp/dg =
 // p_half / (1-g)^2 ~ 5e3 kPa, so the pressure error is < 1e-11 kPa: 1e-9
 // leaves two orders of margin. Off the touched row and column all must be 0.
-TEST(TaxelReconstruct, SingleTouchRoundTripEveryConductanceKind) {
+TEST(GoldenTaxelReconstruct, SingleTouchRoundTripEveryConductanceKind) {
   SkinConfig skin;
   skin.rows = 4;
   skin.cols = 5;
@@ -90,7 +90,7 @@ TEST(TaxelReconstruct, SingleTouchRoundTripEveryConductanceKind) {
 
 // Bound: exact zero. Magnitudes are never negative; a negative estimate
 // (e.g. from a demixer) must not make sqrt produce NaN, it means "no line".
-TEST(TaxelReconstruct, NegativeLineAmplitudesGiveZeroNotNaN) {
+TEST(GoldenTaxelReconstruct, NegativeLineAmplitudesGiveZeroNotNaN) {
   Eigen::VectorXd r(2), c(2);
   r << -0.1, 0.36;
   c << 0.25, -1e-12;
