@@ -81,7 +81,8 @@ TEST(GoldenTaxelReconstruct, SingleTouchRoundTripEveryConductanceKind) {
           EXPECT_NEAR(pr(a, b), want, 1e-9)
               << "kind " << int(cond.kind) << " p " << p << " at (" << a << "," << b << ")";
         }
-      // The thesis product of the same single touch is g^2 at the site.
+      // The thesis product of the same single touch is g^2 at the site; g went
+      // through * full / full (an ulp or two) and g <= 1, so 1e-15 holds.
       Eigen::MatrixXd t = taxel_product(row_lsb / full, col_lsb / full);
       EXPECT_NEAR(t(i, j), g * g, 1e-15);
     }
