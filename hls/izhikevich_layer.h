@@ -76,9 +76,10 @@
 // Interface (one token per neuron per step, in neuron order 0..N-1; the
 // neuron index is implicit, counted by the layer):
 //   in  {x, t}: t is the 32-bit sample counter of the step (timestamp).
-//   out {neuron, t, spike, last}: one token per input token; spike set when
-//       the neuron fired this step; last on neuron N-1. A spike event is
-//       {neuron, t}; spike_encoder keeps only the tokens with spike set.
+//   out {neuron, t, spike, last, v, U}: one token per input token; spike set
+//       when the neuron fired this step; last on neuron N-1; v, U the state
+//       after the update (monitoring). A spike event is {neuron, t}:
+//       spike_encoder keeps only the tokens with spike set.
 // Timing of the RTL (asserted in tests/rtl/izhikevich_layer_test.cpp):
 //   after reset, N cycles of state initialisation (in_ready low);
 //   then per neuron: input handshake at cycle 0, out_valid at cycle
@@ -121,6 +122,8 @@ struct IzhikevichOut {
   uint32_t t = 0;
   bool spike = false;
   bool last = false;
+  int32_t v = 0;   // the neuron's state after the update (Q9.22), for
+  int32_t U = 0;   // verification and monitoring (Q.FU)
 };
 
 namespace izh {
@@ -211,6 +214,8 @@ class IzhikevichLayer {
     out.t = in.t;
     out.spike = izhikevich_update(cfg_, v_[n], U_[n], in.x);
     out.last = n == N - 1;
+    out.v = v_[n];
+    out.U = U_[n];
     next_ = out.last ? 0 : n + 1;
     return true;
   }
