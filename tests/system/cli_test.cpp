@@ -1,0 +1,171 @@
+// The eskin CLI as a user runs it: real processes, real files, exit codes
+// and messages. Bad input must fail with a message naming the file and what
+// was expected; good input must produce the documented outputs.
+#include <gtest/gtest.h>
+#include <sndfile.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "sim/scene.h"
+#include "sim/wav_io.h"
+#include "sim/world_model.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int status;
+  std::string out;  // stdout and stderr together
+};
+
+Result sh(const std::string& args) {
+  const std::string cmd = std::string(ESKIN_BIN) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  Result r{-1, ""};
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+fs::path tmpdir() {
+  fs::path d = fs::temp_directory_path() /
+               ("eskin_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::create_directories(d);
+  return d;
+}
+
+const std::string kScene = ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml";
+
+size_t count_lines(const fs::path& p) {
+  std::ifstream f(p);
+  return size_t(std::count(std::istreambuf_iterator<char>(f), {}, '\n'));
+}
+
+TEST(Cli, HelpListsEverySubcommand) {
+  const Result r = sh("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* c : {"golden", "decode", "neuron", "world"})
+    EXPECT_NE(r.out.find(c), std::string::npos) << c << " missing from\n" << r.out;
+}
+
+TEST(Cli, GoldenOnDefaultSceneWritesEveryOutput) {
+  const fs::path d = tmpdir();
+  const Result r = sh("golden " + kScene + " --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* f : {"amplitudes.ndjson", "amplitudes.csv", "taxels.ndjson", "taxels.csv",
+                        "spikes.ndjson", "spikes.csv"})
+    EXPECT_GT(count_lines(d / f), 1u) << f;
+  EXPECT_NE(r.out.find("ghosts"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("spikes:"), std::string::npos) << r.out;
+  // One amplitude frame per sample once the 32-sample window is full.
+  const eskin::sim::Scene s = eskin::sim::load_scene(kScene);
+  const size_t samples = eskin::sim::WorldModel(s).total_samples();
+  EXPECT_EQ(count_lines(d / "amplitudes.ndjson"),
+            (samples - size_t(s.decoder.window)) / size_t(s.decoder.hop) + 1);
+}
+
+TEST(Cli, GoldenRejectsABadSceneBeforeRunning) {
+  const fs::path d = tmpdir();
+  std::ifstream in(kScene);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string y = ss.str();
+  const size_t at = y.find("rows:");
+  ASSERT_NE(at, std::string::npos);
+  y.replace(at, 5, "rowz:");
+  std::ofstream(d / "bad.yaml") << y;
+  const Result r = sh("golden " + (d / "bad.yaml").string() + " --out " + (d / "o").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("bad.yaml:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rowz"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(d / "o")) << "outputs were written for a rejected scene";
+}
+
+// Writes the default scene's stream as WAV through the world model.
+fs::path scene_wav(const fs::path& d) {
+  const eskin::sim::Scene s = eskin::sim::load_scene(kScene);
+  eskin::sim::WorldModel w(s);
+  const fs::path p = d / "scene.wav";
+  eskin::sim::write_wav(p.string(), w.all_codes(), s.skin.adc);
+  return p;
+}
+
+TEST(Cli, DecodeOfTheWorldModelsWavEqualsGoldenAmplitudes) {
+  // The WAV carries the ADC codes exactly (10-bit codes << 6 in 16-bit PCM),
+  // so decoding it must reproduce the golden run's amplitudes line for line.
+  const fs::path d = tmpdir();
+  const fs::path wav = scene_wav(d);
+  ASSERT_EQ(sh("golden " + kScene + " --out " + d.string()).status, 0);
+  const Result r = sh("decode --skin " + kScene + " " + wav.string());
+  ASSERT_EQ(r.status, 0) << r.out.substr(0, 500);
+  std::ifstream g(d / "amplitudes.ndjson");
+  std::istringstream dec(r.out);
+  std::string gl, dl;
+  size_t lines = 0;
+  while (std::getline(g, gl)) {
+    ASSERT_TRUE(std::getline(dec, dl)) << "decode stopped after " << lines << " lines";
+    EXPECT_EQ(dl, gl);
+    ++lines;
+  }
+  EXPECT_GT(lines, 1000u);
+}
+
+void write_raw(const fs::path& p, int channels, int rate, int frames, int format) {
+  SF_INFO info{};
+  info.channels = channels;
+  info.samplerate = rate;
+  info.format = format;
+  SNDFILE* f = sf_open(p.c_str(), SFM_WRITE, &info);
+  ASSERT_NE(f, nullptr);
+  std::vector<short> s(size_t(frames * channels), 100);
+  sf_writef_short(f, s.data(), frames);
+  sf_close(f);
+}
+
+TEST(Cli, DecodeRejectsBadWavsWithAClearMessage) {
+  const fs::path d = tmpdir();
+  struct Case {
+    std::string file, expect;
+  };
+  write_raw(d / "stereo.wav", 2, 35000, 1000, SF_FORMAT_WAV | SF_FORMAT_PCM_16);
+  write_raw(d / "rate.wav", 1, 44100, 1000, SF_FORMAT_WAV | SF_FORMAT_PCM_16);
+  write_raw(d / "float.wav", 1, 35000, 1000, SF_FORMAT_WAV | SF_FORMAT_FLOAT);
+  std::ofstream(d / "text.wav") << "this is not a wav file\n";
+  const fs::path good = scene_wav(d);
+  const auto size = fs::file_size(good);
+  fs::copy_file(good, d / "cut.wav");
+  fs::resize_file(d / "cut.wav", size / 2);
+  const Case cases[] = {{"stereo.wav", "mono"},
+                        {"rate.wav", "sample rate 44100"},
+                        {"float.wav", "16-bit PCM"},
+                        {"text.wav", "text.wav"},
+                        {"cut.wav", "truncated"}};
+  for (const Case& c : cases) {
+    const Result r = sh("decode --skin " + kScene + " " + (d / c.file).string());
+    EXPECT_NE(r.status, 0) << c.file;
+    EXPECT_NE(r.out.find(c.file), std::string::npos) << c.file << ": " << r.out;
+    EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.file << ": " << r.out;
+  }
+}
+
+TEST(Cli, NeuronPrintsSpikesAndRejectsBadPresets) {
+  const Result ok = sh("neuron --preset RS --input step:10@10 --duration 200");
+  ASSERT_EQ(ok.status, 0) << ok.out;
+  EXPECT_NE(ok.out.find("\"t_ms\""), std::string::npos) << ok.out;
+  const Result bad = sh("neuron --preset XX --input step:10 --duration 100");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.out.find("XX"), std::string::npos) << bad.out;
+}
+
+}  // namespace
