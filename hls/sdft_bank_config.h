@@ -1,5 +1,6 @@
 // Host-side, not synthesised: builds and checks the carrier table of
-// hls/sdft_bank.h (and of the RTL config port) from frequencies in Hz.
+// hls/sdft_bank.h (and of the RTL config port) and the coefficients of the
+// cheaper block Goertzel bank (hls/sdft_damped.h) from frequencies in Hz.
 // Uses double and std::string; never throws: every check returns a status
 // code and a message naming the field and what was expected.
 #pragma once
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "hls/sdft_bank.h"
+#include "hls/sdft_damped.h"
 
 namespace eskin::hls {
 
@@ -147,6 +149,53 @@ inline double sdft_amplitude_error_bound(const SdftWidths& w, double xmax) {
                           xmax * std::sqrt(2.0) * (0.5 + 0.0625) / a +
                           std::sqrt(2.0) * 0.5 / g + xmax * 2 * pi * w.n * std::ldexp(1.0, -33);
   return 2.0 * per_term;
+}
+
+// ---- block Goertzel bank (hls/sdft_damped.h) ----
+
+// Same carrier rules as the exact bank (one bin from DC and Nyquist, spacing
+// >= fs/N); a = round(2 cos w 2^(CW-2)), b = round(sin w' 2^(CW-1)) with
+// cos w' = a / 2^(CW-1), both limited to +-(2^(CW-1) - 1).
+template <int K_MAX, int N, int XW, int CW, int F, int SW>
+SdftConfigStatus make_goertzel_config(const GoertzelBlockBank<K_MAX, N, XW, CW, F, SW>*,
+                                      const std::vector<double>& freqs_hz, double fs_hz,
+                                      GoertzelConfig<K_MAX>& out) {
+  const SdftWidths w{N, XW, CW, 10, sdft_min_acc_width(N, XW)};
+  SdftConfigStatus st = check_sdft_bank(freqs_hz, fs_hz, w, K_MAX);
+  if (!st.ok()) return st;
+  out = GoertzelConfig<K_MAX>{};
+  out.carriers = int(freqs_hz.size());
+  const double one = std::ldexp(1.0, CW - 1), lim = one - 1, pi = 3.14159265358979323846;
+  for (size_t k = 0; k < freqs_hz.size(); ++k) {
+    const double wk = 2 * pi * freqs_hz[k] / fs_hz;
+    const double a = std::fmax(-lim, std::fmin(lim, std::nearbyint(std::cos(wk) * one)));
+    const double c = a / one;
+    out.a[k] = int32_t(a);
+    out.b[k] = int32_t(std::fmin(lim, std::nearbyint(std::sqrt(1 - c * c) * one)));
+  }
+  return st;
+}
+
+template <class Bank>
+SdftConfigStatus make_goertzel_config(const std::vector<double>& freqs_hz, double fs_hz,
+                                      typename Bank::Config& out) {
+  return make_goertzel_config(static_cast<const Bank*>(nullptr), freqs_hz, fs_hz, out);
+}
+
+// Worst-case error of (2/N)|y| against the exact (2/N)|block DFT at w|, in
+// sample LSB, |x| <= xmax, for a carrier with coefficient a (derivation in
+// tests/hls/sdft_damped_test.cpp):
+//   frequency   xmax |w' - w| N (N-1)/2         (w' = acos(a / 2^(CW-1)))
+//   state       G 2^-F, G = sum_{m<N} |sin((m+1) w') / sin w'|
+//   b rounding  (xmax + 2^-F/2) G 2^-CW
+//   output      sqrt(2)/2
+inline double goertzel_error_bound(int n, int cw, int f, int32_t a, double w, double xmax) {
+  const double wp = std::acos(a / std::ldexp(1.0, cw - 1));
+  double g = 0;
+  for (int m = 0; m < n; ++m) g += std::fabs(std::sin((m + 1) * wp) / std::sin(wp));
+  const double e = xmax * std::fabs(wp - w) * n * (n - 1) / 2 + g * std::ldexp(1.0, -f) +
+                   (xmax + std::ldexp(0.5, -f)) * g * std::ldexp(1.0, -cw) + std::sqrt(0.5);
+  return 2.0 / n * e;
 }
 
 }  // namespace eskin::hls
