@@ -101,9 +101,9 @@ bool parse_payload(Packet& p, std::string* why) {
       p.cmd_value = le16(&b[1]);
       return true;
     case kCmdSetNeuron:
-      if (n != 3) return fail(why, "set_neuron: payload length must be 3");
+      if (n != 5) return fail(why, "set_neuron: payload length must be 5");
       p.cmd_index = b[0];
-      p.cmd_value = uint32_t(int32_t(int16_t(le16(&b[1]))));
+      p.cmd_value = le32(&b[1]);
       return true;
     case kCmdSetOutputMask:
       if (n != 1) return fail(why, "set_output_mask: payload length must be 1");

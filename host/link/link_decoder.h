@@ -31,7 +31,7 @@ enum PacketType : uint8_t {
   kStatus = 0x05,        // fixed 24-byte counter block (StatusBlock)
   kCmdSetCarrierInc = 0x81,   // k u8, inc u32
   kCmdSetThreshold = 0x82,    // id u8, value u16
-  kCmdSetNeuron = 0x83,       // id u8, value s16
+  kCmdSetNeuron = 0x83,       // id u8, value s32
   kCmdSetOutputMask = 0x84,   // mask u8
   kCmdSetDecimation = 0x85,   // stream u8, value u16
   kCmdRequestStatus = 0x86,   // no payload
@@ -88,7 +88,7 @@ struct Packet {
   std::vector<SpikeEvent> spikes;              // kSpikes
   StatusBlock status;                          // kStatus
   uint8_t cmd_index = 0;                       // commands with an index
-  uint32_t cmd_value = 0;                      // commands with a value (s16 sign-extended)
+  uint32_t cmd_value = 0;                      // commands with a value (s32 as its bits)
 };
 
 struct DecoderStats {

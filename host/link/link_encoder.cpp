@@ -147,9 +147,9 @@ std::vector<uint8_t> LinkEncoder::set_threshold(uint8_t id, uint16_t value) {
   return frame(kCmdSetThreshold, 0, p);
 }
 
-std::vector<uint8_t> LinkEncoder::set_neuron(uint8_t id, int16_t value) {
+std::vector<uint8_t> LinkEncoder::set_neuron(uint8_t id, int32_t value) {
   std::vector<uint8_t> p{id};
-  put16(p, uint16_t(value));
+  put32(p, uint32_t(value));
   return frame(kCmdSetNeuron, 0, p);
 }
 

@@ -40,7 +40,7 @@ class LinkEncoder {
   // Configuration commands (host -> FPGA); timestamp 0.
   std::vector<uint8_t> set_carrier_inc(uint8_t k, uint32_t inc);
   std::vector<uint8_t> set_threshold(uint8_t id, uint16_t value);
-  std::vector<uint8_t> set_neuron(uint8_t id, int16_t value);
+  std::vector<uint8_t> set_neuron(uint8_t id, int32_t value);
   std::vector<uint8_t> set_output_mask(uint8_t mask);
   std::vector<uint8_t> set_decimation(uint8_t stream, uint16_t value);
   std::vector<uint8_t> request_status();
