@@ -1,0 +1,324 @@
+// ghost_filter: multi-touch active-site tracking (thesis §5.2) on a stream of
+// carrier magnitude frames {k, mag} (rows first, k == rows+cols-1 closes the
+// frame) -> the active sites of each frame as {row, col, value, last}.
+// Bit-exact implementation of hls/ghost_filter.h (algorithm, formats,
+// rounding there). One 16x16 multiplier (one SB_MAC16 with -dsp) serves the
+// release test m_i*m_j < release2, the site value and root*recip.
+// History: a ring of lookback x K magnitudes in one memory (EBR), address
+// {slot, k}; cleared after reset (CLEAR: L_MAX * 2^KB cycles, in_ready low).
+// A config change (sizes, lookback) needs a reset, as the HLS configure().
+// States and cycles per frame with out_ready = 1 (P = max(rows, cols)):
+//   IN       K   one token per cycle; the history read of token k returns
+//                the next cycle, when its rise, rem and the running row /
+//                column argmax are updated (a 1-token pipeline).
+//   FLUSH    1   the last token's rise; head advances.
+//   DECIDE   1   per decision: improved mode and both maxima > pair_tol ->
+//                subtract the smaller, mark the pair pending, RESCAN (P
+//                cycles: rows and columns in parallel) and DECIDE again;
+//                else commit (pending pairs, or the thesis site).
+//   REL0/REL 1 + S_b   one site per cycle: drop it if m_i*m_j < release2.
+//   EMIT0    1   first surviving site's product (none -> IN).
+//   SQRT/GSCALE/OUT    c = 1 (product) or MAG_W + 2 (conductance) per site.
+// Frame period = K + 4 + steps*(P+1) + S_b + S_a*c.
+module ghost_filter #(
+    parameter integer R_MAX = 16,
+    parameter integer C_MAX = 16,
+    parameter integer L_MAX = 32,   // max lookback (frames)
+    parameter integer MAG_W = 16,   // <= 16
+    parameter integer TAX_W = 16,   // <= 32
+    parameter integer K_W = 8
+) (
+    input  wire               clk,
+    input  wire               rst,          // synchronous, active high
+    input  wire [K_W-1:0]     cfg_rows,
+    input  wire [K_W-1:0]     cfg_cols,
+    input  wire [15:0]        cfg_lookback, // 1..L_MAX
+    input  wire               cfg_improved,
+    input  wire [MAG_W-1:0]   cfg_onset,
+    input  wire [MAG_W-1:0]   cfg_pair_tol,
+    input  wire [2*MAG_W-1:0] cfg_release2,
+    input  wire               cfg_conductance,
+    input  wire [4:0]         cfg_shift,
+    input  wire [15:0]        cfg_recip,
+    input  wire [4:0]         cfg_recip_shift,
+    input  wire               in_valid,
+    output wire               in_ready,
+    input  wire [K_W-1:0]     in_k,
+    input  wire [MAG_W-1:0]   in_mag,
+    output wire               out_valid,
+    input  wire               out_ready,
+    output reg  [K_W-1:0]     out_row,
+    output reg  [K_W-1:0]     out_col,
+    output reg  [TAX_W-1:0]   out_value,
+    output wire               out_last
+);
+  localparam integer K_MAX = R_MAX + C_MAX;
+  localparam integer KB = $clog2(K_MAX);
+  localparam integer LB = (L_MAX > 1) ? $clog2(L_MAX) : 1;
+  localparam integer RI_W = (R_MAX > 1) ? $clog2(R_MAX) : 1;
+  localparam integer CI_W = (C_MAX > 1) ? $clog2(C_MAX) : 1;
+  localparam integer IX_W = (RI_W > CI_W) ? RI_W : CI_W;
+  localparam integer DEPTH = L_MAX << KB;
+  localparam [33:0] TAX_MAX = (34'd1 << TAX_W) - 34'd1;
+  localparam [4:0] SQ_LAST = 5'(MAG_W - 1);
+  localparam [LB+KB-1:0] CLR_LAST = (LB+KB)'(DEPTH - 1);
+  localparam [3:0] S_CLEAR = 4'd0, S_IN = 4'd1, S_FLUSH = 4'd2, S_DECIDE = 4'd3,
+                   S_SCAN = 4'd4, S_REL0 = 4'd5, S_REL = 4'd6, S_EMIT0 = 4'd7,
+                   S_SQRT = 4'd8, S_GSCALE = 4'd9, S_OUT = 4'd10;
+  reg [3:0] state;
+
+  // ---- per-line state -----------------------------------------------------
+  reg [MAG_W-1:0] row_mag [0:R_MAX-1];
+  reg [MAG_W-1:0] col_mag [0:C_MAX-1];
+  reg [MAG_W-1:0] row_rem [0:R_MAX-1];
+  reg [MAG_W-1:0] col_rem [0:C_MAX-1];
+  reg [C_MAX-1:0] site [0:R_MAX-1];     // active sites, one row mask each
+  reg [C_MAX-1:0] pend [0:R_MAX-1];     // candidate pairs of this frame
+
+  // ---- input and history ring (1-token pipeline) --------------------------
+  reg [MAG_W-1:0] hist [0:DEPTH-1];
+  reg [MAG_W-1:0] hist_rd;
+  reg [LB-1:0] head;
+  reg [LB+KB-1:0] clr_addr;
+  reg p_valid, p_row;
+  reg [IX_W-1:0] p_idx;                 // row index or column index
+  reg [KB-1:0] p_k;
+  reg [MAG_W-1:0] p_mag;
+  wire in_fire = in_valid && in_ready;
+  assign in_ready = (state == S_IN);
+  wire in_is_row = in_k < cfg_rows;
+  wire [K_W-1:0] in_col = in_k - cfg_rows;
+  wire in_ok = in_is_row || (in_col < cfg_cols);
+  wire frame_end = (in_k == cfg_rows + cfg_cols - 1'b1);
+  wire [MAG_W:0] rise = {1'b0, p_mag} - {1'b0, hist_rd};   // two's complement
+  wire rise_pos = !rise[MAG_W] && (rise[MAG_W-1:0] > cfg_onset);
+  wire [MAG_W-1:0] rem_new = rise_pos ? rise[MAG_W-1:0] : {MAG_W{1'b0}};
+  always @(posedge clk) begin
+    if (state == S_CLEAR) hist[clr_addr] <= {MAG_W{1'b0}};
+    else if (p_valid) hist[{head, p_k}] <= p_mag;
+    hist_rd <= hist[{head, in_k[KB-1:0]}];
+  end
+
+  // ---- argmax: running (input) and rescans --------------------------------
+  reg [RI_W-1:0] best_r, sc_r;
+  reg [CI_W-1:0] best_c, sc_c;
+  reg [K_W-1:0] scan_i;
+  reg [MAG_W-1:0] best_rv, best_cv, sc_rv, sc_cv;
+  wire [MAG_W-1:0] scan_rv = row_rem[scan_i[RI_W-1:0]];
+  wire [MAG_W-1:0] scan_cv = col_rem[scan_i[CI_W-1:0]];
+  wire [K_W-1:0] scan_last = (cfg_rows > cfg_cols) ? cfg_rows - 1'b1 : cfg_cols - 1'b1;
+  reg first;                            // first DECIDE: the input's argmax
+  wire [RI_W-1:0] cur_r = first ? best_r : sc_r;
+  wire [CI_W-1:0] cur_c = first ? best_c : sc_c;
+  wire [MAG_W-1:0] cur_rv = first ? best_rv : sc_rv;
+  wire [MAG_W-1:0] cur_cv = first ? best_cv : sc_cv;
+  wire both_gt_tol = (cur_rv > cfg_pair_tol) && (cur_cv > cfg_pair_tol);
+  wire both_le_tol = (cur_rv <= cfg_pair_tol) && (cur_cv <= cfg_pair_tol);
+  wire thesis_ok = (best_rv != 0) && (best_cv != 0);
+  wire [MAG_W-1:0] flow = (cur_rv < cur_cv) ? cur_rv : cur_cv;
+
+  // ---- site walk (release pass and emit pass) -----------------------------
+  reg [K_W-1:0] ri, cj;
+  reg [R_MAX-1:0] row_left, nonempty;
+  reg [C_MAX-1:0] col_left;
+  reg [K_W-1:0] lo_row;
+  reg [C_MAX-1:0] lo_row_mask;
+  reg [K_W-1:0] lo_col;
+  integer i;
+  always @* begin
+    for (i = 0; i < R_MAX; i = i + 1) nonempty[i] = |site[i];
+  end
+  wire [R_MAX-1:0] rows_src = (state == S_EMIT0) ? nonempty : row_left;
+  wire same_row = (state != S_EMIT0) && (|col_left);
+  always @* begin
+    lo_row = {K_W{1'b0}};
+    for (i = R_MAX - 1; i >= 0; i = i - 1) if (rows_src[i]) lo_row = i[K_W-1:0];
+  end
+  always @* lo_row_mask = site[lo_row[RI_W-1:0]];
+  wire [C_MAX-1:0] cols_src = same_row ? col_left : lo_row_mask;
+  always @* begin
+    lo_col = {K_W{1'b0}};
+    for (i = C_MAX - 1; i >= 0; i = i - 1) if (cols_src[i]) lo_col = i[K_W-1:0];
+  end
+  wire [K_W-1:0] sel_r = same_row ? ri : lo_row;
+  wire [K_W-1:0] sel_c = lo_col;
+  wire [R_MAX-1:0] row_left_next = same_row ? row_left : (rows_src & (rows_src - 1'b1));
+  wire [C_MAX-1:0] col_left_next = cols_src & (cols_src - 1'b1);
+  wire has_next = (|row_left_next) || (|col_left_next);
+  assign out_last = !((|row_left) || (|col_left));
+
+  // ---- square root, the multiplier, rounding ------------------------------
+  reg [2*MAG_W-1:0] rad;
+  reg [MAG_W-1:0] root;
+  reg [MAG_W+1:0] rem;
+  reg [4:0] cnt;
+  wire [MAG_W+3:0] sq_r = {rem, rad[2*MAG_W-1:2*MAG_W-2]};
+  wire [MAG_W+3:0] sq_trial = {2'b00, root, 2'b01};
+  wire sq_ge = sq_r >= sq_trial;
+  wire [MAG_W+3:0] sq_diff = sq_r - sq_trial;   // < 2^(MAG_W+2) when sq_ge
+  reg [15:0] mul_a, mul_b;
+  always @* begin
+    mul_a = 16'd0; mul_b = 16'd0;
+    if (state == S_GSCALE) begin
+      mul_a[MAG_W-1:0] = root; mul_b = cfg_recip;
+    end else begin
+      mul_a[MAG_W-1:0] = row_mag[sel_r[RI_W-1:0]];
+      mul_b[MAG_W-1:0] = col_mag[sel_c[CI_W-1:0]];
+    end
+  end
+  wire [31:0] mul_p = mul_a * mul_b;
+  wire [4:0] sh = (state == S_GSCALE) ? cfg_recip_shift : cfg_shift;
+  wire [32:0] half = (sh == 5'd0) ? 33'd0 : (33'd1 << (sh - 5'd1));
+  wire [32:0] rounded = ({1'b0, mul_p} + half) >> sh;
+  wire [TAX_W-1:0] prod_sat = ({1'b0, rounded} > TAX_MAX) ? TAX_MAX[TAX_W-1:0]
+                                                          : rounded[TAX_W-1:0];
+  wire [15:0] g_sat = (rounded > 33'hFFFF) ? 16'hFFFF : rounded[15:0];
+  wire [TAX_W-1:0] g_out = ({18'd0, g_sat} > TAX_MAX) ? TAX_MAX[TAX_W-1:0]
+                                                      : g_sat[TAX_W-1:0];
+  wire keep = {{(32 - 2 * MAG_W){1'b0}}, cfg_release2} <= mul_p;
+  wire unused = &{1'b0, sq_diff[MAG_W+3:MAG_W+2], cfg_lookback};
+
+  assign out_valid = (state == S_OUT);
+  always @* begin
+    out_row = ri;
+    out_col = cj;
+  end
+
+  // Step the walk to site (sel_r, sel_c).
+  task automatic walk;
+    begin
+      ri <= sel_r;
+      cj <= sel_c;
+      row_left <= row_left_next;
+      col_left <= col_left_next;
+    end
+  endtask
+  // Emit-pass: form the value of site (sel_r, sel_c).
+  task automatic begin_site;
+    begin
+      walk();
+      if (!cfg_conductance) begin
+        out_value <= prod_sat;
+        state <= S_OUT;
+      end else begin
+        rad <= mul_p[2*MAG_W-1:0];
+        root <= {MAG_W{1'b0}};
+        rem <= {(MAG_W+2){1'b0}};
+        cnt <= 5'd0;
+        state <= S_SQRT;
+      end
+    end
+  endtask
+  task automatic end_frame;
+    begin
+      best_rv <= {MAG_W{1'b0}}; best_r <= {RI_W{1'b0}};
+      best_cv <= {MAG_W{1'b0}}; best_c <= {CI_W{1'b0}};
+      state <= S_IN;
+    end
+  endtask
+
+  always @(posedge clk) begin
+    if (rst) begin
+      state <= S_CLEAR;
+      clr_addr <= {(LB+KB){1'b0}};
+      head <= {LB{1'b0}};
+      p_valid <= 1'b0;
+      row_left <= {R_MAX{1'b0}};
+      col_left <= {C_MAX{1'b0}};
+      ri <= {K_W{1'b0}};
+      cj <= {K_W{1'b0}};
+      best_rv <= {MAG_W{1'b0}}; best_r <= {RI_W{1'b0}};
+      best_cv <= {MAG_W{1'b0}}; best_c <= {CI_W{1'b0}};
+      for (i = 0; i < R_MAX; i = i + 1) begin
+        site[i] <= {C_MAX{1'b0}};
+        pend[i] <= {C_MAX{1'b0}};
+      end
+    end else begin
+      // rise stage of the input pipeline (token accepted last cycle)
+      p_valid <= in_fire && in_ok;
+      if (in_fire) begin
+        p_row <= in_is_row;
+        p_idx <= in_is_row ? in_k[IX_W-1:0] : in_col[IX_W-1:0];
+        p_k <= in_k[KB-1:0];
+        p_mag <= in_mag;
+        if (in_is_row) row_mag[in_k[RI_W-1:0]] <= in_mag;
+        else if (in_ok) col_mag[in_col[CI_W-1:0]] <= in_mag;
+      end
+      if (p_valid) begin
+        if (p_row) begin
+          row_rem[p_idx[RI_W-1:0]] <= rem_new;
+          if (rem_new > best_rv) begin best_rv <= rem_new; best_r <= p_idx[RI_W-1:0]; end
+        end else begin
+          col_rem[p_idx[CI_W-1:0]] <= rem_new;
+          if (rem_new > best_cv) begin best_cv <= rem_new; best_c <= p_idx[CI_W-1:0]; end
+        end
+      end
+      case (state)
+        S_CLEAR: begin
+          clr_addr <= clr_addr + 1'b1;
+          if (clr_addr == CLR_LAST) state <= S_IN;
+        end
+        S_IN: if (in_fire && frame_end) state <= S_FLUSH;
+        S_FLUSH: begin
+          head <= (head == cfg_lookback[LB-1:0] - 1'b1) ? {LB{1'b0}} : head + 1'b1;
+          first <= 1'b1;  // best_* get the last token this cycle
+          state <= S_DECIDE;
+        end
+        S_DECIDE:
+          if (cfg_improved && both_gt_tol) begin
+            row_rem[cur_r] <= cur_rv - flow;
+            col_rem[cur_c] <= cur_cv - flow;
+            pend[cur_r][cur_c] <= 1'b1;
+            first <= 1'b0;
+            sc_rv <= {MAG_W{1'b0}}; sc_r <= {RI_W{1'b0}};
+            sc_cv <= {MAG_W{1'b0}}; sc_c <= {CI_W{1'b0}};
+            scan_i <= {K_W{1'b0}};
+            state <= S_SCAN;
+          end else begin
+            for (i = 0; i < R_MAX; i = i + 1) begin
+              if (cfg_improved && both_le_tol) site[i] <= site[i] | pend[i];
+              pend[i] <= {C_MAX{1'b0}};
+            end
+            if (!(cfg_improved && both_le_tol) && thesis_ok)
+              site[best_r][best_c] <= 1'b1;
+            state <= S_REL0;
+          end
+        S_SCAN: begin
+          if (scan_i < cfg_rows && scan_rv > sc_rv) begin sc_rv <= scan_rv; sc_r <= scan_i[RI_W-1:0]; end
+          if (scan_i < cfg_cols && scan_cv > sc_cv) begin sc_cv <= scan_cv; sc_c <= scan_i[CI_W-1:0]; end
+          scan_i <= scan_i + 1'b1;
+          if (scan_i == scan_last) state <= S_DECIDE;
+        end
+        S_REL0: begin
+          row_left <= nonempty;
+          col_left <= {C_MAX{1'b0}};
+          state <= (|nonempty) ? S_REL : S_EMIT0;
+        end
+        S_REL: begin
+          walk();
+          if (!keep) site[sel_r[RI_W-1:0]][sel_c[CI_W-1:0]] <= 1'b0;
+          if (!has_next) state <= S_EMIT0;
+        end
+        S_EMIT0:
+          if (|nonempty) begin_site();
+          else end_frame();
+        S_SQRT: begin
+          rad <= rad << 2;
+          root <= {root[MAG_W-2:0], sq_ge};
+          rem <= sq_ge ? sq_diff[MAG_W+1:0] : sq_r[MAG_W+1:0];
+          cnt <= cnt + 5'd1;
+          if (cnt == SQ_LAST) state <= S_GSCALE;
+        end
+        S_GSCALE: begin
+          out_value <= g_out;
+          state <= S_OUT;
+        end
+        S_OUT: if (out_ready) begin
+          if ((|row_left) || (|col_left)) begin_site();
+          else end_frame();
+        end
+        default: state <= S_IN;
+      endcase
+    end
+  end
+endmodule
