@@ -17,10 +17,10 @@
 // Timing with both ends always ready (dim = 2K+1): an input token occupies
 // 8 cycles (handshake, 2 table reads, 4 products incl. store); after the
 // frame's last token 1 prefetch cycle, then per output token 2 dim cycles
-// (two rows) + 1 output cycle, then 1 phase-update cycle:
+// (two rows) + 1 output cycle, then K phase-update cycles (one adder):
 //   latency last input -> first output = 2 dim + 9   (35 for K = 6)
 //   output spacing                      = 2 dim + 1   (27)
-//   II per frame = 8 (K+1) + 1 + K (2 dim + 1) + 1    (220 for K = 6)
+//   II per frame = 8 (K+1) + 1 + K (2 dim + 1) + K    (225 for K = 6)
 // asserted by tests/rtl/carrier_demix_test.cpp; under the 342 cycles per
 // sample at 12 MHz and 35 kHz.
 module carrier_demix #(
@@ -84,6 +84,10 @@ module carrier_demix #(
   reg signed [CW-1:0] coef [0:NC-1];
   reg [K_W-1:0] carriers;
   reg [15:0] init_cnt;
+  reg [KIW-1:0] pk;  // carrier whose phase is being initialised / advanced
+  // One 32-bit adder for the phases: -inc while initialising, +inc per frame.
+  wire [31:0] ph_next = (state == S_INIT) ? phase[pk] - inc[pk] : phase[pk] + inc[pk];
+  wire pk_last = ({{(K_W - KIW){1'b0}}, pk} == carriers - 1'b1);
 
   wire cfg_fire = cfg_valid && cfg_ready;
   assign cfg_ready = (state == S_IN);
@@ -99,7 +103,12 @@ module carrier_demix #(
   reg signed [SW-1:0] tab_q;
   reg tab_neg_q;
   reg signed [AW-1:0] acc;
-  reg signed [BW-1:0] b [0:DIM_MAX-1];
+  // b in block RAM: one write port (rotation results, cleared during
+  // S_INIT), one registered read port prefetched like the coefficients.
+  (* ram_style = "block" *) reg signed [BW-1:0] b [0:DIM_MAX-1];
+  reg signed [BW-1:0] b_q;
+  reg [BIW-1:0] b_raddr;
+  reg [BIW:0] clr;
   wire is_dc = (k_r == carriers);
 
   // Index of the phase of the oldest sample, rounded half up to TW bits.
@@ -134,27 +143,26 @@ module carrier_demix #(
       S_ROT1: begin mul_a = BW'(im_r); mul_b = MBW'(s_r); end
       S_ROT2: begin mul_a = BW'(re_r); mul_b = MBW'(s_r); end
       S_ROT3: begin mul_a = BW'(im_r); mul_b = MBW'(c_r); end
-      default: begin mul_a = b[col[BIW-1:0]]; mul_b = MBW'(coef_q); end
+      default: begin mul_a = b_q; mul_b = MBW'(coef_q); end
     endcase
   end
   wire signed [PW-1:0] prod = mul_a * mul_b;
   wire signed [AW-1:0] prod_x = AW'(prod);
 
-  // Rotation result: (acc +- prod + 2^(SW-2)) >>> (SW-1), BW bits.
-  wire signed [AW-1:0] rot_sum = (state == S_ROT1) ? acc - prod_x : acc + prod_x;
-  // The rotated value fits BW bits (|re C - im S| < 2^ACC_W 2^(SW-1)).
-  /* verilator lint_off UNUSEDSIGNAL */
-  wire signed [AW-1:0] rot_rnd = (rot_sum + (AW'(1) <<< (SW - 2))) >>> (SW - 1);
-  /* verilator lint_on UNUSEDSIGNAL */
-  wire signed [BW-1:0] rot_b = rot_rnd[BW-1:0];
-
-  // Matrix row result: round half up by CF bits, saturate to OUT_W.
-  wire signed [AW-1:0] mat_sum = acc + prod_x;
-  wire signed [AW-1:0] mat_rnd = (mat_sum + (AW'(1) <<< (CF - 1))) >>> CF;
-  localparam signed [AW-1:0] OUT_MAX = (AW'(1) <<< (OUT_W - 1)) - AW'(1);
-  localparam signed [AW-1:0] OUT_MIN = -(AW'(1) <<< (OUT_W - 1));
-  wire signed [OUT_W-1:0] mat_y = (mat_rnd > OUT_MAX) ? OUT_MAX[OUT_W-1:0] :
-                                  (mat_rnd < OUT_MIN) ? OUT_MIN[OUT_W-1:0] : mat_rnd[OUT_W-1:0];
+  // One adder for every accumulation (subtract in S_ROT1). The rounding
+  // constants are preloaded into acc, so the results are plain shifts:
+  //   rotation: (re C -+ im S + 2^(SW-2)) >>> (SW-1), BW bits;
+  //   matrix  : (sum_j coef b + 2^(CF-1)) >>> CF, saturated to OUT_W bits.
+  localparam signed [AW-1:0] ROT_HALF = AW'(1) <<< (SW - 2);
+  localparam signed [AW-1:0] MAT_HALF = AW'(1) <<< (CF - 1);
+  wire sub = (state == S_ROT1);
+  wire signed [AW-1:0] sum = sub ? acc - prod_x : acc + prod_x;
+  wire signed [BW-1:0] rot_b = sum[BW+SW-2:SW-1];
+  // y fits OUT_W bits iff sum[AW-1 : OUT_W-1+CF] are all equal.
+  wire [AW-OUT_W-CF:0] y_top = sum[AW-1:OUT_W-1+CF];
+  wire y_fits = (y_top == {(AW - OUT_W - CF + 1){1'b0}}) || (y_top == {(AW - OUT_W - CF + 1){1'b1}});
+  wire signed [OUT_W-1:0] mat_y = y_fits ? sum[OUT_W-1+CF:CF] :
+                                  sum[AW-1] ? {1'b1, {(OUT_W - 1){1'b0}}} : {1'b0, {(OUT_W - 1){1'b1}}};
   wire last_col = ({2'b00, col} == dim - 1'b1);
 
   // Output token.
@@ -165,6 +173,21 @@ module carrier_demix #(
   assign out_im = (neg_odd[OUT_W] != neg_odd[OUT_W-1]) ? {1'b0, {(OUT_W - 1){1'b1}}} :
                   neg_odd[OUT_W-1:0];
   assign out_last = ({3'b000, row[5:1]} == carriers - 1'b1);
+
+  // The b write port: Re P in S_ROT1 (index 2k; DC: 2K), -Im P in S_ROT3
+  // (2k+1, carriers only), zeros for the first 2K+1 entries in S_INIT.
+  wire b_we = (state == S_ROT1) || (state == S_ROT3 && !is_dc) ||
+              (state == S_INIT && {{(K_W - BIW - 1){1'b0}}, clr} < dim);
+  wire [BIW-1:0] b_waddr = (state == S_INIT) ? clr[BIW-1:0] :
+                           {k_r[BIW-2:0], (state == S_ROT3)};
+  wire signed [BW-1:0] b_wdata = (state == S_INIT) ? {BW{1'b0}} :
+                                 (state == S_ROT3) ? -rot_b : rot_b;
+  wire [BIW-1:0] b_raddr_next = ({{(K_W - BIW){1'b0}}, b_raddr} == dim - 1'b1) ?
+                                {BIW{1'b0}} : b_raddr + 1'b1;
+  always @(posedge clk) begin
+    if (b_we) b[b_waddr] <= b_wdata;
+    if (state == S_INIT) clr <= clr + 1'b1;
+  end
 
   integer i;
   always @(posedge clk) begin
@@ -183,9 +206,10 @@ module carrier_demix #(
                 carriers <= cfg_data[K_W-1:0];
                 dim <= {cfg_data[K_W-2:0], 1'b1};
                 for (i = 0; i < K_MAX; i = i + 1) phase[i] <= 32'd0;
-                for (i = 0; i < DIM_MAX; i = i + 1) b[i] <= {BW{1'b0}};
+                clr <= {(BIW + 1){1'b0}};
                 init_cnt <= 16'd0;
-                state <= S_INIT;
+                pk <= {KIW{1'b0}};
+                state <= (cfg_data[K_W-1:0] == {K_W{1'b0}}) ? S_IN : S_INIT;
               end
             endcase
           end else if (in_fire) begin
@@ -197,11 +221,13 @@ module carrier_demix #(
             if (carriers == {K_W{1'b0}} || in_k > carriers) state <= S_IN;  // dropped
             else state <= S_TAB0;
           end
-        S_INIT: begin  // phase = (1 - N) inc, by N - 1 subtractions
+        S_INIT: begin  // phase_k = (1 - N) inc_k: N - 1 subtractions per carrier
           if (init_cnt == 16'(N - 1)) begin
-            state <= S_IN;
+            init_cnt <= 16'd0;
+            pk <= pk + 1'b1;
+            if (pk_last) state <= S_IN;
           end else begin
-            for (i = 0; i < K_MAX; i = i + 1) phase[i] <= phase[i] - inc[i];
+            phase[pk] <= ph_next;
             init_cnt <= init_cnt + 16'd1;
           end
         end
@@ -218,27 +244,26 @@ module carrier_demix #(
         end
         S_TAB2: begin
           s_r <= tab_val;
-          acc <= {AW{1'b0}};
+          acc <= ROT_HALF;
           state <= S_ROT0;
         end
         S_ROT0: begin  // re C
-          acc <= prod_x;
+          acc <= sum;
           state <= S_ROT1;
         end
         S_ROT1: begin  // - im S -> Re P = sum x cos(w i) (DC: sum x)
-          b[{k_r[BIW-2:0], 1'b0}] <= rot_b;
-          acc <= {AW{1'b0}};
+          acc <= ROT_HALF;
           state <= S_ROT2;
         end
         S_ROT2: begin  // re S
-          acc <= prod_x;
+          acc <= sum;
           state <= S_ROT3;
         end
         S_ROT3: begin  // + im C -> Im P; b = -Im P = sum x sin(w i)
-          if (!is_dc) b[{k_r[BIW-2:0], 1'b1}] <= -rot_b;
-          acc <= {AW{1'b0}};
+          acc <= MAT_HALF;
           if (last_r) begin
             coef_addr <= {CAW{1'b0}};
+            b_raddr <= {BIW{1'b0}};
             row <= 6'd0;
             col <= 6'd0;
             state <= S_PRE;
@@ -249,13 +274,17 @@ module carrier_demix #(
         S_PRE: begin
           coef_q <= coef[coef_addr];
           coef_addr <= coef_addr + 1'b1;
+          b_q <= b[b_raddr];
+          b_raddr <= b_raddr_next;
           state <= S_MAT;
         end
         S_MAT: begin
           coef_q <= coef[coef_addr];
           coef_addr <= coef_addr + 1'b1;
+          b_q <= b[b_raddr];
+          b_raddr <= b_raddr_next;
           if (last_col) begin
-            acc <= {AW{1'b0}};
+            acc <= MAT_HALF;
             col <= 6'd0;
             if (row[0]) begin
               y_odd <= mat_y;
@@ -265,23 +294,24 @@ module carrier_demix #(
               row <= row + 6'd1;
             end
           end else begin
-            acc <= mat_sum;
+            acc <= sum;
             col <= col + 6'd1;
           end
         end
         S_OUT:
           if (out_ready) begin
             if ({3'b000, row[5:1]} == carriers - 1'b1) begin
+              pk <= {KIW{1'b0}};
               state <= S_PHASE;
             end else begin
               row <= row + 6'd1;
               state <= S_MAT;
             end
           end
-        S_PHASE: begin
-          for (i = 0; i < K_MAX; i = i + 1)
-            if (i < {24'd0, carriers}) phase[i] <= phase[i] + inc[i];
-          state <= S_IN;
+        S_PHASE: begin  // one carrier per cycle
+          phase[pk] <= ph_next;
+          pk <= pk + 1'b1;
+          if (pk_last) state <= S_IN;
         end
         default: state <= S_IN;
       endcase

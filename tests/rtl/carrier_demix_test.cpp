@@ -11,10 +11,10 @@
 //   each input token occupies 8 cycles (handshake, 2 table reads, 4
 //   products, store); after the frame's last token, 1 prefetch cycle, then
 //   each output pair of rows takes 2 dim cycles + 1 output cycle, then 1
-//   phase-update cycle. Hence
+//   phase-update cycle per carrier. Hence
 //   latency (last input handshake -> first output handshake) = 2 dim + 9 = 35,
 //   output spacing within a frame = 2 dim + 1 = 27,
-//   II per frame = 8 (K+1) + 1 + K (2 dim + 1) + 1 = 220 cycles.
+//   II per frame = 8 (K+1) + 1 + K (2 dim + 1) + K = 225 cycles.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -202,7 +202,7 @@ TEST(CarrierDemixRtl, ExactLatencyAndInitiationInterval) {
       ASSERT_EQ(tm.out_cycle[f * kK + k] - tm.out_cycle[f * kK + k - 1], uint64_t(2 * kDim + 1));
     if (f > 0) {
       ASSERT_EQ(tm.in_cycle[f] - tm.in_cycle[f - 1],
-                uint64_t(8 * (kK + 1) + 1 + kK * (2 * kDim + 1) + 1)) << "frame " << f;
+                uint64_t(8 * (kK + 1) + 1 + kK * (2 * kDim + 1) + kK)) << "frame " << f;
     }
   }
 }
