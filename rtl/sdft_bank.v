@@ -26,6 +26,11 @@
 // cycles after the previous one (II = 38 for K = 6, 194 for K = 32; at
 // 12 MHz and 35 kHz there are 342 cycles per sample).
 //
+// Resources (Yosys 0.23 synth_ice40 -dsp; nextpnr-ice40 UP5K with a small
+// pin wrapper, 12 MHz needed): K_MAX 6, N 32: 510 LUT4, 231 FF, 1 SB_MAC16,
+// 10 SB_RAM40_4K, 718 LC placed, Fmax 38.6 MHz. K_MAX 32, N 128 (16x16
+// skin): 516 LUT4, 241 FF, 1 SB_MAC16, 10 SB_RAM40_4K, 728 LC, 37.3 MHz.
+//
 // Configuration: write the increments through cfg (valid/ready, accepted in
 // IDLE), one carrier per token, cfg_k < K_MAX; the token with cfg_last sets
 // K = cfg_k + 1 and clears the window, phases and sums (max(N, 2^KB) cycles
@@ -69,9 +74,15 @@ module sdft_bank #(
   localparam integer PW = XW + CW;                          // product width
   localparam [CW-1:0] AMP = {1'b0, {(CW - 1){1'b1}}};       // A = 2^(CW-1)-1
   localparam [TW-1:0] QUARTER = {2'b01, {QB{1'b0}}};        // Q as TW bits
-  localparam signed [63:0] Q64 = 64'(Q);
-  localparam [NB-1:0] WP_LAST = NB'(N - 1);
-  localparam [31:0] N32 = 32'(N);
+  // Plain Verilog (no SV casts): modules found by `hierarchy -libdir` are
+  // read without -sv. Sized copies of the integer parameters:
+  localparam integer N_M1 = N - 1;
+  localparam integer CLR_M1 = CLR - 1;
+  localparam [31:0] N32 = N;
+  localparam [NB-1:0] WP_LAST = N_M1[NB-1:0];
+  localparam [CB-1:0] N_CB = N32[CB-1:0];
+  localparam [CB-1:0] CLR_LAST = CLR_M1[CB-1:0];
+  localparam signed [63:0] Q64 = {32'd0, Q[31:0]};
   localparam [PW-1:0] HALF = {{(PW - CW + 1){1'b0}}, 1'b1, {(CW - 2){1'b0}}};
 
   localparam [3:0] S_CLEAR = 4'd0, S_IDLE = 4'd1, S_OLD = 4'd2, S_C1 = 4'd3,
@@ -85,15 +96,18 @@ module sdft_bank #(
   // Quarter-sine ROM value i: the integer Taylor series of
   // sdft_quarter_sine() (Q.30, eight terms, truncating division).
   function automatic [CW-2:0] qsin(input integer i);
-    reg signed [63:0] x, x2, t, s, a;
-    integer n;
+    reg signed [63:0] x, x2, t, s, a, dv;
+    integer n, d;
     begin
-      x = (64'sd1686629713 * 64'(i) + Q64 / 64'sd2) / Q64;
+      x = {{32{i[31]}}, i};
+      x = (64'sd1686629713 * x + Q64 / 64'sd2) / Q64;
       x2 = (x * x) >>> 30;
       t = x;
       s = x;
       for (n = 1; n <= 8; n = n + 1) begin
-        t = -(((t * x2) >>> 30) / 64'((2 * n) * (2 * n + 1)));
+        d = (2 * n) * (2 * n + 1);
+        dv = {{32{d[31]}}, d};  // a signed reg: keeps the division signed
+        t = -(((t * x2) >>> 30) / dv);
         s = s + t;
       end
       a = (64'sd1 <<< (CW - 1)) - 64'sd1;
@@ -140,6 +154,9 @@ module sdft_bank #(
   wire in_fire = in_valid && in_ready;
   wire cfg_fire = cfg_valid && cfg_ready;
   wire out_free = !out_valid || out_ready;
+  /* verilator lint_off UNUSEDSIGNAL */
+  wire [K_W+KB-1:0] k_ext = {{K_W{1'b0}}, k};  // k zero-extended to K_W bits
+  /* verilator lint_on UNUSEDSIGNAL */
   wire advance = (state == S_C6) && out_free;
 
   wire [KB-1:0] ra = (state == S_C6) ? k + 1'b1 : k;  // next carrier in C6
@@ -149,7 +166,7 @@ module sdft_bank #(
   wire [31:0] ph_wd = clearing ? 32'd0 : ph_r + inc_r;
   wire [ACC_W-1:0] re_wd = clearing ? {ACC_W{1'b0}} : re_r;
   wire [ACC_W-1:0] im_wd = clearing ? {ACC_W{1'b0}} : im_r;
-  wire win_we = (clearing && clr_cnt < CB'(N)) || state == S_OLD;
+  wire win_we = (clearing && clr_cnt < N_CB) || state == S_OLD;
   wire [NB-1:0] win_wa = clearing ? clr_cnt[NB-1:0] : wp;
   wire [XW-1:0] win_wd = clearing ? {XW{1'b0}} : x_new;
 
@@ -226,7 +243,7 @@ module sdft_bank #(
       case (state)
         S_CLEAR: begin
           clr_cnt <= clr_cnt + 1'b1;
-          if (clr_cnt == CB'(CLR - 1)) state <= S_IDLE;
+          if (clr_cnt == CLR_LAST) state <= S_IDLE;
         end
         S_IDLE: begin
           if (cfg_fire && cfg_last) begin
@@ -286,7 +303,7 @@ module sdft_bank #(
       out_valid <= 1'b0;
     end else if (advance) begin
       out_valid <= 1'b1;
-      out_k <= K_W'(k);
+      out_k <= k_ext[K_W-1:0];
       out_re <= re_r;
       out_im <= im_r;
       out_last <= k == klast;
