@@ -23,6 +23,9 @@
 //    model alone: a reader sampling at the SCLK rising edge at 20 MHz (25 ns
 //    after the falling edge, before the 40 ns access time) reads wrong
 //    codes; one sampling just before each falling edge reads them all.
+//  * Every limit the model checks, broken alone in a hand-driven waveform,
+//    is reported under its own name (t1, t2, t5, t6, tSCLK, tQUIET, tACQ,
+//    fewer or more than 16 clocks, samples exhausted).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -243,4 +246,68 @@ TEST(Ad7476Model, UndefinedWindowIsNotReadable) {
       EXPECT_EQ(wrong, 0u);
     }
   }
+}
+
+// Each datasheet limit the model checks, broken alone in a hand-driven
+// conversion that is otherwise legal (20 MHz SCLK, 1 us period): exactly the
+// named parameter must be reported. The legal waveform itself reports nothing.
+namespace {
+
+struct Wave {
+  double t2 = 25, half = 25, low = 25;  // CS->first fall, high and low times
+  int clocks = 16;
+  double period = 1000;                  // CS falling to CS falling
+  double cs_high_at = -1;                // default: with the 16th rise
+};
+
+std::vector<std::string> drive_wave(const Wave& w, int conversions = 3) {
+  Ad7476Model adc(random_codes(8, 9));
+  double t0 = 1000;
+  for (int c = 0; c < conversions; ++c) {
+    adc.drive(t0, false, true);
+    double t = t0 + w.t2;
+    for (int k = 0; k < w.clocks; ++k) {
+      adc.drive(t, false, false);
+      adc.drive(t + w.low, false, true);
+      t += w.low + w.half;
+    }
+    adc.drive(w.cs_high_at >= 0 ? t0 + w.cs_high_at : t - w.half, true, true);
+    t0 += w.period;
+  }
+  return adc.violations();
+}
+
+bool only(const std::vector<std::string>& v, const std::string& name) {
+  if (v.empty()) return false;
+  for (const auto& s : v)
+    if (s.find(name) == std::string::npos) return false;
+  return true;
+}
+
+}  // namespace
+
+TEST(Ad7476Model, EachViolationIsNamed) {
+  EXPECT_TRUE(drive_wave(Wave{}).empty()) << joined(drive_wave(Wave{}));
+  Wave w;
+  w.t2 = 8;
+  EXPECT_TRUE(only(drive_wave(w), "t2 (CS to SCLK setup)")) << joined(drive_wave(w));
+  w = Wave{}; w.half = 15; w.low = 15; w.period = 1000;  // 33 MHz
+  EXPECT_TRUE(only(drive_wave(w), "tSCLK (fSCLK max 20 MHz)")) << joined(drive_wave(w));
+  w = Wave{}; w.half = 15; w.low = 45; w.period = 1500;  // 60 ns period, 25 % high
+  EXPECT_TRUE(only(drive_wave(w), "t6 (SCLK high pulse width")) << joined(drive_wave(w));
+  w = Wave{}; w.half = 45; w.low = 15; w.period = 1500;
+  EXPECT_TRUE(only(drive_wave(w), "t5 (SCLK low pulse width")) << joined(drive_wave(w));
+  w = Wave{}; w.clocks = 15;
+  EXPECT_TRUE(only(drive_wave(w), "CS rose after 15 SCLK falling edges")) << joined(drive_wave(w));
+  w = Wave{}; w.clocks = 17; w.cs_high_at = 900;
+  EXPECT_TRUE(only(drive_wave(w), "more than 16 SCLK falling edges")) << joined(drive_wave(w));
+  w = Wave{}; w.period = 850;  // tACQ = 850 - 650 = 200 ns < 250, tQUIET = 39 ns
+  const auto v = drive_wave(w);
+  EXPECT_NE(joined(v).find("tACQ"), std::string::npos) << joined(v);
+  EXPECT_NE(joined(v).find("tQUIET"), std::string::npos) << joined(v);
+  w = Wave{}; w.period = 820; w.cs_high_at = 815;  // CS high only 5 ns
+  EXPECT_NE(joined(drive_wave(w)).find("t1 (CS high pulse width)"), std::string::npos)
+      << joined(drive_wave(w));
+  // Running out of samples is reported, not silently wrapped.
+  EXPECT_NE(joined(drive_wave(Wave{}, 9)).find("sample vector exhausted"), std::string::npos);
 }
