@@ -41,9 +41,11 @@
 //                  then saturated to signed OUT_W bits.
 //
 // Hardware (rtl/carrier_demix.v): one multiplier time-multiplexed: per frame
-// 4 products per input token (rotation) + (2K+1)^2 (matrix) = 4(K+1) +
-// (2K+1)^2 = 197 for K = 6; intended II per frame ~ that many cycles
-// (<= 342 cycles per sample at 12 MHz, 35 kHz).
+// 4 products per input token (rotation) + 2K (2K+1) (matrix rows streamed;
+// the DC row is not computed there) = 184 for K = 6; II = 225 cycles per
+// frame and latency 35 cycles from the last input to the first output for
+// K = 6 (formulas in the RTL header), under the 342 cycles per sample at
+// 12 MHz, 35 kHz.
 #pragma once
 
 #include <cstdint>
