@@ -46,6 +46,11 @@ template class eskin::hls::IzhikevichLayer<9>;
 template class eskin::hls::GhostFilter<3, 3, 4>;
 #endif
 
+#if __has_include("hls/sdft_damped.h")
+#include "hls/sdft_damped.h"
+template class eskin::hls::GoertzelBlockBank<6, 32>;
+#endif
+
 #if __has_include("hls/carrier_demix.h")
 #include "hls/carrier_demix.h"
 template class eskin::hls::CarrierDemix<6, 32>;
