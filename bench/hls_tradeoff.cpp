@@ -1,8 +1,9 @@
 // Speed against accuracy of the carrier-amplitude kernels, one command:
 //   build/bin/hls_tradeoff [samples]
 // For each variant (exact sliding DFT hls/sdft_bank.h, block Goertzel
-// hls/sdft_damped.h), coefficient width CW (with the table index width TW or
-// the state fraction bits F it is paired with) and window N = 16/32/64/128:
+// hls/sdft_damped.h), coefficient width CW (with the table index width TW and
+// term fraction bits FB, or the state fraction bits F, it is paired with) and
+// window N = 16/32/64/128:
 //   error of the amplitude (2/N)|sum| against the golden Direct DFT (double),
 //   max and RMS, in % of full scale (2^(XW-1) = 4096 LSB, XW = 13);
 //   multiplies and adds per input sample (K = 6 carriers);
@@ -42,7 +43,7 @@ std::vector<int32_t> g_xs;  // the input, shared by every row
 
 struct Row {
   const char* variant;
-  int n, cw, tw_or_f, acc_w;
+  int n, cw, tw_or_f, acc_w, frac;
   double max_err = 0, rms_err = 0;
   double mults = 0, adds = 0, outputs = 0, cycles = 0;
   long state_bits = 0;
@@ -61,10 +62,10 @@ struct ErrorStats {
   }
 };
 
-template <int N, int CW, int TW>
+template <int N, int CW, int TW, int FB>
 Row run_exact() {
-  constexpr int ACC_W = sdft_min_acc_width(N, kXW);
-  using Bank = SdftBank<6, N, kXW, CW, TW, ACC_W>;
+  constexpr int ACC_W = sdft_min_acc_width(N, kXW, FB);
+  using Bank = SdftBank<6, N, kXW, CW, TW, ACC_W, FB>;
   const auto& f = carriers(N);
   typename Bank::Config cfg;
   if (!make_sdft_bank_config<Bank>(f, kFs, cfg).ok()) std::abort();
@@ -73,7 +74,7 @@ Row run_exact() {
   eskin::DecoderConfig dec;
   dec.window = N;
   auto golden = eskin::golden::make_sdft_bank(eskin::DftVariant::Direct, f, kFs, dec);
-  const double g = (std::ldexp(1.0, CW - 1) - 1) / std::ldexp(1.0, CW - 1);
+  const double g = (std::ldexp(1.0, CW - 1) - 1) / std::ldexp(1.0, CW - 1) * (1 << FB);
   SdftBankToken out[6];
   ErrorStats st;
   for (size_t i = 0; i < g_xs.size(); ++i) {
@@ -83,7 +84,7 @@ Row run_exact() {
     for (int k = 0; k < 6; ++k)
       st.add(std::fabs(2.0 / N * std::hypot(out[k].re, out[k].im) / g - golden->magnitude(k)));
   }
-  Row r{"exact", N, CW, TW, ACC_W};
+  Row r{"exact", N, CW, TW, ACC_W, FB};
   r.max_err = st.max / kFullScale * 100;
   r.rms_err = std::sqrt(st.sum2 / double(st.count)) / kFullScale * 100;
   const int k = 6;
@@ -115,7 +116,7 @@ Row run_goertzel() {
     for (int k = 0; k < got; ++k)
       st.add(std::fabs(2.0 / N * std::hypot(out[k].re, out[k].im) - golden->magnitude(k)));
   }
-  Row r{"goertzel", N, CW, F, SW};
+  Row r{"goertzel", N, CW, F, SW, F};
   r.max_err = st.max / kFullScale * 100;
   r.rms_err = std::sqrt(st.sum2 / double(st.count)) / kFullScale * 100;
   const int k = 6;
@@ -129,10 +130,11 @@ Row run_goertzel() {
 
 template <int N>
 void rows_for(std::vector<Row>& rows) {
-  rows.push_back(run_exact<N, 12, 8>());
-  rows.push_back(run_exact<N, 16, 10>());
-  rows.push_back(run_exact<N, 18, 12>());
-  rows.push_back(run_exact<N, 24, 14>());
+  rows.push_back(run_exact<N, 12, 8, 0>());
+  rows.push_back(run_exact<N, 16, 10, 0>());
+  rows.push_back(run_exact<N, 16, 12, 4>());
+  rows.push_back(run_exact<N, 18, 12, 4>());
+  rows.push_back(run_exact<N, 24, 14, 8>());
   rows.push_back(run_goertzel<N, 12, 0>());
   rows.push_back(run_goertzel<N, 16, 4>());
   rows.push_back(run_goertzel<N, 18, 6>());
@@ -166,18 +168,20 @@ int main(int argc, char** argv) {
   rows_for<128>(rows);
   std::printf("hls_tradeoff: K = 6 carriers, fs = 35 kHz, XW = 13, %zu samples; error of (2/N)|sum|\n"
               "vs golden Direct DFT in %% of full scale (4096 LSB)\n\n", samples);
-  std::printf("%-9s %4s %3s %-6s %5s %10s %10s %7s %7s %8s %8s %11s\n", "variant", "N", "CW",
-              "TW/F", "acc", "max err %", "RMS err %", "mul/smp", "add/smp", "out/smp",
-              "cyc/smp", "state bits");
+  std::printf("%-9s %4s %3s %3s %3s %4s %10s %10s %7s %7s %8s %8s %11s\n", "variant", "N",
+              "CW", "TW", "frac", "acc", "max err %", "RMS err %", "mul/smp", "add/smp",
+              "out/smp", "cyc/smp", "state bits");
   for (const Row& r : rows) {
-    char tf[16];
-    std::snprintf(tf, sizeof tf, "%s%d", r.variant[0] == 'e' ? "TW" : "F", r.tw_or_f);
-    std::printf("%-9s %4d %3d %-6s %5d %10.4f %10.4f %7.2f %7.2f %8.4f %8.2f %11ld\n", r.variant,
-                r.n, r.cw, tf, r.acc_w, r.max_err, r.rms_err, r.mults, r.adds, r.outputs, r.cycles,
-                r.state_bits);
+    char tw[8];
+    std::snprintf(tw, sizeof tw, "%d", r.tw_or_f);
+    std::printf("%-9s %4d %3d %3s %4d %4d %10.4f %10.4f %7.2f %7.2f %8.4f %8.2f %11ld\n",
+                r.variant, r.n, r.cw, r.variant[0] == 'e' ? tw : "-", r.frac, r.acc_w, r.max_err,
+                r.rms_err, r.mults, r.adds, r.outputs, r.cycles, r.state_bits);
   }
-  std::printf("\nacc: accumulator width (exact: XW + 1 + ceil(log2 N), the narrowest legal) or\n"
-              "Goertzel state width (XW + F + 2 + ceil(log2(N(N+1)/2))). cyc/smp: exact = RTL II\n"
-              "6K + 2 (tests/rtl/sdft_bank_test.cpp); goertzel = estimate, 1 multiply/cycle.\n");
+  std::printf("\nfrac: fraction bits below the sample LSB (exact: FB of each rounded term;\n"
+              "Goertzel: F of the resonator state). acc: accumulator width, the narrowest legal\n"
+              "(exact: XW + 1 + FB + ceil(log2 N); Goertzel: XW + F + 2 + ceil(log2(N(N+1)/2))).\n"
+              "cyc/smp: exact = RTL II 6K + 2 (tests/rtl/sdft_bank_test.cpp); goertzel = estimate,\n"
+              "1 multiply/cycle. exact state bits include the quarter-sine ROM 2^(TW-2) x (CW-1).\n");
   return 0;
 }

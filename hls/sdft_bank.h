@@ -24,12 +24,14 @@
 //            arithmetic (sdft_quarter_sine below; the RTL evaluates the same
 //            function at elaboration) and is within 0.5 + 2^-4 LSB of
 //            A sin (checked exhaustively by tests/hls/sdft_bank_test.cpp).
-//   R(p)   : p / 2^(CW-1) rounded half up: (p + 2^(CW-2)) >> (CW-1),
-//            arithmetic shift. |R| <= 2^(XW-1): a term is XW+1 bits.
-//   re, im : signed ACC_W-bit window sums in sample LSB, gain
+//   R(p)   : p / 2^(CW-1-FB) rounded half up: (p + 2^(CW-2-FB)) >>
+//            (CW-1-FB), arithmetic shift; FB (default 0) fraction bits are
+//            kept below the sample LSB. |R| <= 2^(XW-1+FB): XW+1+FB bits.
+//   re, im : signed ACC_W-bit window sums in units of 2^-FB sample LSB
+//            (FB = 0: sample LSB, the data path contract's units), gain
 //            G = A / 2^(CW-1) = 1 - 2^-(CW-1). Never saturate: |sum| <=
-//            N * 2^(XW-1) < 2^(ACC_W-1), enforced by the static_assert
-//            ACC_W >= XW + 1 + ceil(log2 N). Arithmetic is modulo 2^ACC_W
+//            N * 2^(XW-1+FB) < 2^(ACC_W-1), enforced by the static_assert
+//            ACC_W >= XW + 1 + FB + ceil(log2 N). Arithmetic is modulo 2^ACC_W
 //            (as in the RTL); since the exact window sum always fits, the
 //            wrap never changes a result.
 //
@@ -56,13 +58,16 @@ constexpr int sdft_ceil_log2(int64_t v) {
 }
 
 // Smallest accumulator that holds any window sum: term XW+1 bits, N terms.
-constexpr int sdft_min_acc_width(int n, int xw) { return xw + 1 + sdft_ceil_log2(n); }
+constexpr int sdft_min_acc_width(int n, int xw, int fb = 0) {
+  return xw + 1 + fb + sdft_ceil_log2(n);
+}
 
 // The width rules the static_asserts enforce, as one predicate the host-side
 // config checker (sdft_bank_config.h) reuses.
-constexpr bool sdft_widths_ok(int n, int xw, int cw, int tw, int acc_w) {
+constexpr bool sdft_widths_ok(int n, int xw, int cw, int tw, int acc_w, int fb = 0) {
   return n >= 2 && n <= 65536 && xw >= 2 && xw <= 24 && cw >= 3 && cw <= 24 &&
-         tw >= 3 && tw <= 14 && acc_w <= 32 && acc_w >= sdft_min_acc_width(n, xw);
+         tw >= 3 && tw <= 14 && fb >= 0 && fb <= cw - 2 && acc_w <= 32 &&
+         acc_w >= sdft_min_acc_width(n, xw, fb);
 }
 
 // qsin(i) ~ round((2^(cw-1) - 1) * sin(pi/2 * i/q)), i in 0..q, q a power of
@@ -96,7 +101,7 @@ struct SdftBankConfig {
   uint32_t inc[K_MAX] = {};   // phase increment per sample, 2^32 = one cycle
 };
 
-template <int K_MAX, int N, int XW = 13, int CW = 16, int TW = 10, int ACC_W = 24>
+template <int K_MAX, int N, int XW = 13, int CW = 16, int TW = 10, int ACC_W = 24, int FB = 0>
 class SdftBank {
   static_assert(K_MAX >= 1 && K_MAX <= 256, "K_MAX must be 1..256 (k is 8 bits)");
   static_assert(N >= 2 && N <= 65536, "window N must be 2..65536");
@@ -104,8 +109,9 @@ class SdftBank {
   static_assert(CW >= 3 && CW <= 24, "coefficient width CW must be 3..24");
   static_assert(TW >= 3 && TW <= 14, "table index width TW must be 3..14");
   static_assert(ACC_W <= 32, "ACC_W must be <= 32 (tokens carry int32)");
-  static_assert(ACC_W >= sdft_min_acc_width(N, XW),
-                "ACC_W too small: a window sum needs XW + 1 + ceil(log2 N) bits");
+  static_assert(FB >= 0 && FB <= CW - 2, "term fraction bits FB must be 0..CW-2");
+  static_assert(ACC_W >= sdft_min_acc_width(N, XW, FB),
+                "ACC_W too small: a window sum needs XW + 1 + FB + ceil(log2 N) bits");
 
  public:
   static constexpr int Q = 1 << (TW - 2);
@@ -154,9 +160,9 @@ class SdftBank {
   }
   static int32_t cosine(uint32_t idx) { return sine(idx + uint32_t(Q)); }
 
-  // R(x * c): product Q(XW).(CW-1), rounded half up to sample LSB.
+  // R(x * c): product Q(XW).(CW-1), rounded half up to 2^-FB sample LSB.
   static int64_t term(int32_t x, int32_t c) {
-    return (int64_t(x) * c + (int64_t(1) << (CW - 2))) >> (CW - 1);
+    return (int64_t(x) * c + (int64_t(1) << (CW - 2 - FB))) >> (CW - 1 - FB);
   }
   static int32_t wrap_acc(int64_t v) {  // modulo 2^ACC_W, sign-extended
     const uint64_t m = uint64_t(v) << (64 - ACC_W);

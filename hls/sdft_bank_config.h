@@ -34,7 +34,7 @@ struct SdftConfigStatus {
 };
 
 struct SdftWidths {
-  int n = 32, xw = 13, cw = 16, tw = 10, acc_w = 24;
+  int n = 32, xw = 13, cw = 16, tw = 10, acc_w = 24, fb = 0;
 };
 
 // round(f / fs * 2^32) mod 2^32.
@@ -57,18 +57,20 @@ inline SdftConfigStatus check_sdft_bank(const std::vector<double>& freqs_hz, dou
     if (!s.empty() && s.back() == '.') s.pop_back();
     return s;
   };
-  if (!sdft_widths_ok(w.n, w.xw, w.cw, w.tw, 32)) {
+  if (!sdft_widths_ok(w.n, w.xw, w.cw, w.tw, 32, 0) || w.fb < 0 || w.fb > w.cw - 2) {
     return sdft_config_error(E::BadWidths,
-        "widths: expected 2 <= N <= 65536, 2 <= XW <= 24, 3 <= CW <= 24, 3 <= TW <= 14, got N=" +
-        std::to_string(w.n) + " XW=" + std::to_string(w.xw) + " CW=" + std::to_string(w.cw) +
-        " TW=" + std::to_string(w.tw));
+        "widths: expected 2 <= N <= 65536, 2 <= XW <= 24, 3 <= CW <= 24, 3 <= TW <= 14, "
+        "0 <= FB <= CW-2, got N=" + std::to_string(w.n) + " XW=" + std::to_string(w.xw) +
+        " CW=" + std::to_string(w.cw) + " TW=" + std::to_string(w.tw) +
+        " FB=" + std::to_string(w.fb));
   }
-  const int need = sdft_min_acc_width(w.n, w.xw);
+  const int need = sdft_min_acc_width(w.n, w.xw, w.fb);
   if (w.acc_w < need || w.acc_w > 32) {
     return sdft_config_error(E::AccumulatorOverflow,
         "acc_w: " + std::to_string(w.acc_w) + " bits would overflow; expected " +
-        std::to_string(need) + " <= ACC_W <= 32 (XW + 1 + ceil(log2 N) for XW=" +
-        std::to_string(w.xw) + ", N=" + std::to_string(w.n) + ")");
+        std::to_string(need) + " <= ACC_W <= 32 (XW + 1 + FB + ceil(log2 N) for XW=" +
+        std::to_string(w.xw) + ", FB=" + std::to_string(w.fb) + ", N=" + std::to_string(w.n) +
+        ")");
   }
   if (!(fs_hz > 0) || !std::isfinite(fs_hz)) {
     return sdft_config_error(E::BadRate, "fs_hz: expected a finite rate > 0, got " + num(fs_hz));
@@ -108,23 +110,17 @@ inline SdftConfigStatus check_sdft_bank(const std::vector<double>& freqs_hz, dou
 
 // Checks, then fills `out` (only when ok) for the kernel type Bank
 // (an SdftBank<...> instantiation).
-template <class Bank, int K_MAX, int N, int XW, int CW, int TW, int ACC_W>
-SdftConfigStatus make_sdft_bank_config_impl(const std::vector<double>& freqs_hz, double fs_hz,
-                                            SdftBankConfig<K_MAX>& out) {
-  SdftConfigStatus st = check_sdft_bank(freqs_hz, fs_hz, SdftWidths{N, XW, CW, TW, ACC_W}, K_MAX);
+template <int K_MAX, int N, int XW, int CW, int TW, int ACC_W, int FB>
+SdftConfigStatus make_sdft_bank_config(const SdftBank<K_MAX, N, XW, CW, TW, ACC_W, FB>*,
+                                       const std::vector<double>& freqs_hz, double fs_hz,
+                                       SdftBankConfig<K_MAX>& out) {
+  SdftConfigStatus st =
+      check_sdft_bank(freqs_hz, fs_hz, SdftWidths{N, XW, CW, TW, ACC_W, FB}, K_MAX);
   if (!st.ok()) return st;
   out = SdftBankConfig<K_MAX>{};
   out.carriers = int(freqs_hz.size());
   for (size_t k = 0; k < freqs_hz.size(); ++k) out.inc[k] = sdft_phase_increment(freqs_hz[k], fs_hz);
   return st;
-}
-
-template <int K_MAX, int N, int XW, int CW, int TW, int ACC_W>
-SdftConfigStatus make_sdft_bank_config(const SdftBank<K_MAX, N, XW, CW, TW, ACC_W>*,
-                                       const std::vector<double>& freqs_hz, double fs_hz,
-                                       SdftBankConfig<K_MAX>& out) {
-  return make_sdft_bank_config_impl<SdftBank<K_MAX, N, XW, CW, TW, ACC_W>, K_MAX, N, XW, CW, TW,
-                                    ACC_W>(freqs_hz, fs_hz, out);
 }
 
 // Convenience: make_sdft_bank_config<Bank>(freqs, fs, cfg).
@@ -134,12 +130,12 @@ SdftConfigStatus make_sdft_bank_config(const std::vector<double>& freqs_hz, doub
   return make_sdft_bank_config(static_cast<const Bank*>(nullptr), freqs_hz, fs_hz, out);
 }
 
-// Worst-case error of one carrier's amplitude, (2/N) |acc| / G against the
+// Worst-case error of one carrier's amplitude, (2/N) |acc| 2^-FB / G against the
 // exact (2/N) |window sum|, in sample LSB, for samples bounded by |x| <= xmax
 // (derivation in tests/hls/sdft_bank_test.cpp): per term
 //   phase rounding   |x| * pi / 2^TW        (|theta - idx| <= half a step)
 //   coefficient      |x| * sqrt(2) * (0.5 + 2^-4) / A   (cos and sin parts)
-//   term rounding    sqrt(2) * 0.5 / G
+//   term rounding    sqrt(2) * 0.5 * 2^-FB / G
 //   frequency        |x| * 2 pi * N * 2^-33  (inc rounding, over the window)
 // summed over N terms, times 2/N.
 inline double sdft_amplitude_error_bound(const SdftWidths& w, double xmax) {
@@ -147,7 +143,8 @@ inline double sdft_amplitude_error_bound(const SdftWidths& w, double xmax) {
   const double a = std::ldexp(1.0, w.cw - 1) - 1, g = a / std::ldexp(1.0, w.cw - 1);
   const double per_term = xmax * pi / std::ldexp(1.0, w.tw) +
                           xmax * std::sqrt(2.0) * (0.5 + 0.0625) / a +
-                          std::sqrt(2.0) * 0.5 / g + xmax * 2 * pi * w.n * std::ldexp(1.0, -33);
+                          std::sqrt(2.0) * std::ldexp(0.5, -w.fb) / g +
+                          xmax * 2 * pi * w.n * std::ldexp(1.0, -33);
   return 2.0 * per_term;
 }
 

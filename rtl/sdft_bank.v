@@ -1,6 +1,7 @@
 // sdft_bank: exact sliding DFT of up to K_MAX carriers over an N-sample
 // window. Bit-exact implementation of hls/sdft_bank.h (number formats,
-// rounding and the exactness argument are stated there):
+// rounding and the exactness argument are stated there; R rounds x*c to
+// 2^-FB sample LSB, FB = 0 by default):
 //   acc_k += R(x[n] * C(th)) - R(x[n-N] * C(th - N inc))      (re)
 //   acc_k += R(x[n] * -S(th)) - R(x[n-N] * -S(th - N inc))    (im)
 //
@@ -43,6 +44,7 @@ module sdft_bank #(
     parameter integer CW = 16,
     parameter integer TW = 10,
     parameter integer ACC_W = 24,
+    parameter integer FB = 0,      // term fraction bits (sums in 2^-FB LSB)
     parameter integer K_W = 8
 ) (
     input  wire             clk,
@@ -83,7 +85,8 @@ module sdft_bank #(
   localparam [CB-1:0] N_CB = N32[CB-1:0];
   localparam [CB-1:0] CLR_LAST = CLR_M1[CB-1:0];
   localparam signed [63:0] Q64 = {32'd0, Q[31:0]};
-  localparam [PW-1:0] HALF = {{(PW - CW + 1){1'b0}}, 1'b1, {(CW - 2){1'b0}}};
+  localparam integer SH = CW - 1 - FB;                      // term shift >= 1
+  localparam [PW-1:0] HALF = {{(PW - 1){1'b0}}, 1'b1} << (SH - 1);  // 2^(SH-1)
 
   localparam [3:0] S_CLEAR = 4'd0, S_IDLE = 4'd1, S_OLD = 4'd2, S_C1 = 4'd3,
                    S_C2 = 4'd4, S_C3 = 4'd5, S_C4 = 4'd6, S_C5 = 4'd7, S_C6 = 4'd8;
@@ -225,7 +228,7 @@ module sdft_bank #(
   wire signed [CW-1:0] mul_c = coef;
   wire signed [PW-1:0] prod = mul_x * mul_c;
   wire [PW-1:0] prod_r = prod + HALF;
-  wire [ACC_W-1:0] term = {{(ACC_W - XW - 1){prod_r[PW-1]}}, prod_r[PW-1:CW-1]};
+  wire [ACC_W-1:0] term = {{(ACC_W - PW + SH){prod_r[PW-1]}}, prod_r[PW-1:SH]};
 
   // ---- control ----
   assign cfg_ready = state == S_IDLE;

@@ -44,7 +44,7 @@ using namespace eskin::hls;
 // Independent model of the rounded terms: full-wave tables and floor division.
 class DirectTerms {
  public:
-  DirectTerms(int cw, int tw) : cw_(cw), tw_(tw) {
+  DirectTerms(int cw, int tw, int fb = 0) : cw_(cw), tw_(tw), fb_(fb) {
     const int q = 1 << (tw - 2), a = (1 << (cw - 1)) - 1;
     sin_.resize(size_t(4 * q));
     for (int i = 0; i < 4 * q; ++i) {
@@ -60,8 +60,8 @@ class DirectTerms {
   }
   int64_t sin_at(int i) const { return sin_[size_t(i % int(sin_.size()))]; }
   int64_t cos_at(int i) const { return sin_at(i + int(sin_.size()) / 4); }
-  int64_t round_term(int64_t p) const {  // floor(p / 2^(CW-1) + 1/2)
-    const int64_t d = int64_t(1) << (cw_ - 1), num = 2 * p + d, den = 2 * d;
+  int64_t round_term(int64_t p) const {  // floor(p / 2^(CW-1-FB) + 1/2)
+    const int64_t d = int64_t(1) << (cw_ - 1 - fb_), num = 2 * p + d, den = 2 * d;
     return num >= 0 ? num / den : -((-num + den - 1) / den);
   }
   // Window sum over samples x[n-N+1..n] (hist holds x by absolute index).
@@ -79,7 +79,7 @@ class DirectTerms {
   }
 
  private:
-  int cw_, tw_;
+  int cw_, tw_, fb_;
   std::vector<int64_t> sin_;
 };
 
@@ -114,12 +114,12 @@ TEST(SdftBank, QuarterSine) {
 // direct sum every `every` samples and at the end.
 template <class Bank, class Gen>
 void check_identity(const std::vector<double>& freqs, uint64_t samples, uint64_t every, Gen gen,
-                    int cw, int tw, int n_win) {
+                    int cw, int tw, int n_win, int fb = 0) {
   typename Bank::Config cfg;
   ASSERT_TRUE(make_sdft_bank_config<Bank>(freqs, kFs, cfg).ok());
   Bank bank;
   ASSERT_TRUE(bank.configure(cfg));
-  DirectTerms direct(cw, tw);
+  DirectTerms direct(cw, tw, fb);
   std::vector<int32_t> hist(size_t(n_win), 0);
   typename Bank::Token out[sizeof(cfg.inc) / sizeof(cfg.inc[0])];
   int compared = 0;
@@ -162,11 +162,15 @@ TEST(SdftBank, ExactIdentityExtremes) {
                        [](uint64_t n) { return n % 2 ? -4096 : 4095; }, 16, 10, 32);
   check_identity<Bank>(kThesis, len, 1, [](uint64_t) { return 0; }, 16, 10, 32);
   // Carriers near the edges of the legal band, full-scale random, N = 64,
-  // coarse table and coefficients.
-  using Coarse = SdftBank<4, 64, 13, 10, 6, 20>;
+  // coarse table and coefficients, 3 term fraction bits, narrowest
+  // accumulator (13 + 1 + 3 + 6 = 23).
+  using Coarse = SdftBank<4, 64, 13, 10, 6, 23, 3>;
   Rng rng{7};
   check_identity<Coarse>({kFs / 64, 5000, 9000, kFs / 2 - kFs / 64}, 200000, 1,
-                         [&](uint64_t) { return int32_t(rng.next() >> 51) - 4096; }, 10, 6, 64);
+                         [&](uint64_t) { return int32_t(rng.next() >> 51) - 4096; }, 10, 6, 64,
+                         3);
+  check_identity<Coarse>({kFs / 64, 5000, 9000, kFs / 2 - kFs / 64}, 5000, 1,
+                         [](uint64_t n) { return n % 2 ? -4096 : 4095; }, 10, 6, 64, 3);
 }
 
 TEST(SdftBank, ZeroInputGivesZero) {
@@ -203,7 +207,8 @@ void compare_golden(const std::vector<double>& freqs, const std::vector<int32_t>
     bank.push(xs[n], out);
     golden->push(double(xs[n]));
     for (int k = 0; k < cfg.carriers; ++k) {
-      const double mag = 2.0 / w.n * std::hypot(double(out[k].re), double(out[k].im)) / g;
+      const double mag = 2.0 / w.n * std::hypot(double(out[k].re), double(out[k].im)) / g *
+                         std::ldexp(1.0, -w.fb);
       const double err = std::fabs(mag - golden->magnitude(k));
       max_err = std::max(max_err, err);
       ASSERT_LE(err, bound) << "sample " << n << " carrier " << k;
@@ -250,6 +255,11 @@ TEST(SdftBank, GoldenRandomMultiTone) {
   compare_golden<SdftBank<6, 64, 13, 12, 8, 20>>(kThesis, xs, SdftWidths{64, 13, 12, 8, 20}, 0.03,
                                                &e2);
   EXPECT_GT(e2, e1);  // coarser table and coefficients => larger error
+  // A fine one: 24-bit coefficients, 2^14-step phase, 8 term fraction bits.
+  double e3 = 0;
+  compare_golden<SdftBank<6, 32, 13, 24, 14, 27, 8>>(kThesis, xs, SdftWidths{32, 13, 24, 14, 27, 8},
+                                                     0.002, &e3);
+  EXPECT_LT(e3, e1);
 }
 
 TEST(SdftBank, ConfigCheckAccepts) {

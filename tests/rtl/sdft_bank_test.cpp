@@ -14,8 +14,8 @@
 // (II) — asserted exactly.
 // Two parameter sets: the default (K_MAX 6, N 32, XW 13, CW 16, TW 10,
 // ACC_W 24) and an odd one built by sdft_bank_test.cmake (K_MAX 8 with 5
-// carriers, N 48 — not a power of two —, XW 12, CW 12, TW 8, ACC_W 19, the
-// narrowest legal accumulator).
+// carriers, N 48 — not a power of two —, XW 12, CW 12, TW 8, FB 2 term
+// fraction bits, ACC_W 21, the narrowest legal accumulator).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -185,7 +185,7 @@ std::vector<int32_t> scene_samples() {
 }
 
 using Default = Harness<Vsdft_bank, SdftBank<6, 32>, 13, 24>;
-using Odd = Harness<Vsdft_bank_odd, SdftBank<8, 48, 12, 12, 8, 19>, 12, 19>;
+using Odd = Harness<Vsdft_bank_odd, SdftBank<8, 48, 12, 12, 8, 21, 2>, 12, 21>;
 
 TEST(SdftBankRtl, RandomWithBackPressure) {
   auto h = std::make_unique<Default>();
@@ -221,7 +221,9 @@ void check_timing(const std::vector<double>& freqs, int xw) {
   ASSERT_EQ(t.in_cycle.size(), 200u);
   ASSERT_EQ(t.out_cycle.size(), 200u * k);
   for (size_t s = 0; s < t.in_cycle.size(); ++s) {
-    if (s > 0) EXPECT_EQ(t.in_cycle[s] - t.in_cycle[s - 1], ii) << "sample " << s;
+    if (s > 0) {
+      EXPECT_EQ(t.in_cycle[s] - t.in_cycle[s - 1], ii) << "sample " << s;
+    }
     for (uint64_t j = 0; j < k; ++j) {
       EXPECT_EQ(t.out_cycle[s * k + j] - t.in_cycle[s], latency + 6 * j)
           << "sample " << s << " token " << j;
