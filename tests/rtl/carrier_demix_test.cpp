@@ -14,7 +14,8 @@
 //   phase-update cycle per carrier. Hence
 //   latency (last input handshake -> first output handshake) = 2 dim + 9 = 35,
 //   output spacing within a frame = 2 dim + 1 = 27,
-//   II per frame = 8 (K+1) + 1 + K (2 dim + 1) + K = 225 cycles.
+//   II per frame = 8 (K+1) + 1 + K (2 dim + 1) + K = 225 cycles;
+// the same formulas are asserted for a runtime K = 3 (latency 23, II 81).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -89,11 +90,13 @@ struct Timing {
 };
 
 // Input tokens: hls sdft_bank (6 carriers + DC) on a noisy multi-tone.
-std::vector<Demix::Token> make_tokens(int samples, uint64_t seed) {
+std::vector<Demix::Token> make_tokens(int samples, uint64_t seed,
+                                      const std::vector<double>& freqs = kThesis) {
+  const int nk = int(freqs.size());
   Bank::Config bcfg;
-  EXPECT_TRUE(eskin::hls::make_sdft_bank_config<Bank>(kThesis, kFs, bcfg).ok());
-  bcfg.inc[kK] = 0;
-  bcfg.carriers = kK + 1;
+  EXPECT_TRUE(eskin::hls::make_sdft_bank_config<Bank>(freqs, kFs, bcfg).ok());
+  bcfg.inc[nk] = 0;
+  bcfg.carriers = nk + 1;
   Bank bank;
   EXPECT_TRUE(bank.configure(bcfg));
   std::mt19937_64 rng(seed);
@@ -104,10 +107,10 @@ std::vector<Demix::Token> make_tokens(int samples, uint64_t seed) {
   Bank::Token sums[kK + 1];
   for (int n = 0; n < samples; ++n) {
     double v = 30 + 400 * (u(rng) - 0.5);
-    for (int k = 0; k < kK; ++k) v += amp[k] * std::cos(6.283185307 * kThesis[k] / kFs * n + ph[k]);
+    for (int k = 0; k < nk; ++k) v += amp[k] * std::cos(6.283185307 * freqs[k] / kFs * n + ph[k]);
     const int32_t x = int32_t(std::lround(std::max(-4096.0, std::min(4095.0, v))));
     bank.push(x, sums);
-    for (const auto& s : sums) t.push_back({s.k, s.re, s.im, s.last});
+    for (int k = 0; k <= nk; ++k) t.push_back({sums[k].k, sums[k].re, sums[k].im, sums[k].last});
   }
   return t;
 }
@@ -177,9 +180,9 @@ Timing run(const Demix::Config& cfg, const std::vector<Demix::Token>& tokens, do
   return tm;
 }
 
-Demix::Config build() {
+Demix::Config build(const std::vector<double>& freqs = kThesis) {
   Demix::Config cfg;
-  const auto st = eskin::hls::make_carrier_demix_config<Demix>(kThesis, kFs, kGs, cfg);
+  const auto st = eskin::hls::make_carrier_demix_config<Demix>(freqs, kFs, kGs, cfg);
   EXPECT_TRUE(st.ok) << st.message;
   return cfg;
 }
@@ -191,20 +194,35 @@ TEST(CarrierDemixRtl, BitExactUnderBackPressure) {
   run(cfg, tokens, 0.95, 0.9, 12);
 }
 
-TEST(CarrierDemixRtl, ExactLatencyAndInitiationInterval) {
-  const auto cfg = build();
-  const auto tokens = make_tokens(300, 4);
-  const Timing tm = run(cfg, tokens, 1.0, 1.0, 13);
-  ASSERT_EQ(tm.out_cycle.size(), tm.in_cycle.size() * kK);
+void check_timing(const std::vector<double>& freqs, uint64_t seed) {
+  const int k_n = int(freqs.size()), dim = 2 * k_n + 1;
+  const auto cfg = build(freqs);
+  const auto tokens = make_tokens(300, seed, freqs);
+  const Timing tm = run(cfg, tokens, 1.0, 1.0, seed + 1);
+  ASSERT_EQ(tm.out_cycle.size(), tm.in_cycle.size() * k_n);
   for (size_t f = 0; f < tm.in_cycle.size(); ++f) {
-    ASSERT_EQ(tm.out_cycle[f * kK] - tm.in_cycle[f], uint64_t(2 * kDim + 9)) << "frame " << f;
-    for (int k = 1; k < kK; ++k)
-      ASSERT_EQ(tm.out_cycle[f * kK + k] - tm.out_cycle[f * kK + k - 1], uint64_t(2 * kDim + 1));
+    ASSERT_EQ(tm.out_cycle[f * k_n] - tm.in_cycle[f], uint64_t(2 * dim + 9)) << "frame " << f;
+    for (int k = 1; k < k_n; ++k)
+      ASSERT_EQ(tm.out_cycle[f * k_n + k] - tm.out_cycle[f * k_n + k - 1], uint64_t(2 * dim + 1));
     if (f > 0) {
       ASSERT_EQ(tm.in_cycle[f] - tm.in_cycle[f - 1],
-                uint64_t(8 * (kK + 1) + 1 + kK * (2 * kDim + 1) + kK)) << "frame " << f;
+                uint64_t(8 * (k_n + 1) + 1 + k_n * (2 * dim + 1) + k_n)) << "frame " << f;
     }
   }
+}
+
+TEST(CarrierDemixRtl, ExactLatencyAndInitiationInterval) {
+  check_timing(kThesis, 4);  // K = 6: latency 35, II 225
+}
+
+// Fewer carriers than K_MAX (runtime K = 3, 2K+1 = 7): the runtime sizes
+// (matrix dimension, last token, phase loop) follow the configuration.
+TEST(CarrierDemixRtl, FewerCarriersThanKMax) {
+  const std::vector<double> three = {1900, 5000, 8300};
+  const auto cfg = build(three);
+  const auto tokens = make_tokens(400, 5, three);
+  run(cfg, tokens, 0.6, 0.5, 21);
+  check_timing(three, 6);  // latency 23, II 81
 }
 
 }  // namespace
