@@ -32,10 +32,11 @@
 // Rounding half up; saturation to the result width; no wrap anywhere.
 //
 // Timing of the RTL with out_ready = 1 (asserted in tests): K input cycles,
-// 1 FLUSH (last history read), 1 DECIDE, (K+1) per greedy pairing step
-// (a K-cycle rescan + DECIDE), 1 + S_b release cycles (S_b sites before
-// release), 1 + S_a*c emit cycles (S_a sites emitted; c = 1 Product, MAG_W+2
-// Conductance). Frame period = K + 4 + steps*(K+1) + S_b + S_a*c.
+// 1 FLUSH (last history read), 1 DECIDE, P+1 per greedy pairing step (a
+// rescan of rows and columns in parallel, P = max(rows, cols), + DECIDE),
+// 1 + S_b release cycles (S_b sites before release), 1 + S_a*c emit cycles
+// (S_a sites emitted; c = 1 Product, MAG_W+2 Conductance). Frame period =
+// K + 4 + steps*(P+1) + S_b + S_a*c; steps <= rising lines - 1.
 #pragma once
 
 #include <cstdint>

@@ -60,8 +60,10 @@ module ghost_filter #(
   localparam integer IX_W = (RI_W > CI_W) ? RI_W : CI_W;
   localparam integer DEPTH = L_MAX << KB;
   localparam [33:0] TAX_MAX = (34'd1 << TAX_W) - 34'd1;
-  localparam [4:0] SQ_LAST = 5'(MAG_W - 1);
-  localparam [LB+KB-1:0] CLR_LAST = (LB+KB)'(DEPTH - 1);
+  localparam integer SQ_LAST_I = MAG_W - 1;
+  localparam [4:0] SQ_LAST = SQ_LAST_I[4:0];
+  localparam integer CLR_LAST_I = DEPTH - 1;
+  localparam [LB+KB-1:0] CLR_LAST = CLR_LAST_I[LB+KB-1:0];
   localparam [3:0] S_CLEAR = 4'd0, S_IN = 4'd1, S_FLUSH = 4'd2, S_DECIDE = 4'd3,
                    S_SCAN = 4'd4, S_REL0 = 4'd5, S_REL = 4'd6, S_EMIT0 = 4'd7,
                    S_SQRT = 4'd8, S_GSCALE = 4'd9, S_OUT = 4'd10;

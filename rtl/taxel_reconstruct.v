@@ -58,7 +58,8 @@ module taxel_reconstruct #(
   localparam [33:0] TAX_MAX = (34'd1 << TAX_W) - 34'd1;
   localparam integer RI_W = (R_MAX > 1) ? $clog2(R_MAX) : 1;  // array index widths
   localparam integer CI_W = (C_MAX > 1) ? $clog2(C_MAX) : 1;
-  localparam [4:0] SQ_LAST = 5'(MAG_W - 1);
+  localparam integer SQ_LAST_I = MAG_W - 1;
+  localparam [4:0] SQ_LAST = SQ_LAST_I[4:0];
 
   reg [2:0] state;
   reg [MAG_W-1:0] row_mag [0:R_MAX-1];
