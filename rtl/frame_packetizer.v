@@ -1,0 +1,321 @@
+// frame_packetizer: turns the DTMF pipeline's token streams into host-link
+// packet requests for rtl/link_framer.v (header, then payload bytes; packet
+// layouts in host/link/link_decoder.h). The spec is hls/dtmf_chain.h.
+//
+// The pipeline never waits for the link: every input port is always ready.
+// Frames are buffered in block RAM and sent while the pipeline runs on.
+//   amplitudes (type 0x01): the magnitudes {k, mag} of every DECIM-th frame
+//     (frames counted from reset, frame 0 first), mag u16 LE in k order;
+//     t = the frame's sample counter.
+//   taxels dense (0x02): rows u8, cols u8, then every taxel value u16 LE in
+//     arrival order (row-major), of every DECIM-th taxel frame; t as above.
+//   spikes (0x04): per window of DECIM neuron steps (step 0 opens window 0),
+//     the spike events {dt u16 = t_spike - t_window, layer u8 = 0, neuron u16}
+//     in order; t = t_window, the t of the window's first step. A window
+//     without spikes sends nothing. If the previous spike packet has not
+//     been taken when a window closes, the window stays open (the next
+//     packet covers both, dt from the older start): nothing is lost.
+//   status (0x05): the 24-byte block from the top on `status_req` and, with
+//     mask bit 3, once per amplitude frame slot; `samples` latched at the
+//     header.
+// mask: bit 0 amplitudes, 1 taxels, 2 spikes, 3 periodic status.
+// Losses (counted in `dropped`, saturating): an amplitude or taxel frame
+// selected while the previous one of its type is still unsent; a spike
+// event arriving with the spike FIFO full.
+// Send priority: status, amplitudes, taxels, spikes (one packet at a time).
+module frame_packetizer #(
+    parameter integer K_MAX = 6,        // carriers (amplitude buffer)
+    parameter integer T_MAX = 9,        // taxels per frame (taxel buffer)
+    parameter integer SPK_DEPTH = 512,  // spike event FIFO entries (power of 2)
+    parameter integer MAG_W = 16,
+    parameter integer TAX_W = 16,
+    parameter integer K_W = 8
+) (
+    input  wire             clk,
+    input  wire             rst,
+    input  wire [3:0]       mask,
+    input  wire [15:0]      decim,       // >= 1
+    input  wire [7:0]       rows,
+    input  wire [7:0]       cols,
+    // magnitudes
+    input  wire             amp_valid,
+    /* verilator lint_off UNUSEDSIGNAL */
+    input  wire [K_W-1:0]   amp_k,        // low KA bits used
+    /* verilator lint_on UNUSEDSIGNAL */
+    input  wire [MAG_W-1:0] amp_mag,
+    input  wire             amp_last,
+    input  wire [31:0]      amp_t,
+    // taxels
+    input  wire             tax_valid,
+    input  wire [TAX_W-1:0] tax_value,
+    input  wire             tax_last,
+    input  wire [31:0]      tax_t,
+    // neuron outputs (one per neuron per step)
+    input  wire             nrn_valid,
+    input  wire [15:0]      nrn_neuron,
+    input  wire [31:0]      nrn_t,
+    input  wire             nrn_spike,
+    input  wire             nrn_last,
+    // status
+    input  wire             status_req,
+    input  wire [159:0]     status_fixed, // status bytes 0..19
+    input  wire [31:0]      samples,      // bytes 20..23
+    output reg  [15:0]      dropped,
+    // link_framer request
+    output reg              hdr_valid,
+    input  wire             hdr_ready,
+    output reg  [7:0]       hdr_type,
+    output reg  [31:0]      hdr_t,
+    output reg  [15:0]      hdr_len,
+    output reg              s_valid,
+    input  wire             s_ready,
+    output reg  [7:0]       s_data
+);
+  localparam integer KA = (K_MAX > 1) ? $clog2(K_MAX) : 1;
+  localparam integer TA = (T_MAX > 1) ? $clog2(T_MAX) : 1;
+  localparam integer SA = $clog2(SPK_DEPTH);
+
+  reg amp_done, tax_done, spk_done, status_done;  // packet sent (from the sender)
+
+  // ---------------- frame selection and drop counting ----------------
+  reg [15:0] amp_cnt, tax_cnt, step_cnt;
+  wire amp_sel = (amp_cnt == 16'd0);
+  wire tax_sel = (tax_cnt == 16'd0);
+  wire [15:0] decim_last = decim - 16'd1;
+  reg drop_amp, drop_tax, drop_spk;
+  always @(posedge clk) begin
+    if (rst) dropped <= 16'd0;
+    else if ((drop_amp || drop_tax || drop_spk) && dropped != 16'hFFFF) dropped <= dropped + 16'd1;
+  end
+
+  // ---------------- amplitude buffer ----------------
+  reg [MAG_W-1:0] amp_mem [0:(1 << KA)-1];
+  reg amp_full, amp_wr;  // amp_wr: the frame being received is stored
+  reg amp_first;         // next magnitude token opens a frame
+  reg [31:0] amp_tq;
+  wire amp_free = !amp_full || amp_done;  // the sender releases it this cycle
+  wire amp_take = amp_valid && (amp_first ? (amp_sel && mask[0] && amp_free) : amp_wr);
+  reg status_pend;
+  always @(posedge clk) begin
+    if (amp_take) amp_mem[amp_k[KA-1:0]] <= amp_mag;
+  end
+  always @(posedge clk) begin
+    drop_amp <= 1'b0;
+    if (rst) begin
+      amp_cnt <= 16'd0; amp_full <= 1'b0; amp_wr <= 1'b0; amp_first <= 1'b1;
+      amp_tq <= 32'd0; status_pend <= 1'b0;
+    end else begin
+      if (amp_done) amp_full <= 1'b0;
+      if (status_done) status_pend <= 1'b0;
+      if (status_req) status_pend <= 1'b1;
+      if (amp_valid) begin
+        if (amp_first) begin
+          amp_wr <= amp_sel && mask[0] && amp_free;
+          drop_amp <= amp_sel && mask[0] && !amp_free;
+          if (amp_sel && mask[3]) status_pend <= 1'b1;
+        end
+        amp_first <= amp_last;
+        if (amp_last) begin
+          amp_cnt <= (amp_cnt >= decim_last) ? 16'd0 : amp_cnt + 16'd1;
+          if (amp_take) begin
+            amp_full <= 1'b1;
+            amp_tq <= amp_t;
+          end
+          amp_wr <= 1'b0;
+        end
+      end
+    end
+  end
+
+  // ---------------- taxel buffer ----------------
+  reg [TAX_W-1:0] tax_mem [0:(1 << TA)-1];
+  reg tax_full, tax_wr, tax_first;
+  reg [TA-1:0] tax_wa;
+  reg [15:0] tax_n;      // taxels stored in the frame being sent
+  reg [31:0] tax_tq;
+  wire tax_free = !tax_full || tax_done;
+  wire tax_take = tax_valid && (tax_first ? (tax_sel && mask[1] && tax_free) : tax_wr);
+  always @(posedge clk) begin
+    if (tax_take) tax_mem[tax_wa] <= tax_value;
+  end
+  always @(posedge clk) begin
+    drop_tax <= 1'b0;
+    if (rst) begin
+      tax_cnt <= 16'd0; tax_full <= 1'b0; tax_wr <= 1'b0; tax_first <= 1'b1;
+      tax_wa <= {TA{1'b0}}; tax_n <= 16'd0; tax_tq <= 32'd0;
+    end else begin
+      if (tax_done) tax_full <= 1'b0;
+      if (tax_valid) begin
+        if (tax_first) begin
+          tax_wr <= tax_sel && mask[1] && tax_free;
+          drop_tax <= tax_sel && mask[1] && !tax_free;
+        end
+        tax_first <= tax_last;
+        tax_wa <= tax_last ? {TA{1'b0}} : tax_wa + 1'b1;
+        if (tax_last) begin
+          tax_cnt <= (tax_cnt >= decim_last) ? 16'd0 : tax_cnt + 16'd1;
+          if (tax_take) begin
+            tax_full <= 1'b1;
+            tax_tq <= tax_t;
+            tax_n <= 16'(tax_wa) + 16'd1;
+          end
+          tax_wr <= 1'b0;
+        end
+      end
+    end
+  end
+
+  // ---------------- spike FIFO and windows ----------------
+  reg [31:0] spk_mem [0:SPK_DEPTH-1];  // {neuron, dt}
+  reg [SA:0] spk_wp, spk_rp, spk_close;  // write, read, end of closed events
+  reg win_open, spk_req;
+  reg [31:0] win_t, spk_tq;
+  reg [15:0] spk_n;
+  // dt is sent as u16 (the low bits of the difference).
+  /* verilator lint_off UNUSEDSIGNAL */
+  wire [31:0] nrn_dt = nrn_t - (win_open ? win_t : nrn_t);
+  /* verilator lint_on UNUSEDSIGNAL */
+  wire spk_fifo_full = (spk_wp - spk_rp) == SPK_DEPTH[SA:0];
+  wire spk_push = nrn_valid && nrn_spike && mask[2] && !spk_fifo_full;
+  wire [SA:0] spk_wp_next = spk_wp + {{SA{1'b0}}, spk_push};
+  wire win_end = nrn_valid && nrn_last && (step_cnt >= decim_last);
+  wire [SA:0] spk_pend = spk_wp_next - spk_close;
+  always @(posedge clk) begin
+    if (spk_push) spk_mem[spk_wp[SA-1:0]] <= {nrn_neuron, nrn_dt[15:0]};
+  end
+  always @(posedge clk) begin
+    drop_spk <= 1'b0;
+    if (rst) begin
+      step_cnt <= 16'd0; spk_wp <= {(SA + 1){1'b0}}; spk_close <= {(SA + 1){1'b0}};
+      win_open <= 1'b0; spk_req <= 1'b0; win_t <= 32'd0; spk_tq <= 32'd0; spk_n <= 16'd0;
+    end else begin
+      if (spk_done) spk_req <= 1'b0;
+      spk_wp <= spk_wp_next;
+      drop_spk <= nrn_valid && nrn_spike && mask[2] && spk_fifo_full;
+      if (nrn_valid) begin
+        if (!win_open) begin
+          win_open <= 1'b1;
+          win_t <= nrn_t;
+        end
+        if (nrn_last) step_cnt <= (step_cnt >= decim_last) ? 16'd0 : step_cnt + 16'd1;
+        if (win_end) begin
+          if (spk_pend == {(SA + 1){1'b0}}) begin
+            win_open <= 1'b0;  // nothing to send
+          end else if (!spk_req || spk_done) begin
+            win_open <= 1'b0;
+            spk_req <= 1'b1;
+            spk_tq <= win_open ? win_t : nrn_t;
+            spk_n <= 16'(spk_pend);
+            spk_close <= spk_wp_next;
+          end
+        end
+      end
+    end
+  end
+
+  // ---------------- sender ----------------
+  localparam [1:0] SRC_STATUS = 2'd0, SRC_AMP = 2'd1, SRC_TAX = 2'd2, SRC_SPK = 2'd3;
+  localparam [2:0] S_IDLE = 3'd0, S_HDR = 3'd1, S_RD = 3'd2, S_LAT = 3'd3, S_BYTE = 3'd4;
+  reg [2:0] state;
+  reg [1:0] src;
+  reg [15:0] wi, nwords;   // word index / count
+  reg [4:0] bi, nb;        // byte index in the word / bytes per word
+  reg [31:0] word;
+  reg [31:0] samples_q;
+  reg [MAG_W-1:0] amp_rd;
+  reg [TAX_W-1:0] tax_rd;
+  reg [31:0] spk_rd;
+  wire [TA-1:0] tax_ra = TA'(wi - 16'd1);  // word 0 is {rows, cols}
+  always @(posedge clk) begin
+    amp_rd <= amp_mem[wi[KA-1:0]];
+    tax_rd <= tax_mem[tax_ra];
+    spk_rd <= spk_mem[spk_rp[SA-1:0]];
+  end
+  wire [191:0] status_vec = {samples_q, status_fixed};
+  always @(*) begin
+    case (src)
+      SRC_STATUS: s_data = status_vec[8 * bi +: 8];
+      SRC_SPK: begin
+        case (bi)
+          5'd0: s_data = word[7:0];
+          5'd1: s_data = word[15:8];
+          5'd2: s_data = 8'd0;  // layer 0: the receptor layer
+          5'd3: s_data = word[23:16];
+          default: s_data = word[31:24];
+        endcase
+      end
+      default: s_data = bi[0] ? word[15:8] : word[7:0];
+    endcase
+  end
+  wire last_byte = (bi == nb - 5'd1);
+  wire last_word = (wi == nwords - 16'd1);
+  always @(posedge clk) begin
+    amp_done <= 1'b0; tax_done <= 1'b0; spk_done <= 1'b0; status_done <= 1'b0;
+    if (rst) begin
+      state <= S_IDLE; src <= SRC_STATUS; hdr_valid <= 1'b0; s_valid <= 1'b0;
+      hdr_type <= 8'd0; hdr_t <= 32'd0; hdr_len <= 16'd0;
+      wi <= 16'd0; nwords <= 16'd0; bi <= 5'd0; nb <= 5'd0; word <= 32'd0;
+      samples_q <= 32'd0; spk_rp <= {(SA + 1){1'b0}};
+    end else begin
+      case (state)
+        S_IDLE: begin
+          wi <= 16'd0;
+          bi <= 5'd0;
+          if (status_pend && !status_done) begin
+            src <= SRC_STATUS; hdr_type <= 8'h05; hdr_t <= samples; hdr_len <= 16'd24;
+            samples_q <= samples; nwords <= 16'd1; nb <= 5'd24;
+            hdr_valid <= 1'b1; state <= S_HDR;
+          end else if (amp_full && !amp_done) begin
+            src <= SRC_AMP; hdr_type <= 8'h01; hdr_t <= amp_tq;
+            hdr_len <= 16'(2 * K_MAX); nwords <= 16'(K_MAX); nb <= 5'd2;
+            hdr_valid <= 1'b1; state <= S_HDR;
+          end else if (tax_full && !tax_done) begin
+            src <= SRC_TAX; hdr_type <= 8'h02; hdr_t <= tax_tq;
+            hdr_len <= 16'd2 + {tax_n[14:0], 1'b0}; nwords <= tax_n + 16'd1; nb <= 5'd2;
+            hdr_valid <= 1'b1; state <= S_HDR;
+          end else if (spk_req && !spk_done) begin
+            src <= SRC_SPK; hdr_type <= 8'h04; hdr_t <= spk_tq;
+            hdr_len <= 16'(5 * spk_n); nwords <= spk_n; nb <= 5'd5;
+            hdr_valid <= 1'b1; state <= S_HDR;
+          end
+        end
+        S_HDR: if (hdr_ready) begin
+          hdr_valid <= 1'b0;
+          state <= S_RD;
+        end
+        S_RD: state <= S_LAT;  // the word's address is on the RAMs this cycle
+        S_LAT: begin
+          case (src)
+            SRC_AMP: word <= 32'(amp_rd);
+            SRC_TAX: word <= (wi == 16'd0) ? {16'd0, cols, rows} : 32'(tax_rd);
+            SRC_SPK: word <= spk_rd;
+            default: word <= 32'd0;
+          endcase
+          s_valid <= 1'b1;
+          state <= S_BYTE;
+        end
+        default: if (s_ready) begin  // S_BYTE
+          if (!last_byte) begin
+            bi <= bi + 5'd1;
+          end else begin
+            bi <= 5'd0;
+            s_valid <= 1'b0;
+            if (src == SRC_SPK) spk_rp <= spk_rp + 1'b1;
+            if (!last_word) begin
+              wi <= wi + 16'd1;
+              state <= S_RD;
+            end else begin
+              state <= S_IDLE;
+              case (src)
+                SRC_AMP: amp_done <= 1'b1;
+                SRC_TAX: tax_done <= 1'b1;
+                SRC_SPK: spk_done <= 1'b1;
+                default: status_done <= 1'b1;
+              endcase
+            end
+          end
+        end
+      endcase
+    end
+  end
+endmodule

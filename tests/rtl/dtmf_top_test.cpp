@@ -1,0 +1,311 @@
+// System test of the DTMF FPGA path: scene -> world model -> AD7476A pin
+// model -> Verilated rtl/dtmf_top.v -> UART line sampled bit by bit ->
+// host/link LinkDecoder -> packets, compared with hls/dtmf_chain.h run on
+// the same samples.
+//
+// Samples: the world model's 10-bit codes c10 are served as 12-bit codes
+// c10 << 2 (the AD7476A's width, left aligned); the chain subtracts 2048 and
+// its magnitude shift of 2 undoes the alignment (hls/dtmf_chain.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Vdtmf_top.h"
+#include "Vdtmf_top___024root.h"
+#include "eskin/skin_config.h"
+#include "hls/dtmf_chain.h"
+#include "hls/izhikevich_layer_config.h"
+#include "hls/sdft_bank_config.h"
+#include "host/link/link_decoder.h"
+#include "host/link/link_encoder.h"
+#include "sim/ad7476_model.h"
+#include "sim/scene.h"
+#include "sim/world_model.h"
+
+namespace {
+
+using eskin::link::Packet;
+constexpr double kClkHz = 12e6;
+constexpr int kCpb = 4;          // uart_tx clocks per bit: 12 MHz / 3 Mbaud
+constexpr int kPeriod = 343;     // adc_ad7476 clocks per sample: round(12e6 / 35e3)
+
+// A packet as the host received it, with the cycle of its first start bit.
+struct Received {
+  Packet p;
+  uint64_t start_cycle = 0;
+};
+
+// One (type, t, payload) triple, comparable across RTL and HLS.
+struct Key {
+  uint8_t type;
+  uint32_t t;
+  std::vector<uint8_t> payload;
+  bool operator==(const Key& o) const {
+    return type == o.type && t == o.t && payload == o.payload;
+  }
+};
+std::string str(const Key& k) {
+  std::string s = "type " + std::to_string(k.type) + " t " + std::to_string(k.t) + " [";
+  for (uint8_t b : k.payload) s += std::to_string(b) + " ";
+  return s + "]";
+}
+
+// Verilated top + AD7476A model + UART line codec, one clock per tick().
+class Board {
+ public:
+  explicit Board(std::vector<uint16_t> codes12)
+      : m_(std::make_unique<Vdtmf_top>()), adc_(std::move(codes12)) {
+    decoder_.on_packet([this](const Packet& p) { rx_.push_back({p, frame_start_}); });
+    m_->clk = 0;
+    m_->rst_n = 1;
+    m_->uart_rxd = 1;
+    m_->adc_sdata = 0;
+    m_->eval();
+  }
+
+  void tick() {
+    const double t_ns = double(cycle_ + 1) * 1e9 / kClkHz;
+    m_->adc_sdata = adc_.sdata(t_ns);
+    m_->uart_rxd = rx_level();
+    m_->clk = 1;
+    m_->eval();
+    m_->clk = 0;
+    m_->eval();
+    ++cycle_;
+    adc_.drive(t_ns, m_->adc_cs_n, m_->adc_sclk);
+    // 16th SCLK falling edge of a conversion: the sample's last data edge.
+    if (!m_->adc_cs_n && prev_sclk_ && !m_->adc_sclk && ++falls_ == 16)
+      sample_edge_.push_back(cycle_);
+    if (m_->adc_cs_n) falls_ = 0;
+    prev_sclk_ = m_->adc_sclk;
+    uart_sample(m_->uart_txd);
+    probe();
+  }
+
+  // Bytes to send to the FPGA's uart_rx (8N1, kCpb clocks per bit).
+  void send(const std::vector<uint8_t>& bytes) {
+    for (uint8_t b : bytes) {
+      tx_bits_.push_back(0);
+      for (int i = 0; i < 8; ++i) tx_bits_.push_back((b >> i) & 1);
+      tx_bits_.push_back(1);
+    }
+  }
+  bool sending() const { return tx_pos_ < tx_bits_.size() * kCpb; }
+
+  Vdtmf_top& top() { return *m_; }
+  Vdtmf_top___024root& root() { return *m_->rootp; }
+  const eskin::sim::Ad7476Model& adc() const { return adc_; }
+  uint64_t cycle() const { return cycle_; }
+  const std::vector<Received>& received() const { return rx_; }
+  const eskin::link::DecoderStats& link_stats() const { return decoder_.stats(); }
+  int uart_framing_errors() const { return uart_errors_; }
+  // Cycle of the 16th SCLK falling edge of conversion t.
+  uint64_t sample_edge(uint32_t t) const { return sample_edge_.at(t); }
+
+  // Cycles of pipeline events, keyed by the sample counter t of the frame.
+  struct Events {
+    uint64_t adc = 0, sd_first = 0, sd_last = 0, mg_first = 0, mg_last = 0, tx_first = 0,
+             tx_last = 0, nr_first = 0, nr_last = 0;
+    std::map<uint8_t, uint64_t> hdr;  // packet type -> header handshake
+  };
+  std::map<uint32_t, Events> events;
+  bool tag_error = false;
+
+ private:
+  int rx_level() {
+    if (tx_pos_ >= tx_bits_.size() * kCpb) return 1;
+    return tx_bits_[tx_pos_++ / kCpb];
+  }
+
+  // 8N1 receiver that knows the exact bit period: a start bit first seen at
+  // cycle s, bit j is sampled at s + kCpb j + kCpb/2 (the middle).
+  void uart_sample(int level) {
+    if (!busy_) {
+      if (level == 0) {
+        busy_ = true;
+        start_ = cycle_;
+        byte_ = 0;
+      }
+      return;
+    }
+    const uint64_t off = cycle_ - start_;
+    if (off % kCpb != kCpb / 2) return;
+    const uint64_t j = off / kCpb;
+    if (j >= 1 && j <= 8) byte_ |= uint8_t(level << (j - 1));
+    if (j == 9) {
+      busy_ = false;
+      if (level != 1) ++uart_errors_;
+      if (byte_ != 0 && !in_frame_) {
+        in_frame_ = true;
+        frame_start_ = start_;
+      }
+      if (byte_ == 0) in_frame_ = false;
+      decoder_.feed(&byte_, 1);
+    }
+  }
+
+  void probe() {
+    auto& r = *m_->rootp;
+    if (r.dtmf_top__DOT__tag_error) tag_error = true;
+    if (r.dtmf_top__DOT__p_adc_fire) events[r.dtmf_top__DOT__p_adc_t].adc = cycle_;
+    const auto mark = [this](bool last, uint64_t& first, uint64_t& lst) {
+      if (first == 0) first = cycle_;
+      if (last) lst = cycle_;
+    };
+    if (r.dtmf_top__DOT__p_sd_fire) {
+      Events& e = events[r.dtmf_top__DOT__p_sd_t];
+      mark(r.dtmf_top__DOT__p_sd_last, e.sd_first, e.sd_last);
+    }
+    if (r.dtmf_top__DOT__p_mg_fire) {
+      Events& e = events[r.dtmf_top__DOT__p_mg_t];
+      mark(r.dtmf_top__DOT__p_mg_last, e.mg_first, e.mg_last);
+    }
+    if (r.dtmf_top__DOT__p_tx_fire) {
+      Events& e = events[r.dtmf_top__DOT__p_tx_t];
+      mark(r.dtmf_top__DOT__p_tx_last, e.tx_first, e.tx_last);
+    }
+    if (r.dtmf_top__DOT__p_nr_fire) {
+      Events& e = events[r.dtmf_top__DOT__p_nr_t];
+      mark(r.dtmf_top__DOT__p_nr_last, e.nr_first, e.nr_last);
+    }
+    if (r.dtmf_top__DOT__p_hdr_fire)
+      events[r.dtmf_top__DOT__p_hdr_t].hdr[r.dtmf_top__DOT__p_hdr_type] = cycle_;
+  }
+
+  std::unique_ptr<Vdtmf_top> m_;
+  eskin::sim::Ad7476Model adc_;
+  eskin::link::LinkDecoder decoder_;
+  std::vector<Received> rx_;
+  uint64_t cycle_ = 0;
+  bool prev_sclk_ = true;
+  int falls_ = 0;
+  std::vector<uint64_t> sample_edge_;
+  // UART receive (FPGA -> host)
+  bool busy_ = false, in_frame_ = false;
+  uint64_t start_ = 0, frame_start_ = 0;
+  uint8_t byte_ = 0;
+  int uart_errors_ = 0;
+  // UART transmit (host -> FPGA)
+  std::vector<int> tx_bits_;
+  size_t tx_pos_ = 0;
+};
+
+// The default scene's chain (3x3, N = 32, the top's default parameters).
+using Chain3 = eskin::hls::DtmfChain<3, 3, 32>;
+
+// Host-side chain configuration from a scene: carriers as phase increments,
+// conductance taxels (recip from the full-carrier window magnitude in 10-bit
+// code units: N/2 * full_carrier_lsb), the scene's neuron at dt = step / fs.
+template <class Chain>
+typename Chain::Config chain_config(const eskin::sim::Scene& sc, int step, uint16_t decim,
+                                    uint8_t mask) {
+  typename Chain::Config c;
+  const auto f = sc.skin.carrier_freqs_hz();
+  const double fs = sc.skin.adc.rate_hz;
+  c.sdft.carriers = int(f.size());
+  for (size_t k = 0; k < f.size(); ++k) c.sdft.inc[k] = eskin::hls::sdft_phase_increment(f[k], fs);
+  c.taxel.rows = uint8_t(sc.skin.rows);
+  c.taxel.cols = uint8_t(sc.skin.cols);
+  c.taxel.mode = eskin::hls::TaxelMode::Conductance;
+  c.taxel.recip_shift = 12;
+  const double full = sc.decoder.window / 2.0 * sc.skin.full_carrier_lsb();
+  c.taxel.recip = uint16_t(std::lround(std::ldexp(1.0, 15 + 12) / full));
+  c.neuron = eskin::hls::make_izhikevich_config(
+      eskin::hls::izhikevich_fixed_preset(sc.neuron.preset), step * 1000.0 / fs,
+      sc.neuron.input_scale / 32768.0, 1);
+  c.step = step;
+  c.decim = decim;
+  c.mask = mask;
+  return c;
+}
+
+template <class Chain>
+std::vector<Key> run_chain(Chain& chain, const std::vector<uint16_t>& codes12, size_t n) {
+  std::vector<Key> out;
+  typename Chain::Packet pk[3];
+  for (size_t i = 0; i < n; ++i) {
+    const int np = chain.push(codes12[i], uint32_t(i), pk);
+    for (int j = 0; j < np; ++j)
+      out.push_back({pk[j].type, pk[j].t, {pk[j].payload, pk[j].payload + pk[j].len}});
+  }
+  return out;
+}
+
+std::vector<uint16_t> scene_codes12(const eskin::sim::Scene& sc) {
+  eskin::sim::WorldModel world(sc);
+  std::vector<uint16_t> c;
+  for (int v : world.all_codes()) c.push_back(uint16_t(v << (12 - sc.skin.adc.bits)));
+  return c;
+}
+
+// Packets of `type` whose data is complete before sample `limit`
+// (amplitudes/taxels: t < limit; spikes: window end t + span <= limit).
+std::vector<Key> of_type(const std::vector<Key>& all, uint8_t type, uint32_t limit,
+                         uint32_t span) {
+  std::vector<Key> r;
+  for (const Key& k : all) {
+    if (k.type != type) continue;
+    if ((type == eskin::link::kSpikes ? k.t + span : k.t) >= limit) continue;
+    r.push_back(k);
+  }
+  return r;
+}
+
+// Bound: exact equality. Every block of the path is the bit-exact RTL of its
+// HLS kernel (their own tests), the glue (tag FIFOs, step gate, packetizer)
+// only moves data, and the link is lossless (CRC checked by the decoder), so
+// any difference in type, t or a payload byte is a bug.
+TEST(DtmfTop, DefaultSceneMatchesHlsChainPacketForPacket) {
+  const auto scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  ASSERT_EQ(scene.skin.rows, 3);
+  ASSERT_EQ(scene.skin.cols, 3);
+  ASSERT_EQ(scene.decoder.window, 32);
+  ASSERT_EQ(scene.skin.adc.bits, 10);
+  auto codes = scene_codes12(scene);
+  const size_t n = codes.size();
+  const size_t pad = 64;  // extra conversions so the last frames get out
+  codes.resize(n + pad, 2048);
+
+  const uint16_t decim = 32;
+  auto chain = std::make_unique<Chain3>(chain_config<Chain3>(scene, 1, decim, 7));
+  ASSERT_TRUE(chain->ok());
+  const auto want = run_chain(*chain, codes, n);
+
+  Board b(codes);
+  while (b.adc().samples_taken() < n + pad - 1) b.tick();
+
+  std::vector<Key> got;
+  for (const auto& r : b.received()) got.push_back({r.p.type, r.p.t, r.p.payload});
+  EXPECT_EQ(b.link_stats().crc_errors + b.link_stats().framing_errors, 0u);
+  EXPECT_EQ(b.link_stats().lost_packets, 0u);
+  EXPECT_EQ(b.uart_framing_errors(), 0);
+  EXPECT_EQ(b.adc().violation_count(), 0u);
+  EXPECT_FALSE(b.tag_error);
+  // Throughput: no ADC sample lost, nothing dropped for a busy link.
+  EXPECT_EQ(b.root().dtmf_top__DOT__p_overruns, 0);
+  EXPECT_EQ(b.root().dtmf_top__DOT__p_dropped, 0);
+
+  const uint32_t limit = uint32_t(n) - decim;
+  for (uint8_t type : {eskin::link::kAmplitudes, eskin::link::kTaxelsDense, eskin::link::kSpikes}) {
+    const auto w = of_type(want, type, limit, decim);
+    const auto g = of_type(got, type, limit, decim);
+    EXPECT_GT(w.size(), 10u) << "type " << int(type);
+    ASSERT_EQ(g.size(), w.size()) << "type " << int(type);
+    for (size_t i = 0; i < w.size(); ++i) {
+      if (!(g[i] == w[i]))
+        for (const Key& a : want)
+          if (a.type == 1 && a.t == w[i].t) std::printf("amp %s\n", str(a).c_str());
+      ASSERT_EQ(g[i], w[i]) << "type " << int(type) << " packet " << i << "\n got  " << str(g[i])
+                            << "\n want " << str(w[i]);
+    }
+  }
+  std::printf("dtmf_top: %zu samples, %zu packets received, %llu cycles\n", n,
+              b.received().size(), (unsigned long long)b.cycle());
+}
+
+}  // namespace
