@@ -102,22 +102,29 @@ module ghost_filter #(
   end
 
   // ---- argmax: running (input) and rescans --------------------------------
-  reg [RI_W-1:0] best_r, sc_r;
-  reg [CI_W-1:0] best_c, sc_c;
+  // One running argmax per side (first index of the largest rem), fed by the
+  // input's rise stage and by rescans through one shared comparator each.
+  reg [RI_W-1:0] am_r, th_r;
+  reg [CI_W-1:0] am_c, th_c;
   reg [K_W-1:0] scan_i;
-  reg [MAG_W-1:0] best_rv, best_cv, sc_rv, sc_cv;
+  reg [MAG_W-1:0] am_rv, am_cv;
+  reg first, th_ok;                     // first DECIDE of the frame; thesis site
   wire [MAG_W-1:0] scan_rv = row_rem[scan_i[RI_W-1:0]];
   wire [MAG_W-1:0] scan_cv = col_rem[scan_i[CI_W-1:0]];
   wire [K_W-1:0] scan_last = (cfg_rows > cfg_cols) ? cfg_rows - 1'b1 : cfg_cols - 1'b1;
-  reg first;                            // first DECIDE: the input's argmax
-  wire [RI_W-1:0] cur_r = first ? best_r : sc_r;
-  wire [CI_W-1:0] cur_c = first ? best_c : sc_c;
-  wire [MAG_W-1:0] cur_rv = first ? best_rv : sc_rv;
-  wire [MAG_W-1:0] cur_cv = first ? best_cv : sc_cv;
-  wire both_gt_tol = (cur_rv > cfg_pair_tol) && (cur_cv > cfg_pair_tol);
-  wire both_le_tol = (cur_rv <= cfg_pair_tol) && (cur_cv <= cfg_pair_tol);
-  wire thesis_ok = (best_rv != 0) && (best_cv != 0);
-  wire [MAG_W-1:0] flow = (cur_rv < cur_cv) ? cur_rv : cur_cv;
+  wire scanning = (state == S_SCAN);
+  wire [MAG_W-1:0] cand_rv = scanning ? scan_rv : rem_new;
+  wire [MAG_W-1:0] cand_cv = scanning ? scan_cv : rem_new;
+  wire [IX_W-1:0] cand_i = scanning ? scan_i[IX_W-1:0] : p_idx;
+  wire cand_r_en = scanning ? (scan_i < cfg_rows) : (p_valid && p_row);
+  wire cand_c_en = scanning ? (scan_i < cfg_cols) : (p_valid && !p_row);
+  wire rv_gt = am_rv > cfg_pair_tol;
+  wire cv_gt = am_cv > cfg_pair_tol;
+  // thesis site: the input's argmax (saved at the first DECIDE)
+  wire [RI_W-1:0] thesis_r = first ? am_r : th_r;
+  wire [CI_W-1:0] thesis_c = first ? am_c : th_c;
+  wire thesis_ok = first ? (am_rv != 0 && am_cv != 0) : th_ok;
+  wire [MAG_W-1:0] flow = (am_rv < am_cv) ? am_rv : am_cv;
 
   // ---- site walk (release pass and emit pass) -----------------------------
   reg [K_W-1:0] ri, cj;
@@ -213,8 +220,8 @@ module ghost_filter #(
   endtask
   task automatic end_frame;
     begin
-      best_rv <= {MAG_W{1'b0}}; best_r <= {RI_W{1'b0}};
-      best_cv <= {MAG_W{1'b0}}; best_c <= {CI_W{1'b0}};
+      am_rv <= {MAG_W{1'b0}}; am_r <= {RI_W{1'b0}};
+      am_cv <= {MAG_W{1'b0}}; am_c <= {CI_W{1'b0}};
       state <= S_IN;
     end
   endtask
@@ -229,8 +236,8 @@ module ghost_filter #(
       col_left <= {C_MAX{1'b0}};
       ri <= {K_W{1'b0}};
       cj <= {K_W{1'b0}};
-      best_rv <= {MAG_W{1'b0}}; best_r <= {RI_W{1'b0}};
-      best_cv <= {MAG_W{1'b0}}; best_c <= {CI_W{1'b0}};
+      am_rv <= {MAG_W{1'b0}}; am_r <= {RI_W{1'b0}};
+      am_cv <= {MAG_W{1'b0}}; am_c <= {CI_W{1'b0}};
       for (i = 0; i < R_MAX; i = i + 1) begin
         site[i] <= {C_MAX{1'b0}};
         pend[i] <= {C_MAX{1'b0}};
@@ -247,14 +254,11 @@ module ghost_filter #(
         else if (in_ok) col_mag[in_col[CI_W-1:0]] <= in_mag;
       end
       if (p_valid) begin
-        if (p_row) begin
-          row_rem[p_idx[RI_W-1:0]] <= rem_new;
-          if (rem_new > best_rv) begin best_rv <= rem_new; best_r <= p_idx[RI_W-1:0]; end
-        end else begin
-          col_rem[p_idx[CI_W-1:0]] <= rem_new;
-          if (rem_new > best_cv) begin best_cv <= rem_new; best_c <= p_idx[CI_W-1:0]; end
-        end
+        if (p_row) row_rem[p_idx[RI_W-1:0]] <= rem_new;
+        else col_rem[p_idx[CI_W-1:0]] <= rem_new;
       end
+      if (cand_r_en && cand_rv > am_rv) begin am_rv <= cand_rv; am_r <= cand_i[RI_W-1:0]; end
+      if (cand_c_en && cand_cv > am_cv) begin am_cv <= cand_cv; am_c <= cand_i[CI_W-1:0]; end
       case (state)
         S_CLEAR: begin
           clr_addr <= clr_addr + 1'b1;
@@ -263,31 +267,30 @@ module ghost_filter #(
         S_IN: if (in_fire && frame_end) state <= S_FLUSH;
         S_FLUSH: begin
           head <= (head == cfg_lookback[LB-1:0] - 1'b1) ? {LB{1'b0}} : head + 1'b1;
-          first <= 1'b1;  // best_* get the last token this cycle
+          first <= 1'b1;  // am_* get the last token this cycle
           state <= S_DECIDE;
         end
         S_DECIDE:
-          if (cfg_improved && both_gt_tol) begin
-            row_rem[cur_r] <= cur_rv - flow;
-            col_rem[cur_c] <= cur_cv - flow;
-            pend[cur_r][cur_c] <= 1'b1;
+          if (cfg_improved && rv_gt && cv_gt) begin
+            row_rem[am_r] <= am_rv - flow;
+            col_rem[am_c] <= am_cv - flow;
+            pend[am_r][am_c] <= 1'b1;
             first <= 1'b0;
-            sc_rv <= {MAG_W{1'b0}}; sc_r <= {RI_W{1'b0}};
-            sc_cv <= {MAG_W{1'b0}}; sc_c <= {CI_W{1'b0}};
+            th_r <= thesis_r; th_c <= thesis_c; th_ok <= thesis_ok;
+            am_rv <= {MAG_W{1'b0}}; am_r <= {RI_W{1'b0}};
+            am_cv <= {MAG_W{1'b0}}; am_c <= {CI_W{1'b0}};
             scan_i <= {K_W{1'b0}};
             state <= S_SCAN;
           end else begin
             for (i = 0; i < R_MAX; i = i + 1) begin
-              if (cfg_improved && both_le_tol) site[i] <= site[i] | pend[i];
+              if (cfg_improved && !rv_gt && !cv_gt) site[i] <= site[i] | pend[i];
               pend[i] <= {C_MAX{1'b0}};
             end
-            if (!(cfg_improved && both_le_tol) && thesis_ok)
-              site[best_r][best_c] <= 1'b1;
+            if (!(cfg_improved && !rv_gt && !cv_gt) && thesis_ok)
+              site[thesis_r][thesis_c] <= 1'b1;
             state <= S_REL0;
           end
         S_SCAN: begin
-          if (scan_i < cfg_rows && scan_rv > sc_rv) begin sc_rv <= scan_rv; sc_r <= scan_i[RI_W-1:0]; end
-          if (scan_i < cfg_cols && scan_cv > sc_cv) begin sc_cv <= scan_cv; sc_c <= scan_i[CI_W-1:0]; end
           scan_i <= scan_i + 1'b1;
           if (scan_i == scan_last) state <= S_DECIDE;
         end
