@@ -80,6 +80,10 @@
 //       when the neuron fired this step; last on neuron N-1; v, U the state
 //       after the update (monitoring). A spike event is {neuron, t}:
 //       spike_encoder keeps only the tokens with spike set.
+// Input mode: level (x is the taxel value or the synapse sum). The
+// rectified-change mode (NeuronInput::RectifiedChange, max(0, dx/dt)) is
+// left to the host/upstream: it needs each neuron's previous input (one more
+// N x 16 RAM and a subtractor), with 1/dt folded into the gain.
 // Timing of the RTL (asserted in tests/rtl/izhikevich_layer_test.cpp):
 //   after reset, N cycles of state initialisation (in_ready low);
 //   then per neuron: input handshake at cycle 0, out_valid at cycle
