@@ -51,6 +51,21 @@ template class eskin::hls::GhostFilter<3, 3, 4>;
 template class eskin::hls::GoertzelBlockBank<6, 32>;
 #endif
 
+#if __has_include("hls/spike_encoder.h")
+#include "hls/spike_encoder.h"
+template struct eskin::hls::SpikeEncoder<>;
+#endif
+
+#if __has_include("hls/synapse_weights.h")
+#include "hls/synapse_weights.h"
+template class eskin::hls::SynapseWeights<9, 4>;
+#endif
+
+#if __has_include("hls/dtmf_chain.h")
+#include "hls/dtmf_chain.h"
+template class eskin::hls::DtmfChain<3, 3, 32>;
+#endif
+
 #if __has_include("hls/carrier_demix.h")
 #include "hls/carrier_demix.h"
 template class eskin::hls::CarrierDemix<6, 32>;
