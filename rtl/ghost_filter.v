@@ -72,8 +72,6 @@ module ghost_filter #(
   // ---- per-line state -----------------------------------------------------
   reg [MAG_W-1:0] row_mag [0:R_MAX-1];
   reg [MAG_W-1:0] col_mag [0:C_MAX-1];
-  reg [MAG_W-1:0] row_rem [0:R_MAX-1];
-  reg [MAG_W-1:0] col_rem [0:C_MAX-1];
   reg [C_MAX-1:0] site [0:R_MAX-1];     // active sites, one row mask each
   reg [C_MAX-1:0] pend [0:R_MAX-1];     // candidate pairs of this frame
 
@@ -109,8 +107,7 @@ module ghost_filter #(
   reg [K_W-1:0] scan_i;
   reg [MAG_W-1:0] am_rv, am_cv;
   reg first, th_ok;                     // first DECIDE of the frame; thesis site
-  wire [MAG_W-1:0] scan_rv = row_rem[scan_i[RI_W-1:0]];
-  wire [MAG_W-1:0] scan_cv = col_rem[scan_i[CI_W-1:0]];
+  wire [MAG_W-1:0] scan_rv, scan_cv;     // rem[scan_i] (memories below)
   wire [K_W-1:0] scan_last = (cfg_rows > cfg_cols) ? cfg_rows - 1'b1 : cfg_cols - 1'b1;
   wire scanning = (state == S_SCAN);
   wire [MAG_W-1:0] cand_rv = scanning ? scan_rv : rem_new;
@@ -125,6 +122,36 @@ module ghost_filter #(
   wire [CI_W-1:0] thesis_c = first ? am_c : th_c;
   wire thesis_ok = first ? (am_rv != 0 && am_cv != 0) : th_ok;
   wire [MAG_W-1:0] flow = (am_rv < am_cv) ? am_rv : am_cv;
+  wire pair_step = (state == S_DECIDE) && cfg_improved && rv_gt && cv_gt;
+
+  // rem per line in two memories (EBR when large): one write port (the
+  // input's rise stage, or a pairing step's subtraction), one read port
+  // feeding the rescan a cycle ahead (address scan_i + 1; 0 during DECIDE).
+  // The rescan's first read was issued while DECIDE wrote: if DECIDE wrote
+  // index 0, the written value is taken instead (byp_*).
+  reg [MAG_W-1:0] row_rem [0:R_MAX-1];
+  reg [MAG_W-1:0] col_rem [0:C_MAX-1];
+  reg [MAG_W-1:0] row_rem_rd, col_rem_rd, byp_rv, byp_cv;
+  reg byp_r, byp_c;
+  wire rr_we = pair_step || (p_valid && p_row);
+  wire cr_we = pair_step || (p_valid && !p_row);
+  wire [RI_W-1:0] rr_wa = pair_step ? am_r : p_idx[RI_W-1:0];
+  wire [CI_W-1:0] cr_wa = pair_step ? am_c : p_idx[CI_W-1:0];
+  wire [MAG_W-1:0] rr_wd = pair_step ? am_rv - flow : rem_new;
+  wire [MAG_W-1:0] cr_wd = pair_step ? am_cv - flow : rem_new;
+  wire [IX_W-1:0] scan_next = scanning ? scan_i[IX_W-1:0] + 1'b1 : {IX_W{1'b0}};
+  always @(posedge clk) begin
+    if (rr_we) row_rem[rr_wa] <= rr_wd;
+    if (cr_we) col_rem[cr_wa] <= cr_wd;
+    row_rem_rd <= row_rem[scan_next[RI_W-1:0]];
+    col_rem_rd <= col_rem[scan_next[CI_W-1:0]];
+    if (pair_step) begin
+      byp_r <= (am_r == 0); byp_rv <= rr_wd;
+      byp_c <= (am_c == 0); byp_cv <= cr_wd;
+    end
+  end
+  assign scan_rv = (scan_i == 0 && byp_r) ? byp_rv : row_rem_rd;
+  assign scan_cv = (scan_i == 0 && byp_c) ? byp_cv : col_rem_rd;
 
   // ---- site walk (release pass and emit pass) -----------------------------
   reg [K_W-1:0] ri, cj;
@@ -253,10 +280,6 @@ module ghost_filter #(
         if (in_is_row) row_mag[in_k[RI_W-1:0]] <= in_mag;
         else if (in_ok) col_mag[in_col[CI_W-1:0]] <= in_mag;
       end
-      if (p_valid) begin
-        if (p_row) row_rem[p_idx[RI_W-1:0]] <= rem_new;
-        else col_rem[p_idx[CI_W-1:0]] <= rem_new;
-      end
       if (cand_r_en && cand_rv > am_rv) begin am_rv <= cand_rv; am_r <= cand_i[RI_W-1:0]; end
       if (cand_c_en && cand_cv > am_cv) begin am_cv <= cand_cv; am_c <= cand_i[CI_W-1:0]; end
       case (state)
@@ -271,9 +294,7 @@ module ghost_filter #(
           state <= S_DECIDE;
         end
         S_DECIDE:
-          if (cfg_improved && rv_gt && cv_gt) begin
-            row_rem[am_r] <= am_rv - flow;
-            col_rem[am_c] <= am_cv - flow;
+          if (pair_step) begin
             pend[am_r][am_c] <= 1'b1;
             first <= 1'b0;
             th_r <= thesis_r; th_c <= thesis_c; th_ok <= thesis_ok;
