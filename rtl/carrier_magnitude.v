@@ -5,7 +5,7 @@
 //
 // Datapath, one token at a time (iterative, one unsigned HxH multiplier,
 // H = ceil(ACC_W/2) <= 16, so one SB_MAC16 with `synth_ice40 -dsp`):
-//   IDLE  in_ready = 1; the handshake latches k, last, |re|, |im|.
+//   IDLE  in_ready = 1; the handshake latches k, last, re, im.
 //   MUL   6 cycles: P += lo*lo, 2*hi*lo << H, hi*hi << 2H for |re| then |im|.
 //   PREP  1 cycle : Q = (4 P) >> 2 SHIFT, overflow flag if Q >= 4^NB.
 //   SQRT  NB = MAG_W+1 cycles of the restoring square root (1 bit/cycle).
@@ -46,19 +46,16 @@ module carrier_magnitude #(
   reg [2:0] state;
   reg [4:0] cnt;
 
-  // |x| of a signed ACC_W-bit input, as an unsigned AW-bit value.
-  wire [AW:0] re_sx = {{(AW + 1 - ACC_W){in_re[ACC_W-1]}}, in_re};
-  wire [AW:0] im_sx = {{(AW + 1 - ACC_W){in_im[ACC_W-1]}}, in_im};
-  wire [AW-1:0] re_neg = -re_sx[AW-1:0];  // 2^(ACC_W-1) still fits AW bits
-  wire [AW-1:0] im_neg = -im_sx[AW-1:0];
-  wire [AW-1:0] re_abs = re_sx[AW] ? re_neg : re_sx[AW-1:0];
-  wire [AW-1:0] im_abs = im_sx[AW] ? im_neg : im_sx[AW-1:0];
-
-  reg [AW-1:0] ar, ai;
+  // The inputs are latched signed; |x| is taken of the operand in use (one
+  // negator shared by re and im), as an unsigned AW-bit value.
+  reg [ACC_W-1:0] ar, ai;
   reg [PW-1:0] p;
+  wire [ACC_W-1:0] src_s = (cnt < 5'd3) ? ar : ai;
+  wire [AW:0] src_sx = {{(AW + 1 - ACC_W){src_s[ACC_W-1]}}, src_s};
+  wire [AW-1:0] src_neg = -src_sx[AW-1:0];  // 2^(ACC_W-1) still fits AW bits
 
   // Partial products: step 0..2 on |re|, 3..5 on |im|.
-  wire [AW-1:0] src = (cnt < 5'd3) ? ar : ai;
+  wire [AW-1:0] src = src_sx[AW] ? src_neg : src_sx[AW-1:0];
   wire [1:0] part = (cnt < 5'd3) ? cnt[1:0] : cnt[1:0] - 2'd3;
   wire [H-1:0] lo = src[H-1:0];
   wire [H-1:0] hi = src[AW-1:H];
@@ -107,8 +104,8 @@ module carrier_magnitude #(
           if (in_valid) begin
             out_k <= in_k;
             out_last <= in_last;
-            ar <= re_abs;
-            ai <= im_abs;
+            ar <= in_re;
+            ai <= in_im;
             p <= {PW{1'b0}};
             cnt <= 5'd0;
             state <= S_MUL;
