@@ -15,16 +15,19 @@
 // code units (window sum, gain G = 1 - 2^-(CW-1)).
 //
 // Packets (layouts: host/link/link_decoder.h), steps counted from 0:
-//   amplitudes (0x01), step s with s % decim == 0 and mask bit 0:
+//   amplitudes (0x01), step s with s % decim_amp == 0 and mask bit 0:
 //     t = the step's sample counter, payload K x mag u16 LE (k order).
-//   taxels dense (0x02), same steps, mask bit 1: rows u8, cols u8, then the
-//     taxel values u16 LE row-major (every taxel: activity threshold 0).
-//   spikes (0x04), mask bit 2: window w covers steps w*decim .. w*decim +
-//     decim - 1; when it closes (after its last step) and holds at least
+//   taxels dense (0x02), steps with s % decim_tax == 0, mask bit 1: rows u8,
+//     cols u8, then the taxel values u16 LE row-major (every taxel: activity
+//     threshold 0).
+//   spikes (0x04), mask bit 2: window w covers steps w*D .. w*D + D - 1
+//     (D = decim_tax); when it closes (after its last step) and holds at least
 //     one spike: t = the window's first step's t, payload n x {dt u16 =
 //     t_spike - t, layer u8 = 0, neuron u16}, in step then neuron order.
 //   The RTL also sends status packets (0x05) on request / with mask bit 3;
 //   their counters are not part of this spec.
+// Carrier table change (SET_CARRIER_INC): set_carriers() before the first
+// sample the new table applies to (sdft_bank state is cleared, as in RTL).
 // Equality with the RTL assumes the link keeps up (nothing dropped: the
 // status packet's dropped_frames stays 0) and that no ADC sample is lost
 // (adc_overruns 0); the system test checks both.
@@ -64,7 +67,8 @@ struct DtmfChainConfig {
   TaxelReconstructConfig taxel;  // rows, cols, mode, recip ...
   IzhikevichConfig neuron;
   int step = 1;                  // samples per processing step, >= 1
-  uint16_t decim = 32;           // packets every decim steps, >= 1
+  uint16_t decim_amp = 35;       // amplitude packets every decim_amp steps, >= 1
+  uint16_t decim_tax = 35;       // taxel packets and spike windows, >= 1
   uint8_t mask = kMaskAmplitudes | kMaskTaxels | kMaskSpikes;
 };
 
@@ -88,7 +92,14 @@ class DtmfChain {
 
   explicit DtmfChain(const Config& cfg) : cfg_(cfg), neurons_(cfg.neuron) {
     ok_ = sdft_.configure(cfg.sdft) && taxels_.configure(cfg.taxel) && cfg.step >= 1 &&
-          cfg.decim >= 1 && cfg.taxel.rows == R && cfg.taxel.cols == C;
+          cfg.decim_amp >= 1 && cfg.decim_tax >= 1 && cfg.taxel.rows == R &&
+          cfg.taxel.cols == C;
+  }
+  // New carrier table from the next sample on; false (unchanged) if invalid.
+  bool set_carriers(const SdftBankConfig<K>& c) {
+    if (c.carriers != K || !sdft_.configure(c)) return false;
+    cfg_.sdft = c;
+    return true;
   }
   // False when a configuration field was rejected (then push() does nothing).
   bool ok() const { return ok_; }
@@ -104,7 +115,9 @@ class DtmfChain {
     if (!stepping) return 0;
 
     int n = 0;
+    const bool amp_sel = amp_cnt_ == 0;
     const bool frame_sel = frame_cnt_ == 0;
+    amp_cnt_ = amp_cnt_ + 1u >= cfg_.decim_amp ? 0 : amp_cnt_ + 1u;
     uint16_t mags[K];
     for (int k = 0; k < K; ++k) {
       CarrierMagnitudeIn in{tok[k].k, tok[k].re, tok[k].im, tok[k].last};
@@ -113,7 +126,7 @@ class DtmfChain {
       mags[k] = uint16_t(o.mag);
       taxels_.push(MagToken{uint8_t(k), uint16_t(o.mag)});
     }
-    if (frame_sel && (cfg_.mask & kMaskAmplitudes)) {
+    if (amp_sel && (cfg_.mask & kMaskAmplitudes)) {
       Packet& p = out[n++];
       begin(p, kDtmfAmplitudes, t);
       for (int k = 0; k < K; ++k) put16(p, mags[k]);
@@ -142,7 +155,7 @@ class DtmfChain {
         }
       }
     }
-    if (frame_cnt_ + 1u >= cfg_.decim) {  // the window's last step
+    if (frame_cnt_ + 1u >= cfg_.decim_tax) {  // the window's last step
       if (n_spikes_ > 0) {
         Packet& p = out[n++];
         begin(p, kDtmfSpikes, win_t_);
@@ -180,7 +193,8 @@ class DtmfChain {
   TaxelReconstruct<R, C, MAG_W, TAX_W> taxels_;
   IzhikevichLayer<T> neurons_;
   int phase_ = 0;             // sample within the step
-  uint32_t frame_cnt_ = 0;    // step within the window
+  uint32_t amp_cnt_ = 0;      // step within the amplitude decimation
+  uint32_t frame_cnt_ = 0;    // step within the taxel decimation / spike window
   bool win_open_ = false;
   uint32_t win_t_ = 0;
   Spike spikes_[MAX_SPIKES] = {};

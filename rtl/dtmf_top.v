@@ -52,8 +52,12 @@ module dtmf_top #(
     parameter integer TAX_RECIP = 54067,
     parameter integer TAX_RECIP_SHIFT = 12,
     parameter integer STEP = 1,
-    parameter integer DECIM = 32,       // packets every DECIM steps
-    parameter [3:0] MASK = 4'b0111,     // amplitudes, taxels, spikes
+    // Reset values of the command registers (docs/protocol.md): output mask
+    // (amplitudes, taxels, spikes, periodic status) and decimations in steps.
+    parameter [3:0] MASK = 4'b1111,
+    parameter [15:0] DECIM_AMP = 16'd35,
+    parameter [15:0] DECIM_TAX = 16'd35,    // taxel frames and spike windows
+    parameter [15:0] DECIM_STATUS = 16'd1000,
     parameter integer SPK_DEPTH = 512,
     // izhikevich_layer constants (hls::make_izhikevich_config: RA, dt =
     // STEP / 35 ms, input g UQ1.15 * input_scale 10, x_shift 1)
@@ -96,12 +100,17 @@ module dtmf_top #(
   end
 
   // ---------------- carrier table load, then ADC enable -------------------
+  // After reset and after each SET_CARRIER_INC the K increments are written
+  // to sdft_bank (the last write clears its window, phases and sums).
   reg [7:0] cfg_k;
   reg cfg_busy, adc_en;
-  wire cfg_ready;
+  wire cfg_ready, carrier_reload;
+  wire [32*K-1:0] carrier_inc;
   always @(posedge clk) begin
     if (rst) begin
       cfg_k <= 8'd0; cfg_busy <= 1'b1; adc_en <= 1'b0;
+    end else if (carrier_reload) begin
+      cfg_k <= 8'd0; cfg_busy <= 1'b1;
     end else if (cfg_busy && cfg_ready) begin
       cfg_k <= cfg_k + 8'd1;
       if (cfg_k == K_LAST) cfg_busy <= 1'b0;
@@ -109,7 +118,7 @@ module dtmf_top #(
       adc_en <= 1'b1;
     end
   end
-  wire [31:0] cfg_inc = CARRIER_INC[32 * cfg_k +: 32];
+  wire [31:0] cfg_inc = carrier_inc[32 * cfg_k +: 32];
 
   // ---------------- ADC ------------------------------------------------
   wire adc_valid, sdft_in_ready;
@@ -206,16 +215,13 @@ module dtmf_top #(
       .out_neuron(nr_neuron), .out_t(nr_t), .out_spike(nr_spike), .out_last(nr_last),
       .out_v(nr_v), .out_u(nr_u));
 
-  // ---------------- configuration (defaults; commands: see below) ---------
-  reg [3:0] out_mask;
-  reg [15:0] decim;
-  always @(posedge clk) begin
-    if (rst) begin
-      out_mask <= MASK;
-      decim <= 16'(DECIM);
-    end
-  end
-  // Command receiver: bytes are taken and their UART errors counted.
+  // ---------------- commands: uart_rx -> cmd_decoder ---------------------
+  // Registers (docs/protocol.md section 6) used here: carrier_inc (reloaded
+  // into sdft_bank after a SET_CARRIER_INC), out_mask, decim (amplitudes,
+  // taxels + spike windows, status; counted in steps), status_req and the
+  // counters. thresholds and neuron are not wired: the dense taxel packet
+  // and one neuron per taxel need every taxel (threshold 0), and
+  // izhikevich_layer takes its constants as parameters.
   wire rx_valid, rx_frame_err, rx_overrun;
   wire [7:0] rx_data;
   uart_rx #(.CLK_HZ(CLK_HZ), .BAUD(BAUD)) u_rx (
@@ -227,24 +233,58 @@ module dtmf_top #(
     else if ((rx_frame_err || rx_overrun) && uart_rx_errors != 16'hFFFF)
       uart_rx_errors <= uart_rx_errors + 16'd1;
   end
+  wire [4*16-1:0] thresholds;
+  wire [4*32-1:0] neuron_regs;
+  wire [3:0] out_mask;
+  wire [47:0] decim;
+  wire cfg_changed, status_req;
+  wire cmd_ready;  // always 1: cmd_decoder takes a byte per clock
+  wire [15:0] cmd_crc_errors, cmd_frame_errors, cmd_accepted, cmd_rejected;
+  wire [7:0] rej_type, rej_reason, rej_seq;
+  cmd_decoder #(.K(K), .PHASE_W(32), .NTHR(4), .NNP(4), .INC_INIT(CARRIER_INC),
+      .MASK_INIT({4'd0, MASK}), .DECIM_INIT({DECIM_STATUS, DECIM_TAX, DECIM_AMP})) u_cmd (
+      .clk(clk), .rst(rst), .s_valid(rx_valid), .s_ready(cmd_ready), .s_data(rx_data),
+      .rx_error(rx_frame_err || rx_overrun), .carrier_inc(carrier_inc),
+      .thresholds(thresholds), .neuron(neuron_regs), .out_mask(out_mask), .decim(decim),
+      .cfg_changed(cfg_changed), .status_req(status_req), .crc_errors(cmd_crc_errors),
+      .frame_errors(cmd_frame_errors), .accepted(cmd_accepted), .rejected(cmd_rejected),
+      .last_reject_type(rej_type), .last_reject_reason(rej_reason),
+      .last_reject_seq(rej_seq));
+  // Type of the last command frame, to reload the carriers only after a
+  // SET_CARRIER_INC (a reload clears the DFT window): the type is raw byte
+  // 0, i.e. wire byte 1 after a 0x00 (byte 0 is the COBS code; no type is 0).
+  reg [1:0] rx_pos;
+  reg [7:0] rx_type;
+  always @(posedge clk) begin
+    if (rst) begin
+      rx_pos <= 2'd0; rx_type <= 8'd0;
+    end else if (rx_valid) begin
+      if (rx_data == 8'd0) rx_pos <= 2'd0;
+      else if (rx_pos != 2'd2) rx_pos <= rx_pos + 2'd1;
+      if (rx_data != 8'd0 && rx_pos == 2'd1) rx_type <= rx_data;
+    end
+  end
+  assign carrier_reload = cfg_changed && rx_type == 8'h81;
 
   // ---------------- packets ----------------------------------------------
   wire [15:0] dropped;
   // Status bytes 0..19 (StatusBlock, little endian): command counters,
   // last rejection, mask, dropped, ADC overruns, UART errors, reserved.
   wire [159:0] status_fixed = {16'd0, uart_rx_errors, adc_overruns, dropped,
-      {4'd0, out_mask}, 8'd0, 8'd0, 8'd0, 16'd0, 16'd0, 16'd0, 16'd0};
+      {4'd0, out_mask}, rej_seq, rej_reason, rej_type, cmd_rejected, cmd_accepted,
+      cmd_frame_errors, cmd_crc_errors};
   wire hdr_valid, hdr_ready, pk_valid, pk_ready;
   wire [7:0] hdr_type, pk_data;
   wire [31:0] hdr_t;
   wire [15:0] hdr_len;
   frame_packetizer #(.K_MAX(K), .T_MAX(T), .SPK_DEPTH(SPK_DEPTH), .MAG_W(MAG_W),
       .TAX_W(TAX_W), .K_W(8)) u_pack (
-      .clk(clk), .rst(rst), .mask(out_mask), .decim(decim), .rows(8'(R)), .cols(8'(C)),
+      .clk(clk), .rst(rst), .mask(out_mask), .decim_amp(decim[15:0]), .decim_tax(decim[31:16]),
+      .decim_status(decim[47:32]), .rows(8'(R)), .cols(8'(C)),
       .amp_valid(mg_fire), .amp_k(mg_k), .amp_mag(mg_mag), .amp_last(mg_last), .amp_t(mg_t),
       .tax_valid(tx_fire), .tax_value(tx_value), .tax_last(tx_last), .tax_t(tx_t),
       .nrn_valid(nr_valid), .nrn_neuron(nr_neuron), .nrn_t(nr_t), .nrn_spike(nr_spike),
-      .nrn_last(nr_last), .status_req(1'b0), .status_fixed(status_fixed), .samples(samples),
+      .nrn_last(nr_last), .status_req(status_req), .status_fixed(status_fixed), .samples(samples),
       .dropped(dropped), .hdr_valid(hdr_valid), .hdr_ready(hdr_ready), .hdr_type(hdr_type),
       .hdr_t(hdr_t), .hdr_len(hdr_len), .s_valid(pk_valid), .s_ready(pk_ready),
       .s_data(pk_data));
@@ -280,8 +320,10 @@ module dtmf_top #(
   wire [31:0] p_hdr_t /* verilator public_flat_rd */ = hdr_t;
   wire [15:0] p_dropped /* verilator public_flat_rd */ = dropped;
   wire [15:0] p_overruns /* verilator public_flat_rd */ = adc_overruns;
-  wire unused = ^{tx_row, tx_col, nr_v, nr_u, fr_seq, rx_data, rx_valid, tag_error, p_adc_fire,
+  wire p_cfg_done /* verilator public_flat_rd */ = cfg_busy && cfg_ready && cfg_k == K_LAST;
+  wire [3:0] p_mask /* verilator public_flat_rd */ = out_mask;
+  wire unused = ^{tx_row, tx_col, nr_v, nr_u, fr_seq, thresholds, neuron_regs, cmd_ready, tag_error, p_adc_fire,
                   p_adc_t, p_sd_fire, p_sd_last, p_sd_t, p_mg_fire, p_mg_last, p_mg_t, p_tx_fire,
                   p_tx_last, p_tx_t, p_nr_fire, p_nr_last, p_nr_t, p_hdr_fire, p_hdr_type,
-                  p_hdr_t, p_dropped, p_overruns};
+                  p_hdr_t, p_dropped, p_overruns, p_cfg_done, p_mask};
 endmodule

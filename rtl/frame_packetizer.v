@@ -4,20 +4,20 @@
 //
 // The pipeline never waits for the link: every input port is always ready.
 // Frames are buffered in block RAM and sent while the pipeline runs on.
-//   amplitudes (type 0x01): the magnitudes {k, mag} of every DECIM-th frame
-//     (frames counted from reset, frame 0 first), mag u16 LE in k order;
-//     t = the frame's sample counter.
+//   amplitudes (type 0x01): the magnitudes {k, mag} of every decim_amp-th
+//     frame (frames counted from reset, frame 0 first), mag u16 LE in k
+//     order; t = the frame's sample counter.
 //   taxels dense (0x02): rows u8, cols u8, then every taxel value u16 LE in
-//     arrival order (row-major), of every DECIM-th taxel frame; t as above.
-//   spikes (0x04): per window of DECIM neuron steps (step 0 opens window 0),
+//     arrival order (row-major), of every decim_tax-th taxel frame.
+//   spikes (0x04): per window of decim_tax neuron steps (step 0 opens one),
 //     the spike events {dt u16 = t_spike - t_window, layer u8 = 0, neuron u16}
 //     in order; t = t_window, the t of the window's first step. A window
 //     without spikes sends nothing. If the previous spike packet has not
 //     been taken when a window closes, the window stays open (the next
 //     packet covers both, dt from the older start): nothing is lost.
 //   status (0x05): the 24-byte block from the top on `status_req` and, with
-//     mask bit 3, once per amplitude frame slot; `samples` latched at the
-//     header.
+//     mask bit 3, every decim_status frames (frame 0 first); `samples` and t
+//     = the top's sample count when the header is issued.
 // mask: bit 0 amplitudes, 1 taxels, 2 spikes, 3 periodic status.
 // Losses (counted in `dropped`, saturating): an amplitude or taxel frame
 // selected while the previous one of its type is still unsent; a spike
@@ -34,7 +34,9 @@ module frame_packetizer #(
     input  wire             clk,
     input  wire             rst,
     input  wire [3:0]       mask,
-    input  wire [15:0]      decim,       // >= 1
+    input  wire [15:0]      decim_amp,   // amplitude frames every decim_amp steps, >= 1
+    input  wire [15:0]      decim_tax,   // taxel frames and spike windows, >= 1
+    input  wire [15:0]      decim_status,// periodic status (mask bit 3), >= 1
     input  wire [7:0]       rows,
     input  wire [7:0]       cols,
     // magnitudes
@@ -74,14 +76,19 @@ module frame_packetizer #(
   localparam integer KA = (K_MAX > 1) ? $clog2(K_MAX) : 1;
   localparam integer TA = (T_MAX > 1) ? $clog2(T_MAX) : 1;
   localparam integer SA = $clog2(SPK_DEPTH);
+  localparam integer AMP_LEN_I = 2 * K_MAX;
+  localparam [15:0] K16 = K_MAX[15:0];
+  localparam [15:0] AMP_LEN = AMP_LEN_I[15:0];
 
   reg amp_done, tax_done, spk_done, status_done;  // packet sent (from the sender)
 
   // ---------------- frame selection and drop counting ----------------
-  reg [15:0] amp_cnt, tax_cnt, step_cnt;
+  reg [15:0] amp_cnt, tax_cnt, step_cnt, stat_cnt;
   wire amp_sel = (amp_cnt == 16'd0);
   wire tax_sel = (tax_cnt == 16'd0);
-  wire [15:0] decim_last = decim - 16'd1;
+  wire [15:0] amp_last_cnt = decim_amp - 16'd1;
+  wire [15:0] tax_last_cnt = decim_tax - 16'd1;
+  wire [15:0] stat_last_cnt = decim_status - 16'd1;
   reg drop_amp, drop_tax, drop_spk;
   always @(posedge clk) begin
     if (rst) dropped <= 16'd0;
@@ -102,7 +109,7 @@ module frame_packetizer #(
   always @(posedge clk) begin
     drop_amp <= 1'b0;
     if (rst) begin
-      amp_cnt <= 16'd0; amp_full <= 1'b0; amp_wr <= 1'b0; amp_first <= 1'b1;
+      amp_cnt <= 16'd0; stat_cnt <= 16'd0; amp_full <= 1'b0; amp_wr <= 1'b0; amp_first <= 1'b1;
       amp_tq <= 32'd0; status_pend <= 1'b0;
     end else begin
       if (amp_done) amp_full <= 1'b0;
@@ -112,11 +119,12 @@ module frame_packetizer #(
         if (amp_first) begin
           amp_wr <= amp_sel && mask[0] && amp_free;
           drop_amp <= amp_sel && mask[0] && !amp_free;
-          if (amp_sel && mask[3]) status_pend <= 1'b1;
+          if (stat_cnt == 16'd0 && mask[3]) status_pend <= 1'b1;
+          stat_cnt <= (stat_cnt >= stat_last_cnt) ? 16'd0 : stat_cnt + 16'd1;
         end
         amp_first <= amp_last;
         if (amp_last) begin
-          amp_cnt <= (amp_cnt >= decim_last) ? 16'd0 : amp_cnt + 16'd1;
+          amp_cnt <= (amp_cnt >= amp_last_cnt) ? 16'd0 : amp_cnt + 16'd1;
           if (amp_take) begin
             amp_full <= 1'b1;
             amp_tq <= amp_t;
@@ -153,11 +161,11 @@ module frame_packetizer #(
         tax_first <= tax_last;
         tax_wa <= tax_last ? {TA{1'b0}} : tax_wa + 1'b1;
         if (tax_last) begin
-          tax_cnt <= (tax_cnt >= decim_last) ? 16'd0 : tax_cnt + 16'd1;
+          tax_cnt <= (tax_cnt >= tax_last_cnt) ? 16'd0 : tax_cnt + 16'd1;
           if (tax_take) begin
             tax_full <= 1'b1;
             tax_tq <= tax_t;
-            tax_n <= 16'(tax_wa) + 16'd1;
+            tax_n <= {{(16 - TA){1'b0}}, tax_wa} + 16'd1;
           end
           tax_wr <= 1'b0;
         end
@@ -178,7 +186,7 @@ module frame_packetizer #(
   wire spk_fifo_full = (spk_wp - spk_rp) == SPK_DEPTH[SA:0];
   wire spk_push = nrn_valid && nrn_spike && mask[2] && !spk_fifo_full;
   wire [SA:0] spk_wp_next = spk_wp + {{SA{1'b0}}, spk_push};
-  wire win_end = nrn_valid && nrn_last && (step_cnt >= decim_last);
+  wire win_end = nrn_valid && nrn_last && (step_cnt >= tax_last_cnt);
   wire [SA:0] spk_pend = spk_wp_next - spk_close;
   always @(posedge clk) begin
     if (spk_push) spk_mem[spk_wp[SA-1:0]] <= {nrn_neuron, nrn_dt[15:0]};
@@ -197,7 +205,7 @@ module frame_packetizer #(
           win_open <= 1'b1;
           win_t <= nrn_t;
         end
-        if (nrn_last) step_cnt <= (step_cnt >= decim_last) ? 16'd0 : step_cnt + 16'd1;
+        if (nrn_last) step_cnt <= (step_cnt >= tax_last_cnt) ? 16'd0 : step_cnt + 16'd1;
         if (win_end) begin
           if (spk_pend == {(SA + 1){1'b0}}) begin
             win_open <= 1'b0;  // nothing to send
@@ -205,7 +213,7 @@ module frame_packetizer #(
             win_open <= 1'b0;
             spk_req <= 1'b1;
             spk_tq <= win_open ? win_t : nrn_t;
-            spk_n <= 16'(spk_pend);
+            spk_n <= {{(15 - SA){1'b0}}, spk_pend};
             spk_close <= spk_wp_next;
           end
         end
@@ -225,7 +233,10 @@ module frame_packetizer #(
   reg [MAG_W-1:0] amp_rd;
   reg [TAX_W-1:0] tax_rd;
   reg [31:0] spk_rd;
-  wire [TA-1:0] tax_ra = TA'(wi - 16'd1);  // word 0 is {rows, cols}
+  /* verilator lint_off UNUSEDSIGNAL */
+  wire [15:0] wi_m1 = wi - 16'd1;
+  /* verilator lint_on UNUSEDSIGNAL */
+  wire [TA-1:0] tax_ra = wi_m1[TA-1:0];  // word 0 is {rows, cols}
   always @(posedge clk) begin
     amp_rd <= amp_mem[wi[KA-1:0]];
     tax_rd <= tax_mem[tax_ra];
@@ -267,7 +278,7 @@ module frame_packetizer #(
             hdr_valid <= 1'b1; state <= S_HDR;
           end else if (amp_full && !amp_done) begin
             src <= SRC_AMP; hdr_type <= 8'h01; hdr_t <= amp_tq;
-            hdr_len <= 16'(2 * K_MAX); nwords <= 16'(K_MAX); nb <= 5'd2;
+            hdr_len <= AMP_LEN; nwords <= K16; nb <= 5'd2;
             hdr_valid <= 1'b1; state <= S_HDR;
           end else if (tax_full && !tax_done) begin
             src <= SRC_TAX; hdr_type <= 8'h02; hdr_t <= tax_tq;
@@ -275,7 +286,7 @@ module frame_packetizer #(
             hdr_valid <= 1'b1; state <= S_HDR;
           end else if (spk_req && !spk_done) begin
             src <= SRC_SPK; hdr_type <= 8'h04; hdr_t <= spk_tq;
-            hdr_len <= 16'(5 * spk_n); nwords <= spk_n; nb <= 5'd5;
+            hdr_len <= {spk_n[13:0], 2'b00} + spk_n; nwords <= spk_n; nb <= 5'd5;
             hdr_valid <= 1'b1; state <= S_HDR;
           end
         end
@@ -286,8 +297,8 @@ module frame_packetizer #(
         S_RD: state <= S_LAT;  // the word's address is on the RAMs this cycle
         S_LAT: begin
           case (src)
-            SRC_AMP: word <= 32'(amp_rd);
-            SRC_TAX: word <= (wi == 16'd0) ? {16'd0, cols, rows} : 32'(tax_rd);
+            SRC_AMP: word <= {{(32 - MAG_W){1'b0}}, amp_rd};
+            SRC_TAX: word <= (wi == 16'd0) ? {16'd0, cols, rows} : {{(32 - TAX_W){1'b0}}, tax_rd};
             SRC_SPK: word <= spk_rd;
             default: word <= 32'd0;
           endcase

@@ -17,6 +17,8 @@
 
 #include "Vdtmf_top.h"
 #include "Vdtmf_top___024root.h"
+#include "Vdtmf_top_s16.h"
+#include "Vdtmf_top_s16___024root.h"
 #include "eskin/skin_config.h"
 #include "hls/dtmf_chain.h"
 #include "hls/izhikevich_layer_config.h"
@@ -55,11 +57,13 @@ std::string str(const Key& k) {
   return s + "]";
 }
 
-// Verilated top + AD7476A model + UART line codec, one clock per tick().
+// Verilated top (model M) + AD7476A model + UART line codec; tick() is one
+// clock. The probes are dtmf_top's p_* wires (verilator public_flat_rd).
+template <class M>
 class Board {
  public:
   explicit Board(std::vector<uint16_t> codes12)
-      : m_(std::make_unique<Vdtmf_top>()), adc_(std::move(codes12)) {
+      : m_(std::make_unique<M>()), adc_(std::move(codes12)) {
     decoder_.on_packet([this](const Packet& p) { rx_.push_back({p, frame_start_}); });
     m_->clk = 0;
     m_->rst_n = 1;
@@ -86,6 +90,9 @@ class Board {
     uart_sample(m_->uart_txd);
     probe();
   }
+  void run_until_sample(size_t n) {
+    while (adc_.samples_taken() < n) tick();
+  }
 
   // Bytes to send to the FPGA's uart_rx (8N1, kCpb clocks per bit).
   void send(const std::vector<uint8_t>& bytes) {
@@ -95,10 +102,8 @@ class Board {
       tx_bits_.push_back(1);
     }
   }
-  bool sending() const { return tx_pos_ < tx_bits_.size() * kCpb; }
 
-  Vdtmf_top& top() { return *m_; }
-  Vdtmf_top___024root& root() { return *m_->rootp; }
+  auto& root() { return *m_->rootp; }
   const eskin::sim::Ad7476Model& adc() const { return adc_; }
   uint64_t cycle() const { return cycle_; }
   const std::vector<Received>& received() const { return rx_; }
@@ -107,14 +112,17 @@ class Board {
   // Cycle of the 16th SCLK falling edge of conversion t.
   uint64_t sample_edge(uint32_t t) const { return sample_edge_.at(t); }
 
-  // Cycles of pipeline events, keyed by the sample counter t of the frame.
+  // Cycles (as counted by tick()) in which a pipeline handshake happened,
+  // keyed by the sample counter t of the frame.
   struct Events {
     uint64_t adc = 0, sd_first = 0, sd_last = 0, mg_first = 0, mg_last = 0, tx_first = 0,
              tx_last = 0, nr_first = 0, nr_last = 0;
-    std::map<uint8_t, uint64_t> hdr;  // packet type -> header handshake
+    std::map<uint8_t, uint64_t> hdr;  // packet type -> link_framer header handshake
   };
   std::map<uint32_t, Events> events;
   bool tag_error = false;
+  uint64_t mask_change_cycle = 0;  // last change of cmd_decoder.out_mask
+  std::vector<uint64_t> carrier_loads;  // cycles of the last carrier write to sdft_bank
 
  private:
   int rx_level() {
@@ -152,6 +160,11 @@ class Board {
   void probe() {
     auto& r = *m_->rootp;
     if (r.dtmf_top__DOT__tag_error) tag_error = true;
+    if (r.dtmf_top__DOT__p_mask != last_mask_) {
+      last_mask_ = r.dtmf_top__DOT__p_mask;
+      mask_change_cycle = cycle_;
+    }
+    if (r.dtmf_top__DOT__p_cfg_done) carrier_loads.push_back(cycle_);
     if (r.dtmf_top__DOT__p_adc_fire) events[r.dtmf_top__DOT__p_adc_t].adc = cycle_;
     const auto mark = [this](bool last, uint64_t& first, uint64_t& lst) {
       if (first == 0) first = cycle_;
@@ -177,7 +190,7 @@ class Board {
       events[r.dtmf_top__DOT__p_hdr_t].hdr[r.dtmf_top__DOT__p_hdr_type] = cycle_;
   }
 
-  std::unique_ptr<Vdtmf_top> m_;
+  std::unique_ptr<M> m_;
   eskin::sim::Ad7476Model adc_;
   eskin::link::LinkDecoder decoder_;
   std::vector<Received> rx_;
@@ -185,6 +198,7 @@ class Board {
   bool prev_sclk_ = true;
   int falls_ = 0;
   std::vector<uint64_t> sample_edge_;
+  int last_mask_ = -1;
   // UART receive (FPGA -> host)
   bool busy_ = false, in_frame_ = false;
   uint64_t start_ = 0, frame_start_ = 0;
@@ -195,8 +209,10 @@ class Board {
   size_t tx_pos_ = 0;
 };
 
-// The default scene's chain (3x3, N = 32, the top's default parameters).
+// The default scene's chain (3x3, N = 32: the top's default parameters)
+// and the 16x16 build (tests/rtl/dtmf_top_test.cmake).
 using Chain3 = eskin::hls::DtmfChain<3, 3, 32>;
+using Chain16 = eskin::hls::DtmfChain<16, 16, 128>;
 
 // Host-side chain configuration from a scene: carriers as phase increments,
 // conductance taxels (recip from the full-carrier window magnitude in 10-bit
@@ -219,7 +235,8 @@ typename Chain::Config chain_config(const eskin::sim::Scene& sc, int step, uint1
       eskin::hls::izhikevich_fixed_preset(sc.neuron.preset), step * 1000.0 / fs,
       sc.neuron.input_scale / 32768.0, 1);
   c.step = step;
-  c.decim = decim;
+  c.decim_amp = decim;
+  c.decim_tax = decim;
   c.mask = mask;
   return c;
 }
@@ -227,11 +244,12 @@ typename Chain::Config chain_config(const eskin::sim::Scene& sc, int step, uint1
 template <class Chain>
 std::vector<Key> run_chain(Chain& chain, const std::vector<uint16_t>& codes12, size_t n) {
   std::vector<Key> out;
-  typename Chain::Packet pk[3];
+  auto pk = std::make_unique<typename Chain::Packet[]>(3);
+  typename Chain::Packet(&p3)[3] = *reinterpret_cast<typename Chain::Packet(*)[3]>(pk.get());
   for (size_t i = 0; i < n; ++i) {
-    const int np = chain.push(codes12[i], uint32_t(i), pk);
+    const int np = chain.push(codes12[i], uint32_t(i), p3);
     for (int j = 0; j < np; ++j)
-      out.push_back({pk[j].type, pk[j].t, {pk[j].payload, pk[j].payload + pk[j].len}});
+      out.push_back({p3[j].type, p3[j].t, {p3[j].payload, p3[j].payload + p3[j].len}});
   }
   return out;
 }
@@ -256,12 +274,56 @@ std::vector<Key> of_type(const std::vector<Key>& all, uint8_t type, uint32_t lim
   return r;
 }
 
+std::vector<Key> keys(const std::vector<Received>& rx) {
+  std::vector<Key> got;
+  for (const auto& r : rx) got.push_back({r.p.type, r.p.t, r.p.payload});
+  return got;
+}
+
+// Per type, the RTL's packets equal the chain's, in order.
+void expect_same_packets(const std::vector<Key>& want, const std::vector<Key>& got,
+                         uint32_t limit, uint32_t span, std::vector<uint8_t> types,
+                         size_t min_each) {
+  for (uint8_t type : types) {
+    const auto w = of_type(want, type, limit, span);
+    const auto g = of_type(got, type, limit, span);
+    EXPECT_GE(w.size(), min_each) << "type " << int(type) << ": too few packets to compare";
+    ASSERT_EQ(g.size(), w.size()) << "type " << int(type);
+    for (size_t i = 0; i < w.size(); ++i)
+      ASSERT_EQ(g[i], w[i]) << "type " << int(type) << " packet " << i << "\n got  " << str(g[i])
+                            << "\n want " << str(w[i]);
+  }
+}
+
+// Link and pin-level health of a run.
+template <class M>
+void expect_clean_run(Board<M>& b) {
+  EXPECT_EQ(b.link_stats().crc_errors + b.link_stats().framing_errors +
+                b.link_stats().payload_errors, 0u);
+  EXPECT_EQ(b.link_stats().lost_packets, 0u);
+  EXPECT_EQ(b.uart_framing_errors(), 0);
+  EXPECT_EQ(b.adc().violation_count(), 0u)
+      << (b.adc().violations().empty() ? "" : b.adc().violations()[0]);
+  EXPECT_FALSE(b.tag_error);
+  // Throughput: no ADC sample lost, no packet dropped for a busy link.
+  EXPECT_EQ(b.root().dtmf_top__DOT__p_overruns, 0);
+  EXPECT_EQ(b.root().dtmf_top__DOT__p_dropped, 0);
+}
+
+const eskin::sim::Scene& default_scene() {
+  static const auto sc = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  return sc;
+}
+constexpr std::initializer_list<uint8_t> kDataTypes = {
+    eskin::link::kAmplitudes, eskin::link::kTaxelsDense, eskin::link::kSpikes};
+
 // Bound: exact equality. Every block of the path is the bit-exact RTL of its
 // HLS kernel (their own tests), the glue (tag FIFOs, step gate, packetizer)
 // only moves data, and the link is lossless (CRC checked by the decoder), so
-// any difference in type, t or a payload byte is a bug.
+// any difference in type, t or a payload byte is a bug. The whole 0.6 s
+// scene (21000 samples, every press) is compared.
 TEST(DtmfTop, DefaultSceneMatchesHlsChainPacketForPacket) {
-  const auto scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const auto& scene = default_scene();
   ASSERT_EQ(scene.skin.rows, 3);
   ASSERT_EQ(scene.skin.cols, 3);
   ASSERT_EQ(scene.decoder.window, 32);
@@ -271,41 +333,89 @@ TEST(DtmfTop, DefaultSceneMatchesHlsChainPacketForPacket) {
   const size_t pad = 64;  // extra conversions so the last frames get out
   codes.resize(n + pad, 2048);
 
-  const uint16_t decim = 32;
+  const uint16_t decim = 35;  // top defaults: 35 steps, mask 0xF
   auto chain = std::make_unique<Chain3>(chain_config<Chain3>(scene, 1, decim, 7));
   ASSERT_TRUE(chain->ok());
   const auto want = run_chain(*chain, codes, n);
 
-  Board b(codes);
-  while (b.adc().samples_taken() < n + pad - 1) b.tick();
+  Board<Vdtmf_top> b(codes);
+  b.run_until_sample(n + pad - 1);
+  expect_clean_run(b);
+  expect_same_packets(want, keys(b.received()), uint32_t(n) - decim, decim, kDataTypes, 10);
 
-  std::vector<Key> got;
-  for (const auto& r : b.received()) got.push_back({r.p.type, r.p.t, r.p.payload});
-  EXPECT_EQ(b.link_stats().crc_errors + b.link_stats().framing_errors, 0u);
-  EXPECT_EQ(b.link_stats().lost_packets, 0u);
-  EXPECT_EQ(b.uart_framing_errors(), 0);
-  EXPECT_EQ(b.adc().violation_count(), 0u);
-  EXPECT_FALSE(b.tag_error);
-  // Throughput: no ADC sample lost, nothing dropped for a busy link.
-  EXPECT_EQ(b.root().dtmf_top__DOT__p_overruns, 0);
-  EXPECT_EQ(b.root().dtmf_top__DOT__p_dropped, 0);
-
-  const uint32_t limit = uint32_t(n) - decim;
-  for (uint8_t type : {eskin::link::kAmplitudes, eskin::link::kTaxelsDense, eskin::link::kSpikes}) {
-    const auto w = of_type(want, type, limit, decim);
-    const auto g = of_type(got, type, limit, decim);
-    EXPECT_GT(w.size(), 10u) << "type " << int(type);
-    ASSERT_EQ(g.size(), w.size()) << "type " << int(type);
-    for (size_t i = 0; i < w.size(); ++i) {
-      if (!(g[i] == w[i]))
-        for (const Key& a : want)
-          if (a.type == 1 && a.t == w[i].t) std::printf("amp %s\n", str(a).c_str());
-      ASSERT_EQ(g[i], w[i]) << "type " << int(type) << " packet " << i << "\n got  " << str(g[i])
-                            << "\n want " << str(w[i]);
-    }
+  // Periodic status (mask bit 3, every 1000 steps): counters all clean.
+  int status = 0;
+  for (const auto& r : b.received()) {
+    if (r.p.type != eskin::link::kStatus) continue;
+    ++status;
+    EXPECT_EQ(r.p.status.output_mask, 0x0F);
+    EXPECT_EQ(r.p.status.adc_overruns + r.p.status.dropped_frames + r.p.status.uart_rx_errors +
+                  r.p.status.cmd_crc_errors + r.p.status.cmd_frame_errors, 0);
+    EXPECT_LE(r.p.status.samples, n + pad);
   }
-  std::printf("dtmf_top: %zu samples, %zu packets received, %llu cycles\n", n,
-              b.received().size(), (unsigned long long)b.cycle());
+  EXPECT_EQ(status, int((n + pad - 1) / 1000) + 1);  // steps 0, 1000, ...
+  std::printf("dtmf_top: %zu samples, %zu packets received, %llu cycles (%.1f per sample)\n", n,
+              b.received().size(), (unsigned long long)b.cycle(), double(b.cycle()) / double(n + pad));
+}
+
+// "A scene that wants only spikes gets only spikes": SET_OUTPUT_MASK(0x04)
+// through uart_rx; afterwards (once the packets already buffered or in
+// flight are out: two frame periods) only spike packets and the requested
+// status arrive. The spike stream itself is unchanged: equal to the chain's
+// for the whole run. A command frame with one corrupted byte is dropped and
+// counted (CRC or framing error), changes nothing, and the data path keeps
+// running; REQUEST_STATUS then reports the counters.
+TEST(DtmfTop, SpikesOnlyCommandAndCorruptedFrame) {
+  const auto& scene = default_scene();
+  auto codes = scene_codes12(scene);
+  const size_t n = 9000;  // presses of taxels (0,0) .. (1,1): spikes from ~sample 400
+  codes.resize(n + 64);
+  const uint16_t decim = 35;
+  auto chain = std::make_unique<Chain3>(chain_config<Chain3>(scene, 1, decim, 7));
+  const auto want = run_chain(*chain, codes, n);
+
+  Board<Vdtmf_top> b(codes);
+  eskin::link::LinkEncoder enc;
+  b.run_until_sample(2000);
+  b.send(enc.set_output_mask(eskin::hls::kMaskSpikes));
+  b.run_until_sample(3000);
+  auto bad = enc.request_status();
+  bad[bad.size() - 3] ^= (bad[bad.size() - 3] == 0x01) ? 0x02 : 0x01;  // stays non-zero
+  b.send(bad);
+  b.run_until_sample(3500);
+  const uint64_t req_cycle = b.cycle();
+  b.send(enc.request_status());
+  b.run_until_sample(n + 63);
+  expect_clean_run(b);
+
+  ASSERT_GT(b.mask_change_cycle, 0u);
+  const uint64_t quiet_from = b.mask_change_cycle + 2 * decim * kPeriod;
+  int spikes_after = 0, spikes_after_bad = 0;
+  for (const auto& r : b.received()) {
+    if (r.start_cycle < quiet_from) continue;
+    EXPECT_TRUE(r.p.type == eskin::link::kSpikes || r.p.type == eskin::link::kStatus)
+        << "packet type " << int(r.p.type) << " at cycle " << r.start_cycle;
+    if (r.p.type == eskin::link::kSpikes) ++spikes_after;
+    if (r.p.type == eskin::link::kSpikes && r.p.t > 3100) ++spikes_after_bad;
+  }
+  EXPECT_GE(spikes_after, 10);
+  EXPECT_GE(spikes_after_bad, 5);  // the data path runs on after the bad frame
+  expect_same_packets(want, keys(b.received()), uint32_t(n) - decim, decim,
+                      {eskin::link::kSpikes}, 20);
+
+  const Received* st = nullptr;
+  for (const auto& r : b.received())
+    if (r.p.type == eskin::link::kStatus && r.start_cycle > req_cycle) { st = &r; break; }
+  ASSERT_NE(st, nullptr) << "no status packet after REQUEST_STATUS";
+  EXPECT_EQ(st->p.status.cmd_crc_errors + st->p.status.cmd_frame_errors, 1);
+  EXPECT_EQ(st->p.status.cmd_accepted, 2);  // the mask and the status request
+  EXPECT_EQ(st->p.status.cmd_rejected, 0);
+  EXPECT_EQ(st->p.status.output_mask, eskin::hls::kMaskSpikes);
+  EXPECT_EQ(st->p.status.adc_overruns, 0);
+  EXPECT_EQ(st->p.status.dropped_frames, 0);
+  EXPECT_EQ(st->p.status.uart_rx_errors, 0);
+  EXPECT_GE(st->p.status.samples, 3500u);
+  EXPECT_LE(st->p.status.samples, 3502u);  // sent within ~2 samples of the request
 }
 
 }  // namespace
