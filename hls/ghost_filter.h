@@ -34,9 +34,11 @@
 // Timing of the RTL with out_ready = 1 (asserted in tests): K input cycles,
 // 1 FLUSH (last history read), 1 DECIDE, P+1 per greedy pairing step (a
 // rescan of rows and columns in parallel, P = max(rows, cols), + DECIDE),
-// 1 + S_b release cycles (S_b sites before release), 1 + S_a*c emit cycles
-// (S_a sites emitted; c = 1 Product, MAG_W+2 Conductance). Frame period =
-// K + 4 + steps*(P+1) + S_b + S_a*c; steps <= rising lines - 1.
+// when the pairing fits, 1 cycle per pair to commit it (steps), 1 + S_b
+// release cycles (S_b sites before release), 1 + S_a*c emit cycles (S_a
+// sites emitted; c = 1 Product, MAG_W+2 Conductance). Frame period =
+// K + 4 + steps*(P+1) + (fit ? steps : 0) + S_b + S_a*c; steps <= rising
+// lines - 1.
 #pragma once
 
 #include <cstdint>
@@ -114,6 +116,7 @@ class GhostFilter {
   bool site(int i, int j) const { return site_[i][j]; }
   // Of the last frame: greedy pairing steps, sites before / after release.
   int pair_steps() const { return steps_; }
+  bool pairing_fit() const { return fit_; }  // improved mode: candidates committed
   int sites_before_release() const { return s_before_; }
   int sites_after_release() const { return n_out_; }
 
@@ -131,6 +134,7 @@ class GhostFilter {
     const bool thesis_ok = rem_[br] > 0 && rem_[R + bc] > 0;
     bool paired = false;
     steps_ = 0;
+    fit_ = false;
     if (cfg_.improved) {
       bool pend[R_MAX][C_MAX] = {};
       int r = br, c = bc;
@@ -142,7 +146,7 @@ class GhostFilter {
         ++steps_;
         argmax(r, c);
       }
-      paired = rem_[r] <= cfg_.pair_tol && rem_[R + c] <= cfg_.pair_tol;
+      paired = fit_ = rem_[r] <= cfg_.pair_tol && rem_[R + c] <= cfg_.pair_tol;
       if (paired)
         for (int i = 0; i < R; ++i)
           for (int j = 0; j < C; ++j) site_[i][j] = site_[i][j] || pend[i][j];
@@ -174,6 +178,7 @@ class GhostFilter {
   bool site_[R_MAX][C_MAX] = {};
   TaxelToken out_[R_MAX * C_MAX] = {};
   int head_ = 0, n_out_ = 0, rd_ = 0, steps_ = 0, s_before_ = 0;
+  bool fit_ = false;
 };
 
 }  // namespace eskin::hls

@@ -15,11 +15,12 @@
 //   DECIDE   1   per decision: improved mode and both maxima > pair_tol ->
 //                subtract the smaller, mark the pair pending, RESCAN (P
 //                cycles: rows and columns in parallel) and DECIDE again;
-//                else commit (pending pairs, or the thesis site).
+//                else commit: the thesis site, or (pairing fits) COMMIT
+//   COMMIT   steps   one pending pair per cycle into the site matrix.
 //   REL0/REL 1 + S_b   one site per cycle: drop it if m_i*m_j < release2.
 //   EMIT0    1   first surviving site's product (none -> IN).
 //   SQRT/GSCALE/OUT    c = 1 (product) or MAG_W + 2 (conductance) per site.
-// Frame period = K + 4 + steps*(P+1) + S_b + S_a*c.
+// Frame period = K + 4 + steps*(P+1) + (fits ? steps : 0) + S_b + S_a*c.
 module ghost_filter #(
     parameter integer R_MAX = 16,
     parameter integer C_MAX = 16,
@@ -66,14 +67,14 @@ module ghost_filter #(
   localparam [LB+KB-1:0] CLR_LAST = CLR_LAST_I[LB+KB-1:0];
   localparam [3:0] S_CLEAR = 4'd0, S_IN = 4'd1, S_FLUSH = 4'd2, S_DECIDE = 4'd3,
                    S_SCAN = 4'd4, S_REL0 = 4'd5, S_REL = 4'd6, S_EMIT0 = 4'd7,
-                   S_SQRT = 4'd8, S_GSCALE = 4'd9, S_OUT = 4'd10;
+                   S_SQRT = 4'd8, S_GSCALE = 4'd9, S_OUT = 4'd10,
+                   S_COMMIT = 4'd11;
   reg [3:0] state;
 
   // ---- per-line state -----------------------------------------------------
   reg [MAG_W-1:0] row_mag [0:R_MAX-1];
   reg [MAG_W-1:0] col_mag [0:C_MAX-1];
   reg [C_MAX-1:0] site [0:R_MAX-1];     // active sites, one row mask each
-  reg [C_MAX-1:0] pend [0:R_MAX-1];     // candidate pairs of this frame
 
   // ---- input and history ring (1-token pipeline) --------------------------
   reg [MAG_W-1:0] hist [0:DEPTH-1];
@@ -151,6 +152,21 @@ module ghost_filter #(
     end
   end
   assign scan_rv = (scan_i == 0 && byp_r) ? byp_rv : row_rem_rd;
+
+  // Candidate pairs of this frame as a list (steps <= rising lines - 1 <
+  // R_MAX + C_MAX): appended by each pairing step, read back one per cycle
+  // (address one ahead) by COMMIT when the pairing fits.
+  localparam integer PL = R_MAX + C_MAX;
+  localparam integer PB = $clog2(PL);
+  reg [RI_W+CI_W-1:0] pl [0:PL-1];
+  reg [RI_W+CI_W-1:0] pl_rd;
+  reg [PB-1:0] n_pend, commit_i;
+  wire [PB-1:0] pl_ra = (state == S_COMMIT) ? commit_i + 1'b1 : {PB{1'b0}};
+  always @(posedge clk) begin
+    if (pair_step) pl[n_pend] <= {am_r, am_c};
+    pl_rd <= pl[pl_ra];
+  end
+  wire fits = cfg_improved && !rv_gt && !cv_gt;   // the pairing explains all rises
   assign scan_cv = (scan_i == 0 && byp_c) ? byp_cv : col_rem_rd;
 
   // ---- site walk (release pass and emit pass) -----------------------------
@@ -265,10 +281,8 @@ module ghost_filter #(
       cj <= {K_W{1'b0}};
       am_rv <= {MAG_W{1'b0}}; am_r <= {RI_W{1'b0}};
       am_cv <= {MAG_W{1'b0}}; am_c <= {CI_W{1'b0}};
-      for (i = 0; i < R_MAX; i = i + 1) begin
-        site[i] <= {C_MAX{1'b0}};
-        pend[i] <= {C_MAX{1'b0}};
-      end
+      for (i = 0; i < R_MAX; i = i + 1) site[i] <= {C_MAX{1'b0}};
+      n_pend <= {PB{1'b0}};
     end else begin
       // rise stage of the input pipeline (token accepted last cycle)
       p_valid <= in_fire && in_ok;
@@ -295,22 +309,29 @@ module ghost_filter #(
         end
         S_DECIDE:
           if (pair_step) begin
-            pend[am_r][am_c] <= 1'b1;
+            n_pend <= n_pend + 1'b1;
             first <= 1'b0;
             th_r <= thesis_r; th_c <= thesis_c; th_ok <= thesis_ok;
             am_rv <= {MAG_W{1'b0}}; am_r <= {RI_W{1'b0}};
             am_cv <= {MAG_W{1'b0}}; am_c <= {CI_W{1'b0}};
             scan_i <= {K_W{1'b0}};
             state <= S_SCAN;
+          end else if (fits && n_pend != 0) begin
+            commit_i <= {PB{1'b0}};
+            state <= S_COMMIT;
           end else begin
-            for (i = 0; i < R_MAX; i = i + 1) begin
-              if (cfg_improved && !rv_gt && !cv_gt) site[i] <= site[i] | pend[i];
-              pend[i] <= {C_MAX{1'b0}};
-            end
-            if (!(cfg_improved && !rv_gt && !cv_gt) && thesis_ok)
-              site[thesis_r][thesis_c] <= 1'b1;
+            if (!fits && thesis_ok) site[thesis_r][thesis_c] <= 1'b1;
+            n_pend <= {PB{1'b0}};
             state <= S_REL0;
           end
+        S_COMMIT: begin
+          site[pl_rd[RI_W+CI_W-1:CI_W]][pl_rd[CI_W-1:0]] <= 1'b1;
+          commit_i <= commit_i + 1'b1;
+          if (commit_i == n_pend - 1'b1) begin
+            n_pend <= {PB{1'b0}};
+            state <= S_REL0;
+          end
+        end
         S_SCAN: begin
           scan_i <= scan_i + 1'b1;
           if (scan_i == scan_last) state <= S_DECIDE;

@@ -9,11 +9,12 @@
 // Timing (header of rtl/ghost_filter.v): with in_valid and out_ready always
 // high, the frame's K inputs are accepted on K consecutive cycles; with
 // t_last the last input's cycle, P = max(rows, cols), steps/S_b/S_a the
-// frame's pairing steps and sites before/after release (from the HLS kernel),
-// site n leaves at t_last + 4 + steps*(P+1) + S_b + (n+1)*c (c = 1 product,
-// MAG_W+2 conductance) and the next frame starts K + 4 + steps*(P+1) + S_b +
-// S_a*c cycles after this one. After reset the history is cleared for
-// L_MAX*2^KB cycles (32*32) before the first input is accepted.
+// frame's pairing steps and sites before/after release, fit = the pairing
+// was committed (all from the HLS kernel), commit = fit ? steps : 0, site n
+// leaves at t_last + 4 + steps*(P+1) + commit + S_b + (n+1)*c (c = 1
+// product, MAG_W+2 conductance) and the next frame starts K + 4 +
+// steps*(P+1) + commit + S_b + S_a*c cycles after this one. After reset the
+// history is cleared for L_MAX*2^KB cycles (32*32) before the first input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -36,7 +37,7 @@ namespace {
 using Kernel = GhostFilter<16, 16, 32, 16, 16>;
 constexpr int kClearCycles = 32 * 32;
 struct Frame { std::vector<uint16_t> mag; };  // rows then cols
-struct FrameStats { int steps, s_before, s_after; };
+struct FrameStats { int steps, s_before, s_after; bool fit; };
 
 struct Bench {
   std::unique_ptr<Vghost_filter> m = std::make_unique<Vghost_filter>();
@@ -74,7 +75,8 @@ struct Bench {
       for (size_t i = 0; i < f.mag.size(); ++i) {
         in.push_back({uint8_t(i), f.mag[i]});
         if (!k.push(in.back())) continue;
-        stats.push_back({k.pair_steps(), k.sites_before_release(), k.sites_after_release()});
+        stats.push_back({k.pair_steps(), k.sites_before_release(), k.sites_after_release(),
+                         k.pairing_fit()});
         TaxelToken t;
         while (k.pop(t)) want.push_back(t);
       }
@@ -229,7 +231,8 @@ TEST(GhostFilterRtl, ExactLatencyAndFramePeriod) {
           pair_steps += s.steps;
           const uint64_t first = b.in_cycles[f * K], last = b.in_cycles[f * K + K - 1];
           ASSERT_EQ(last - first, K - 1) << "frame " << f;
-          const uint64_t t_emit = last + 4 + uint64_t(s.steps) * (P + 1) + uint64_t(s.s_before);
+          const uint64_t commit = s.fit ? uint64_t(s.steps) : 0;
+          const uint64_t t_emit = last + 4 + uint64_t(s.steps) * (P + 1) + commit + uint64_t(s.s_before);
           for (int n = 0; n < s.s_after; ++n) {
             ASSERT_EQ(b.outs[out_n + size_t(n)].second, t_emit + uint64_t(n + 1) * c)
                 << "frame " << f << " site " << n;
@@ -237,7 +240,7 @@ TEST(GhostFilterRtl, ExactLatencyAndFramePeriod) {
           out_n += size_t(s.s_after);
           if (f + 1 < fr.size()) {
             ASSERT_EQ(b.in_cycles[(f + 1) * K] - first,
-                      K + 4 + uint64_t(s.steps) * (P + 1) + uint64_t(s.s_before) +
+                      K + 4 + uint64_t(s.steps) * (P + 1) + commit + uint64_t(s.s_before) +
                           uint64_t(s.s_after) * c)
                 << "frame " << f;
           }
