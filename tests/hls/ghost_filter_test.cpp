@@ -1,8 +1,9 @@
 // hls/ghost_filter.h against the golden host/golden/ghost_filter.h.
 //
 // Inputs: integer magnitude frames (units: F = one full carrier). The golden
-// filter gets the same integers divided by F, and the kernel gets golden's
-// thresholds converted so that the integer comparisons are the same
+// filter gets the same integers (divided by D = 2^12, its thresholds scaled
+// by F/D: see compare()), and the kernel gets golden's thresholds converted
+// so that the integer comparisons are the same
 // inequalities (rise > onset*F <=> rise > floor(onset*F) for an integer
 // rise; sqrt(m_i m_j)/F < release <=> m_i m_j < ceil((release*F)^2);
 // rem <= pair_tol*F <=> rem <= floor(pair_tol*F)). So thesis mode must give
@@ -14,8 +15,8 @@
 // Improved mode differs by design (greedy pairing instead of the exhaustive
 // smallest set, sqrt values instead of the joint NNLS): asserted equal site
 // sets on the staggered cases (every onset is seen alone, so any correct
-// pairing is the same), and on the default scene (its simultaneous touches
-// have distinct rises and distinct lines: the greedy pairing is unique).
+// pairing is the same), and on the default scene up to its simultaneous
+// pair; during that pair the kernel is held to the ground truth instead.
 #include <gtest/gtest.h>
 
 #include <cmath>
