@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "Vghost_filter.h"
+#include "Vghost_filter_small.h"
 #include "hls/ghost_filter.h"
 #include "hls/taxel_reconstruct_config.h"
 #include "host/golden/sdft_bank.h"
@@ -34,13 +35,14 @@ using namespace eskin::hls;
 
 namespace {
 
-using Kernel = GhostFilter<16, 16, 32, 16, 16>;
-constexpr int kClearCycles = 32 * 32;
 struct Frame { std::vector<uint16_t> mag; };  // rows then cols
 struct FrameStats { int steps, s_before, s_after; bool fit; };
 
+// Model: a Verilated ghost_filter; Kernel: the HLS kernel with the same
+// parameters; CLEAR: L_MAX * 2^KB (history clear after reset).
+template <class Model, class Kernel, int CLEAR>
 struct Bench {
-  std::unique_ptr<Vghost_filter> m = std::make_unique<Vghost_filter>();
+  std::unique_ptr<Model> m = std::make_unique<Model>();
   Kernel k;
   uint64_t cycle = 0, ready_cycle = 0;
   std::vector<uint64_t> in_cycles;
@@ -110,7 +112,8 @@ struct Bench {
   }
 };
 
-void expect_same(const std::vector<TaxelToken>& want, const Bench& b) {
+template <class B>
+void expect_same(const std::vector<TaxelToken>& want, const B& b) {
   ASSERT_EQ(b.outs.size(), want.size());
   for (size_t n = 0; n < want.size(); ++n) {
     const TaxelToken& g = b.outs[n].first;
@@ -124,7 +127,7 @@ void expect_same(const std::vector<TaxelToken>& want, const Bench& b) {
 
 // Touches on a rows x cols skin: groups of 1-3 onsets in the same frame or a
 // few frames apart, ramps of 0-6 frames, held 20-60 frames; F = 2000 units.
-std::vector<Frame> touch_frames(int rows, int cols, int n, uint64_t seed) {
+std::vector<Frame> touch_frames(int rows, int cols, int n, uint64_t seed, double F = 2000.0) {
   struct T { int r, c, on, ramp, off; double g; };
   std::mt19937_64 rng(seed);
   auto uni = [&](int a, int b) { return a + int(rng() % uint64_t(b - a + 1)); };
@@ -148,7 +151,7 @@ std::vector<Frame> touch_frames(int rows, int cols, int n, uint64_t seed) {
     }
     Frame fr;
     for (double v : line)
-      fr.mag.push_back(uint16_t(std::max(0.0, std::round(v * 2000.0) + uni(-3, 3))));
+      fr.mag.push_back(uint16_t(std::max(0.0, std::round(v * F) + uni(-3, 3))));
     out.push_back(fr);
   }
   return out;
@@ -168,6 +171,11 @@ GhostFilterConfig config(int rows, int cols, bool improved, bool conductance, in
   return c;
 }
 
+using Big = Bench<Vghost_filter, GhostFilter<16, 16, 32, 16, 16>, 32 * 32>;
+// tests/rtl/ghost_filter_test.cmake: R_MAX 3, C_MAX 3, L_MAX 5, MAG_W 12,
+// TAX_W 24 (KB = 3: CLEAR = 5 * 8 cycles).
+using Small = Bench<Vghost_filter_small, GhostFilter<3, 3, 5, 12, 24>, 5 * 8>;
+
 }  // namespace
 
 TEST(GhostFilterRtl, BitExactSyntheticTouchesAllModes) {
@@ -177,7 +185,7 @@ TEST(GhostFilterRtl, BitExactSyntheticTouchesAllModes) {
       for (auto [rows, cols] : {std::pair{10, 10}, std::pair{3, 3}, std::pair{16, 5}}) {
         SCOPED_TRACE("improved " + std::to_string(improved) + " conductance " +
                      std::to_string(cond) + " size " + std::to_string(rows) + "x" + std::to_string(cols));
-        Bench b;
+        Big b;
         b.start(config(rows, cols, improved, cond, 1 + variant % 8, 2000.0));
         auto want = b.stream(touch_frames(rows, cols, 300, uint64_t(variant)), 0.7, 0.5,
                              uint64_t(100 + variant));
@@ -203,7 +211,7 @@ TEST(GhostFilterRtl, BitExactDefaultScene) {
     frames.push_back(f);
   }
   for (bool improved : {false, true}) {
-    Bench b;
+    Big b;
     b.start(config(3, 3, improved, true, sc.decoder.window, F));
     auto want = b.stream(frames, 0.8, 0.7, 9);
     ASSERT_GT(want.size(), 1000u);
@@ -212,40 +220,62 @@ TEST(GhostFilterRtl, BitExactDefaultScene) {
 }
 
 // Exact cycles with the source and sink always ready (see top comment).
+template <class B, int MAG_W>
+void timing(int rows, int cols, bool improved, bool cond, int lookback, double F, int clear) {
+  B b;
+  b.start(config(rows, cols, improved, cond, lookback, F));
+  EXPECT_EQ(b.ready_cycle, uint64_t(clear));
+  const auto fr = touch_frames(rows, cols, 200, 7, F);
+  auto want = b.stream(fr, 1.0, 1.0, 1);
+  expect_same(want, b);
+  const uint64_t K = uint64_t(rows + cols), P = uint64_t(std::max(rows, cols));
+  const uint64_t c = cond ? MAG_W + 2 : 1;
+  size_t out_n = 0;
+  long pair_steps = 0;
+  for (size_t f = 0; f < fr.size(); ++f) {
+    const FrameStats& s = b.stats[f];
+    pair_steps += s.steps;
+    const uint64_t first = b.in_cycles[f * K], last = b.in_cycles[f * K + K - 1];
+    ASSERT_EQ(last - first, K - 1) << "frame " << f;
+    const uint64_t commit = s.fit ? uint64_t(s.steps) : 0;
+    const uint64_t t_emit = last + 4 + uint64_t(s.steps) * (P + 1) + commit + uint64_t(s.s_before);
+    for (int n = 0; n < s.s_after; ++n) {
+      ASSERT_EQ(b.outs[out_n + size_t(n)].second, t_emit + uint64_t(n + 1) * c)
+          << "frame " << f << " site " << n;
+    }
+    out_n += size_t(s.s_after);
+    if (f + 1 < fr.size()) {
+      ASSERT_EQ(b.in_cycles[(f + 1) * K] - first,
+                K + 4 + uint64_t(s.steps) * (P + 1) + commit + uint64_t(s.s_before) +
+                    uint64_t(s.s_after) * c)
+          << "frame " << f;
+    }
+  }
+  EXPECT_EQ(out_n, b.outs.size());
+  if (improved) { EXPECT_GT(pair_steps, 0); }  // the pairing path was timed
+}
+
 TEST(GhostFilterRtl, ExactLatencyAndFramePeriod) {
   for (bool improved : {false, true})
-    for (bool cond : {false, true})
-      for (auto [rows, cols] : {std::pair{10, 10}, std::pair{3, 3}, std::pair{4, 9}}) {
-        Bench b;
-        b.start(config(rows, cols, improved, cond, 4, 2000.0));
-        EXPECT_EQ(b.ready_cycle, uint64_t(kClearCycles));
-        const auto fr = touch_frames(rows, cols, 200, 7);
-        auto want = b.stream(fr, 1.0, 1.0, 1);
-        expect_same(want, b);
-        const uint64_t K = uint64_t(rows + cols), P = uint64_t(std::max(rows, cols));
-        const uint64_t c = cond ? 16 + 2 : 1;
-        size_t out_n = 0;
-        long pair_steps = 0;
-        for (size_t f = 0; f < fr.size(); ++f) {
-          const FrameStats& s = b.stats[f];
-          pair_steps += s.steps;
-          const uint64_t first = b.in_cycles[f * K], last = b.in_cycles[f * K + K - 1];
-          ASSERT_EQ(last - first, K - 1) << "frame " << f;
-          const uint64_t commit = s.fit ? uint64_t(s.steps) : 0;
-          const uint64_t t_emit = last + 4 + uint64_t(s.steps) * (P + 1) + commit + uint64_t(s.s_before);
-          for (int n = 0; n < s.s_after; ++n) {
-            ASSERT_EQ(b.outs[out_n + size_t(n)].second, t_emit + uint64_t(n + 1) * c)
-                << "frame " << f << " site " << n;
-          }
-          out_n += size_t(s.s_after);
-          if (f + 1 < fr.size()) {
-            ASSERT_EQ(b.in_cycles[(f + 1) * K] - first,
-                      K + 4 + uint64_t(s.steps) * (P + 1) + commit + uint64_t(s.s_before) +
-                          uint64_t(s.s_after) * c)
-                << "frame " << f;
-          }
-        }
-        EXPECT_EQ(out_n, b.outs.size());
-        if (improved) { EXPECT_GT(pair_steps, 0); }  // the pairing path was timed
-      }
+    for (bool cond : {false, true}) {
+      for (auto [rows, cols] : {std::pair{10, 10}, std::pair{3, 3}, std::pair{4, 9}})
+        timing<Big, 16>(rows, cols, improved, cond, 4, 2000.0, 32 * 32);
+      timing<Small, 12>(3, 3, improved, cond, 5, 1000.0, 5 * 8);
+      timing<Small, 12>(2, 3, improved, cond, 3, 1000.0, 5 * 8);
+    }
+}
+
+// Second parameter set: bit-exact with back-pressure in all modes.
+TEST(GhostFilterRtl, SmallParametersBitExact) {
+  int variant = 0;
+  for (bool improved : {false, true})
+    for (bool cond : {false, true}) {
+      Small b;
+      b.start(config(3, 3, improved, cond, 1 + variant % 5, 1000.0));
+      auto want = b.stream(touch_frames(3, 3, 400, uint64_t(50 + variant), 1000.0), 0.6, 0.5,
+                           uint64_t(7 + variant));
+      ASSERT_GT(want.size(), 100u);
+      expect_same(want, b);
+      ++variant;
+    }
 }
