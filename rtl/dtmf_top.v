@@ -52,6 +52,7 @@ module dtmf_top #(
     parameter integer TAX_RECIP = 54067,
     parameter integer TAX_RECIP_SHIFT = 12,
     parameter integer STEP = 1,
+    parameter integer TOKEN_FIFO = 0,   // DFT -> magnitude frame buffer depth (0: none)
     // Reset values of the command registers (docs/protocol.md): output mask
     // (amplitudes, taxels, spikes, periodic status) and decimations in steps.
     parameter [3:0] MASK = 4'b1111,
@@ -158,28 +159,50 @@ module dtmf_top #(
   localparam integer STW = (STEP > 1) ? $clog2(STEP) : 1;
   reg [STW-1:0] step_ph;
   wire step_sel = (step_ph == {STW{1'b0}});
-  wire mg_in_ready;
-  assign sd_ready = step_sel ? mg_in_ready : 1'b1;
+  wire gq_ready;  // gated queue (token FIFO or carrier_magnitude) ready
+  assign sd_ready = step_sel ? gq_ready : 1'b1;
   always @(posedge clk) begin
     if (rst) step_ph <= {STW{1'b0}};
     else if (sd_valid && sd_ready && sd_last)
       step_ph <= (step_ph == STW'(STEP - 1)) ? {STW{1'b0}} : step_ph + 1'b1;
   end
+  wire gq_fire = sd_valid && step_sel && gq_ready;
+
+  // Optional frame buffer (TOKEN_FIFO > 0) between the DFT and the
+  // magnitudes: needed when K * 26 cycles exceed a sample period.
+  localparam integer TOKW = 8 + 2 * ACC_W + 1;
+  wire mg_in_valid, mg_in_ready, mg_in_last;
+  wire [7:0] mg_in_k;
+  wire [ACC_W-1:0] mg_in_re, mg_in_im;
+  generate
+    if (TOKEN_FIFO > 0) begin : g_fifo
+      wire [TOKW-1:0] q_out;
+      token_fifo #(.W(TOKW), .DEPTH(TOKEN_FIFO)) u_q (
+          .clk(clk), .rst(rst), .in_valid(sd_valid && step_sel), .in_ready(gq_ready),
+          .in_data({sd_last, sd_k, sd_re, sd_im}), .out_valid(mg_in_valid),
+          .out_ready(mg_in_ready), .out_data(q_out));
+      assign {mg_in_last, mg_in_k, mg_in_re, mg_in_im} = q_out;
+    end else begin : g_direct
+      assign mg_in_valid = sd_valid && step_sel;
+      assign gq_ready = mg_in_ready;
+      assign {mg_in_last, mg_in_k, mg_in_re, mg_in_im} = {sd_last, sd_k, sd_re, sd_im};
+    end
+  endgenerate
 
   // ---------------- magnitudes -------------------------------------------
-  wire mg_in_valid = sd_valid && step_sel;
-  wire mg_fire_in = mg_in_valid && mg_in_ready;
   wire mg_valid, mg_last, mg_ready;
   wire [7:0] mg_k;
   wire [MAG_W-1:0] mg_mag;
   carrier_magnitude #(.ACC_W(ACC_W), .MAG_W(MAG_W), .SHIFT(MAG_SHIFT), .K_W(8)) u_mag (
-      .clk(clk), .rst(rst), .in_valid(mg_in_valid), .in_ready(mg_in_ready), .in_k(sd_k),
-      .in_re(sd_re), .in_im(sd_im), .in_last(sd_last), .out_valid(mg_valid),
+      .clk(clk), .rst(rst), .in_valid(mg_in_valid), .in_ready(mg_in_ready), .in_k(mg_in_k),
+      .in_re(mg_in_re), .in_im(mg_in_im), .in_last(mg_in_last), .out_valid(mg_valid),
       .out_ready(mg_ready), .out_k(mg_k), .out_mag(mg_mag), .out_last(mg_last));
+  // t of a frame from the gate (FIFO input) to the last magnitude: at most
+  // one frame in the FIFO and one in carrier_magnitude.
   wire [31:0] mg_t;
   wire tq1_err;
   tag_fifo #(.W(32), .DEPTH(2)) u_tq1 (
-      .clk(clk), .rst(rst), .push(mg_fire_in && sd_k == 8'd0), .push_tag(sd_t),
+      .clk(clk), .rst(rst), .push(gq_fire && sd_k == 8'd0), .push_tag(sd_t),
       .pop(mg_valid && mg_ready && mg_last), .head(mg_t), .error(tq1_err));
   wire mg_fire = mg_valid && mg_ready;
 

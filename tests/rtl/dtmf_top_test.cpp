@@ -418,4 +418,187 @@ TEST(DtmfTop, SpikesOnlyCommandAndCorruptedFrame) {
   EXPECT_LE(st->p.status.samples, 3502u);  // sent within ~2 samples of the request
 }
 
+// A 16x16 skin: 32 carriers planned on DFT bins (carriers: auto, window
+// 128), one press. Matches the 16x16 build (tests/rtl/dtmf_top_test.cmake).
+const eskin::sim::Scene& skin16_scene() {
+  static const auto sc = eskin::sim::parse_scene(R"(
+name: skin16
+seed: 3
+duration_s: 0.12
+skin:
+  rows: 16
+  cols: 16
+  carriers: auto
+  osc_amplitude_v: 1.0
+  amp_gain: 0.5
+  conductance: {kind: saturating, p_half_kpa: 50}
+  adc: {rate_hz: 35000, bits: 10, full_scale_v: 3.3, offset_v: 1.65, noise_rms_v: 0.001}
+decoder: {window: 128, variant: exact}
+neuron: {preset: RA, input: level, input_scale: 10}
+stimuli:
+  - press: {taxel: [3, 12], pressure_kpa: 60, t_start_s: 0.010, ramp_s: 0.005, hold_s: 0.060, release_s: 0.005}
+outputs: [amplitudes, taxels, spikes]
+)", "skin16 (dtmf_top_test)");
+  return sc;
+}
+constexpr int kStep16 = 16;
+constexpr uint16_t kDecim16 = 8;
+
+// Bound: exact equality, as for the default scene; the 16x16 build runs the
+// stages every 16 samples (dt = 16/35 ms) and must still lose no sample.
+TEST(DtmfTop, Skin16x16MatchesHlsChainAndKeepsUp) {
+  const auto& scene = skin16_scene();
+  ASSERT_EQ(scene.skin.carriers(), 32);
+  auto codes = scene_codes12(scene);
+  const size_t n = codes.size();
+  codes.resize(n + 160, 2048);
+  auto chain = std::make_unique<Chain16>(chain_config<Chain16>(scene, kStep16, kDecim16, 7));
+  ASSERT_TRUE(chain->ok());
+  const auto want = run_chain(*chain, codes, n);
+  Board<Vdtmf_top_s16> b(codes);
+  b.run_until_sample(n + 159);
+  expect_clean_run(b);
+  expect_same_packets(want, keys(b.received()), uint32_t(n) - kStep16 * kDecim16,
+                      kStep16 * kDecim16, kDataTypes, 3);
+}
+
+// Latency of one frame through the pipeline, in clock cycles (12 MHz) from
+// the 16th SCLK falling edge of sample n (the edge that clocks in DB0; CS
+// rises one half SCLK period later), to the cycle in which each handshake
+// happens.
+struct Latency {
+  int64_t adc, sd_first, sd_last, mg_first, mg_last, tx_first, tx_last, nr_first, nr_last,
+      hdr_amp, uart_amp, hdr_tax, uart_tax;
+};
+
+template <class M>
+Latency measure(Board<M>& b, uint32_t n) {
+  const auto& e = b.events.at(n);
+  const int64_t ref = int64_t(b.sample_edge(n));
+  const auto start_of = [&](uint8_t type) -> int64_t {
+    for (const auto& r : b.received())
+      if (r.p.type == type && r.p.t == n) return int64_t(r.start_cycle) - ref;
+    ADD_FAILURE() << "no packet of type " << int(type) << " for sample " << n;
+    return -1;
+  };
+  const auto hdr_of = [&](uint8_t type) -> int64_t {
+    const auto it = e.hdr.find(type);
+    if (it == e.hdr.end()) return -1;
+    return int64_t(it->second) - ref;
+  };
+  return Latency{int64_t(e.adc) - ref, int64_t(e.sd_first) - ref, int64_t(e.sd_last) - ref,
+                 int64_t(e.mg_first) - ref, int64_t(e.mg_last) - ref, int64_t(e.tx_first) - ref,
+                 int64_t(e.tx_last) - ref, int64_t(e.nr_first) - ref, int64_t(e.nr_last) - ref,
+                 hdr_of(eskin::link::kAmplitudes), start_of(eskin::link::kAmplitudes),
+                 hdr_of(eskin::link::kTaxelsDense), start_of(eskin::link::kTaxelsDense)};
+}
+
+// The stage latencies follow from each module's documented schedule
+// (headers of rtl/*.v), for K carriers and T taxels with nothing stalled
+// downstream except by the next stage's own pace:
+//   adc_ad7476: m_valid on the 16th SCLK falling edge             -> 0
+//   sdft_bank: token k valid 8 + 6 k cycles after the sample handshake
+//   without a frame buffer carrier_magnitude (II 26) paces the tokens:
+//     token k is taken at 8 + 26 k; with token_fifo (16x16) the DFT runs at
+//     its own pace (8 + 6 k) and the magnitude unit sees token 0 at 8 + 3
+//   carrier_magnitude: out 25 cycles after its input (NB + 8, MAG_W 16),
+//     inputs 26 cycles apart
+//   taxel_reconstruct (conductance, c = MAG_W + 2 = 18 cycles per taxel):
+//     taxel i leaves at last_in + 1 + (i + 1) c
+//   izhikevich_layer: out 11 cycles after its input (II 12 < 18: no stall)
+//   frame_packetizer: link_framer header 2 cycles after the last magnitude
+// The tail (link_framer collects the first COBS block before its code byte
+// goes out, which depends on the t and seq bytes; uart_tx starts the bit
+// the cycle after the byte handshake; a taxel packet also waits for the
+// amplitude packet ahead of it) is pinned at the measured figures.
+Latency expected_core(int K, int T, bool fifo) {
+  Latency l{};
+  l.adc = 0;
+  l.sd_first = 8;
+  const int64_t mag_in0 = fifo ? 8 + 3 : 8;
+  l.sd_last = fifo ? 8 + 6 * (K - 1) : 8 + 26 * (K - 1);
+  l.mg_first = mag_in0 + 25;
+  l.mg_last = mag_in0 + 26 * (K - 1) + 25;
+  l.tx_first = l.mg_last + 1 + 18;
+  l.tx_last = l.mg_last + 1 + int64_t(T) * 18;
+  l.nr_first = l.tx_first + 11;
+  l.nr_last = l.tx_last + 11;
+  l.hdr_amp = l.mg_last + 2;
+  return l;
+}
+
+void print_table(const Latency& a, const Latency& b) {
+  const auto row = [](const char* name, int64_t x, int64_t y) {
+    std::printf("  %-44s %8lld %10lld\n", name, (long long)x, (long long)y);
+  };
+  std::printf("Pipeline latency, cycles at 12 MHz from the 16th SCLK falling edge of sample n\n");
+  std::printf("  %-44s %8s %10s\n", "event", "3x3", "16x16");
+  row("ADC token into sdft_bank", a.adc, b.adc);
+  row("sdft_bank first token (k = 0)", a.sd_first, b.sd_first);
+  row("sdft_bank last token (k = K-1)", a.sd_last, b.sd_last);
+  row("carrier_magnitude first magnitude", a.mg_first, b.mg_first);
+  row("carrier_magnitude last magnitude", a.mg_last, b.mg_last);
+  row("taxel_reconstruct first taxel", a.tx_first, b.tx_first);
+  row("taxel_reconstruct last taxel", a.tx_last, b.tx_last);
+  row("izhikevich_layer first neuron (spike flag)", a.nr_first, b.nr_first);
+  row("izhikevich_layer last neuron (step done)", a.nr_last, b.nr_last);
+  row("link_framer header, amplitude packet", a.hdr_amp, b.hdr_amp);
+  row("UART first start bit, amplitude packet", a.uart_amp, b.uart_amp);
+  row("link_framer header, taxel packet", a.hdr_tax, b.hdr_tax);
+  row("UART first start bit, taxel packet", a.uart_tax, b.uart_tax);
+}
+
+void expect_core(const Latency& got, const Latency& want, const char* what) {
+  EXPECT_EQ(got.adc, want.adc) << what;
+  EXPECT_EQ(got.sd_first, want.sd_first) << what;
+  EXPECT_EQ(got.sd_last, want.sd_last) << what;
+  EXPECT_EQ(got.mg_first, want.mg_first) << what;
+  EXPECT_EQ(got.mg_last, want.mg_last) << what;
+  EXPECT_EQ(got.tx_first, want.tx_first) << what;
+  EXPECT_EQ(got.tx_last, want.tx_last) << what;
+  EXPECT_EQ(got.nr_first, want.nr_first) << what;
+  EXPECT_EQ(got.nr_last, want.nr_last) << what;
+  EXPECT_EQ(got.hdr_amp, want.hdr_amp) << what;
+}
+
+// Sample n is a packet step with the link idle (no press yet: no spikes;
+// earlier packets long sent), so the figures are the pipeline's own.
+TEST(DtmfTop, LatencyTable) {
+  auto c3 = scene_codes12(default_scene());
+  const uint32_t n3 = 70;  // step 70: amplitude and taxel packets (35 | 70)
+  Board<Vdtmf_top> b3(c3);
+  b3.run_until_sample(n3 + 12);
+  const Latency l3 = measure(b3, n3);
+
+  auto c16 = scene_codes12(skin16_scene());
+  const uint32_t n16 = 256;  // step 16: packets every 8 steps (8 | 16)
+  Board<Vdtmf_top_s16> b16(c16);
+  b16.run_until_sample(n16 + 100);
+  const Latency l16 = measure(b16, n16);
+
+  print_table(l3, l16);
+  expect_core(l3, expected_core(6, 9, false), "3x3");
+  expect_core(l16, expected_core(32, 256, true), "16x16");
+  // Measured tails (see above), pinned.
+  EXPECT_EQ(l3.uart_amp, 172);
+  EXPECT_EQ(l3.hdr_tax, 855);
+  EXPECT_EQ(l3.uart_tax, 1132);
+  EXPECT_EQ(l16.uart_amp, 850);
+  EXPECT_EQ(l16.hdr_tax, 5453);
+  EXPECT_EQ(l16.uart_tax, 5459);
+  // Both must fit their step: a frame's last neuron update ends before the
+  // next step's sample arrives (else the ADC would overrun).
+  EXPECT_LT(l3.nr_last, 1 * kPeriod);
+  EXPECT_LT(l16.tx_last, kStep16 * kPeriod);
+  RecordProperty("latency_3x3_to_amplitude_start_bit", int(l3.uart_amp));
+  RecordProperty("latency_3x3_to_taxel_start_bit", int(l3.uart_tax));
+  RecordProperty("latency_16x16_to_amplitude_start_bit", int(l16.uart_amp));
+  RecordProperty("latency_16x16_to_taxel_start_bit", int(l16.uart_tax));
+  std::printf("Cycle budget per step: 3x3 %d cycles per sample, busiest stage carrier_magnitude "
+              "%lld (6 x 26), whole frame %lld; 16x16 %d cycles per step (16 samples), busiest "
+              "taxel_reconstruct %lld (256 x 18 + 33)\n",
+              kPeriod, (long long)(l3.mg_last - l3.sd_first), (long long)l3.nr_last,
+              kStep16 * kPeriod, (long long)(l16.tx_last - l16.mg_last + 33));
+}
+
 }  // namespace
