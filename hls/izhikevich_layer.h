@@ -71,7 +71,14 @@
 // for hundreds of steps), plus rounding (<= 1.5 LSB of Q.22 per step in v,
 // <= 1.5 LSB of Q.FU per step in U) and
 // constant quantisation (mantissas normalised to [2^14, 2^15): relative
-// error <= 2^-15).
+// error <= 2^-16). Measured against the double model (tests/hls): identical
+// spike counts; spike times within one step for inputs clearly above
+// rheobase. Near rheobase (slow firing, onsets after silence) the model is
+// ill conditioned (the double model itself moves spikes by tens of steps
+// for a 2^-20 relative input change) and times may differ by a few steps;
+// there the U LSB matters most (a step dU below half an LSB is rounded away,
+// so u lags its nullcline by up to c4^-1 * 2^-(FU+1)): FU = 31 would remove
+// the state-rounding part, at the price of a wider U (3 products for c4 U).
 //
 // Interface (one token per neuron per step, in neuron order 0..N-1; the
 // neuron index is implicit, counted by the layer):

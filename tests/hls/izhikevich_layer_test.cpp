@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "host/golden/golden_decoder.h"
 #include "host/golden/izhikevich_layer.h"
 #include "hls/izhikevich_layer_config.h"
 #include "sim/world_model.h"
@@ -141,30 +142,48 @@ TEST(IzhikevichLayerHls, IllConditionedNearThreshold) {
   EXPECT_GT(max_time_error(t), 1);
 }
 
-// Default scene: ground-truth pressures -> Conductance::g -> taxel code in
-// UQ1.15 (as taxel_reconstruct's Conductance mode delivers it; the full
-// golden decoding chain has no single entry point yet) -> RA receptor layer,
-// 9 neurons. Golden input = input_scale * code / 2^15, fixed input = code
-// (x_shift 1: the kernel uses code / 2, so the golden gets 2 * rnd(code / 2)
-// / 2^15 to compare the neuron and not the input truncation).
-// Bound: identical spike counts per neuron and times within one step (same
-// reasoning as the step test; the scene's RA neurons fire at 1-35 ms ISI,
-// well above rheobase except for the last spike of a release ramp).
-TEST(IzhikevichLayerHls, DefaultSceneMatchesGolden) {
+// Default scene, both ways of getting taxel values: (a) the golden decoding
+// chain (GoldenDecoder: exact SDFT -> line conductances -> ghost-corrected
+// pressure -> Conductance::g, one frame per sample), as the FPGA pipeline
+// would deliver them; (b) the scene's ground-truth pressures through
+// Conductance::g (no decoding noise or ghosts). Either value g is turned into
+// a taxel code in UQ1.15 (taxel_reconstruct's Conductance mode) and drives
+// the RA receptor layer, 9 neurons. Golden input = input_scale * code / 2^15,
+// fixed input = code with x_shift 1: the kernel uses rnd(code / 2), so the
+// golden gets 2 rnd(code / 2) / 2^15 (the comparison is of the neuron, not of
+// the input truncation).
+struct SceneTrains {
+  std::vector<std::vector<long>> golden, fixed;
+};
+
+SceneTrains run_scene(bool decoded) {
+  constexpr int kN = 9;
   const auto scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   eskin::sim::WorldModel world(scene);
-  constexpr int kN = 9;
-  ASSERT_EQ(scene.skin.rows * scene.skin.cols, kN);
+  EXPECT_EQ(scene.skin.rows * scene.skin.cols, kN);
+  eskin::golden::GoldenOptions opt;
+  opt.spikes = false;  // the decoder's own neurons are not used here
+  eskin::golden::GoldenDecoder decoder(scene.skin, scene.decoder, scene.neuron, opt);
   const double dt = scene.neuron.dt_ms;
   const double lsb = scene.neuron.input_scale / 32768.0;
   const auto cfg = eskin::hls::make_izhikevich_config(
       eskin::hls::izhikevich_fixed_preset(scene.neuron.preset), dt, lsb, 1);
   eskin::golden::IzhikevichLayer g(kN, eskin::golden::izhikevich_preset(scene.neuron.preset), dt);
   eskin::hls::IzhikevichLayer<kN> h(cfg);
-  std::vector<std::vector<long>> tg(kN), th(kN);
-  std::vector<double> kpa, in(kN);
-  for (size_t s = 0; s < world.total_samples(); ++s) {
-    world.pressure_at(s, kpa);
+  SceneTrains r;
+  r.golden.resize(kN);
+  r.fixed.resize(kN);
+  std::vector<double> kpa(kN), in(kN);
+  int adc = 0;
+  long step = 0;
+  for (size_t s = 0; world.next(adc); ++s) {
+    if (decoded) {
+      if (!decoder.push(adc)) continue;
+      for (int i = 0; i < kN; ++i)
+        kpa[size_t(i)] = decoder.frame().pressure(i / scene.skin.cols, i % scene.skin.cols);
+    } else {
+      world.pressure_at(s, kpa);
+    }
     int32_t code[kN];
     for (int i = 0; i < kN; ++i) {
       code[i] = int32_t(std::lround(scene.skin.conductance.g(kpa[size_t(i)]) * 32768.0));
@@ -172,26 +191,61 @@ TEST(IzhikevichLayerHls, DefaultSceneMatchesGolden) {
     }
     std::vector<int> sp;
     g.step(in.data(), sp);
-    for (int i : sp) tg[size_t(i)].push_back(long(s));
+    for (int i : sp) r.golden[size_t(i)].push_back(step);
     for (int i = 0; i < kN; ++i) {
       IzhikevichOut o;
       h.push(IzhikevichIn{code[i], uint32_t(s)}, o);
       EXPECT_EQ(o.neuron, i);
       EXPECT_EQ(o.last, i == kN - 1);
-      if (o.spike) th[size_t(i)].push_back(long(s));
+      if (o.spike) r.fixed[size_t(i)].push_back(step);
     }
+    ++step;
   }
+  return r;
+}
+
+// Bound (ground-truth input): identical spike counts per neuron and every
+// spike time within one step (same reasoning as the step test: the inputs
+// ramp within 5 ms to levels well above rheobase).
+TEST(IzhikevichLayerHls, DefaultSceneGroundTruthMatchesGolden) {
+  const SceneTrains r = run_scene(false);
   size_t total = 0;
-  for (int i = 0; i < kN; ++i) {
+  for (size_t i = 0; i < r.golden.size(); ++i) {
     SCOPED_TRACE("neuron " + std::to_string(i));
     Trains t;
-    t.golden = tg[size_t(i)];
-    t.fixed = th[size_t(i)];
+    t.golden = r.golden[i];
+    t.fixed = r.fixed[i];
     total += t.golden.size();
     EXPECT_EQ(t.golden.size(), t.fixed.size());
     EXPECT_LE(max_time_error(t), 1);
   }
-  EXPECT_GT(total, 100u);  // the scene does drive the layer
+  EXPECT_GT(total, 400u);  // the scene does drive the layer
+}
+
+// Bound (decoded input): identical spike counts per neuron; every spike that
+// follows a golden inter-spike interval of <= 100 steps (> 350 Hz: input well
+// above rheobase) within one step. Spikes after a longer silence start near
+// rheobase, where the model is ill conditioned (IllConditionedNearThreshold:
+// sub-LSB changes move spikes by many steps; here the decoded ghost/noise
+// input creeps up to threshold): for those the bound is 8 steps (0.23 ms),
+// twice the worst seen (4), and the count must still match.
+TEST(IzhikevichLayerHls, DefaultSceneGoldenChainMatchesGolden) {
+  const SceneTrains r = run_scene(true);
+  size_t total = 0, checked_tight = 0;
+  for (size_t i = 0; i < r.golden.size(); ++i) {
+    SCOPED_TRACE("neuron " + std::to_string(i));
+    const auto& tg = r.golden[i];
+    const auto& tf = r.fixed[i];
+    total += tg.size();
+    ASSERT_EQ(tg.size(), tf.size());
+    for (size_t j = 0; j < tg.size(); ++j) {
+      const bool fast = j > 0 && tg[j] - tg[j - 1] <= 100;
+      EXPECT_LE(std::labs(tg[j] - tf[j]), fast ? 1 : 8) << "spike " << j << " at " << tg[j];
+      checked_tight += fast;
+    }
+  }
+  EXPECT_GT(total, 400u);
+  EXPECT_GT(checked_tight, total * 3 / 4);  // the tight bound covers most spikes
 }
 
 // Extreme inputs for 10^6 steps each (formats and proofs in the header).
