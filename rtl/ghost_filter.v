@@ -219,9 +219,12 @@ module ghost_filter #(
     end
   end
   wire [31:0] mul_p = mul_a * mul_b;
-  wire [4:0] sh = (state == S_GSCALE) ? cfg_recip_shift : cfg_shift;
-  wire [32:0] half = (sh == 5'd0) ? 33'd0 : (33'd1 << (sh - 5'd1));
-  wire [32:0] rounded = ({1'b0, mul_p} + half) >> sh;
+  // Shift amount registered (GSCALE always follows SQRT); round half up as
+  // ((2x >> sh) + 1) >> 1 = (x + 2^(sh-1)) >> sh (x for sh = 0).
+  reg [4:0] sh;
+  always @(posedge clk) sh <= (state == S_SQRT) ? cfg_recip_shift : cfg_shift;
+  wire [33:0] sh2 = {1'b0, mul_p, 1'b0} >> sh;
+  wire [32:0] rounded = sh2[33:1] + {32'd0, sh2[0]};
   wire [TAX_W-1:0] prod_sat = ({1'b0, rounded} > TAX_MAX) ? TAX_MAX[TAX_W-1:0]
                                                           : rounded[TAX_W-1:0];
   wire [15:0] g_sat = (rounded > 33'hFFFF) ? 16'hFFFF : rounded[15:0];

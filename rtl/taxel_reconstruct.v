@@ -142,18 +142,24 @@ module taxel_reconstruct #(
 
   // ---- the one multiplier and the one rounding shifter --------------------
   reg [15:0] mul_a, mul_b;
-  reg [4:0] sh;
   always @* begin
-    mul_a = 16'd0; mul_b = 16'd0; sh = cfg_shift;
+    mul_a = 16'd0; mul_b = 16'd0;
     case (state)
-      S_GSCALE: begin mul_a[MAG_W-1:0] = root; mul_b = cfg_recip; sh = cfg_recip_shift; end
-      S_INTERP: begin mul_a = g - g_seg; mul_b = s_rd; sh = cfg_slope_shift; end
+      S_GSCALE: begin mul_a[MAG_W-1:0] = root; mul_b = cfg_recip; end
+      S_INTERP: begin mul_a = g - g_seg; mul_b = s_rd; end
       default:  begin mul_a[MAG_W-1:0] = row_mag[sel_r[RI_W-1:0]]; mul_b[MAG_W-1:0] = col_mag[sel_c[CI_W-1:0]]; end
     endcase
   end
   wire [31:0] mul_p = mul_a * mul_b;
-  wire [32:0] half = (sh == 5'd0) ? 33'd0 : (33'd1 << (sh - 5'd1));
-  wire [32:0] rounded = ({1'b0, mul_p} + half) >> sh;
+  // Shift amount of the state to come, registered (GSCALE follows SQRT,
+  // INTERP follows SEARCH): keeps the state decode off the datapath.
+  reg [4:0] sh;
+  always @(posedge clk)
+    sh <= (state == S_SQRT) ? cfg_recip_shift : (state == S_SEARCH) ? cfg_slope_shift : cfg_shift;
+  // Round half up as ((2x >> sh) + 1) >> 1, equal to (x + 2^(sh-1)) >> sh
+  // (and to x for sh = 0): shift first, then one short increment.
+  wire [33:0] sh2 = {1'b0, mul_p, 1'b0} >> sh;
+  wire [32:0] rounded = sh2[33:1] + {32'd0, sh2[0]};
   wire [33:0] interp = {1'b0, rounded} + {{(34 - TAX_W){1'b0}}, p_rd};
   wire [TAX_W-1:0] prod_sat = ({1'b0, rounded} > TAX_MAX) ? TAX_MAX[TAX_W-1:0]
                                                           : rounded[TAX_W-1:0];
