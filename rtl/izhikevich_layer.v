@@ -60,6 +60,8 @@ module izhikevich_layer #(
   localparam integer GSR = GAIN_SHIFT >= 0 ? GAIN_SHIFT : 0;  // right shift of J
   localparam integer GSL = GAIN_SHIFT < 0 ? -GAIN_SHIFT : 0;  // left shift of J
   localparam integer AW = N > 1 ? $clog2(N) : 1;
+  localparam integer N_M1 = N - 1;
+  localparam [15:0] N_LAST = N_M1[15:0];
   localparam signed [15:0] GAIN16 = GAIN[15:0];
   localparam signed [15:0] M2_16 = M2[15:0];
   localparam signed [15:0] M3_16 = M3[15:0];
@@ -69,6 +71,10 @@ module izhikevich_layer #(
   // (Builder limits: shifts <= 40, so 2^(s-1) < 2^47.)
   function automatic signed [47:0] half(input integer s);
     half = (s > 0) ? (48'sd1 <<< (s - 1)) : 48'sd0;
+  endfunction
+
+  function automatic signed [35:0] sx36(input signed [31:0] x);  // sign-extend
+    sx36 = {{4{x[31]}}, x};
   endfunction
 
   // ---- state memory ----
@@ -95,7 +101,7 @@ module izhikevich_layer #(
   assign in_ready = state == S_IDLE;
 
   // Input operand xs = sat16(rnd(x >> X_SHIFT)).
-  wire signed [47:0] x_rnd = (48'($signed(in_x)) + half(X_SHIFT)) >>> X_SHIFT;
+  wire signed [47:0] x_rnd = ($signed({{16{in_x[31]}}, in_x}) + half(X_SHIFT)) >>> X_SHIFT;
   wire signed [15:0] xs_in = (x_rnd > 48'sd32767) ? 16'sh7fff :
                              (x_rnd < -48'sd32768) ? 16'sh8000 : x_rnd[15:0];
 
@@ -147,12 +153,12 @@ module izhikevich_layer #(
   wire signed [47:0] acc_rnd4 = (acc_sum + half(S4)) >>> S4;
 
   // ---- final update (cycle 10) ----
-  wire signed [47:0] u22_w = (48'(U_r) + half(US)) >>> US;
+  wire signed [47:0] u22_w = ($signed({{16{U_r[31]}}, U_r}) + half(US)) >>> US;
   wire signed [35:0] u22 = u22_w[35:0];
-  wire signed [35:0] v_new = 36'(v_r) + 36'(c2w2_r) + 36'(C_CONST) - u22 + 36'(J_r);
-  wire signed [35:0] u_sum = 36'(U_r) + 36'(c3v_r) - 36'(c4u_r);
+  wire signed [35:0] v_new = sx36(v_r) + sx36(c2w2_r) + sx36(C_CONST) - u22 + sx36(J_r);
+  wire signed [35:0] u_sum = sx36(U_r) + sx36(c3v_r) - sx36(c4u_r);
   wire signed [35:0] u_sat = (u_sum > U_MAX) ? U_MAX : (u_sum < U_MIN) ? U_MIN : u_sum;
-  wire signed [35:0] u_jmp = u_sat + 36'(U_JUMP);
+  wire signed [35:0] u_jmp = u_sat + sx36(U_JUMP);
   wire signed [35:0] u_jsat = (u_jmp > U_MAX) ? U_MAX : (u_jmp < U_MIN) ? U_MIN : u_jmp;
   /* verilator lint_on UNUSEDSIGNAL */
   wire spike = v_new >= V_PEAK;
@@ -172,7 +178,7 @@ module izhikevich_layer #(
           we <= 1'b1;
           waddr <= n[AW-1:0];
           wdata <= {U_INIT[31:0], V_INIT[31:0]};
-          if (n == 16'(N - 1)) begin
+          if (n == N_LAST) begin
             n <= 16'd0;
             state <= S_IDLE;
           end else n <= n + 16'd1;
@@ -203,9 +209,9 @@ module izhikevich_layer #(
               wdata <= {u_fin, v_fin};
               out_neuron <= n;
               out_spike <= spike;
-              out_last <= n == 16'(N - 1);
+              out_last <= n == N_LAST;
               out_valid <= 1'b1;
-              n <= (n == 16'(N - 1)) ? 16'd0 : n + 16'd1;
+              n <= (n == N_LAST) ? 16'd0 : n + 16'd1;
               state <= S_OUT;
             end
           endcase

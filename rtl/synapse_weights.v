@@ -37,8 +37,14 @@ module synapse_weights #(
   localparam integer ACC_W = 16 + $clog2(N_IN + 1);
   // The sum always fits ACC_W bits; saturate only when OUT_W is narrower.
   localparam integer SW = OUT_W < ACC_W ? OUT_W : ACC_W;
-  localparam signed [ACC_W-1:0] SAT_MAX = ACC_W'((64'sd1 <<< (SW - 1)) - 64'sd1);
-  localparam signed [ACC_W-1:0] SAT_MIN = ACC_W'(-(64'sd1 <<< (SW - 1)));
+  localparam signed [63:0] SAT_MAX64 = (64'sd1 <<< (SW - 1)) - 64'sd1;
+  localparam signed [63:0] SAT_MIN64 = -(64'sd1 <<< (SW - 1));
+  localparam signed [ACC_W-1:0] SAT_MAX = SAT_MAX64[ACC_W-1:0];
+  localparam signed [ACC_W-1:0] SAT_MIN = SAT_MIN64[ACC_W-1:0];
+  localparam [15:0] N_IN16 = N_IN[15:0];
+  localparam [JW:0] J_END = N_IN[JW:0];
+  localparam integer N_OUT_M1 = N_OUT - 1;
+  localparam [IW-1:0] I_LAST = N_OUT_M1[IW-1:0];
 
   // ---- weight memory (block RAM: one write port, one registered read) ----
   reg [15:0] wmem[0:NW-1];
@@ -60,9 +66,12 @@ module synapse_weights #(
   reg signed [ACC_W-1:0] acc;
   assign in_ready = state == S_COLLECT;
 
-  wire signed [ACC_W-1:0] term = (pend && s_pend) ? ACC_W'($signed(rdata)) : {ACC_W{1'b0}};
+  wire signed [15:0] w_s = rdata;
+  wire signed [ACC_W-1:0] w_ext = {{(ACC_W - 16){w_s[15]}}, w_s};
+  wire signed [ACC_W-1:0] term = (pend && s_pend) ? w_ext : {ACC_W{1'b0}};
   wire signed [ACC_W-1:0] total = acc + term;
   wire signed [ACC_W-1:0] sat = (total > SAT_MAX) ? SAT_MAX : (total < SAT_MIN) ? SAT_MIN : total;
+  wire signed [31:0] sat32 = {{(32 - ACC_W){sat[ACC_W-1]}}, sat};
 
   always @(posedge clk) begin
     if (rst) begin
@@ -73,7 +82,7 @@ module synapse_weights #(
     end else begin
       case (state)
         S_COLLECT: if (in_valid) begin
-          if (in_spike && in_neuron < 16'(N_IN)) sbits[in_neuron[JW-1:0]] <= 1'b1;
+          if (in_spike && in_neuron < N_IN16) sbits[in_neuron[JW-1:0]] <= 1'b1;
           out_t <= in_t;
           if (in_last) begin
             state <= S_ACC;
@@ -86,15 +95,15 @@ module synapse_weights #(
         end
         S_ACC: begin
           acc <= total;
-          if (j != (JW + 1)'(N_IN)) begin  // issue the read of W[i][j]
+          if (j != J_END) begin  // issue the read of W[i][j]
             pend <= 1'b1;
             s_pend <= sbits[j[JW-1:0]];
             raddr <= raddr + 1'b1;
             j <= j + 1'b1;
           end else begin  // all N_IN terms in: emit
             pend <= 1'b0;
-            out_x <= 32'(sat);
-            out_last <= i == IW'(N_OUT - 1);
+            out_x <= sat32;
+            out_last <= i == I_LAST;
             out_valid <= 1'b1;
             state <= S_EMIT;
           end
