@@ -263,6 +263,22 @@ TEST(TaxelReconstructHls, PressureOnDefaultSceneWithinBound) {
   EXPECT_LE(worst, bound) << "S " << S << " chord " << chord;
 }
 
+// Product form on the default scene's frames (every 3rd sample): exact, as on
+// random frames (integer product < 2^32, exact in double).
+TEST(TaxelReconstructHls, ProductExactOnDefaultScene) {
+  const auto sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  double full = 0;
+  const auto frames = scene_frames(sc, 3, full);
+  Kernel k;
+  ASSERT_TRUE(k.configure(base(sc.skin.rows, sc.skin.cols, TaxelMode::Product)));
+  for (const auto& f : frames) {
+    auto t = run(k, f);
+    auto gold = golden::taxel_product(vec(f.row, 1.0), vec(f.col, 1.0));
+    for (int i = 0; i < sc.skin.rows; ++i)
+      for (int j = 0; j < sc.skin.cols; ++j) ASSERT_EQ(double(t[size_t(i)][size_t(j)]), gold(i, j));
+  }
+}
+
 // A Table conductance with <= 16 points has an exactly piecewise-linear
 // inverse, so the chord term vanishes: bound S*(g_bound+1/2) + 1 + slope term.
 TEST(TaxelReconstructHls, PressureExactTableWithinQBound) {
