@@ -14,7 +14,11 @@
 // from cycle 11 (LATENCY 11); in_ready again the cycle after the output
 // handshake: II = 12 cycles per neuron with an always-ready output, so a
 // layer step takes 12 N cycles (9 neurons: 108 of the 342 cycles of one
-// 35 kHz sample at 12 MHz).
+// 35 kHz sample at 12 MHz; 256 neurons: 3072 cycles, i.e. one step per
+// 9 samples at 12 MHz (dt = 9/35 ms) or one per sample at >= 108 MHz).
+// Resources (yosys synth_ice40 -dsp, Yosys 0.23): N = 9 and N = 256 both
+// ~1110 LUT4, 1 SB_MAC16, 4 SB_RAM40_4K (the 64-bit state word needs four
+// 16-bit-wide blocks whatever N <= 256).
 module izhikevich_layer #(
     parameter integer N = 9,
     parameter integer V_INIT = -272629760,   // v0 = -65 mV, Q9.22

