@@ -16,8 +16,8 @@
 // layer step takes 12 N cycles (9 neurons: 108 of the 342 cycles of one
 // 35 kHz sample at 12 MHz; 256 neurons: 3072 cycles, i.e. one step per
 // 9 samples at 12 MHz (dt = 9/35 ms) or one per sample at >= 108 MHz).
-// Resources (yosys synth_ice40 -dsp, Yosys 0.23): N = 9 and N = 256 both
-// ~1110 LUT4, 1 SB_MAC16, 4 SB_RAM40_4K (the 64-bit state word needs four
+// Resources (yosys synth_ice40 -dsp, Yosys 0.23): N = 9: 1011 LUT4,
+// N = 256: 1013 LUT4; both 1 SB_MAC16, 4 SB_RAM40_4K (the 64-bit state word needs four
 // 16-bit-wide blocks whatever N <= 256).
 module izhikevich_layer #(
     parameter integer N = 9,
@@ -106,8 +106,10 @@ module izhikevich_layer #(
 
   // Input operand xs = sat16(rnd(x >> X_SHIFT)).
   wire signed [47:0] x_rnd = ($signed({{16{in_x[31]}}, in_x}) + half(X_SHIFT)) >>> X_SHIFT;
-  wire signed [15:0] xs_in = (x_rnd > 48'sd32767) ? 16'sh7fff :
-                             (x_rnd < -48'sd32768) ? 16'sh8000 : x_rnd[15:0];
+  // Saturation by range checks on the top bits (cheaper than comparators):
+  // a signed value fits K bits iff its bits [W-1:K-1] are all equal.
+  wire xs_fits = &x_rnd[47:15] | ~|x_rnd[47:15];
+  wire signed [15:0] xs_in = xs_fits ? x_rnd[15:0] : (x_rnd[47] ? 16'sh8000 : 16'sh7fff);
 
   // Wide intermediates are truncated where the header proves the value fits.
   /* verilator lint_off UNUSEDSIGNAL */
@@ -148,8 +150,8 @@ module izhikevich_layer #(
   wire signed [47:0] p48 = {{16{prod[31]}}, prod};
   wire signed [47:0] j_rnd = (p48 + half(GSR)) >>> GSR;
   wire signed [47:0] j_wide = j_rnd <<< GSL;
-  wire signed [31:0] j_sat = (j_wide > 48'sh7fffffff) ? 32'sh7fffffff :
-                             (j_wide < -48'sh80000000) ? 32'sh80000000 : j_wide[31:0];
+  wire j_fits = &j_wide[47:31] | ~|j_wide[47:31];
+  wire signed [31:0] j_sat = j_fits ? j_wide[31:0] : (j_wide[47] ? 32'sh80000000 : 32'sh7fffffff);
   wire signed [31:0] p2_rnd = (prod + 32'sd8192) >>> 14;
   wire signed [47:0] c3v_w = (p48 + half(S3)) >>> S3;
   wire signed [47:0] acc_sum = acc_r + p48;
@@ -161,12 +163,15 @@ module izhikevich_layer #(
   wire signed [35:0] u22 = u22_w[35:0];
   wire signed [35:0] v_new = sx36(v_r) + sx36(c2w2_r) + sx36(C_CONST) - u22 + sx36(J_r);
   wire signed [35:0] u_sum = sx36(U_r) + sx36(c3v_r) - sx36(c4u_r);
-  wire signed [35:0] u_sat = (u_sum > U_MAX) ? U_MAX : (u_sum < U_MIN) ? U_MIN : u_sum;
+  wire u_fits = &u_sum[35:30] | ~|u_sum[35:30];  // U range: signed 31 bits
+  wire signed [35:0] u_sat = u_fits ? u_sum : (u_sum[35] ? U_MIN : U_MAX);
   wire signed [35:0] u_jmp = u_sat + sx36(U_JUMP);
-  wire signed [35:0] u_jsat = (u_jmp > U_MAX) ? U_MAX : (u_jmp < U_MIN) ? U_MIN : u_jmp;
+  wire uj_fits = &u_jmp[35:30] | ~|u_jmp[35:30];
+  wire signed [35:0] u_jsat = uj_fits ? u_jmp : (u_jmp[35] ? U_MIN : U_MAX);
   /* verilator lint_on UNUSEDSIGNAL */
   wire spike = v_new >= V_PEAK;
-  wire signed [31:0] v_fin = spike ? V_RESET[31:0] : (v_new < V_MIN) ? V_MIN[31:0] : v_new[31:0];
+  wire v_low = v_new[35] & ~&v_new[35:29];  // v_new < -2^29 (V_MIN)
+  wire signed [31:0] v_fin = spike ? V_RESET[31:0] : v_low ? V_MIN[31:0] : v_new[31:0];
   wire signed [31:0] u_fin = spike ? u_jsat[31:0] : u_sat[31:0];
 
   always @(posedge clk) begin

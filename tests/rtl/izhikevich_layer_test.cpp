@@ -3,8 +3,8 @@
 // random valid/ready back-pressure; latency and initiation interval asserted
 // in exact cycles. Two parameter sets: the Verilog defaults (RA receptor,
 // 9 neurons, dt = 1/35 ms, taxel codes UQ1.15) and an "alt" set verilated by
-// izhikevich_layer_test.cmake (FS, 3 neurons, dt = 1 ms, 1 mV/ms per LSB:
-// left-shifted gain, J and U saturation, U_FRAC = 22).
+// izhikevich_layer_test.cmake (RS, 3 neurons, dt = 1 ms, 1 mV/ms per LSB:
+// left-shifted gain, J, U and v saturation, U_FRAC = 22).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -60,7 +60,8 @@ struct Dut {
 // match. Back-pressure: valid and ready are each high with probability p.
 template <class V, int N>
 void run_compare(Dut<V>& d, const IzhikevichConfig& cfg, const std::vector<IzhikevichIn>& inputs,
-                 double p_valid, double p_ready, uint64_t seed, long* spikes) {
+                 double p_valid, double p_ready, uint64_t seed, long* spikes,
+                 long* v_at_min = nullptr, long* u_at_max = nullptr) {
   eskin::hls::IzhikevichLayer<N> ref(cfg);
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution valid_coin(p_valid), ready_coin(p_ready);
@@ -104,6 +105,8 @@ void run_compare(Dut<V>& d, const IzhikevichConfig& cfg, const std::vector<Izhik
         EXPECT_EQ(int32_t(d.m.out_v), e.v) << "token " << received;
         ASSERT_EQ(int32_t(d.m.out_u), e.U) << "token " << received;
         *spikes += e.spike;
+        if (v_at_min) *v_at_min += e.v == eskin::hls::izh::kVMin;
+        if (u_at_max) *u_at_max += e.U == eskin::hls::izh::kUMax;
         expected.pop_front();
         ++received;
         out_seen_valid = false;
@@ -122,7 +125,7 @@ IzhikevichConfig default_config() {
 }
 
 IzhikevichConfig alt_config() {
-  return eskin::hls::make_izhikevich_config(eskin::hls::izhikevich_fixed_preset("FS"), 1.0, 1.0, 0);
+  return eskin::hls::make_izhikevich_config(eskin::hls::izhikevich_fixed_preset("RS"), 1.0, 1.0, 0);
 }
 
 // Inputs for `steps` layer steps of N neurons: per neuron a level held for a
@@ -163,7 +166,7 @@ TEST(IzhikevichLayerRtl, DefaultMatchesHlsUnderBackpressure) {
 
 TEST(IzhikevichLayerRtl, AltParametersMatchHls) {
   // The alt model's parameters (izhikevich_layer_test.cmake) must be what
-  // the builder gives for FS, dt = 1 ms, 1 mV/ms per LSB.
+  // the builder gives for RS, dt = 1 ms, 1 mV/ms per LSB.
   const IzhikevichConfig c = alt_config();
   EXPECT_EQ(c.v_init, IZH_ALT_V_INIT);
   EXPECT_EQ(c.u_init, IZH_ALT_U_INIT);
@@ -184,9 +187,12 @@ TEST(IzhikevichLayerRtl, AltParametersMatchHls) {
   ASSERT_EQ(d.reset(), IZH_ALT_N);
   const auto in = make_inputs(IZH_ALT_N, 4000, -40, 60,
                               {0, 1000, -1000, 32767, -32768, INT32_MAX, INT32_MIN}, 3);
-  long spikes = 0;
-  run_compare<Vizhikevich_layer_alt, IZH_ALT_N>(d, c, in, 0.5, 0.5, 4, &spikes);
+  long spikes = 0, v_at_min = 0, u_at_max = 0;
+  run_compare<Vizhikevich_layer_alt, IZH_ALT_N>(d, c, in, 0.5, 0.5, 4, &spikes, &v_at_min,
+                                                &u_at_max);
   EXPECT_GT(spikes, 500);
+  EXPECT_GT(v_at_min, 0);  // the v saturation path was exercised
+  EXPECT_GT(u_at_max, 0);  // and the U one
 }
 
 // Bound: exact cycle counts with valid and ready always high: handshakes
