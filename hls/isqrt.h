@@ -1,6 +1,7 @@
 // Integer square root, one result bit per step (restoring, digit by digit).
-// Bit-exact spec of the SQRT state of rtl/taxel_reconstruct.v, which runs one
-// step per clock cycle: the loop body below is exactly one cycle there.
+// Bit-exact spec of the SQRT state of rtl/taxel_reconstruct.v and
+// rtl/ghost_filter.v, which run one step per clock cycle: the loop body below
+// is exactly one cycle there.
 //
 // isqrt<W>(x) = floor(sqrt(x)) for any x < 2^(2W), W <= 16.
 // Widths: radicand 2W bits, root W bits, partial remainder W + 2 bits.
