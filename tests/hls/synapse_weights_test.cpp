@@ -1,13 +1,19 @@
 // hls/synapse_weights.h: exact integer weighted spike sums, saturation at
-// the stated width.
+// the stated width; and the second spiking layer (synapse_weights ->
+// izhikevich_layer) against the golden WeightedIzhikevichLayer.
 #include "hls/synapse_weights.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
+
+#include "hls/izhikevich_layer.h"
+#include "hls/izhikevich_layer_config.h"
+#include "host/golden/izhikevich_layer.h"
 
 namespace {
 
@@ -98,6 +104,82 @@ TEST(SynapseWeightsHls, StepsAreIndependent) {
   ASSERT_EQ(k.push(SynapseIn{1, 2, true, true}, out), 1);  // only neuron 1 this step
   EXPECT_EQ(out[0].x, 20);
   EXPECT_EQ(out[0].t, 2u);
+}
+
+}  // namespace
+
+// ---- The second spiking layer: synapse_weights feeding an izhikevich_layer
+// instance, against the golden WeightedIzhikevichLayer (I = K (W s)).
+namespace {
+
+// Layer 1: 9 RA receptors under constant inputs (the fixed layer's own
+// spikes drive both second layers, so the comparison is of synapse +
+// layer 2 alone). Weights are integers in units of 1/32 input unit, exactly
+// representable in both; |sum| <= 9 * 100 * 32 < 2^15, so no saturation
+// (which the golden model does not have). Layer 2: 4 RS neurons.
+// Bound: identical spike counts per second-layer neuron. Times: the input is
+// a pulse train (one step of W s per presynaptic spike), so a layer-2 spike
+// is triggered by a pulse; the kernel's per-step errors (rounding, 2^-16
+// constants) can move the trigger at most to the neighbouring pulse, so
+// |dt| <= (largest gap between consecutive input pulses of that neuron) + 1
+// step, and most spikes (>= 80%) stay within one step.
+TEST(SynapseWeightsHls, SecondLayerMatchesGoldenWeightedLayer) {
+  constexpr int kPre = 9, kPost = 4;
+  constexpr double kDt = 1.0 / 35.0, kUnit = 1.0 / 32.0;
+  const auto ra = eskin::hls::izhikevich_fixed_preset("RA");
+  const auto rs = eskin::hls::izhikevich_fixed_preset("RS");
+  eskin::hls::IzhikevichLayer<kPre> l1(eskin::hls::make_izhikevich_config(ra, kDt, 1.0 / 1024));
+  eskin::hls::SynapseWeights<kPre, kPost, 16> syn;
+  eskin::hls::IzhikevichLayer<kPost> l2(eskin::hls::make_izhikevich_config(rs, kDt, kUnit));
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<int> wd(-5 * 32, 100 * 32);
+  Eigen::MatrixXd w(kPost, kPre);
+  for (int i = 0; i < kPost; ++i)
+    for (int j = 0; j < kPre; ++j) {
+      const int q = wd(rng);
+      syn.set_weight(i, j, int16_t(q));
+      w(i, j) = q * kUnit;
+    }
+  eskin::golden::WeightedIzhikevichLayer g2(w, eskin::golden::izhikevich_preset("RS"), kDt);
+  std::vector<std::vector<long>> tg(kPost), tf(kPost);
+  std::vector<long> last_pulse(kPost, 0), max_gap(kPost, 0);
+  for (long n = 0; n < 35000; ++n) {
+    std::vector<int> pre;
+    SynapseOut x[kPost];
+    int nx = 0;
+    for (int j = 0; j < kPre; ++j) {
+      eskin::hls::IzhikevichOut o;
+      l1.push(eskin::hls::IzhikevichIn{int32_t((1 + j) * 1024), uint32_t(n)}, o);  // I = 9 (j+1)
+      if (o.spike) pre.push_back(j);
+      nx = syn.push(SynapseIn{o.neuron, o.t, o.spike, o.last}, x);
+    }
+    ASSERT_EQ(nx, kPost);
+    for (int i = 0; i < kPost; ++i) {
+      eskin::hls::IzhikevichOut o;
+      l2.push(eskin::hls::IzhikevichIn{x[i].x, x[i].t}, o);
+      if (x[i].x != 0) {
+        max_gap[size_t(i)] = std::max(max_gap[size_t(i)], n - last_pulse[size_t(i)]);
+        last_pulse[size_t(i)] = n;
+      }
+      if (o.spike) tf[size_t(i)].push_back(n);
+    }
+    std::vector<int> post;
+    g2.step(pre, post);
+    for (int i : post) tg[size_t(i)].push_back(n);
+  }
+  size_t total = 0, within_one = 0;
+  for (int i = 0; i < kPost; ++i) {
+    SCOPED_TRACE("post neuron " + std::to_string(i));
+    ASSERT_EQ(tg[size_t(i)].size(), tf[size_t(i)].size());
+    total += tg[size_t(i)].size();
+    for (size_t k = 0; k < tg[size_t(i)].size(); ++k) {
+      const long d = std::labs(tg[size_t(i)][k] - tf[size_t(i)][k]);
+      EXPECT_LE(d, max_gap[size_t(i)] + 1) << "spike " << k << " at " << tg[size_t(i)][k];
+      within_one += d <= 1;
+    }
+  }
+  EXPECT_GT(total, 100u);  // the second layer does fire
+  EXPECT_GE(within_one * 5, total * 4);
 }
 
 }  // namespace
