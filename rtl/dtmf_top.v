@@ -34,10 +34,10 @@ module dtmf_top #(
     parameter integer R = 3,
     parameter integer C = 3,
     parameter integer N = 32,
-    parameter integer XW = 13,
+    parameter integer XW = 12,          // code - 2048 fits 12 bits
     parameter integer CW = 16,
     parameter integer TW = 10,
-    parameter integer ACC_W = 24,
+    parameter integer ACC_W = 18,       // XW + 1 + log2 N: window sums never wrap
     parameter integer MAG_W = 16,
     parameter integer MAG_SHIFT = 2,
     parameter integer TAX_W = 16,
@@ -53,6 +53,7 @@ module dtmf_top #(
     parameter integer TAX_RECIP_SHIFT = 12,
     parameter integer STEP = 1,
     parameter integer TOKEN_FIFO = 0,   // DFT -> magnitude frame buffer depth (0: none)
+    parameter integer CARRIER_CMD = 1,  // 1: SET_CARRIER_INC reloads the DFT carriers
     // Reset values of the command registers (docs/protocol.md): output mask
     // (amplitudes, taxels, spikes, periodic status) and decimations in steps.
     parameter [3:0] MASK = 4'b1111,
@@ -119,7 +120,10 @@ module dtmf_top #(
       adc_en <= 1'b1;
     end
   end
-  wire [31:0] cfg_inc = carrier_inc[32 * cfg_k +: 32];
+  // CARRIER_CMD = 0: the table is the parameter (SET_CARRIER_INC is accepted
+  // and counted but not applied); saves the decoder's K x 32 registers.
+  wire [31:0] cfg_inc = (CARRIER_CMD != 0) ? carrier_inc[32 * cfg_k +: 32]
+                                           : CARRIER_INC[32 * cfg_k +: 32];
 
   // ---------------- ADC ------------------------------------------------
   wire adc_valid, sdft_in_ready;
@@ -130,12 +134,9 @@ module dtmf_top #(
       .clk(clk), .rst(rst), .en(adc_en), .cs_n(adc_cs_n), .sclk(adc_sclk),
       .sdata(adc_sdata), .m_valid(adc_valid), .m_ready(sdft_in_ready),
       .m_data(adc_code), .m_t(adc_t), .overruns(adc_overruns));
-  // Samples taken so far (status block): t of the newest sample + 1.
-  reg [31:0] samples;
-  always @(posedge clk) begin
-    if (rst) samples <= 32'd0;
-    else if (adc_valid && sdft_in_ready) samples <= adc_t + 32'd1;
-  end
+  // Samples taken so far (status block): t of the newest sample + 1 (the
+  // ADC holds m_t until its next token; 1 before the first one).
+  wire [31:0] samples = adc_t + 32'd1;
 
   // ---------------- sliding DFT -----------------------------------------
   wire [XW-1:0] x = {{(XW - 11){~adc_code[11]}}, adc_code[10:0]};  // code - 2048
@@ -198,10 +199,10 @@ module dtmf_top #(
       .in_re(mg_in_re), .in_im(mg_in_im), .in_last(mg_in_last), .out_valid(mg_valid),
       .out_ready(mg_ready), .out_k(mg_k), .out_mag(mg_mag), .out_last(mg_last));
   // t of a frame from the gate (FIFO input) to the last magnitude: at most
-  // one frame in the FIFO and one in carrier_magnitude.
+  // one frame in the FIFO and one in carrier_magnitude (one without FIFO).
   wire [31:0] mg_t;
   wire tq1_err;
-  tag_fifo #(.W(32), .DEPTH(2)) u_tq1 (
+  tag_fifo #(.W(32), .DEPTH(TOKEN_FIFO > 0 ? 2 : 1)) u_tq1 (
       .clk(clk), .rst(rst), .push(gq_fire && sd_k == 8'd0), .push_tag(sd_t),
       .pop(mg_valid && mg_ready && mg_last), .head(mg_t), .error(tq1_err));
   wire mg_fire = mg_valid && mg_ready;
@@ -221,7 +222,7 @@ module dtmf_top #(
       .out_value(tx_value), .out_last(tx_last));
   wire [31:0] tx_t;
   wire tq2_err;
-  tag_fifo #(.W(32), .DEPTH(2)) u_tq2 (
+  tag_fifo #(.W(32), .DEPTH(1)) u_tq2 (
       .clk(clk), .rst(rst), .push(mg_fire && mg_k == K_LAST), .push_tag(mg_t),
       .pop(tx_valid && tx_ready && tx_last), .head(tx_t), .error(tq2_err));
   wire tx_fire = tx_valid && tx_ready;
@@ -287,7 +288,7 @@ module dtmf_top #(
       if (rx_data != 8'd0 && rx_pos == 2'd1) rx_type <= rx_data;
     end
   end
-  assign carrier_reload = cfg_changed && rx_type == 8'h81;
+  assign carrier_reload = (CARRIER_CMD != 0) && cfg_changed && rx_type == 8'h81;
 
   // ---------------- packets ----------------------------------------------
   wire [15:0] dropped;

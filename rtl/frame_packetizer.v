@@ -66,7 +66,7 @@ module frame_packetizer #(
     // link_framer request
     output reg              hdr_valid,
     input  wire             hdr_ready,
-    output reg  [7:0]       hdr_type,
+    output reg  [7:0]       hdr_type,     // hdr_* valid with hdr_valid
     output reg  [31:0]      hdr_t,
     output reg  [15:0]      hdr_len,
     output reg              s_valid,
@@ -84,11 +84,12 @@ module frame_packetizer #(
 
   // ---------------- frame selection and drop counting ----------------
   reg [15:0] amp_cnt, tax_cnt, step_cnt, stat_cnt;
+  // Down-counters: a frame is selected when its counter is 0, which then
+  // reloads decim - 1 (so frame 0 is selected, then every decim-th).
   wire amp_sel = (amp_cnt == 16'd0);
   wire tax_sel = (tax_cnt == 16'd0);
-  wire [15:0] amp_last_cnt = decim_amp - 16'd1;
-  wire [15:0] tax_last_cnt = decim_tax - 16'd1;
-  wire [15:0] stat_last_cnt = decim_status - 16'd1;
+  wire win_last = (step_cnt == 16'd0);  // the window's last step
+  wire stat_sel = (stat_cnt == 16'd0);
   reg drop_amp, drop_tax, drop_spk;
   always @(posedge clk) begin
     if (rst) dropped <= 16'd0;
@@ -119,12 +120,12 @@ module frame_packetizer #(
         if (amp_first) begin
           amp_wr <= amp_sel && mask[0] && amp_free;
           drop_amp <= amp_sel && mask[0] && !amp_free;
-          if (stat_cnt == 16'd0 && mask[3]) status_pend <= 1'b1;
-          stat_cnt <= (stat_cnt >= stat_last_cnt) ? 16'd0 : stat_cnt + 16'd1;
+          if (stat_sel && mask[3]) status_pend <= 1'b1;
+          stat_cnt <= stat_sel ? decim_status - 16'd1 : stat_cnt - 16'd1;
         end
         amp_first <= amp_last;
         if (amp_last) begin
-          amp_cnt <= (amp_cnt >= amp_last_cnt) ? 16'd0 : amp_cnt + 16'd1;
+          amp_cnt <= amp_sel ? decim_amp - 16'd1 : amp_cnt - 16'd1;
           if (amp_take) begin
             amp_full <= 1'b1;
             amp_tq <= amp_t;
@@ -161,7 +162,7 @@ module frame_packetizer #(
         tax_first <= tax_last;
         tax_wa <= tax_last ? {TA{1'b0}} : tax_wa + 1'b1;
         if (tax_last) begin
-          tax_cnt <= (tax_cnt >= tax_last_cnt) ? 16'd0 : tax_cnt + 16'd1;
+          tax_cnt <= tax_sel ? decim_tax - 16'd1 : tax_cnt - 16'd1;
           if (tax_take) begin
             tax_full <= 1'b1;
             tax_tq <= tax_t;
@@ -179,14 +180,12 @@ module frame_packetizer #(
   reg win_open, spk_req;
   reg [31:0] win_t, spk_tq;
   reg [15:0] spk_n;
-  // dt is sent as u16 (the low bits of the difference).
-  /* verilator lint_off UNUSEDSIGNAL */
-  wire [31:0] nrn_dt = nrn_t - (win_open ? win_t : nrn_t);
-  /* verilator lint_on UNUSEDSIGNAL */
+  // dt is sent as u16: the low 16 bits of t - t_window.
+  wire [15:0] nrn_dt = win_open ? nrn_t[15:0] - win_t[15:0] : 16'd0;
   wire spk_fifo_full = (spk_wp - spk_rp) == SPK_DEPTH[SA:0];
   wire spk_push = nrn_valid && nrn_spike && mask[2] && !spk_fifo_full;
   wire [SA:0] spk_wp_next = spk_wp + {{SA{1'b0}}, spk_push};
-  wire win_end = nrn_valid && nrn_last && (step_cnt >= tax_last_cnt);
+  wire win_end = nrn_valid && nrn_last && win_last;
   wire [SA:0] spk_pend = spk_wp_next - spk_close;
   always @(posedge clk) begin
     if (spk_push) spk_mem[spk_wp[SA-1:0]] <= {nrn_neuron, nrn_dt[15:0]};
@@ -194,7 +193,7 @@ module frame_packetizer #(
   always @(posedge clk) begin
     drop_spk <= 1'b0;
     if (rst) begin
-      step_cnt <= 16'd0; spk_wp <= {(SA + 1){1'b0}}; spk_close <= {(SA + 1){1'b0}};
+      step_cnt <= decim_tax - 16'd1; spk_wp <= {(SA + 1){1'b0}}; spk_close <= {(SA + 1){1'b0}};
       win_open <= 1'b0; spk_req <= 1'b0; win_t <= 32'd0; spk_tq <= 32'd0; spk_n <= 16'd0;
     end else begin
       if (spk_done) spk_req <= 1'b0;
@@ -205,7 +204,7 @@ module frame_packetizer #(
           win_open <= 1'b1;
           win_t <= nrn_t;
         end
-        if (nrn_last) step_cnt <= (step_cnt >= tax_last_cnt) ? 16'd0 : step_cnt + 16'd1;
+        if (nrn_last) step_cnt <= win_last ? decim_tax - 16'd1 : step_cnt - 16'd1;
         if (win_end) begin
           if (spk_pend == {(SA + 1){1'b0}}) begin
             win_open <= 1'b0;  // nothing to send
@@ -222,86 +221,90 @@ module frame_packetizer #(
   end
 
   // ---------------- sender ----------------
+  // The header fields are functions of the source being sent (the framer
+  // takes them at the header handshake); payload bytes come straight from
+  // the RAM output registers, whose address is stable while a word is sent.
   localparam [1:0] SRC_STATUS = 2'd0, SRC_AMP = 2'd1, SRC_TAX = 2'd2, SRC_SPK = 2'd3;
-  localparam [2:0] S_IDLE = 3'd0, S_HDR = 3'd1, S_RD = 3'd2, S_LAT = 3'd3, S_BYTE = 3'd4;
-  reg [2:0] state;
+  localparam [1:0] S_IDLE = 2'd0, S_HDR = 2'd1, S_RD = 2'd2, S_BYTE = 2'd3;
+  localparam integer WIW = SA + 1;  // word index: up to SPK_DEPTH events
+  reg [1:0] state;
   reg [1:0] src;
-  reg [15:0] wi, nwords;   // word index / count
-  reg [4:0] bi, nb;        // byte index in the word / bytes per word
-  reg [31:0] word;
+  reg [WIW-1:0] wi;        // word index (taxels: word 0 is {rows, cols})
+  reg [4:0] bi;            // byte index in the word
   reg [31:0] samples_q;
   reg [MAG_W-1:0] amp_rd;
   reg [TAX_W-1:0] tax_rd;
   reg [31:0] spk_rd;
   /* verilator lint_off UNUSEDSIGNAL */
-  wire [15:0] wi_m1 = wi - 16'd1;
+  wire [WIW-1:0] wi_m1 = wi - 1'b1;
   /* verilator lint_on UNUSEDSIGNAL */
-  wire [TA-1:0] tax_ra = wi_m1[TA-1:0];  // word 0 is {rows, cols}
   always @(posedge clk) begin
     amp_rd <= amp_mem[wi[KA-1:0]];
-    tax_rd <= tax_mem[tax_ra];
+    tax_rd <= tax_mem[wi_m1[TA-1:0]];
     spk_rd <= spk_mem[spk_rp[SA-1:0]];
   end
+  // Status: 12 little-endian 16-bit words, word wi.
   wire [191:0] status_vec = {samples_q, status_fixed};
+  wire [15:0] status_half = status_vec[16 * wi[3:0] +: 16];
+  wire [15:0] half = (src == SRC_STATUS) ? status_half :
+                     (src == SRC_AMP) ? {{(16 - MAG_W){1'b0}}, amp_rd} :
+                     (wi == {WIW{1'b0}}) ? {cols, rows} : {{(16 - TAX_W){1'b0}}, tax_rd};
+  always @(*) begin
+    if (src == SRC_SPK) begin
+        case (bi[2:0])
+          3'd0: s_data = spk_rd[7:0];
+          3'd1: s_data = spk_rd[15:8];
+          3'd2: s_data = 8'd0;  // layer 0: the receptor layer
+          3'd3: s_data = spk_rd[23:16];
+          default: s_data = spk_rd[31:24];
+        endcase
+    end else begin
+      s_data = bi[0] ? half[15:8] : half[7:0];
+    end
+  end
   always @(*) begin
     case (src)
-      SRC_STATUS: s_data = status_vec[8 * bi +: 8];
-      SRC_SPK: begin
-        case (bi)
-          5'd0: s_data = word[7:0];
-          5'd1: s_data = word[15:8];
-          5'd2: s_data = 8'd0;  // layer 0: the receptor layer
-          5'd3: s_data = word[23:16];
-          default: s_data = word[31:24];
-        endcase
-      end
-      default: s_data = bi[0] ? word[15:8] : word[7:0];
+      SRC_STATUS: begin hdr_type = 8'h05; hdr_t = samples_q; hdr_len = 16'd24; end
+      SRC_AMP: begin hdr_type = 8'h01; hdr_t = amp_tq; hdr_len = AMP_LEN; end
+      SRC_TAX: begin hdr_type = 8'h02; hdr_t = tax_tq; hdr_len = 16'd2 + {tax_n[14:0], 1'b0}; end
+      default: begin hdr_type = 8'h04; hdr_t = spk_tq; hdr_len = {spk_n[13:0], 2'b00} + spk_n; end
     endcase
   end
-  wire last_byte = (bi == nb - 5'd1);
-  wire last_word = (wi == nwords - 16'd1);
+  wire [15:0] wi16 = {{(16 - WIW){1'b0}}, wi};
+  reg last_byte, last_word;
+  always @(*) begin
+    case (src)
+      SRC_STATUS: begin last_byte = bi[0]; last_word = (wi16 == 16'd11); end
+      SRC_AMP: begin last_byte = bi[0]; last_word = (wi16 == K16 - 16'd1); end
+      SRC_TAX: begin last_byte = bi[0]; last_word = (wi16 == tax_n); end
+      default: begin last_byte = (bi[2:0] == 3'd4); last_word = (wi16 == spk_n - 16'd1); end
+    endcase
+  end
   always @(posedge clk) begin
     amp_done <= 1'b0; tax_done <= 1'b0; spk_done <= 1'b0; status_done <= 1'b0;
     if (rst) begin
       state <= S_IDLE; src <= SRC_STATUS; hdr_valid <= 1'b0; s_valid <= 1'b0;
-      hdr_type <= 8'd0; hdr_t <= 32'd0; hdr_len <= 16'd0;
-      wi <= 16'd0; nwords <= 16'd0; bi <= 5'd0; nb <= 5'd0; word <= 32'd0;
-      samples_q <= 32'd0; spk_rp <= {(SA + 1){1'b0}};
+      wi <= {WIW{1'b0}}; bi <= 5'd0; samples_q <= 32'd0; spk_rp <= {(SA + 1){1'b0}};
     end else begin
       case (state)
         S_IDLE: begin
-          wi <= 16'd0;
+          wi <= {WIW{1'b0}};
           bi <= 5'd0;
           if (status_pend && !status_done) begin
-            src <= SRC_STATUS; hdr_type <= 8'h05; hdr_t <= samples; hdr_len <= 16'd24;
-            samples_q <= samples; nwords <= 16'd1; nb <= 5'd24;
-            hdr_valid <= 1'b1; state <= S_HDR;
+            src <= SRC_STATUS; samples_q <= samples; hdr_valid <= 1'b1; state <= S_HDR;
           end else if (amp_full && !amp_done) begin
-            src <= SRC_AMP; hdr_type <= 8'h01; hdr_t <= amp_tq;
-            hdr_len <= AMP_LEN; nwords <= K16; nb <= 5'd2;
-            hdr_valid <= 1'b1; state <= S_HDR;
+            src <= SRC_AMP; hdr_valid <= 1'b1; state <= S_HDR;
           end else if (tax_full && !tax_done) begin
-            src <= SRC_TAX; hdr_type <= 8'h02; hdr_t <= tax_tq;
-            hdr_len <= 16'd2 + {tax_n[14:0], 1'b0}; nwords <= tax_n + 16'd1; nb <= 5'd2;
-            hdr_valid <= 1'b1; state <= S_HDR;
+            src <= SRC_TAX; hdr_valid <= 1'b1; state <= S_HDR;
           end else if (spk_req && !spk_done) begin
-            src <= SRC_SPK; hdr_type <= 8'h04; hdr_t <= spk_tq;
-            hdr_len <= {spk_n[13:0], 2'b00} + spk_n; nwords <= spk_n; nb <= 5'd5;
-            hdr_valid <= 1'b1; state <= S_HDR;
+            src <= SRC_SPK; hdr_valid <= 1'b1; state <= S_HDR;
           end
         end
         S_HDR: if (hdr_ready) begin
           hdr_valid <= 1'b0;
           state <= S_RD;
         end
-        S_RD: state <= S_LAT;  // the word's address is on the RAMs this cycle
-        S_LAT: begin
-          case (src)
-            SRC_AMP: word <= {{(32 - MAG_W){1'b0}}, amp_rd};
-            SRC_TAX: word <= (wi == 16'd0) ? {16'd0, cols, rows} : {{(32 - TAX_W){1'b0}}, tax_rd};
-            SRC_SPK: word <= spk_rd;
-            default: word <= 32'd0;
-          endcase
+        S_RD: begin  // the word's address is on the RAMs this cycle
           s_valid <= 1'b1;
           state <= S_BYTE;
         end
@@ -313,7 +316,7 @@ module frame_packetizer #(
             s_valid <= 1'b0;
             if (src == SRC_SPK) spk_rp <= spk_rp + 1'b1;
             if (!last_word) begin
-              wi <= wi + 16'd1;
+              wi <= wi + 1'b1;
               state <= S_RD;
             end else begin
               state <= S_IDLE;

@@ -5,11 +5,11 @@
 // stage's output. DEPTH must cover the frames a stage holds at once (2 for
 // sdft_bank: one finishing in its output register, one being computed; 1 for
 // carrier_magnitude and taxel_reconstruct, which take no input while their
-// output is pending). Pushing into a full FIFO or popping an empty one is a
+// output is pending, and whose next frame is pushed after the pop). Pushing into a full FIFO or popping an empty one is a
 // design error: `error` latches it (the system test asserts it stays 0).
 module tag_fifo #(
     parameter integer W = 32,
-    parameter integer DEPTH = 2   // power of two, >= 2
+    parameter integer DEPTH = 2   // 1, or a power of two
 ) (
     input  wire         clk,
     input  wire         rst,
@@ -19,27 +19,46 @@ module tag_fifo #(
     output wire [W-1:0] head,
     output reg          error
 );
-  localparam integer AW = $clog2(DEPTH);
-  reg [W-1:0] mem [0:DEPTH-1];
-  reg [AW:0] count;
-  reg [AW-1:0] rp, wp;
-  assign head = mem[rp];
-  always @(posedge clk) begin
-    if (rst) begin
-      count <= {(AW + 1){1'b0}};
-      rp <= {AW{1'b0}};
-      wp <= {AW{1'b0}};
-      error <= 1'b0;
-    end else begin
-      if (push) begin
-        mem[wp] <= push_tag;
-        wp <= wp + 1'b1;
+  generate
+    if (DEPTH == 1) begin : g_reg
+      // One tag: a register and an occupancy bit.
+      reg [W-1:0] tag;
+      reg full;
+      assign head = tag;
+      always @(posedge clk) begin
+        if (push) tag <= push_tag;
+        if (rst) begin
+          full <= 1'b0;
+          error <= 1'b0;
+        end else begin
+          if (push != pop) full <= push;
+          if ((push && !pop && full) || (pop && !full)) error <= 1'b1;
+        end
       end
-      if (pop) rp <= rp + 1'b1;
-      if (push && !pop) count <= count + 1'b1;
-      if (pop && !push) count <= count - 1'b1;
-      if ((push && !pop && count == DEPTH[AW:0]) || (pop && count == {(AW + 1){1'b0}}))
-        error <= 1'b1;
+    end else begin : g_fifo
+      localparam integer AW = $clog2(DEPTH);
+      reg [W-1:0] mem [0:DEPTH-1];
+      reg [AW:0] count;
+      reg [AW-1:0] rp, wp;
+      assign head = mem[rp];
+      always @(posedge clk) begin
+        if (rst) begin
+          count <= {(AW + 1){1'b0}};
+          rp <= {AW{1'b0}};
+          wp <= {AW{1'b0}};
+          error <= 1'b0;
+        end else begin
+          if (push) begin
+            mem[wp] <= push_tag;
+            wp <= wp + 1'b1;
+          end
+          if (pop) rp <= rp + 1'b1;
+          if (push && !pop) count <= count + 1'b1;
+          if (pop && !push) count <= count - 1'b1;
+          if ((push && !pop && count == DEPTH[AW:0]) || (pop && count == {(AW + 1){1'b0}}))
+            error <= 1'b1;
+        end
+      end
     end
-  end
+  endgenerate
 endmodule

@@ -211,8 +211,9 @@ class Board {
 
 // The default scene's chain (3x3, N = 32: the top's default parameters)
 // and the 16x16 build (tests/rtl/dtmf_top_test.cmake).
-using Chain3 = eskin::hls::DtmfChain<3, 3, 32>;
-using Chain16 = eskin::hls::DtmfChain<16, 16, 128>;
+// Widths: XW = 12 (code - 2048), ACC_W = XW + 1 + log2 N, CW 16, TW 10.
+using Chain3 = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>;
+using Chain16 = eskin::hls::DtmfChain<16, 16, 128, 12, 16, 10, 20>;
 
 // Host-side chain configuration from a scene: carriers as phase increments,
 // conductance taxels (recip from the full-carrier window magnitude in 10-bit
