@@ -57,8 +57,9 @@
 //   |v_new| < 2^11 mV = 2^33 in Q.22: 35 bits signed (int64 here, 36 in RTL);
 //   (m4 Uh 2^15 + m4 Ul) < 2^46; |dU| <= |c3 v| + |c4 U| < 1 + 256: the
 //   sum U + dU (+ kd) is formed in int64 and saturated to [-2^30, 2^30).
-// Saturation points: v >= -128 mV (below: clamp), U in [-256, 256),
-//   J in [-512, 512), xs in [-32768, 32767]. No wrap-around for any input.
+// Saturation points: v >= -128 mV (below: clamp), U in [-2^30, 2^30) LSB of
+//   Q.FU (|k u| < 2^(30-FU) <= 256), J in [-512, 512), xs in [-32768,
+//   32767]. No wrap-around for any input.
 // Extreme inputs (proved here, tested in tests/hls/izhikevich_layer_test.cpp):
 //   * J = +max: at v = c (>= -128) dv >= -16.25 - 256 + 512 > 239 >= 30 - c:
 //     a spike every step, whatever U (U saturates, it cannot wrap).
@@ -69,10 +70,9 @@
 // Difference from the double model: only where a saturation acts (v < -128
 // mV needs I < -187 mV/ms; |u| >= 256 mV needs a neuron firing every step
 // for hundreds of steps), plus rounding (<= 1.5 LSB of Q.22 per step in v,
-// <= 1.5 LSB of Q.FU per step in U) and
-// constant quantisation (mantissas normalised to [2^14, 2^15): relative
-// error <= 2^-16). Measured against the double model (tests/hls): identical
-// spike counts; spike times within one step for inputs clearly above
+// <= 1.5 LSB of Q.FU per step in U) and constant quantisation (mantissas
+// normalised to [2^14, 2^15): relative error <= 0.5 / 2^14 = 2^-15).
+// Measured against the double model (tests/hls): identical spike counts; spike times within one step for inputs clearly above
 // rheobase. Near rheobase (slow firing, onsets after silence) the model is
 // ill conditioned (the double model itself moves spikes by tens of steps
 // for a 2^-20 relative input change) and times may differ by a few steps;

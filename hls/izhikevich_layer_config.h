@@ -6,7 +6,7 @@
 //   v_init = rnd(-65 * 2^22), v_reset = rnd(c 2^22), c_const =
 //   rnd(-16.25 k 2^22); u_init = rnd(k b (-65) 2^FU), u_jump = rnd(k d 2^FU);
 //   c2 = 0.04 k, c3 = k^2 a b, c4 = k a, gain: mantissa normalised into
-//   [2^14, 2^15) (relative error <= 2^-16) with the matching shift.
+//   [2^14, 2^15) (relative error <= 0.5 / 2^14 = 2^-15) with the matching shift.
 // Input scaling: one unit of the kernel input x is `input_lsb` units of the
 // golden model's input (so I = K * input_lsb * x); x_shift drops low bits of
 // x before the 16-bit multiplier (receptor: taxel g in UQ1.15 -> x_shift 1).

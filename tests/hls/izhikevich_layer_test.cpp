@@ -78,7 +78,7 @@ long max_time_error(const Trains& t) {
 // times within one step where the golden model is well conditioned (inputs
 // clearly above rheobase, see IllConditionedNearThreshold). Why: per step the
 // kernel differs from double only by rounding (<= 1.5 LSB of Q.22 in v,
-// <= 1.5 LSB of Q.FU in U) and constants with relative error <= 2^-16; over a
+// <= 1.5 LSB of Q.FU in U) and constants with relative error <= 2^-15; over a
 // 1 s train that moves a spike crossing by a small fraction of a step, which
 // can flip the crossing to the neighbouring step but not further.
 // v, u between spikes (both below -40 mV, trains identical so far): the

@@ -119,7 +119,7 @@ namespace {
 // (which the golden model does not have). Layer 2: 4 RS neurons.
 // Bound: identical spike counts per second-layer neuron. Times: the input is
 // a pulse train (one step of W s per presynaptic spike), so a layer-2 spike
-// is triggered by a pulse; the kernel's per-step errors (rounding, 2^-16
+// is triggered by a pulse; the kernel's per-step errors (rounding, 2^-15
 // constants) can move the trigger at most to the neighbouring pulse, so
 // |dt| <= (largest gap between consecutive input pulses of that neuron) + 1
 // step, and most spikes (>= 80%) stay within one step.
