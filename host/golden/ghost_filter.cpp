@@ -93,6 +93,7 @@ GhostFilter::GhostFilter(int rows, int cols, GhostFilterConfig cfg)
     throw ConfigError("ghost_filter.pair_tol", "expected >= 0 (g units), got " + num(cfg.pair_tol));
   history_.assign(size_t(cfg.lookback), Eigen::VectorXd::Zero(rows + cols));
   g_ = Eigen::MatrixXd::Zero(rows, cols);
+  prev_lines_ = Eigen::VectorXd::Zero(rows + cols);
 }
 
 void GhostFilter::add_site(int r, int c) {
@@ -107,13 +108,15 @@ void GhostFilter::add_thesis(const Eigen::VectorXd& rise) {
   if (rmax > cfg_.onset && cmax > cfg_.onset) add_site(int(r), int(c));
 }
 
-void GhostFilter::add_paired(const Eigen::VectorXd& rise) {
+std::vector<std::vector<std::pair<int, int>>> GhostFilter::fit_pairings(
+    const Eigen::VectorXd& rise) const {
+  std::vector<std::vector<std::pair<int, int>>> out;
   std::vector<int> rs, cs;  // rising rows, rising columns
   for (int i = 0; i < rows_; ++i)
     if (rise[i] > cfg_.onset) rs.push_back(i);
   for (int j = 0; j < cols_; ++j)
     if (rise[rows_ + j] > cfg_.onset) cs.push_back(j);
-  if (rs.empty() || cs.empty()) return;
+  if (rs.empty() || cs.empty()) return out;
 
   const int nr = int(rs.size()), nc = int(cs.size()), K = nr * nc;
   if (K > kMaxEnumerated) {
@@ -123,8 +126,9 @@ void GhostFilter::add_paired(const Eigen::VectorXd& rise) {
     };
     std::sort(rs.begin(), rs.end(), by_rise(0));
     std::sort(cs.begin(), cs.end(), by_rise(rows_));
-    for (int k = 0; k < std::min(nr, nc); ++k) add_site(rs[size_t(k)], cs[size_t(k)]);
-    return;
+    out.emplace_back();
+    for (int k = 0; k < std::min(nr, nc); ++k) out[0].emplace_back(rs[size_t(k)], cs[size_t(k)]);
+    return out;
   }
 
   // Local problem: lines are the rising rows then the rising columns,
@@ -137,7 +141,6 @@ void GhostFilter::add_paired(const Eigen::VectorXd& rise) {
   // A crossing set with more than nr + nc - 1 members contains a cycle, so a
   // smaller one explains the same rises: sizes beyond that are never needed.
   for (int size = std::max(nr, nc); size <= std::min(K, nr + nc - 1); ++size) {
-    std::vector<unsigned> fits;
     for (unsigned mask = 0; mask < (1u << K); ++mask) {
       if (__builtin_popcount(mask) != size) continue;
       unsigned rows_hit = 0, cols_hit = 0;
@@ -150,18 +153,74 @@ void GhostFilter::add_paired(const Eigen::VectorXd& rise) {
         if (mask >> k & 1u) A(k / nc, s) = 1.0, A(nr + k % nc, s) = 1.0, ++s;
       Eigen::VectorXd x = nnls(A, b);
       double err = (A * x - b).cwiseAbs().maxCoeff();
-      if (err <= cfg_.pair_tol && (x.array() > 0.0).all()) fits.push_back(mask);
+      if (err <= cfg_.pair_tol && (x.array() > 0.0).all()) {
+        out.emplace_back();
+        for (int k = 0; k < K; ++k)
+          if (mask >> k & 1u) out.back().emplace_back(rs[size_t(k / nc)], cs[size_t(k % nc)]);
+      }
     }
-    if (fits.empty()) continue;
-    // One fit: the pairing. Several: no rise tells them apart; keep them all
-    // so that no touch is lost, and say so.
-    if (fits.size() > 1) ambiguous_ = true;
-    for (unsigned mask : fits)
-      for (int k = 0; k < K; ++k)
-        if (mask >> k & 1u) add_site(rs[size_t(k / nc)], cs[size_t(k % nc)]);
-    return;
+    if (!out.empty()) return out;
   }
-  add_thesis(rise);  // no consistent pairing (e.g. a line's partner stayed below onset)
+  return out;  // no consistent pairing (e.g. a line's partner stayed below onset)
+}
+
+bool GhostFilter::all_active(const std::vector<std::pair<int, int>>& set) const {
+  for (const auto& s : set)
+    if (std::find(sites_.begin(), sites_.end(), s) == sites_.end()) return false;
+  return true;
+}
+
+void GhostFilter::commit(const std::vector<std::vector<std::pair<int, int>>>& fits) {
+  if (fits.size() > 1) ambiguous_ = true;
+  for (const auto& set : fits)
+    for (const auto& s : set) add_site(s.first, s.second);
+}
+
+void GhostFilter::add_paired(const Eigen::VectorXd& lines, const Eigen::VectorXd& before) {
+  const int L = rows_ + cols_;
+  const Eigen::VectorXd rise = lines - before;  // over `lookback` frames
+  bool stopped = false;
+  Eigen::VectorXd eval = rise;
+  if (pending_) {
+    // Lines that start rising while a decision waits join it.
+    bool grew = false, rising = false;
+    for (int k = 0; k < L; ++k) {
+      if (!pend_line_[size_t(k)] && rise[k] > cfg_.onset)
+        pend_line_[size_t(k)] = true, pend_base_[k] = before[k];
+      if (!pend_line_[size_t(k)]) continue;
+      grew |= lines[k] > prev_lines_[k];
+      rising |= rise[k] > cfg_.onset;
+    }
+    // Rise since each pending line's onset; other lines do not take part.
+    for (int k = 0; k < L; ++k) eval[k] = pend_line_[size_t(k)] ? lines[k] - pend_base_[k] : 0.0;
+    stopped = !grew || !rising;
+  }
+  const auto fits = fit_pairings(eval);
+  if (fits.size() > 1)
+    for (const auto& set : fits)
+      if (all_active(set)) return end_pending();  // the active sites already explain it
+  if (fits.size() == 1) {
+    commit(fits);
+    return end_pending();
+  }
+  if (!pending_) {
+    if (fits.empty()) return add_thesis(rise);
+    // Ambiguous at onset: wait for the rises to tell the candidates apart.
+    pending_ = true;
+    pend_line_.assign(size_t(L), false);
+    pend_base_ = before;
+    for (int k = 0; k < L; ++k) pend_line_[size_t(k)] = rise[k] > cfg_.onset;
+  }
+  if (!fits.empty()) pend_fits_ = fits;
+  if (stopped) {
+    commit(pend_fits_);  // still ambiguous: keep them all so that no touch is lost
+    end_pending();
+  }
+}
+
+void GhostFilter::end_pending() {
+  pending_ = false;
+  pend_fits_.clear();
 }
 
 void GhostFilter::solve_values(const Eigen::VectorXd& lines) {
@@ -205,14 +264,15 @@ const Eigen::MatrixXd& GhostFilter::update(const Eigen::VectorXd& row_g,
                                                 std::to_string(col_g.size()));
   Eigen::VectorXd lines(rows_ + cols_);
   lines << row_g, col_g;
-  Eigen::VectorXd rise = lines - history_[size_t(head_)];
+  const Eigen::VectorXd before = history_[size_t(head_)];  // `lookback` frames ago
   history_[size_t(head_)] = lines;
   head_ = (head_ + 1) % cfg_.lookback;
 
   if (cfg_.simultaneous)
-    add_paired(rise);
+    add_paired(lines, before);
   else
-    add_thesis(rise);
+    add_thesis(lines - before);
+  prev_lines_ = lines;
   solve_values(lines);
 
   g_.setZero();

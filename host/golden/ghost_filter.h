@@ -82,12 +82,20 @@ class GhostFilter {
   const Eigen::MatrixXd& g() const { return g_; }
   // True if a pairing so far had several equally good explanations.
   bool ambiguous() const { return ambiguous_; }
+  // True while an ambiguous pairing waits for more rise (improved mode).
+  bool pending() const { return pending_; }
   const GhostFilterConfig& config() const { return cfg_; }
 
  private:
   void add_site(int r, int c);
   void add_thesis(const Eigen::VectorXd& rise);
-  void add_paired(const Eigen::VectorXd& rise);
+  // Smallest crossing sets of the lines with value > onset in `rise` that
+  // reproduce those values within pair_tol (empty: none fits).
+  std::vector<std::vector<std::pair<int, int>>> fit_pairings(const Eigen::VectorXd& rise) const;
+  bool all_active(const std::vector<std::pair<int, int>>& set) const;
+  void commit(const std::vector<std::vector<std::pair<int, int>>>& fits);
+  void add_paired(const Eigen::VectorXd& lines, const Eigen::VectorXd& before);
+  void end_pending();
   void solve_values(const Eigen::VectorXd& lines);
 
   int rows_, cols_;
@@ -98,6 +106,12 @@ class GhostFilter {
   Eigen::VectorXd values_;                // per site, same order as sites_
   Eigen::MatrixXd g_;
   bool ambiguous_ = false;
+  Eigen::VectorXd prev_lines_;            // the previous frame's lines
+  // Improved mode, a pairing decision that waits (see above).
+  bool pending_ = false;
+  std::vector<bool> pend_line_;           // line takes part in the pending decision
+  Eigen::VectorXd pend_base_;             // its amplitude just before its rise
+  std::vector<std::vector<std::pair<int, int>>> pend_fits_;  // last equally good sets
 };
 
 // Non-negative least squares min ||A x - b||, x >= 0 (Lawson-Hanson active
