@@ -53,7 +53,7 @@ module dtmf_top #(
     parameter integer TAX_RECIP_SHIFT = 12,
     parameter integer STEP = 1,
     parameter integer TOKEN_FIFO = 0,   // DFT -> magnitude frame buffer depth (0: none)
-    parameter integer CARRIER_CMD = 1,  // 1: SET_CARRIER_INC reloads the DFT carriers
+    parameter integer CARRIER_CMD = 0,  // 1: SET_CARRIER_INC reloads the DFT carriers (+~450 LCs)
     // Reset values of the command registers (docs/protocol.md): output mask
     // (amplitudes, taxels, spikes, periodic status) and decimations in steps.
     parameter [3:0] MASK = 4'b1111,
@@ -242,8 +242,8 @@ module dtmf_top #(
   // ---------------- commands: uart_rx -> cmd_decoder ---------------------
   // Registers (docs/protocol.md section 6) used here: carrier_inc (reloaded
   // into sdft_bank after a SET_CARRIER_INC), out_mask, decim (amplitudes,
-  // taxels + spike windows, status; counted in steps), status_req and the
-  // counters. thresholds and neuron are not wired: the dense taxel packet
+  // taxels + spike windows, status; counted in steps; DECIM_MAX = 1023, so
+  // 10-bit counters), status_req and the counters. thresholds and neuron are not wired: the dense taxel packet
   // and one neuron per taxel need every taxel (threshold 0), and
   // izhikevich_layer takes its constants as parameters.
   wire rx_valid, rx_frame_err, rx_overrun;
@@ -266,7 +266,8 @@ module dtmf_top #(
   wire [15:0] cmd_crc_errors, cmd_frame_errors, cmd_accepted, cmd_rejected;
   wire [7:0] rej_type, rej_reason, rej_seq;
   cmd_decoder #(.K(K), .PHASE_W(32), .NTHR(4), .NNP(4), .INC_INIT(CARRIER_INC),
-      .MASK_INIT({4'd0, MASK}), .DECIM_INIT({DECIM_STATUS, DECIM_TAX, DECIM_AMP})) u_cmd (
+      .MASK_INIT({4'd0, MASK}), .DECIM_INIT({DECIM_STATUS, DECIM_TAX, DECIM_AMP}),
+      .DECIM_MAX(16'd1023)) u_cmd (
       .clk(clk), .rst(rst), .s_valid(rx_valid), .s_ready(cmd_ready), .s_data(rx_data),
       .rx_error(rx_frame_err || rx_overrun), .carrier_inc(carrier_inc),
       .thresholds(thresholds), .neuron(neuron_regs), .out_mask(out_mask), .decim(decim),
@@ -303,8 +304,8 @@ module dtmf_top #(
   wire [15:0] hdr_len;
   frame_packetizer #(.K_MAX(K), .T_MAX(T), .SPK_DEPTH(SPK_DEPTH), .MAG_W(MAG_W),
       .TAX_W(TAX_W), .K_W(8)) u_pack (
-      .clk(clk), .rst(rst), .mask(out_mask), .decim_amp(decim[15:0]), .decim_tax(decim[31:16]),
-      .decim_status(decim[47:32]), .rows(8'(R)), .cols(8'(C)),
+      .clk(clk), .rst(rst), .mask(out_mask), .decim_amp(decim[9:0]), .decim_tax(decim[25:16]),
+      .decim_status(decim[41:32]), .rows(8'(R)), .cols(8'(C)),
       .amp_valid(mg_fire), .amp_k(mg_k), .amp_mag(mg_mag), .amp_last(mg_last), .amp_t(mg_t),
       .tax_valid(tx_fire), .tax_value(tx_value), .tax_last(tx_last), .tax_t(tx_t),
       .nrn_valid(nr_valid), .nrn_neuron(nr_neuron), .nrn_t(nr_t), .nrn_spike(nr_spike),
@@ -346,7 +347,8 @@ module dtmf_top #(
   wire [15:0] p_overruns /* verilator public_flat_rd */ = adc_overruns;
   wire p_cfg_done /* verilator public_flat_rd */ = cfg_busy && cfg_ready && cfg_k == K_LAST;
   wire [3:0] p_mask /* verilator public_flat_rd */ = out_mask;
-  wire unused = ^{tx_row, tx_col, nr_v, nr_u, fr_seq, thresholds, neuron_regs, cmd_ready, tag_error, p_adc_fire,
+  wire unused = ^{tx_row, tx_col, nr_v, nr_u, fr_seq, thresholds, neuron_regs, cmd_ready, decim[47:42], decim[31:26],
+                  decim[15:10], tag_error, p_adc_fire,
                   p_adc_t, p_sd_fire, p_sd_last, p_sd_t, p_mg_fire, p_mg_last, p_mg_t, p_tx_fire,
                   p_tx_last, p_tx_t, p_nr_fire, p_nr_last, p_nr_t, p_hdr_fire, p_hdr_type,
                   p_hdr_t, p_dropped, p_overruns, p_cfg_done, p_mask};

@@ -29,14 +29,15 @@ module frame_packetizer #(
     parameter integer SPK_DEPTH = 512,  // spike event FIFO entries (power of 2)
     parameter integer MAG_W = 16,
     parameter integer TAX_W = 16,
-    parameter integer K_W = 8
+    parameter integer K_W = 8,
+    parameter integer DW = 10           // decimation counter width: decim < 2^DW
 ) (
     input  wire             clk,
     input  wire             rst,
     input  wire [3:0]       mask,
-    input  wire [15:0]      decim_amp,   // amplitude frames every decim_amp steps, >= 1
-    input  wire [15:0]      decim_tax,   // taxel frames and spike windows, >= 1
-    input  wire [15:0]      decim_status,// periodic status (mask bit 3), >= 1
+    input  wire [DW-1:0]    decim_amp,   // amplitude frames every decim_amp steps, >= 1
+    input  wire [DW-1:0]    decim_tax,   // taxel frames and spike windows, >= 1
+    input  wire [DW-1:0]    decim_status,// periodic status (mask bit 3), >= 1
     input  wire [7:0]       rows,
     input  wire [7:0]       cols,
     // magnitudes
@@ -83,13 +84,13 @@ module frame_packetizer #(
   reg amp_done, tax_done, spk_done, status_done;  // packet sent (from the sender)
 
   // ---------------- frame selection and drop counting ----------------
-  reg [15:0] amp_cnt, tax_cnt, step_cnt, stat_cnt;
+  reg [DW-1:0] amp_cnt, tax_cnt, step_cnt, stat_cnt;
   // Down-counters: a frame is selected when its counter is 0, which then
   // reloads decim - 1 (so frame 0 is selected, then every decim-th).
-  wire amp_sel = (amp_cnt == 16'd0);
-  wire tax_sel = (tax_cnt == 16'd0);
-  wire win_last = (step_cnt == 16'd0);  // the window's last step
-  wire stat_sel = (stat_cnt == 16'd0);
+  wire amp_sel = (amp_cnt == {DW{1'b0}});
+  wire tax_sel = (tax_cnt == {DW{1'b0}});
+  wire win_last = (step_cnt == {DW{1'b0}});  // the window's last step
+  wire stat_sel = (stat_cnt == {DW{1'b0}});
   reg drop_amp, drop_tax, drop_spk;
   always @(posedge clk) begin
     if (rst) dropped <= 16'd0;
@@ -110,7 +111,7 @@ module frame_packetizer #(
   always @(posedge clk) begin
     drop_amp <= 1'b0;
     if (rst) begin
-      amp_cnt <= 16'd0; stat_cnt <= 16'd0; amp_full <= 1'b0; amp_wr <= 1'b0; amp_first <= 1'b1;
+      amp_cnt <= {DW{1'b0}}; stat_cnt <= {DW{1'b0}}; amp_full <= 1'b0; amp_wr <= 1'b0; amp_first <= 1'b1;
       amp_tq <= 32'd0; status_pend <= 1'b0;
     end else begin
       if (amp_done) amp_full <= 1'b0;
@@ -121,11 +122,11 @@ module frame_packetizer #(
           amp_wr <= amp_sel && mask[0] && amp_free;
           drop_amp <= amp_sel && mask[0] && !amp_free;
           if (stat_sel && mask[3]) status_pend <= 1'b1;
-          stat_cnt <= stat_sel ? decim_status - 16'd1 : stat_cnt - 16'd1;
+          stat_cnt <= stat_sel ? decim_status - 1'b1 : stat_cnt - 1'b1;
         end
         amp_first <= amp_last;
         if (amp_last) begin
-          amp_cnt <= amp_sel ? decim_amp - 16'd1 : amp_cnt - 16'd1;
+          amp_cnt <= amp_sel ? decim_amp - 1'b1 : amp_cnt - 1'b1;
           if (amp_take) begin
             amp_full <= 1'b1;
             amp_tq <= amp_t;
@@ -150,7 +151,7 @@ module frame_packetizer #(
   always @(posedge clk) begin
     drop_tax <= 1'b0;
     if (rst) begin
-      tax_cnt <= 16'd0; tax_full <= 1'b0; tax_wr <= 1'b0; tax_first <= 1'b1;
+      tax_cnt <= {DW{1'b0}}; tax_full <= 1'b0; tax_wr <= 1'b0; tax_first <= 1'b1;
       tax_wa <= {TA{1'b0}}; tax_n <= 16'd0; tax_tq <= 32'd0;
     end else begin
       if (tax_done) tax_full <= 1'b0;
@@ -162,7 +163,7 @@ module frame_packetizer #(
         tax_first <= tax_last;
         tax_wa <= tax_last ? {TA{1'b0}} : tax_wa + 1'b1;
         if (tax_last) begin
-          tax_cnt <= tax_sel ? decim_tax - 16'd1 : tax_cnt - 16'd1;
+          tax_cnt <= tax_sel ? decim_tax - 1'b1 : tax_cnt - 1'b1;
           if (tax_take) begin
             tax_full <= 1'b1;
             tax_tq <= tax_t;
@@ -193,7 +194,7 @@ module frame_packetizer #(
   always @(posedge clk) begin
     drop_spk <= 1'b0;
     if (rst) begin
-      step_cnt <= decim_tax - 16'd1; spk_wp <= {(SA + 1){1'b0}}; spk_close <= {(SA + 1){1'b0}};
+      step_cnt <= decim_tax - 1'b1; spk_wp <= {(SA + 1){1'b0}}; spk_close <= {(SA + 1){1'b0}};
       win_open <= 1'b0; spk_req <= 1'b0; win_t <= 32'd0; spk_tq <= 32'd0; spk_n <= 16'd0;
     end else begin
       if (spk_done) spk_req <= 1'b0;
@@ -204,7 +205,7 @@ module frame_packetizer #(
           win_open <= 1'b1;
           win_t <= nrn_t;
         end
-        if (nrn_last) step_cnt <= win_last ? decim_tax - 16'd1 : step_cnt - 16'd1;
+        if (nrn_last) step_cnt <= win_last ? decim_tax - 1'b1 : step_cnt - 1'b1;
         if (win_end) begin
           if (spk_pend == {(SA + 1){1'b0}}) begin
             win_open <= 1'b0;  // nothing to send
