@@ -244,6 +244,72 @@ TEST(GoldenGhostFilter, EqualRectangleIsAmbiguous) {
   for (const Site& s : f.active_sites()) EXPECT_NEAR(f.g()(s.first, s.second), 0.2, 1e-9);
 }
 
+// Two truly simultaneous touches with distinct pressures and 5 ms linear
+// ramps (the default scene's last phase), frames every sample at 35 kHz,
+// lookback 32. Over a 32-frame lookback the two ramps rise by g * 32/175,
+// so when the lines of the second touch cross `onset` both diagonals of the
+// rectangle fit the rises within pair_tol (0.5 vs 0.375: 0.375 crosses
+// 0.05 at frame 24, the wrong diagonal leaves |0.0686 - 0.0514| / 2 = 0.009
+// < 0.02; 0.6 vs 0.5 at frame 18: 0.005; 0.55 vs 0.45 at frame 20: 0.006;
+// all computed from g * n / 175 at the frame n where the smaller touch's
+// rise first exceeds onset, its first fitting frame). The filter must
+// wait (pending() seen true) and decide on the rise since onset, which
+// tells the diagonals apart (|g_a - g_b| * ramp fraction / 2 > pair_tol
+// long before the ramps end).
+// Checked: (1) no ghost in any frame (every active site is a touch that has
+// started); (2) from the end of the ramps on, exactly the 2 true sites and
+// not ambiguous; (3) values: noise-free, each site owns its row and its
+// column, so the joint solve is exact up to the 1e-12 ridge bias and
+// rounding: bound 1e-9. With uniform noise of +-eps = 0.002 g added to every
+// line in every frame: a site alone on its row r and column c gets
+// (r + c) / 2, so its error is <= eps (+ the 1e-9 above); noise alone rises
+// by <= 2 eps = 0.004 < onset, so it starts nothing, and the true diagonal
+// always fits (its mismatch is <= 2 eps < pair_tol), so only the true
+// diagonal can ever be the unique fit.
+TEST(GoldenGhostFilter, SimultaneousRampsDistinctPressuresResolved) {
+  struct Case {
+    int rows, cols;
+    std::vector<Touch> ts;
+  };
+  const double ramp_ms = 5.0, t_on = 1.0, frame_ms = 1.0 / 35.0, t_end = 12.0;
+  const std::vector<Case> cases = {
+      {3, 3, {{1, 0, 0.5, t_on, ramp_ms}, {0, 2, 0.375, t_on, ramp_ms}}},
+      {10, 10, {{2, 5, 0.6, t_on, ramp_ms}, {7, 1, 0.5, t_on, ramp_ms}}},
+      {10, 10, {{4, 4, 0.45, t_on, ramp_ms}, {6, 8, 0.55, t_on, ramp_ms}}}};
+  for (size_t n = 0; n < cases.size(); ++n) {
+    for (double eps : {0.0, 0.002}) {
+      SCOPED_TRACE("case " + std::to_string(n) + ", noise " + std::to_string(eps));
+      const Case& k = cases[n];
+      std::mt19937 rng(unsigned(11 + n));
+      std::uniform_real_distribution<double> noise(-eps, eps);
+      GhostFilterConfig cfg;
+      cfg.lookback = 32;
+      GhostFilter f(k.rows, k.cols, cfg);
+      bool waited = false;
+      long checked = 0;
+      for (long i = 0; i * frame_ms <= t_end; ++i) {
+        const double t = i * frame_ms;
+        Eigen::MatrixXd g = truth_at(k.ts, k.rows, k.cols, t);
+        Eigen::VectorXd rows = g.rowwise().sum(), cols = g.colwise().sum().transpose();
+        for (Eigen::Index j = 0; j < rows.size(); ++j) rows[j] += noise(rng);
+        for (Eigen::Index j = 0; j < cols.size(); ++j) cols[j] += noise(rng);
+        f.update(rows, cols);
+        waited |= f.pending();
+        for (const Site& s : f.active_sites())
+          ASSERT_GT(g(s.first, s.second), 0.0) << "ghost at (" << s.first << "," << s.second
+                                               << ") t=" << t << " ms";
+        if (t < t_on + ramp_ms) continue;
+        ++checked;
+        ASSERT_EQ(sites_of(f), support(g)) << "t=" << t << " ms";
+        EXPECT_LT((f.g() - g).cwiseAbs().maxCoeff(), eps + 1e-9) << "t=" << t << " ms";
+      }
+      EXPECT_TRUE(waited);  // the onset pairing was ambiguous: the deferral was exercised
+      EXPECT_FALSE(f.ambiguous());
+      EXPECT_GT(checked, 100);
+    }
+  }
+}
+
 // NNLS against brute force: the optimum of min ||Ax - b||, x >= 0 is the
 // unconstrained least-squares solution on some support that is feasible;
 // enumerating all supports of a 4-column problem and keeping the best
