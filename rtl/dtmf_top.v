@@ -89,7 +89,15 @@ module dtmf_top #(
 );
   localparam integer K = R + C;
   localparam integer T = R * C;
-  localparam [7:0] K_LAST = 8'(K - 1);
+  localparam integer K_M1 = K - 1;
+  localparam integer STEP_M1 = STEP - 1;
+  localparam [7:0] K_LAST = K_M1[7:0];
+  localparam [7:0] R8 = R[7:0];
+  localparam [7:0] C8 = C[7:0];
+  localparam [1:0] TAX_MODE2 = TAX_MODE[1:0];
+  localparam [4:0] TAX_SHIFT5 = TAX_SHIFT[4:0];
+  localparam [15:0] TAX_RECIP16 = TAX_RECIP[15:0];
+  localparam [4:0] TAX_RECIP_SHIFT5 = TAX_RECIP_SHIFT[4:0];
 
   // ---------------- reset: power-on counter and synchronised button -------
   reg [3:0] por_cnt = 4'd0;
@@ -165,7 +173,7 @@ module dtmf_top #(
   always @(posedge clk) begin
     if (rst) step_ph <= {STW{1'b0}};
     else if (sd_valid && sd_ready && sd_last)
-      step_ph <= (step_ph == STW'(STEP - 1)) ? {STW{1'b0}} : step_ph + 1'b1;
+      step_ph <= (step_ph == STEP_M1[STW-1:0]) ? {STW{1'b0}} : step_ph + 1'b1;
   end
   wire gq_fire = sd_valid && step_sel && gq_ready;
 
@@ -213,9 +221,9 @@ module dtmf_top #(
   wire [TAX_W-1:0] tx_value;
   assign mg_ready = tx_in_ready;  // the packetizer side is always ready
   taxel_reconstruct #(.R_MAX(R), .C_MAX(C), .MAG_W(MAG_W), .TAX_W(TAX_W), .K_W(8)) u_tax (
-      .clk(clk), .rst(rst), .cfg_rows(8'(R)), .cfg_cols(8'(C)), .cfg_mode(2'(TAX_MODE)),
-      .cfg_shift(5'(TAX_SHIFT)), .cfg_threshold({MAG_W{1'b0}}), .cfg_recip(16'(TAX_RECIP)),
-      .cfg_recip_shift(5'(TAX_RECIP_SHIFT)), .cfg_slope_shift(5'd0), .tab_we(1'b0),
+      .clk(clk), .rst(rst), .cfg_rows(R8), .cfg_cols(C8), .cfg_mode(TAX_MODE2),
+      .cfg_shift(TAX_SHIFT5), .cfg_threshold({MAG_W{1'b0}}), .cfg_recip(TAX_RECIP16),
+      .cfg_recip_shift(TAX_RECIP_SHIFT5), .cfg_slope_shift(5'd0), .tab_we(1'b0),
       .tab_addr(4'd0), .tab_g(16'd0), .tab_p({TAX_W{1'b0}}), .tab_slope(16'd0),
       .in_valid(mg_valid), .in_ready(tx_in_ready), .in_k(mg_k), .in_mag(mg_mag),
       .out_valid(tx_valid), .out_ready(tx_ready), .out_row(tx_row), .out_col(tx_col),
@@ -235,7 +243,7 @@ module dtmf_top #(
       .U_JUMP(U_JUMP), .U_FRAC(U_FRAC), .C_CONST(C_CONST), .M2(M2), .S2(S2), .M3(M3),
       .S3(S3), .M4(M4), .S4(S4), .GAIN(GAIN), .GAIN_SHIFT(GAIN_SHIFT), .X_SHIFT(X_SHIFT)) u_nrn (
       .clk(clk), .rst(rst), .in_valid(tx_valid), .in_ready(tx_ready),
-      .in_x(32'(tx_value)), .in_t(tx_t), .out_valid(nr_valid), .out_ready(1'b1),
+      .in_x({{(32 - TAX_W){1'b0}}, tx_value}), .in_t(tx_t), .out_valid(nr_valid), .out_ready(1'b1),
       .out_neuron(nr_neuron), .out_t(nr_t), .out_spike(nr_spike), .out_last(nr_last),
       .out_v(nr_v), .out_u(nr_u));
 
@@ -305,7 +313,7 @@ module dtmf_top #(
   frame_packetizer #(.K_MAX(K), .T_MAX(T), .SPK_DEPTH(SPK_DEPTH), .MAG_W(MAG_W),
       .TAX_W(TAX_W), .K_W(8)) u_pack (
       .clk(clk), .rst(rst), .mask(out_mask), .decim_amp(decim[9:0]), .decim_tax(decim[25:16]),
-      .decim_status(decim[41:32]), .rows(8'(R)), .cols(8'(C)),
+      .decim_status(decim[41:32]), .rows(R8), .cols(C8),
       .amp_valid(mg_fire), .amp_k(mg_k), .amp_mag(mg_mag), .amp_last(mg_last), .amp_t(mg_t),
       .tax_valid(tx_fire), .tax_value(tx_value), .tax_last(tx_last), .tax_t(tx_t),
       .nrn_valid(nr_valid), .nrn_neuron(nr_neuron), .nrn_t(nr_t), .nrn_spike(nr_spike),

@@ -17,6 +17,8 @@
 
 #include "Vdtmf_top.h"
 #include "Vdtmf_top___024root.h"
+#include "Vdtmf_top_cc.h"
+#include "Vdtmf_top_cc___024root.h"
 #include "Vdtmf_top_s16.h"
 #include "Vdtmf_top_s16___024root.h"
 #include "eskin/skin_config.h"
@@ -600,6 +602,65 @@ TEST(DtmfTop, LatencyTable) {
               "taxel_reconstruct %lld (256 x 18 + 33)\n",
               kPeriod, (long long)(l3.mg_last - l3.sd_first), (long long)l3.nr_last,
               kStep16 * kPeriod, (long long)(l16.tx_last - l16.mg_last + 33));
+}
+
+// SET_CARRIER_INC (build with CARRIER_CMD = 1): the new carrier table is
+// written to sdft_bank, which clears its window, phases and sums, and
+// applies from the first sample it accepts after the write (sample s, read
+// from the probes). Bound: exact equality with the chain that calls
+// set_carriers() before sample s, for every packet before and after.
+TEST(DtmfTop, CarrierCommandReloadsTheDft) {
+  const auto& scene = default_scene();
+  auto codes = scene_codes12(scene);
+  const size_t n = 6000;
+  codes.resize(n + 64);
+  const uint16_t decim = 35;
+  auto cfg = chain_config<Chain3>(scene, 1, decim, 7);
+  const uint32_t new_inc = eskin::hls::sdft_phase_increment(2200.0, scene.skin.adc.rate_hz);
+  ASSERT_NE(new_inc, cfg.sdft.inc[0]);
+
+  Board<Vdtmf_top_cc> b(codes);
+  eskin::link::LinkEncoder enc;
+  b.run_until_sample(1500);
+  const size_t loads_before = b.carrier_loads.size();
+  b.send(enc.set_carrier_inc(0, new_inc));
+  b.run_until_sample(n + 63);
+  expect_clean_run(b);
+  ASSERT_EQ(b.carrier_loads.size(), loads_before + 1) << "one reload";
+  const uint64_t load = b.carrier_loads.back();
+  uint32_t s = 0;
+  for (const auto& [t, e] : b.events)
+    if (e.adc > load) { s = t; break; }
+  ASSERT_GT(s, 1500u);
+  ASSERT_LT(s, 1600u);
+
+  Chain3 chain(cfg);
+  auto want = run_chain(chain, codes, s);
+  auto next = cfg.sdft;
+  next.inc[0] = new_inc;
+  ASSERT_TRUE(chain.set_carriers(next));
+  // Continue the same chain from sample s.
+  {
+    std::vector<uint16_t> tail(codes.begin() + s, codes.begin() + long(n));
+    auto pk = std::make_unique<Chain3::Packet[]>(3);
+    Chain3::Packet(&p3)[3] = *reinterpret_cast<Chain3::Packet(*)[3]>(pk.get());
+    for (size_t i = 0; i < tail.size(); ++i) {
+      const int np = chain.push(tail[i], uint32_t(s + i), p3);
+      for (int j = 0; j < np; ++j)
+        want.push_back({p3[j].type, p3[j].t, {p3[j].payload, p3[j].payload + p3[j].len}});
+    }
+  }
+  expect_same_packets(want, keys(b.received()), uint32_t(n) - decim, decim, kDataTypes, 3);
+  // The carrier really changed: amplitude 0 after the reload differs from
+  // what the old table gives on the same samples.
+  Chain3 old(cfg);
+  const auto old_pk = run_chain(old, codes, n);
+  int differ = 0;
+  const auto a_new = of_type(want, eskin::link::kAmplitudes, uint32_t(n), decim);
+  const auto a_old = of_type(old_pk, eskin::link::kAmplitudes, uint32_t(n), decim);
+  for (size_t i = 0; i < a_new.size() && i < a_old.size(); ++i)
+    if (a_new[i].t > s && !(a_new[i] == a_old[i])) ++differ;
+  EXPECT_GT(differ, 10);
 }
 
 }  // namespace
