@@ -255,7 +255,8 @@ TEST(GoldenGhostFilter, EqualRectangleIsAmbiguous) {
 // rise first exceeds onset, its first fitting frame). The filter must
 // wait (pending() seen true) and decide on the rise since onset, which
 // tells the diagonals apart (|g_a - g_b| * ramp fraction / 2 > pair_tol
-// long before the ramps end).
+// long before the ramps end); and later in the ramps, when the 32-frame
+// rises are ambiguous again, keep the active diagonal (ghost_filter.h 2''a).
 // Checked: (1) no ghost in any frame (every active site is a touch that has
 // started); (2) from the end of the ramps on, exactly the 2 true sites and
 // not ambiguous; (3) values: noise-free, each site owns its row and its
