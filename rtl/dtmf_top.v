@@ -53,7 +53,7 @@ module dtmf_top #(
     parameter integer TAX_RECIP_SHIFT = 12,
     parameter integer STEP = 1,
     parameter integer TOKEN_FIFO = 0,   // DFT -> magnitude frame buffer depth (0: none)
-    parameter integer CARRIER_CMD = 0,  // 1: SET_CARRIER_INC reloads the DFT carriers (+~450 LCs)
+    parameter integer CARRIER_CMD = 0,  // 1: SET_CARRIER_INC reloads the DFT carriers (+~500 LCs)
     // Reset values of the command registers (docs/protocol.md): output mask
     // (amplitudes, taxels, spikes, periodic status) and decimations in steps.
     parameter [3:0] MASK = 4'b1111,
