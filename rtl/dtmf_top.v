@@ -4,15 +4,21 @@
 //   carriers, window N) -> step gate (every STEP-th sample) ->
 //   carrier_magnitude -> taxel_reconstruct (R x C, conductance g, UQ1.15) ->
 //   izhikevich_layer (one RA neuron per taxel) -> frame_packetizer ->
-//   link_framer -> uart_tx --> host;   host --> uart_rx (commands).
+//   link_framer -> uart_tx --> host;   host --> uart_rx -> cmd_decoder
+//   (output mask, decimations, status requests; carriers if CARRIER_CMD).
+// TOKEN_FIFO > 0 inserts a frame buffer (token_fifo) after the step gate,
+// for skins whose K * 26 magnitude cycles exceed a sample period (16x16).
+// Default parameters: the default scene (scenes/neuroskin2.yaml, 3x3) on an
+// iCE40 UP5K at 12 MHz (docs/fpga.md: build, figures, latency table).
 //
 // The bit-exact spec of the whole path, down to the packet payloads, is
 // hls/dtmf_chain.h; tests/rtl/dtmf_top_test.cpp compares them byte for byte.
 //
 // Sample format: the AD7476A gives 12-bit codes; a 10-bit scene code c10 is
 // seen as c10 << 2 (left aligned). x = code - 2048 (XW-bit signed). The
-// magnitude shift MAG_SHIFT = 2 for N = 32 undoes the left alignment: mag is
-// the window-sum magnitude in 10-bit code units (max N * 512 * G = 16384).
+// magnitude shift MAG_SHIFT = 2 undoes the left alignment: mag is the
+// window-sum magnitude in 10-bit code units (max N * 512: 16384 for N = 32;
+// for N = 128 only a full-scale square wave would saturate at 65535).
 //
 // Timestamps: every frame carries t, the ADC sample counter of the sample
 // it was computed from. The stream tokens have no room for it, so tag_fifo
