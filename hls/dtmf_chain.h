@@ -4,7 +4,7 @@
 // these packets (type, t, payload), in this order per type.
 //
 // Per ADC sample (12-bit unsigned code from the AD7476A, sample counter t):
-//   x = code - 2048 (signed, XW bits)                     [12-bit codes]
+//   x = code - 2048 (signed, XW = 12 bits)                [12-bit codes]
 //   SdftBank<K, N, XW, CW, TW, ACC_W>: K tokens {k, re, im}
 //   every cfg.step-th sample (a "step"; the first sample is one):
 //     CarrierMagnitude<ACC_W, MAG_W, MAG_SHIFT>: K magnitudes (u16)
@@ -72,7 +72,9 @@ struct DtmfChainConfig {
   uint8_t mask = kMaskAmplitudes | kMaskTaxels | kMaskSpikes;
 };
 
-template <int R, int C, int N, int XW = 13, int CW = 16, int TW = 10, int ACC_W = 24,
+// Template defaults = dtmf_top's parameter defaults (ACC_W = 18 fits N <= 32;
+// in general ACC_W >= XW + 1 + ceil(log2 N), checked by SdftBank).
+template <int R, int C, int N, int XW = 12, int CW = 16, int TW = 10, int ACC_W = 18,
           int MAG_W = 16, int MAG_SHIFT = 2, int TAX_W = 16, int MAX_SPIKES = 512>
 class DtmfChain {
  public:
