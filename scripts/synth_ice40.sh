@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Synthesises one rtl/ module for the iCE40 UP5K with Yosys (multipliers on
 # SB_MAC16: -dsp) and, with --pnr, places and routes it with nextpnr-ice40
-# and checks that it fits and meets the clock it needs.
+# and checks that it fits and meets the clock it needs; the bitstream is
+# then packed with icepack into OUT/TOP.bin.
 #
 #   scripts/synth_ice40.sh TOP [--param NAME=VALUE]... [--pnr] [--freq MHZ]
 #                              [--pcf FILE] [--out DIR]
@@ -34,7 +35,9 @@ for p in "${params[@]+"${params[@]}"}"; do
 done
 # The top comes from rtl/TOP.v (or a path given as TOP); the modules it
 # instantiates are found as rtl/NAME.v by `hierarchy -libdir`.
-yosys -q -l "$out/yosys.log" -p "read_verilog -sv $src; hierarchy -libdir $root/rtl -top $top; $chparam \
+# Parameters are set before elaboration, so `hierarchy` derives the
+# submodules from the overridden values.
+yosys -q -l "$out/yosys.log" -p "read_verilog -sv $src; $chparam hierarchy -libdir $root/rtl -top $top; \
   synth_ice40 -dsp -top $top -json $out/$top.json; tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+$1\s" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}'; }
 lc=$(cells SB_LUT4); dsp=$(cells SB_MAC16); bram=$(cells SB_RAM40_4K); spram=$(cells SB_SPRAM256KA)
@@ -46,6 +49,7 @@ if [ "$pnr" -eq 1 ]; then
   nextpnr-ice40 --up5k --package sg48 --json "$out/$top.json" --asc "$out/$top.asc" \
     "${pcfarg[@]}" --freq "$freq" --report "$out/report.json" --seed 1 -q \
     >"$out/nextpnr.log" 2>&1 || { tail -20 "$out/nextpnr.log" >&2; exit 1; }
+  icepack "$out/$top.asc" "$out/$top.bin"
   used=$(jq '.utilization.ICESTORM_LC.used' "$out/report.json")
   avail=$(jq '.utilization.ICESTORM_LC.available' "$out/report.json")
   # Fmax is keyed by the internal clock net name, not the port name.
