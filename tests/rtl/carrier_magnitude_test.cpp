@@ -142,7 +142,9 @@ void check_model(int n_tokens, uint64_t seed) {
   ASSERT_EQ(s.out_cycle.size(), tokens.size());
   for (size_t i = 0; i < tokens.size(); ++i) {
     ASSERT_EQ(s.out_cycle[i] - s.in_cycle[i], nb + 8) << "latency, token " << i;
-    if (i > 0) ASSERT_EQ(s.in_cycle[i] - s.in_cycle[i - 1], nb + 9) << "II, token " << i;
+    if (i > 0) {
+      ASSERT_EQ(s.in_cycle[i] - s.in_cycle[i - 1], nb + 9) << "II, token " << i;
+    }
   }
 }
 
