@@ -11,6 +11,7 @@
 #include <deque>
 #include <random>
 
+#include "clocked_dut.h"
 #include "Vizhikevich_layer.h"
 #include "Vizhikevich_layer_alt.h"
 #include "hls/izhikevich_layer.h"
@@ -26,24 +27,12 @@ constexpr int kLatency = 11;  // input handshake -> out_valid (cycles)
 constexpr int kII = 12;       // cycles per neuron update, output always ready
 
 template <class V>
-struct Dut {
-  V m;
-  uint64_t cycle = 0;
-  void tick() {
-    m.clk = 0;
-    m.eval();
-    m.clk = 1;
-    m.eval();
-    ++cycle;
-  }
+struct Dut : ClockedDut<V> {
+  using ClockedDut<V>::m;
+  using ClockedDut<V>::tick;
   // Reset, then count the initialisation cycles until in_ready.
   int reset() {
-    m.rst = 1;
-    m.in_valid = 0;
-    m.out_ready = 0;
-    tick();
-    tick();
-    m.rst = 0;
+    ClockedDut<V>::reset();
     int n = 0;
     for (;;) {
       m.clk = 0;

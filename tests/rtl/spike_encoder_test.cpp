@@ -7,6 +7,7 @@
 #include <deque>
 #include <random>
 
+#include "clocked_dut.h"
 #include "Vspike_encoder.h"
 #include "hls/spike_encoder.h"
 
@@ -14,25 +15,7 @@ namespace {
 
 using eskin::hls::SpikeEncoderIn;
 
-struct Dut {
-  Vspike_encoder m;
-  uint64_t cycle = 0;
-  void tick() {
-    m.clk = 0;
-    m.eval();
-    m.clk = 1;
-    m.eval();
-    ++cycle;
-  }
-  void reset() {
-    m.rst = 1;
-    m.in_valid = 0;
-    m.out_ready = 0;
-    tick();
-    tick();
-    m.rst = 0;
-  }
-};
+using Dut = ClockedDut<Vspike_encoder>;
 
 // Bound: bit-exact words (pure packing), same order, none lost or invented.
 TEST(SpikeEncoderRtl, MatchesHlsUnderBackpressure) {

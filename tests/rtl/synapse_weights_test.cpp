@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "clocked_dut.h"
 #include "Vsynapse_weights.h"
 #include "hls/synapse_weights.h"
 
@@ -20,24 +21,10 @@ using Kernel = eskin::hls::SynapseWeights<kIn, kOut, 16>;
 using eskin::hls::SynapseIn;
 using eskin::hls::SynapseOut;
 
-struct Dut {
-  Vsynapse_weights m;
-  uint64_t cycle = 0;
-  void tick() {
-    m.clk = 0;
-    m.eval();
-    m.clk = 1;
-    m.eval();
-    ++cycle;
-  }
+struct Dut : ClockedDut<Vsynapse_weights> {
   void reset() {
-    m.rst = 1;
-    m.in_valid = 0;
-    m.out_ready = 0;
     m.cfg_we = 0;
-    tick();
-    tick();
-    m.rst = 0;
+    ClockedDut::reset();
   }
   void write_weight(Kernel& k, int i, int j, int16_t w) {
     m.clk = 0;
