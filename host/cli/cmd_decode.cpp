@@ -85,10 +85,16 @@ std::vector<short> read_wav(const std::string& path, double& rate) {
 
 int run_decode(const DecodeArgs& a) {
   SkinConfig skin = sim::load_skin(a.skin);
-  // A scene file (it has a duration) also carries decoder settings: use
-  // them, and let a broken scene fail loudly rather than fall back.
+  // A scene file (it has a duration) also carries decoder and neuron
+  // settings: use them, and let a broken scene fail loudly rather than fall
+  // back to defaults.
   DecoderConfig dec;
-  if (YAML::LoadFile(a.skin)["duration_s"]) dec = sim::load_scene(a.skin).decoder;
+  NeuronConfig neuron;
+  if (YAML::LoadFile(a.skin)["duration_s"]) {
+    const sim::Scene scene = sim::load_scene(a.skin);
+    dec = scene.decoder;
+    neuron = scene.neuron;
+  }
   if (!a.variant.empty()) dec.variant = dft_variant_from_string(a.variant);
   if (a.window > 0) dec.window = a.window;
   if (a.hop > 0) dec.hop = a.hop;
@@ -109,7 +115,6 @@ int run_decode(const DecodeArgs& a) {
   opt.taxels = a.taxels || a.spikes;
   opt.spikes = a.spikes;
   opt.ghost_correct = !a.no_ghost;
-  NeuronConfig neuron;
   golden::GoldenDecoder d(skin, dec, neuron, opt);
   const int shift = 16 - skin.adc.bits;
   const int half = 1 << (skin.adc.bits - 1);
