@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "cli/csv_fields.h"
 #include "host/golden/golden_decoder.h"
 #include "sim/scene.h"
 
@@ -125,13 +126,11 @@ int run_decode(const DecodeArgs& a) {
     const golden::Frame& f = d.frame();
     line = fmt::format("{{\"sample\":{},\"t_ms\":{:.4f},\"amp_lsb\":[", f.sample,
                        1000.0 * double(f.sample) / rate);
-    for (int k = 0; k < f.amp_lsb.size(); ++k) line += fmt::format("{}{:.6g}", k ? "," : "", f.amp_lsb[k]);
+    line += join(f.amp_lsb);
     line += "]";
     if (opt.taxels) {
       line += ",\"pressure_kpa\":[";
-      for (int i = 0; i < f.pressure.rows(); ++i)
-        for (int j = 0; j < f.pressure.cols(); ++j)
-          line += fmt::format("{}{:.6g}", (i || j) ? "," : "", f.pressure(i, j));
+      line += join(f.pressure);
       line += "]";
     }
     if (opt.spikes) {

@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "cli/command.h"
+#include "cli/csv_fields.h"
 #include "host/golden/decode_score.h"
 #include "host/golden/golden_decoder.h"
 #include "host/golden/izhikevich_layer.h"
@@ -25,19 +26,6 @@ struct GoldenArgs {
   int hop = 0;
   bool no_ghost = false;
 };
-
-std::string join(const Eigen::VectorXd& v) {
-  std::string s;
-  for (int i = 0; i < v.size(); ++i) s += fmt::format("{}{:.6g}", i ? "," : "", v[i]);
-  return s;
-}
-
-std::string join(const Eigen::MatrixXd& m) {  // row-major
-  std::string s;
-  for (int i = 0; i < m.rows(); ++i)
-    for (int j = 0; j < m.cols(); ++j) s += fmt::format("{}{:.6g}", (i || j) ? "," : "", m(i, j));
-  return s;
-}
 
 int run_golden(const GoldenArgs& a) {
   sim::Scene scene = sim::load_scene(a.scene);

@@ -212,6 +212,21 @@ TEST(CarrierDemix, KernelMatchesDoubleDemixOfTheSameSums) {
               worst_ratio);
 }
 
+// The K + 1 window sums of a sample as complex values (the last is the DC
+// sum), and per demix input component the magnitude bound |sum| + 1 that
+// component_bound() scales its rounding terms by.
+void demix_inputs(const Bank::Token* sums, std::vector<std::complex<double>>& acc,
+                  std::vector<double>& b_abs) {
+  acc.assign(size_t(kK + 1), {});
+  b_abs.assign(size_t(kDim), 0.0);
+  for (int c = 0; c <= kK; ++c) {
+    acc[size_t(c)] = {double(sums[c].re), double(sums[c].im)};
+    const double a = std::abs(acc[size_t(c)]) + 1;
+    if (c < kK) b_abs[size_t(2 * c)] = b_abs[size_t(2 * c + 1)] = a;
+    else b_abs[size_t(2 * kK)] = a;
+  }
+}
+
 // Sum-domain error of sdft_bank per sum, from its derived amplitude bound.
 double sdft_sum_error(double xmax) {
   return eskin::hls::sdft_amplitude_error_bound(eskin::hls::SdftWidths{}, xmax) * kN / 2;
@@ -237,14 +252,9 @@ TEST(CarrierDemix, DefaultSceneMatchesGoldenLsDemix) {
   double max_err = 0, max_amp = 0, max_bound = 0;
   run_pipeline(freqs, xs, [&](size_t n, const Bank::Token* sums, const Demix::Token* out) {
     golden->push(double(xs[n]));
-    std::vector<std::complex<double>> acc(static_cast<size_t>(kK + 1));
-    std::vector<double> b_abs(static_cast<size_t>(kDim));
-    for (int c = 0; c <= kK; ++c) {
-      acc[size_t(c)] = {double(sums[c].re), double(sums[c].im)};
-      const double a = std::abs(acc[size_t(c)]) + 1;
-      if (c < kK) b_abs[size_t(2 * c)] = b_abs[size_t(2 * c + 1)] = a;
-      else b_abs[size_t(2 * kK)] = a;
-    }
+    std::vector<std::complex<double>> acc;
+    std::vector<double> b_abs;
+    demix_inputs(sums, acc, b_abs);
     const auto bound = component_bound(m_true, acc, b_abs, e_sdft);
     for (int k = 0; k < kK; ++k) {
       const double mag = 2.0 / kN * std::hypot(double(out[k].re), double(out[k].im));
@@ -278,14 +288,9 @@ TEST(CarrierDemix, LoneToneDoesNotLeak) {
   double leak_raw = 0, leak_demixed = 0, worst_ratio = 0, own = 0;
   run_pipeline(kThesis, xs, [&](size_t n, const Bank::Token* sums, const Demix::Token* out) {
     if (n < kN) return;  // window not full yet
-    std::vector<std::complex<double>> acc(static_cast<size_t>(kK + 1));
-    std::vector<double> b_abs(static_cast<size_t>(kDim));
-    for (int c = 0; c <= kK; ++c) {
-      acc[size_t(c)] = {double(sums[c].re), double(sums[c].im)};
-      const double a = std::abs(acc[size_t(c)]) + 1;
-      if (c < kK) b_abs[size_t(2 * c)] = b_abs[size_t(2 * c + 1)] = a;
-      else b_abs[size_t(2 * kK)] = a;
-    }
+    std::vector<std::complex<double>> acc;
+    std::vector<double> b_abs;
+    demix_inputs(sums, acc, b_abs);
     const auto bound = component_bound(m_true, acc, b_abs, e_sdft);
     for (int k = 0; k < kK; ++k) {
       const double raw = 2.0 / kN * std::abs(acc[size_t(k)]);
