@@ -143,6 +143,19 @@ module cmd_decoder #(
     sat_inc = (x == 16'hFFFF) ? x : x + 16'd1;
   endfunction
 
+  // Error and command counters: cleared at reset and by CLEAR_COUNTERS.
+  task automatic clear_counters;
+    begin
+      crc_errors         <= 16'd0;
+      frame_errors       <= 16'd0;
+      accepted           <= 16'd0;
+      rejected           <= 16'd0;
+      last_reject_type   <= 8'd0;
+      last_reject_reason <= 8'd0;
+      last_reject_seq    <= 8'd0;
+    end
+  endtask
+
   always @(posedge clk) begin
     cfg_changed <= 1'b0;
     status_req  <= 1'b0;
@@ -162,13 +175,7 @@ module cmd_decoder #(
       neuron      <= NEURON_INIT;
       out_mask    <= MASK_INIT[3:0];
       decim       <= DECIM_INIT;
-      crc_errors  <= 16'd0;
-      frame_errors <= 16'd0;
-      accepted    <= 16'd0;
-      rejected    <= 16'd0;
-      last_reject_type   <= 8'd0;
-      last_reject_reason <= 8'd0;
-      last_reject_seq    <= 8'd0;
+      clear_counters();
     end else begin
       // A byte lost by the UART belongs to the frame being received (or
       // about to start): that frame cannot be trusted.
@@ -235,15 +242,7 @@ module cmd_decoder #(
             8'h81, 8'h82, 8'h83, 8'h85: ;
             8'h84: out_mask <= pb0[3:0];
             8'h86: status_req <= 1'b1;
-            default: begin  // 8'h87 CLEAR_COUNTERS
-              crc_errors         <= 16'd0;
-              frame_errors       <= 16'd0;
-              accepted           <= 16'd0;
-              rejected           <= 16'd0;
-              last_reject_type   <= 8'd0;
-              last_reject_reason <= 8'd0;
-              last_reject_seq    <= 8'd0;
-            end
+            default: clear_counters();  // 8'h87 CLEAR_COUNTERS
           endcase
         end
       end
