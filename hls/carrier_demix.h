@@ -77,7 +77,7 @@ struct CarrierDemixConfig {
 template <int K_MAX, int N, int ACC_W = 24, int OUT_W = 24, int TW = 10, int SW = 16,
           int CW = 16, int CF = 14>
 class CarrierDemix {
-  static_assert(K_MAX >= 1 && K_MAX <= 16, "K_MAX must be 1..16");
+  static_assert(K_MAX >= 1 && K_MAX <= 64, "K_MAX must be 1..64 (2K+1 <= 129 terms: sums < 2^(ACC_W + CW + 8))");
   static_assert(N >= 3, "window N must be >= 3 (2 K + 1 <= N is checked by the builder)");
   static_assert(ACC_W >= 2 && ACC_W <= 32, "ACC_W must be 2..32");
   static_assert(OUT_W >= 2 && OUT_W <= 32, "OUT_W must be 2..32");

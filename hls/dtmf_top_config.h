@@ -9,6 +9,7 @@
 // rest of the tree; sim/dtmf_top_spec.h fills the spec from a scene.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -17,9 +18,10 @@
 #include <utility>
 #include <vector>
 
+#include "hls/carrier_demix_config.h"
+#include "hls/dtmf_chain.h"
 #include "hls/izhikevich_layer_config.h"
 #include "hls/sdft_bank_config.h"
-#include "hls/taxel_reconstruct.h"
 
 namespace eskin::hls {
 
@@ -31,9 +33,16 @@ struct DtmfTopSpec {
   int adc_bits = 10;               // the scene's ADC; codes reach the top left-aligned to 12
   double full_carrier_lsb = 155.15;  // one full carrier at the ADC, in adc_bits LSB
   int window = 32;                 // N
+  bool demix = true;               // carriers off bin centres: joint LS demixing
+  bool ghost = true;               // multi-touch ghost correction
+  double ghost_onset_g = 0.05, ghost_release_g = 0.05, ghost_pair_tol_g = 0.02;
+  double frame_ms = 1.0;           // one frame (and neuron step) per frame_ms
+  bool spikes = true;              // the scene wants spikes: neurons on
   std::string neuron_preset = "RA";
+  bool neuron_change = false;      // receptor input: rectified change (else level)
   double neuron_input_scale = 10.0;  // taxel g (0..1) -> neuron input units
-  bool spikes = true;              // the scene wants spikes
+  std::string layer2_preset = "RS";
+  double layer2_centre = 20.0, layer2_surround = -4.0;
   long clk_hz = 12000000;          // FPGA clock
   long baud = 3000000;
 };
@@ -41,19 +50,6 @@ struct DtmfTopSpec {
 // A Verilog parameter override: value in Verilog syntax (e.g. "16'd35").
 struct VerilogParam {
   std::string name, value;
-};
-
-// Derived plan: what the top is built with (sizes, widths, step, constants).
-struct DtmfTopPlan {
-  DtmfTopSpec spec;
-  int K = 0, T = 0, N = 0;
-  int acc_w = 0, mag_shift = 0;
-  int step = 1;          // samples per processing step
-  int token_fifo = 0;    // DFT -> magnitude frame buffer (0: none)
-  uint16_t decim = 35;   // amplitude/taxel packets and spike windows, in steps
-  std::vector<uint32_t> carrier_inc;
-  uint16_t tax_recip = 0;
-  IzhikevichConfig neuron;
 };
 
 namespace dtmf_top_detail {
@@ -64,99 +60,111 @@ inline int clog2(long v) {
 }
 }  // namespace dtmf_top_detail
 
+// Derived plan: sizes, widths, step and every constant of the chain.
+template <class S>
+struct DtmfTopPlan {
+  DtmfTopSpec spec;
+  DtmfChainConfig<S> chain;
+  double full_mag = 0;   // one full carrier in magnitude units
+  int lookback = 1;      // ghost filter history, frames
+};
+
+constexpr int kSynapseFrac = 8;  // synapse weights: int16, 8 fraction bits
+
 // Throws std::invalid_argument naming the field when the spec cannot be
-// built (sizes, carriers, neuron constants).
-inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
-  using dtmf_top_detail::clog2;
-  DtmfTopPlan p;
+// built (sizes, carriers, demixing, neuron constants).
+template <class S>
+DtmfTopPlan<S> make_dtmf_top_plan(const DtmfTopSpec& s) {
+  constexpr int K = S::K;
+  DtmfTopPlan<S> p;
   p.spec = s;
-  p.K = s.rows + s.cols;
-  p.T = s.rows * s.cols;
-  p.N = s.window;
-  if (s.rows < 1 || s.cols < 1 || p.K > 255)
-    throw std::invalid_argument("skin.rows/cols: expected 1..254 carriers in all, got " +
-                                std::to_string(p.K));
-  if (int(s.carrier_hz.size()) != p.K)
-    throw std::invalid_argument("skin.carriers: expected " + std::to_string(p.K) +
+  auto& c = p.chain;
+  if (s.rows != S::R || s.cols != S::C)
+    throw std::invalid_argument("skin.rows/cols: the chain is built for " + std::to_string(S::R) +
+                                "x" + std::to_string(S::C) + ", got " + std::to_string(s.rows) +
+                                "x" + std::to_string(s.cols));
+  if (s.window != S::N)
+    throw std::invalid_argument("decoder.window: the chain is built for N = " +
+                                std::to_string(S::N) + ", got " + std::to_string(s.window));
+  if (int(s.carrier_hz.size()) != K)
+    throw std::invalid_argument("skin.carriers: expected " + std::to_string(K) +
                                 " frequencies, got " + std::to_string(s.carrier_hz.size()));
   if (s.adc_bits < 1 || s.adc_bits > 12)
     throw std::invalid_argument("skin.adc.bits: expected 1..12 (AD7476A), got " +
                                 std::to_string(s.adc_bits));
-  const int xw = 12;
-  p.acc_w = xw + 1 + clog2(p.N);
-  p.mag_shift = 12 - s.adc_bits;
-  for (double f : s.carrier_hz) p.carrier_inc.push_back(sdft_phase_increment(f, s.sample_hz));
-  // Conductance taxels: recip = 2^27 / (N/2 * full carrier), in adc_bits LSB.
-  const double full = p.N / 2.0 * s.full_carrier_lsb;
-  const double recip = std::nearbyint(std::ldexp(1.0, 15 + 12) / full);
-  if (!(recip >= 1 && recip <= 65535))
-    throw std::invalid_argument("skin.amp_gain: full-carrier magnitude " + std::to_string(full) +
-                                " gives taxel reciprocal " + std::to_string(recip) +
-                                ", expected 1..65535");
-  p.tax_recip = uint16_t(recip);
-  // Cycle budget per processed step (docs/fpga.md): magnitudes K x 26,
-  // taxels 7 + T x 18, neurons T x 12; the step is the smallest number of
-  // sample periods that holds the slowest stage.
-  const long period = std::lround(double(s.clk_hz) / s.sample_hz);
-  long busiest = std::max(26L * p.K, 7L + 18L * p.T);
-  if (s.spikes) busiest = std::max(busiest, 12L * p.T);
-  p.step = int((busiest + period - 1) / period);
-  p.token_fifo = 26L * p.K > period ? 1 << clog2(p.K) : 0;
-  const long per_ms = std::lround(s.sample_hz / 1000.0 / p.step);
-  p.decim = uint16_t(std::max(1L, per_ms));
-  p.neuron = make_izhikevich_config(izhikevich_fixed_preset(s.neuron_preset),
-                                    p.step * 1000.0 / s.sample_hz,
-                                    s.neuron_input_scale / 32768.0, 1);
-  return p;
-}
-
-// The chain configuration (hls/dtmf_chain.h) of the same plan.
-template <class Chain>
-typename Chain::Config chain_config(const DtmfTopPlan& p) {
-  typename Chain::Config c;
-  if (Chain::K != p.K) throw std::invalid_argument("chain_config: chain K differs from the plan");
-  c.sdft.carriers = p.K;
-  for (int k = 0; k < p.K; ++k) c.sdft.inc[k] = p.carrier_inc[size_t(k)];
-  c.taxel.rows = uint8_t(p.spec.rows);
-  c.taxel.cols = uint8_t(p.spec.cols);
-  c.taxel.mode = TaxelMode::Conductance;
-  c.taxel.recip_shift = 12;
-  c.taxel.recip = p.tax_recip;
-  c.neuron = p.neuron;
-  c.step = p.step;
-  c.decim_amp = p.decim;
-  c.decim_tax = p.decim;
-  return c;
-}
-
-// dtmf_top's parameter overrides for the plan.
-inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p) {
-  auto i = [](long v) { return std::to_string(v); };
-  auto d16 = [](long v) { return "16'd" + std::to_string(v); };
-  std::string inc = std::to_string(32 * p.K) + "'h";
-  for (int k = p.K - 1; k >= 0; --k) {
-    char b[9];
-    std::snprintf(b, sizeof b, "%08x", unsigned(p.carrier_inc[size_t(k)]));
-    inc += b;
+  c.step = int(std::lround(s.frame_ms * s.sample_hz / 1000.0));
+  if (c.step < 1)
+    throw std::invalid_argument("frame_ms: expected at least one sample per frame, got " +
+                                std::to_string(s.frame_ms) + " ms");
+  const double frame_ms = 1000.0 * c.step / s.sample_hz;
+  // Carriers (+ the DC channel last when demixing).
+  c.demix = s.demix;
+  c.sdft.carriers = s.demix ? K + 1 : K;
+  for (int k = 0; k < K; ++k) c.sdft.inc[k] = sdft_phase_increment(s.carrier_hz[size_t(k)], s.sample_hz);
+  if (s.demix) {
+    c.sdft.inc[K] = 0;
+    const double gain = (std::ldexp(1.0, 15) - 1) / std::ldexp(1.0, 15);  // sdft_bank's G
+    const auto st = make_carrier_demix_config<typename DtmfChain<S>::Demix>(
+        s.carrier_hz, s.sample_hz, gain, c.demix_cfg, c.step, 0);
+    if (!st.ok) throw std::invalid_argument("decoder.variant (demixing): " + st.message);
   }
-  const IzhikevichConfig& n = p.neuron;
-  return {
-      {"CLK_HZ", i(p.spec.clk_hz)},       {"SAMPLE_HZ", i(std::lround(p.spec.sample_hz))},
-      {"BAUD", i(p.spec.baud)},           {"R", i(p.spec.rows)},
-      {"C", i(p.spec.cols)},              {"N", i(p.N)},
-      {"ACC_W", i(p.acc_w)},              {"MAG_SHIFT", i(p.mag_shift)},
-      {"CARRIER_INC", inc},               {"TAX_RECIP", i(p.tax_recip)},
-      {"STEP", i(p.step)},                {"TOKEN_FIFO", i(p.token_fifo)},
-      {"DECIM_AMP", d16(p.decim)},        {"DECIM_TAX", d16(p.decim)},
-      {"V_INIT", i(n.v_init)},            {"U_INIT", i(n.u_init)},
-      {"V_RESET", i(n.v_reset)},          {"U_JUMP", i(n.u_jump)},
-      {"U_FRAC", i(n.u_frac)},            {"C_CONST", i(n.c_const)},
-      {"M2", i(n.m2)},                    {"S2", i(n.s2)},
-      {"M3", i(n.m3)},                    {"S3", i(n.s3)},
-      {"M4", i(n.m4)},                    {"S4", i(n.s4)},
-      {"GAIN", i(n.gain)},                {"GAIN_SHIFT", i(n.gain_shift)},
-      {"X_SHIFT", i(n.x_shift)},
+  // One full carrier in magnitude units: window sum N/2 * A (12-bit codes);
+  // demixing removes the bank's gain G, the plain bank keeps it.
+  const double a12 = s.full_carrier_lsb * std::ldexp(1.0, 12 - s.adc_bits);
+  p.full_mag = S::N / 2.0 * a12 / std::ldexp(1.0, S::MAG_SHIFT) *
+               (s.demix ? 1.0 : (std::ldexp(1.0, 15) - 1) / std::ldexp(1.0, 15));
+  if (!(p.full_mag >= 64 && p.full_mag < 65536))
+    throw std::invalid_argument("skin.amp_gain: one full carrier is " + std::to_string(p.full_mag) +
+                                " magnitude units, expected 64..65535 (resolution / 16 bits)");
+  c.taxel.rows = uint8_t(S::R);
+  c.taxel.cols = uint8_t(S::C);
+  int rs = 0;
+  while (std::ldexp(1.0, 15 + rs) / p.full_mag < 16384.0) ++rs;
+  c.taxel.recip_shift = uint8_t(rs);
+  c.taxel.recip = uint16_t(std::lround(std::ldexp(1.0, 15 + rs) / p.full_mag));
+  // Ghost filter: thresholds from g units; lookback one window of frames.
+  c.ghost = s.ghost;
+  p.lookback = std::max(1, S::N / c.step);
+  if (p.lookback > S::L_MAX)
+    throw std::invalid_argument("decoder.window: ghost lookback " + std::to_string(p.lookback) +
+                                " frames exceeds L_MAX " + std::to_string(S::L_MAX));
+  auto mag_units = [&](double g, const char* field) {
+    const double v = std::floor(g * p.full_mag);
+    if (!(v >= 0 && v < 65536))
+      throw std::invalid_argument(std::string(field) + ": expected 0 <= g < 1, got " +
+                                  std::to_string(g));
+    return uint16_t(v);
   };
+  c.ghost_cfg.rows = uint8_t(S::R);
+  c.ghost_cfg.cols = uint8_t(S::C);
+  c.ghost_cfg.lookback = uint16_t(p.lookback);
+  c.ghost_cfg.improved = true;
+  c.ghost_cfg.onset = mag_units(s.ghost_onset_g, "decoder.ghost_onset");
+  c.ghost_cfg.pair_tol = mag_units(s.ghost_pair_tol_g, "decoder.ghost_pair_tol");
+  c.ghost_cfg.release = uint16_t(std::min(65535.0, std::ceil(s.ghost_release_g * 32768.0)));
+  // Neurons: one step per frame.
+  c.neurons = s.spikes;
+  const double lsb = s.neuron_input_scale / 32768.0 / (s.neuron_change ? frame_ms : 1.0);
+  c.neuron[0] = make_izhikevich_config(izhikevich_fixed_preset(s.neuron_preset), frame_ms, lsb, 1);
+  c.neuron[0].input_change = s.neuron_change;
+  c.neuron[1] = make_izhikevich_config(izhikevich_fixed_preset(s.layer2_preset), frame_ms,
+                                       std::ldexp(1.0, -kSynapseFrac), 0);
+  c.synapse.rows = uint8_t(S::R);
+  c.synapse.cols = uint8_t(S::C);
+  auto weight = [](double w, const char* field) {
+    const double q = std::nearbyint(std::ldexp(w, kSynapseFrac));
+    if (!(q >= -32768 && q <= 32767))
+      throw std::invalid_argument(std::string(field) + ": expected |w| < 128, got " +
+                                  std::to_string(w));
+    return int16_t(q);
+  };
+  for (int d = 0; d < 9; ++d)
+    c.synapse.w[d] = weight(d == 4 ? s.layer2_centre : s.layer2_surround,
+                            d == 4 ? "neuron.layer2.centre" : "neuron.layer2.surround");
+  c.decim_amp = 1;
+  c.decim_tax = 1;
+  c.mask = kMaskAmplitudes | kMaskTaxels | (s.spikes ? kMaskSpikes : 0);
+  return p;
 }
 
 // "-GNAME=VALUE" arguments for verilator.
