@@ -1,3 +1,4 @@
+`default_nettype none
 // adc_ad7476: SPI master for NCH AD7476A ADCs sharing CS and SCLK (the
 // Digilent Pmod AD1 has two), 12-bit sample stream out.
 //
@@ -134,3 +135,4 @@ module adc_ad7476 #(
     end
   end
 endmodule
+`default_nettype wire

@@ -1,3 +1,4 @@
+`default_nettype none
 // link_framer: packet request in, COBS-framed host-link bytes out (to
 // uart_tx). Frame format: docs/protocol.md.
 //
@@ -224,3 +225,4 @@ module link_framer (
     end
   end
 endmodule
+`default_nettype wire

@@ -53,17 +53,17 @@ template class eskin::hls::GoertzelBlockBank<6, 32>;
 
 #if __has_include("hls/spike_encoder.h")
 #include "hls/spike_encoder.h"
-template struct eskin::hls::SpikeEncoder<>;
+template class eskin::hls::SpikeEncoder<256>;
 #endif
 
 #if __has_include("hls/synapse_weights.h")
 #include "hls/synapse_weights.h"
-template class eskin::hls::SynapseWeights<9, 4>;
+template class eskin::hls::SynapseWeights<3, 3>;
 #endif
 
 #if __has_include("hls/dtmf_chain.h")
 #include "hls/dtmf_chain.h"
-template class eskin::hls::DtmfChain<3, 3, 32>;
+template class eskin::hls::DtmfChain<eskin::hls::DtmfChainSizes<3, 3, 32>>;
 #endif
 
 #if __has_include("hls/carrier_demix.h")

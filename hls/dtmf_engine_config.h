@@ -1,4 +1,4 @@
-// Host-side, not synthesised: the frame engine's view of a DTMF top plan
+// Host-side, not synthesised (a *_config.h builder): the frame engine's view of a DTMF top plan
 // (hls/dtmf_top_config.h) — the DMEM layout, the KROM words and the symbol
 // table that rtl/ucode/dtmf_chain.fe is assembled with. One function builds
 // all three, so the microprogram, its constants and the HLS chain come from
