@@ -125,6 +125,7 @@ module link_framer (
         default:  // A_EOP
           if (raw_take) begin
             seq    <= seq + 8'd1;
+            aidx   <= 3'd0;
             astate <= A_IDLE;
           end
       endcase

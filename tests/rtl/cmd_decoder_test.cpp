@@ -15,6 +15,7 @@
 //    from what it sent, never read back from the RTL.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -81,8 +82,12 @@ struct Bench {
 
 // What the engine should read for a command: type, seq, len LE, payload.
 std::vector<uint8_t> expected(uint8_t type, uint8_t seq, const std::vector<uint8_t>& payload) {
-  std::vector<uint8_t> e = {type, seq, uint8_t(payload.size()), uint8_t(payload.size() >> 8)};
-  e.insert(e.end(), payload.begin(), payload.end());
+  std::vector<uint8_t> e(4 + payload.size());
+  e[0] = type;
+  e[1] = seq;
+  e[2] = uint8_t(payload.size());
+  e[3] = uint8_t(payload.size() >> 8);
+  std::copy(payload.begin(), payload.end(), e.begin() + 4);
   return e;
 }
 
