@@ -9,7 +9,9 @@
 // quarter sine]. DMEM = [config] ++ [state, zeroed at boot] up to DEND.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -43,6 +45,7 @@ enum DtmfIoPort : uint16_t {
 };
 
 constexpr int kNeuronBlock = 20;  // words of constants per layer (NCS)
+constexpr int kDtmfImemBits = 10;  // microcode: 1024 words (8 EBRs)
 
 // SET_NEURON parameter p (id & 15): its word in the layer block, its range.
 struct NeuronParam {
@@ -109,11 +112,10 @@ struct EngineImage {
   }
 };
 
-template <class S>
-EngineImage dtmf_engine_image(const DtmfTopPlan<S>& plan) {
-  constexpr int K = S::K, R = S::R, C = S::C, T = S::T;
-  const DtmfChainConfig<S>& c = plan.chain;
-  const int ks = c.demix ? K + 1 : K, dim = c.demix ? 2 * K + 1 : 0;
+inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
+  const int K = p.K, R = p.R, C = p.C, T = p.T;
+  const bool demix = p.spec.demix;
+  const int ks = p.ks, dim = demix ? 2 * K + 1 : 0;
   EngineImage im;
   auto sym = [&im](const std::string& n, int64_t v) { im.symbols.emplace_back(n, v); };
   int at = 0;
@@ -126,7 +128,7 @@ EngineImage dtmf_engine_image(const DtmfTopPlan<S>& plan) {
   // ---- configuration (initial values, in KROM order = DMEM order) ----
   alloc("NC", 2 * kNeuronBlock);
   for (int l = 0; l < 2; ++l) {
-    const IzhikevichConfig& n = c.neuron[l];
+    const IzhikevichConfig& n = p.neuron[l];
     const int64_t w[kNeuronBlock] = {n.v_init, n.u_init, n.v_reset, n.u_jump, n.u_frac - 22,
                                      n.c_const, n.m2, n.s2, n.m3, n.s3, n.m4, n.s4, n.gain,
                                      n.gain_shift > 0 ? n.gain_shift : 0,
@@ -134,29 +136,29 @@ EngineImage dtmf_engine_image(const DtmfTopPlan<S>& plan) {
                                      n.input_change ? 1 : 0, 0, 0, 0};
     for (int64_t v : w) put(v);
   }
-  alloc("MASK", 1), put(c.mask);
-  alloc("DECIM", 3), put(c.decim_amp), put(c.decim_tax), put(1000);
-  alloc("THR", 4), put(c.sparse_min), put(c.ghost_cfg.onset), put(c.ghost_cfg.release),
-      put(c.ghost_cfg.pair_tol);
+  alloc("MASK", 1), put(p.mask);
+  alloc("DECIM", 3), put(p.decim_amp), put(p.decim_tax), put(1000);
+  alloc("THR", 4), put(p.sparse_min), put(p.ghost.onset), put(p.ghost.release),
+      put(p.ghost.pair_tol);
   alloc("W", 9);
-  for (int d = 0; d < 9; ++d) put(c.synapse.w[d]);
+  for (int d = 0; d < 9; ++d) put(p.synapse.w[d]);
   alloc("INC", ks);
-  for (int k = 0; k < ks; ++k) put(c.sdft.inc[k]);
+  for (int k = 0; k < ks; ++k) put(p.inc[size_t(k)]);
   alloc("FINC", 2 * K);
-  for (int k = 0; k < K; ++k) put(c.demix ? c.demix_cfg.inc[k] : 0), put(0);
+  for (int k = 0; k < K; ++k) put(demix ? p.demix.inc[size_t(k)] : 0), put(0);
   alloc("COEF", dim * dim);
-  for (int i = 0; i < dim * dim; ++i) put(c.demix_cfg.coef[i]);
+  for (int i = 0; i < dim * dim; ++i) put(p.demix.coef[size_t(i)]);
   im.ncfg = at;
   sym("NCFG", at);
   const int64_t thr = im.symbol("THR");
   sym("ONSET", thr + 1), sym("RELEASE", thr + 2), sym("PAIRTOL", thr + 3);
 
   // ---- state ----
-  const int lk = c.ghost_cfg.lookback * K;
+  const int lk = p.lookback * K;
   alloc("PHASE", 2 * K), alloc("HIST", lk), alloc("HEAD", 1), alloc("REM", K);
   alloc("PEND", T), alloc("SITE", T), alloc("MAG", K), alloc("ROOT", K), alloc("G", T);
   alloc("NS", 6 * T), alloc("S0", T), alloc("S1", T), alloc("X2IN", T);
-  alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * S::MAX_SPIKES), alloc("CB", 8);
+  alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 8);
   alloc("AMPC", 1), alloc("TAXC", 1), alloc("STC", 1);  // consecutive (SET_DECIMATION)
   for (const char* n :
        {"VT", "SELA", "SELT", "WEND", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "PKTDROP",
@@ -179,12 +181,12 @@ EngineImage dtmf_engine_image(const DtmfTopPlan<S>& plan) {
   kc("KC_S16MAX", 32767), kc("KC_S24MIN", -(1 << 23)), kc("KC_S24MAX", (1 << 23) - 1);
   kc("KC_I32MIN", INT32_MIN), kc("KC_I32MAX", INT32_MAX), kc("KC_UMIN", izh::kUMin);
   kc("KC_UMAX", izh::kUMax), kc("KC_VMIN", izh::kVMin), kc("KC_VPEAK", izh::kVPeak);
-  kc("KC_WOFF", izh::kWOffset), kc("KC_RECIP", c.taxel.recip), kc("KC_C", C);
+  kc("KC_WOFF", izh::kWOffset), kc("KC_RECIP", p.taxel.recip), kc("KC_C", C);
   kc("KC_NCS", kNeuronBlock), kc("KC_LAYER1", 1 << 16), kc("KC_MASKRES", 0xE0);
   kc("KC_NCOEF", dim * dim);
   constexpr int kQ = 1 << (10 - 2);  // quarter table of CarrierDemix<..., TW = 10>
   kc("KC_QM1", kQ - 1);
-  kc("KC_SINEQ", c.demix ? c.demix_cfg.qsin[kQ] : 0);
+  kc("KC_SINEQ", demix ? p.demix.qsin[size_t(kQ)] : 0);
   auto table = [&](const std::string& n, auto f, int count) {
     sym(n, int64_t(im.krom.size()));
     for (int i = 0; i < count; ++i) put(f(i));
@@ -196,18 +198,18 @@ EngineImage dtmf_engine_image(const DtmfTopPlan<S>& plan) {
   table("KC_NHI", [](int p) { return neuron_params()[p].hi; }, 16);
   table("KC_NOFF", [](int p) { return neuron_params()[p].word < 0 ? 0 : neuron_params()[p].word; }, 16);
   sym("SINE", int64_t(im.krom.size()));
-  if (c.demix)
+  if (demix)
     for (int e = 0; e <= kQ; e += 2)
-      put(uint32_t(c.demix_cfg.qsin[e] & 0xFFFF) |
-          (e + 1 <= kQ ? uint32_t(c.demix_cfg.qsin[e + 1] & 0xFFFF) << 16 : 0u));
+      put(uint32_t(p.demix.qsin[size_t(e)] & 0xFFFF) |
+          (e + 1 <= kQ ? uint32_t(p.demix.qsin[size_t(e + 1)] & 0xFFFF) << 16 : 0u));
 
   // ---- sizes, flags, arithmetic ----
   sym("K", K), sym("KS", ks), sym("R", R), sym("C", C), sym("T", T), sym("DIM", dim);
-  sym("STEP", c.step), sym("MAXSPK", S::MAX_SPIKES), sym("LK", lk), sym("NCS", kNeuronBlock);
-  sym("DEMIX", c.demix), sym("GHOST", c.ghost), sym("NEURONS", c.neurons);
+  sym("STEP", p.step), sym("MAXSPK", p.max_spikes), sym("LK", lk), sym("NCS", kNeuronBlock);
+  sym("DEMIX", demix), sym("GHOST", p.spec.ghost), sym("NEURONS", p.spec.spikes);
   sym("CF", 14), sym("TW", 10), sym("QUART", kQ);
-  sym("SHL_Q", S::MAG_SHIFT == 0 ? 2 : 0), sym("SHR_Q", S::MAG_SHIFT == 0 ? 0 : 2 * S::MAG_SHIFT - 2);
-  sym("GRND", c.taxel.recip_shift + 14);
+  sym("SHL_Q", p.mag_shift == 0 ? 2 : 0), sym("SHR_Q", p.mag_shift == 0 ? 0 : 2 * p.mag_shift - 2);
+  sym("GRND", p.taxel.recip_shift + 14);
   for (auto [n, v] : std::initializer_list<std::pair<const char*, int>>{
            {"IO_FRAME", kIoFrame},     {"IO_FRAME_T", kIoFrameT},   {"IO_STATUS", kIoStatus},
            {"IO_CMD", kIoCmd},         {"IO_OUT_FREE", kIoOutFree}, {"IO_ADC_T", kIoAdcT},
@@ -219,6 +221,33 @@ EngineImage dtmf_engine_image(const DtmfTopPlan<S>& plan) {
            {"IO_CLEAR", kIoClear}})
     sym(n, v);
   return im;
+}
+
+// dtmf_top's parameter overrides for a plan, its engine image and the path
+// of the assembled microcode ($readmemh file) the build reads.
+inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const EngineImage& im,
+                                                 const std::string& ucode_hex) {
+  using dtmf_top_detail::clog2;
+  const int kw = std::max(1, clog2(long(im.krom.size())));
+  std::string krom = std::to_string(32L << kw) + "'h";
+  for (int w = (1 << kw) - 1; w >= 0; --w) {
+    char b[9];
+    std::snprintf(b, sizeof b, "%08x", unsigned(size_t(w) < im.krom.size() ? im.krom[size_t(w)] : 0u));
+    krom += b;
+  }
+  auto i = [](long v) { return std::to_string(v); };
+  return {{"CLK_HZ", i(p.spec.clk_hz)},
+          {"SAMPLE_HZ", i(std::lround(p.spec.sample_hz))},
+          {"BAUD", i(p.spec.baud)},
+          {"KS", i(p.ks)},
+          {"N", i(p.N)},
+          {"ACC_W", i(p.acc_w)},
+          {"STEP", i(p.step)},
+          {"IW", i(kDtmfImemBits)},
+          {"DW", i(std::max(4, clog2(im.dend)))},
+          {"KW", i(kw)},
+          {"UCODE_HEX", "\"" + ucode_hex + "\""},
+          {"KROM_INIT", krom}};
 }
 
 }  // namespace eskin::hls

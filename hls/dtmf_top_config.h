@@ -52,6 +52,33 @@ struct VerilogParam {
   std::string name, value;
 };
 
+
+// Derived plan: sizes, widths, step and every constant of the chain, for
+// any skin size (host side, vectors); chain_config<S>() turns it into the
+// fixed-size configuration of hls/dtmf_chain.h, dtmf_engine_image() (in
+// hls/dtmf_engine_config.h) into the frame engine's constants.
+struct DtmfTopPlan {
+  DtmfTopSpec spec;
+  int R = 0, C = 0, K = 0, T = 0, N = 0;
+  int ks = 0;            // DFT channels: K (+ DC when demixing)
+  int acc_w = 0;         // DFT window-sum width: 12 + 1 + ceil(log2 N)
+  int mag_shift = 0;     // magnitude units: window sums >> mag_shift
+  int step = 1;          // samples per frame
+  int lookback = 1;      // ghost filter history, frames
+  int max_spikes = 256;  // spike events per packet
+  double full_mag = 0;   // one full carrier in magnitude units
+  std::vector<uint32_t> inc;  // ks phase increments (DC last: 0)
+  CarrierDemixTables demix;   // when spec.demix
+  TaxelReconstructConfig taxel;
+  GhostFilterConfig ghost;
+  IzhikevichConfig neuron[2];  // layer 0 receptors, layer 1 weighted
+  SynapseWeightsConfig synapse;
+  uint16_t decim_amp = 1, decim_tax = 1, sparse_min = 0;
+  uint8_t mask = 0;
+};
+
+constexpr int kSynapseFrac = 8;  // synapse weights: int16, 8 fraction bits
+
 namespace dtmf_top_detail {
 inline int clog2(long v) {
   int b = 0;
@@ -60,74 +87,57 @@ inline int clog2(long v) {
 }
 }  // namespace dtmf_top_detail
 
-// Derived plan: sizes, widths, step and every constant of the chain.
-template <class S>
-struct DtmfTopPlan {
-  DtmfTopSpec spec;
-  DtmfChainConfig<S> chain;
-  double full_mag = 0;   // one full carrier in magnitude units
-  int lookback = 1;      // ghost filter history, frames
-};
-
-constexpr int kSynapseFrac = 8;  // synapse weights: int16, 8 fraction bits
-
 // Throws std::invalid_argument naming the field when the spec cannot be
 // built (sizes, carriers, demixing, neuron constants).
-template <class S>
-DtmfTopPlan<S> make_dtmf_top_plan(const DtmfTopSpec& s) {
-  constexpr int K = S::K;
-  DtmfTopPlan<S> p;
+inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
+  using dtmf_top_detail::clog2;
+  DtmfTopPlan p;
   p.spec = s;
-  auto& c = p.chain;
-  if (s.rows != S::R || s.cols != S::C)
-    throw std::invalid_argument("skin.rows/cols: the chain is built for " + std::to_string(S::R) +
-                                "x" + std::to_string(S::C) + ", got " + std::to_string(s.rows) +
-                                "x" + std::to_string(s.cols));
-  if (s.window != S::N)
-    throw std::invalid_argument("decoder.window: the chain is built for N = " +
-                                std::to_string(S::N) + ", got " + std::to_string(s.window));
-  if (int(s.carrier_hz.size()) != K)
-    throw std::invalid_argument("skin.carriers: expected " + std::to_string(K) +
+  p.R = s.rows, p.C = s.cols, p.K = s.rows + s.cols, p.T = s.rows * s.cols, p.N = s.window;
+  if (s.rows < 1 || s.cols < 1 || p.K > 127 || p.T > 4096)
+    throw std::invalid_argument("skin.rows/cols: expected 1..127 carriers and 1..4096 taxels, got " +
+                                std::to_string(s.rows) + "x" + std::to_string(s.cols));
+  if (int(s.carrier_hz.size()) != p.K)
+    throw std::invalid_argument("skin.carriers: expected " + std::to_string(p.K) +
                                 " frequencies, got " + std::to_string(s.carrier_hz.size()));
   if (s.adc_bits < 1 || s.adc_bits > 12)
     throw std::invalid_argument("skin.adc.bits: expected 1..12 (AD7476A), got " +
                                 std::to_string(s.adc_bits));
-  c.step = int(std::lround(s.frame_ms * s.sample_hz / 1000.0));
-  if (c.step < 1)
+  if (s.window < 4 || s.window > 4096)
+    throw std::invalid_argument("decoder.window: expected 4..4096 samples, got " +
+                                std::to_string(s.window));
+  p.acc_w = 12 + 1 + clog2(p.N);
+  p.mag_shift = clog2(p.N) > 5 ? clog2(p.N) - 5 : 0;
+  p.step = int(std::lround(s.frame_ms * s.sample_hz / 1000.0));
+  if (p.step < 1)
     throw std::invalid_argument("frame_ms: expected at least one sample per frame, got " +
                                 std::to_string(s.frame_ms) + " ms");
-  const double frame_ms = 1000.0 * c.step / s.sample_hz;
+  const double frame_ms = 1000.0 * p.step / s.sample_hz;
   // Carriers (+ the DC channel last when demixing).
-  c.demix = s.demix;
-  c.sdft.carriers = s.demix ? K + 1 : K;
-  for (int k = 0; k < K; ++k) c.sdft.inc[k] = sdft_phase_increment(s.carrier_hz[size_t(k)], s.sample_hz);
+  p.ks = s.demix ? p.K + 1 : p.K;
+  for (double f : s.carrier_hz) p.inc.push_back(sdft_phase_increment(f, s.sample_hz));
   if (s.demix) {
-    c.sdft.inc[K] = 0;
+    p.inc.push_back(0);
     const double gain = (std::ldexp(1.0, 15) - 1) / std::ldexp(1.0, 15);  // sdft_bank's G
-    const auto st = make_carrier_demix_config<typename DtmfChain<S>::Demix>(
-        s.carrier_hz, s.sample_hz, gain, c.demix_cfg, c.step, 0);
+    const auto st = carrier_demix_tables(s.carrier_hz, s.sample_hz, gain, p.N, 64, 10, 16, 16,
+                                         14, p.step, 0, p.demix);
     if (!st.ok) throw std::invalid_argument("decoder.variant (demixing): " + st.message);
   }
   // One full carrier in magnitude units: window sum N/2 * A (12-bit codes);
   // demixing removes the bank's gain G, the plain bank keeps it.
   const double a12 = s.full_carrier_lsb * std::ldexp(1.0, 12 - s.adc_bits);
-  p.full_mag = S::N / 2.0 * a12 / std::ldexp(1.0, S::MAG_SHIFT) *
+  p.full_mag = p.N / 2.0 * a12 / std::ldexp(1.0, p.mag_shift) *
                (s.demix ? 1.0 : (std::ldexp(1.0, 15) - 1) / std::ldexp(1.0, 15));
   if (!(p.full_mag >= 64 && p.full_mag < 65536))
     throw std::invalid_argument("skin.amp_gain: one full carrier is " + std::to_string(p.full_mag) +
                                 " magnitude units, expected 64..65535 (resolution / 16 bits)");
-  c.taxel.rows = uint8_t(S::R);
-  c.taxel.cols = uint8_t(S::C);
+  p.taxel.rows = uint8_t(p.R), p.taxel.cols = uint8_t(p.C);
   int rs = 0;
   while (std::ldexp(1.0, 15 + rs) / p.full_mag < 16384.0) ++rs;
-  c.taxel.recip_shift = uint8_t(rs);
-  c.taxel.recip = uint16_t(std::lround(std::ldexp(1.0, 15 + rs) / p.full_mag));
+  p.taxel.recip_shift = uint8_t(rs);
+  p.taxel.recip = uint16_t(std::lround(std::ldexp(1.0, 15 + rs) / p.full_mag));
   // Ghost filter: thresholds from g units; lookback one window of frames.
-  c.ghost = s.ghost;
-  p.lookback = std::max(1, S::N / c.step);
-  if (p.lookback > S::L_MAX)
-    throw std::invalid_argument("decoder.window: ghost lookback " + std::to_string(p.lookback) +
-                                " frames exceeds L_MAX " + std::to_string(S::L_MAX));
+  p.lookback = std::max(1, p.N / p.step);
   auto mag_units = [&](double g, const char* field) {
     const double v = std::floor(g * p.full_mag);
     if (!(v >= 0 && v < 65536))
@@ -135,22 +145,19 @@ DtmfTopPlan<S> make_dtmf_top_plan(const DtmfTopSpec& s) {
                                   std::to_string(g));
     return uint16_t(v);
   };
-  c.ghost_cfg.rows = uint8_t(S::R);
-  c.ghost_cfg.cols = uint8_t(S::C);
-  c.ghost_cfg.lookback = uint16_t(p.lookback);
-  c.ghost_cfg.improved = true;
-  c.ghost_cfg.onset = mag_units(s.ghost_onset_g, "decoder.ghost_onset");
-  c.ghost_cfg.pair_tol = mag_units(s.ghost_pair_tol_g, "decoder.ghost_pair_tol");
-  c.ghost_cfg.release = uint16_t(std::min(65535.0, std::ceil(s.ghost_release_g * 32768.0)));
+  p.ghost.rows = uint8_t(p.R), p.ghost.cols = uint8_t(p.C);
+  p.ghost.lookback = uint16_t(p.lookback);
+  p.ghost.improved = true;
+  p.ghost.onset = mag_units(s.ghost_onset_g, "decoder.ghost_onset");
+  p.ghost.pair_tol = mag_units(s.ghost_pair_tol_g, "decoder.ghost_pair_tol");
+  p.ghost.release = uint16_t(std::min(65535.0, std::ceil(s.ghost_release_g * 32768.0)));
   // Neurons: one step per frame.
-  c.neurons = s.spikes;
   const double lsb = s.neuron_input_scale / 32768.0 / (s.neuron_change ? frame_ms : 1.0);
-  c.neuron[0] = make_izhikevich_config(izhikevich_fixed_preset(s.neuron_preset), frame_ms, lsb, 1);
-  c.neuron[0].input_change = s.neuron_change;
-  c.neuron[1] = make_izhikevich_config(izhikevich_fixed_preset(s.layer2_preset), frame_ms,
+  p.neuron[0] = make_izhikevich_config(izhikevich_fixed_preset(s.neuron_preset), frame_ms, lsb, 1);
+  p.neuron[0].input_change = s.neuron_change;
+  p.neuron[1] = make_izhikevich_config(izhikevich_fixed_preset(s.layer2_preset), frame_ms,
                                        std::ldexp(1.0, -kSynapseFrac), 0);
-  c.synapse.rows = uint8_t(S::R);
-  c.synapse.cols = uint8_t(S::C);
+  p.synapse.rows = uint8_t(p.R), p.synapse.cols = uint8_t(p.C);
   auto weight = [](double w, const char* field) {
     const double q = std::nearbyint(std::ldexp(w, kSynapseFrac));
     if (!(q >= -32768 && q <= 32767))
@@ -159,12 +166,47 @@ DtmfTopPlan<S> make_dtmf_top_plan(const DtmfTopSpec& s) {
     return int16_t(q);
   };
   for (int d = 0; d < 9; ++d)
-    c.synapse.w[d] = weight(d == 4 ? s.layer2_centre : s.layer2_surround,
+    p.synapse.w[d] = weight(d == 4 ? s.layer2_centre : s.layer2_surround,
                             d == 4 ? "neuron.layer2.centre" : "neuron.layer2.surround");
-  c.decim_amp = 1;
-  c.decim_tax = 1;
-  c.mask = kMaskAmplitudes | kMaskTaxels | (s.spikes ? kMaskSpikes : 0);
+  p.mask = kMaskAmplitudes | kMaskTaxels | (s.spikes ? kMaskSpikes : 0);
   return p;
+}
+
+// The fixed-size configuration of hls/dtmf_chain.h for the plan; the chain's
+// sizes S must be the plan's.
+template <class S>
+DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
+  if (S::R != p.R || S::C != p.C || S::N != p.N)
+    throw std::invalid_argument("chain_config: the chain is built for " + std::to_string(S::R) +
+                                "x" + std::to_string(S::C) + " N " + std::to_string(S::N) +
+                                ", the plan is " + std::to_string(p.R) + "x" +
+                                std::to_string(p.C) + " N " + std::to_string(p.N));
+  if (p.lookback > S::L_MAX || p.max_spikes != S::MAX_SPIKES)
+    throw std::invalid_argument("chain_config: lookback / spike capacity differ from the chain's");
+  DtmfChainConfig<S> c;
+  c.sdft.carriers = p.ks;
+  for (int k = 0; k < p.ks; ++k) c.sdft.inc[k] = p.inc[size_t(k)];
+  c.demix = p.spec.demix;
+  if (c.demix) {
+    c.demix_cfg.carriers = p.K;
+    for (int k = 0; k < p.K; ++k)
+      c.demix_cfg.inc[k] = p.demix.inc[size_t(k)], c.demix_cfg.phase0[k] = p.demix.phase0[size_t(k)];
+    for (size_t i = 0; i < p.demix.qsin.size(); ++i) c.demix_cfg.qsin[i] = p.demix.qsin[i];
+    for (size_t i = 0; i < p.demix.coef.size(); ++i) c.demix_cfg.coef[i] = p.demix.coef[i];
+  }
+  c.taxel = p.taxel;
+  c.ghost = p.spec.ghost;
+  c.ghost_cfg = p.ghost;
+  c.neurons = p.spec.spikes;
+  c.neuron[0] = p.neuron[0];
+  c.neuron[1] = p.neuron[1];
+  c.synapse = p.synapse;
+  c.step = p.step;
+  c.decim_amp = p.decim_amp;
+  c.decim_tax = p.decim_tax;
+  c.sparse_min = p.sparse_min;
+  c.mask = p.mask;
+  return c;
 }
 
 // "-GNAME=VALUE" arguments for verilator.

@@ -38,14 +38,14 @@ struct ChainRun {
 template <class S>
 ChainRun run_chain(const std::string& scene_file) {
   const sim::Scene sc = sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/" + scene_file);
-  const auto plan = hls::make_dtmf_top_plan<S>(sim::dtmf_top_spec(sc));
-  auto chain = std::make_unique<hls::DtmfChain<S>>(plan.chain);
+  const auto plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(sc));
+  auto chain = std::make_unique<hls::DtmfChain<S>>(hls::chain_config<S>(plan));
   EXPECT_TRUE(chain->ok());
 
   DecoderConfig dec = sc.decoder;
-  dec.hop = plan.chain.step;
+  dec.hop = plan.step;
   NeuronConfig neuron = sc.neuron;
-  neuron.dt_ms = 1000.0 * plan.chain.step / sc.skin.adc.rate_hz;
+  neuron.dt_ms = 1000.0 * plan.step / sc.skin.adc.rate_hz;
   golden::GoldenOptions opt;
   opt.spikes = true;
   golden::GoldenDecoder gold(sc.skin, dec, neuron, opt);
@@ -68,7 +68,7 @@ ChainRun run_chain(const std::string& scene_file) {
   // own beyond double rounding).
   const double xmax = 2048.0;
   const double sdft_err = hls::sdft_amplitude_error_bound(hls::SdftWidths{}, xmax);
-  const double rows_norm = plan.chain.demix ? 2.1 : 1.0;
+  const double rows_norm = plan.spec.demix ? 2.1 : 1.0;
   const double sum_max = S::N * xmax;
   r.mag_bound = (rows_norm * (sdft_err + sum_max * std::ldexp(1.0, -15) * (2 * S::K + 1)) + 1.0) /
                     std::ldexp(1.0, S::MAG_SHIFT) + 0.5;
@@ -88,7 +88,7 @@ ChainRun run_chain(const std::string& scene_file) {
   for (size_t n = 0; n < codes.size(); ++n) {
     const int np = chain->push(uint16_t(codes[n] << up), uint32_t(n), pk);
     const bool gframe = gold.push(codes[n]);
-    const bool hframe = np > 0 || (n + 1 >= size_t(S::N) && (n + 1 - S::N) % plan.chain.step == 0);
+    const bool hframe = np > 0 || (n + 1 >= size_t(S::N) && (n + 1 - S::N) % plan.step == 0);
     EXPECT_EQ(gframe, hframe) << "frame timing differs at sample " << n;
     if (gframe != hframe) return r;
     if (!hframe) continue;
@@ -96,7 +96,7 @@ ChainRun run_chain(const std::string& scene_file) {
     const golden::Frame& gf = gold.frame();
     for (int k = 0; k < S::K; ++k) {
       const double want = S::N / 2.0 * gf.amp_lsb[k] * std::ldexp(1.0, up) /
-                          std::ldexp(1.0, S::MAG_SHIFT) * (plan.chain.demix ? 1.0 : gain);
+                          std::ldexp(1.0, S::MAG_SHIFT) * (plan.spec.demix ? 1.0 : gain);
       r.max_mag_err = std::max(r.max_mag_err, std::fabs(chain->magnitude(k) - want));
     }
     golden::Frame f;

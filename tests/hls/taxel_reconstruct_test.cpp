@@ -87,8 +87,8 @@ TEST(TaxelReconstructHls, DefaultSceneFramesWithinTheBound) {
   const auto sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   auto spec = sim::dtmf_top_spec(sc);
   spec.ghost = false;
-  const auto plan = hls::make_dtmf_top_plan<S>(spec);
-  auto chain = std::make_unique<hls::DtmfChain<S>>(plan.chain);
+  const auto plan = hls::make_dtmf_top_plan(spec);
+  auto chain = std::make_unique<hls::DtmfChain<S>>(hls::chain_config<S>(plan));
   sim::WorldModel world(sc);
   const auto codes = world.all_codes();
   typename hls::DtmfChain<S>::Packet pk[hls::DtmfChain<S>::kMaxPackets];
