@@ -50,7 +50,7 @@ constexpr int kDtmfImemBits = 10;  // microcode: 1024 words (8 EBRs)
 // SET_NEURON parameter p (id & 15): its word in the layer block, its range.
 struct NeuronParam {
   const char* name;
-  int word;          // -1: special (gain_shift: words 13/14; u_frac: word 4 = u_frac - 22)
+  int word;          // its word in the block (gain_shift: 13 right, 14 left; u_frac: 4 = u_frac - 22)
   int64_t lo, hi;    // accepted values
 };
 inline const NeuronParam* neuron_params() {
@@ -58,7 +58,7 @@ inline const NeuronParam* neuron_params() {
       {"v_reset", 2, -(int64_t(1) << 29), (int64_t(30) << 22) - 1},
       {"u_jump", 3, -(int64_t(1) << 30), (int64_t(1) << 30) - 1},
       {"gain", 12, -32768, 32767},
-      {"gain_shift", -1, -15, 40},
+      {"gain_shift", 13, -15, 40},
       {"x_shift", 15, 0, 16},
       {"c_const", 5, -68157440, 0},  // -16.25 mV 2^22 (k <= 1) .. 0
       {"m2", 6, -32768, 32767},
@@ -67,7 +67,7 @@ inline const NeuronParam* neuron_params() {
       {"s3", 9, 0, 40},
       {"m4", 10, -32768, 32767},
       {"s4", 11, 0, 40},
-      {"u_frac", -1, 22, 30},
+      {"u_frac", 4, 22, 30},
       {"input_change", 16, 0, 1},
       {"v_init", 0, -(int64_t(1) << 29), (int64_t(30) << 22) - 1},
       {"u_init", 1, -(int64_t(1) << 30), (int64_t(1) << 30) - 1},
@@ -158,10 +158,10 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   alloc("PHASE", 2 * K), alloc("HIST", lk), alloc("HEAD", 1), alloc("REM", K);
   alloc("PEND", T), alloc("SITE", T), alloc("MAG", K), alloc("ROOT", K), alloc("G", T);
   alloc("NS", 6 * T), alloc("S0", T), alloc("S1", T), alloc("X2IN", T);
-  alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 8);
-  alloc("AMPC", 1), alloc("TAXC", 1), alloc("STC", 1);  // consecutive (SET_DECIMATION)
+  alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 9);
+  alloc("AMPC", 3), alloc("SEL", 3), alloc("SEND", 3);  // frame counts per stream (amp, tax, status)
   for (const char* n :
-       {"VT", "SELA", "SELT", "WEND", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "PKTDROP",
+       {"VT", "TPASS", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "PKTDROP",
         "ACC", "REJ", "LRT", "LRR", "LRS", "CTYPE", "CSEQ", "CLEN", "PT", "PTT", "PLEN", "TLO",
         "TMP", "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TP", "TR", "TCL",
         "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TNB", "TD", "TB", "TB2", "NX", "ND", "NXS",
@@ -175,7 +175,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
     sym(n, int64_t(im.krom.size()));
     put(v);
   };
-  kc("KC_ZERO", 0), kc("KC_ONE", 1), kc("KC_TWO", 2), kc("KC_THREE", 3), kc("KC_FOUR", 4);
+  kc("KC_ZERO", 0), kc("KC_MINUS1", -1), kc("KC_ONE", 1), kc("KC_TWO", 2), kc("KC_THREE", 3), kc("KC_FOUR", 4);
   kc("KC_EIGHT", 8), kc("KC_FIFTEEN", 15), kc("KC_SIXTEEN", 16), kc("KC_U16", 65535);
   kc("KC_M32", 0xFFFFFFFFll), kc("KC_2P31", 0x80000000ll), kc("KC_S16MIN", -32768);
   kc("KC_S16MAX", 32767), kc("KC_S24MIN", -(1 << 23)), kc("KC_S24MAX", (1 << 23) - 1);
@@ -193,10 +193,23 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   };
   table("KC_DR", [](int d) { return d / 3 - 1; }, 9);
   table("KC_DC", [](int d) { return d % 3 - 1; }, 9);
-  table("KC_DOFF", [](int d) { return (d / 3 - 1) * C + (d % 3 - 1); }, 9);
-  table("KC_NLO", [](int p) { return neuron_params()[p].lo; }, 16);
-  table("KC_NHI", [](int p) { return neuron_params()[p].hi; }, 16);
-  table("KC_NOFF", [](int p) { return neuron_params()[p].word < 0 ? 0 : neuron_params()[p].word; }, 16);
+  table("KC_DOFF", [C](int d) { return (d / 3 - 1) * C + (d % 3 - 1); }, 9);
+  table("KC_NLO", [](int q) { return neuron_params()[q].lo; }, 16);
+  table("KC_NHI", [](int q) { return neuron_params()[q].hi; }, 16);
+  table("KC_NOFF", [](int q) { return neuron_params()[q].word; }, 16);
+  static const int kCmdLen[9] = {5, 3, 5, 1, 3, 0, 0, 3, 4};  // payload bytes, 0x81 .. 0x89
+  table("KC_CLEN", [](int t) { return kCmdLen[t]; }, 9);
+  // STATUS fields in payload order: an IO port (bit 15 set) or a DMEM word
+  // (address in bits 13..0), one byte wide when bit 14 is set.
+  const int64_t io = 0x8000;
+  const int64_t byte = 0x4000;
+  const int64_t stat[14] = {io | kIoCrcErr, io | kIoFrmErr, im.symbol("ACC"), im.symbol("REJ"),
+                            byte | im.symbol("LRT"), byte | im.symbol("LRR"),
+                            byte | im.symbol("LRS"), byte | im.symbol("MASK"),
+                            im.symbol("PKTDROP"), io | kIoAdcOvr,
+                            io | kIoRxErr, io | kIoFrameOvr, im.symbol("SPKDROP"), io | kIoCmdOvf};
+  table("KC_STAT", [&stat](int f) { return stat[f]; }, 14);
+  kc("KC_BIT15", 0x8000), kc("KC_BIT14", 0x4000), kc("KC_LOW15", 0x3FFF);
   sym("SINE", int64_t(im.krom.size()));
   if (demix)
     for (int e = 0; e <= kQ; e += 2)
