@@ -71,3 +71,12 @@ template class eskin::hls::DtmfChain<eskin::hls::DtmfChainSizes<3, 3, 32>>;
 template class eskin::hls::CarrierDemix<6, 32>;
 template struct eskin::hls::CarrierDemixConfig<6>;
 #endif
+
+#if __has_include("hls/frame_engine.h")
+#include "hls/frame_engine.h"
+template class eskin::hls::FrameEngine<>;
+template uint32_t eskin::hls::FrameEngine<>::step<eskin::hls::FrameEngineNullIo>(
+    eskin::hls::FrameEngineNullIo&, uint64_t);
+template uint64_t eskin::hls::FrameEngine<>::run<eskin::hls::FrameEngineNullIo>(
+    eskin::hls::FrameEngineNullIo&, uint64_t);
+#endif
