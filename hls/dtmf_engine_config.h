@@ -45,7 +45,8 @@ enum DtmfIoPort : uint16_t {
 };
 
 constexpr int kNeuronBlock = 20;  // words of constants per layer (NCS)
-constexpr int kDtmfImemBits = 10;  // microcode: 1024 words (8 EBRs)
+constexpr int kDtmfImemBits = 11;     // microcode address bits
+constexpr int kDtmfImemWords = 1280;  // microcode words: 10 EBRs (256 x 16 each)
 
 // SET_NEURON parameter p (id & 15): its word in the layer block, its range.
 struct NeuronParam {
