@@ -237,18 +237,13 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   return im;
 }
 
-// dtmf_top's parameter overrides for a plan, its engine image and the path
-// of the assembled microcode ($readmemh file) the build reads.
+// dtmf_top's parameter overrides for a plan, its engine image and the
+// $readmemh files of its microcode and constants (hls/dtmf_ucode.h writes
+// them).
 inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const EngineImage& im,
-                                                 const std::string& ucode_hex) {
+                                                 const std::string& ucode_hex,
+                                                 const std::string& krom_hex) {
   using dtmf_top_detail::clog2;
-  const int kw = std::max(1, clog2(long(im.krom.size())));
-  std::string krom = std::to_string(32L << kw) + "'h";
-  for (int w = (1 << kw) - 1; w >= 0; --w) {
-    char b[9];
-    std::snprintf(b, sizeof b, "%08x", unsigned(size_t(w) < im.krom.size() ? im.krom[size_t(w)] : 0u));
-    krom += b;
-  }
   auto i = [](long v) { return std::to_string(v); };
   return {{"CLK_HZ", i(p.spec.clk_hz)},
           {"SAMPLE_HZ", i(std::lround(p.spec.sample_hz))},
@@ -258,10 +253,11 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
           {"ACC_W", i(p.acc_w)},
           {"STEP", i(p.step)},
           {"IW", i(kDtmfImemBits)},
+          {"IMEM_WORDS", i(kDtmfImemWords)},
           {"DW", i(std::max(4, clog2(im.dend)))},
-          {"KW", i(kw)},
+          {"KW", i(std::max(1, clog2(long(im.krom.size()))))},
           {"UCODE_HEX", "\"" + ucode_hex + "\""},
-          {"KROM_INIT", krom}};
+          {"KROM_HEX", "\"" + krom_hex + "\""}};
 }
 
 }  // namespace eskin::hls

@@ -32,11 +32,14 @@ module dtmf_top #(
     parameter integer N = 32,           // DFT window
     parameter integer ACC_W = 18,       // 12 + 1 + log2 N: window sums never wrap
     parameter integer STEP = 35,        // samples per frame
-    parameter integer IW = 10,          // microcode words 2^IW
+    parameter integer IW = 11,          // microcode address bits
+    parameter integer IMEM_WORDS = 1280, // microcode words (10 EBRs)
     parameter integer DW = 10,          // engine data words 2^DW
     parameter integer KW = 9,           // engine constant words 2^KW
-    parameter UCODE_HEX = "rtl/ucode/dtmf_chain.hex",
-    parameter [32*(1<<KW)-1:0] KROM_INIT = 0
+    // The scene's microcode and constants ($readmemh files written by
+    // hls/dtmf_engine_config.h's builder, e.g. through `eskin bitstream`).
+    parameter UCODE_HEX = "",
+    parameter KROM_HEX = ""
 ) (
     input  wire clk,
     input  wire rst_n,       // active low (button); a power-on reset is built in
@@ -176,7 +179,8 @@ module dtmf_top #(
 
   // ---------------- the frame engine -------------------------------------
   wire [15:0] events = {14'd0, cmd_avail, frame_pending};
-  frame_engine #(.IW(IW), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX), .KROM_INIT(KROM_INIT)) u_eng (
+  frame_engine #(.IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX),
+                 .KROM_HEX(KROM_HEX)) u_eng (
       .clk(clk), .rst(rst), .io_addr(io_addr), .io_re(io_re), .io_rdata(io_rdata),
       .io_we(io_we), .io_wdata(io_wdata), .events(events));
 

@@ -24,7 +24,9 @@ module frame_engine #(
     parameter integer IW = 9,          // IMEM address bits (4..12)
     parameter integer DW = 8,          // DMEM address bits (4..15)
     parameter integer KW = 8,          // KROM address bits (1..12)
+    parameter integer IMEM_WORDS = 1 << IW,  // IMEM depth (<= 2^IW; the program must fit)
     parameter UCODE_HEX = "",          // IMEM contents ("": none)
+    parameter KROM_HEX = "",           // KROM contents as a $readmemh file, else KROM_INIT
     parameter [32*(1<<KW)-1:0] KROM_INIT = 0
 ) (
     input  wire        clk,
@@ -45,6 +47,9 @@ module frame_engine #(
     end
     if (KW < 1 || KW > 12) begin : g_bad_kw
       frame_engine_parameter_KW_must_be_1_to_12 stop();
+    end
+    if (IMEM_WORDS < 16 || IMEM_WORDS > (1 << IW)) begin : g_bad_imem
+      frame_engine_parameter_IMEM_WORDS_must_be_16_to_2_pow_IW stop();
     end
   endgenerate
 
@@ -114,14 +119,15 @@ module frame_engine #(
   wire [15:0] ea = addr + xv;
 
   // ---- memories -----------------------------------------------------------
-  reg [31:0] imem [0:(1<<IW)-1];
+  reg [31:0] imem [0:IMEM_WORDS-1];
   reg [31:0] krom [0:(1<<KW)-1];
   reg [31:0] dmem [0:(1<<DW)-1];
   reg [31:0] kq, dq;
   integer k;
   initial begin
     if (UCODE_HEX != "") $readmemh(UCODE_HEX, imem);
-    for (k = 0; k < (1 << KW); k = k + 1) krom[k] = KROM_INIT[32*k +: 32];
+    if (KROM_HEX != "") $readmemh(KROM_HEX, krom);
+    else for (k = 0; k < (1 << KW); k = k + 1) krom[k] = KROM_INIT[32*k +: 32];
   end
 
   always @(posedge clk) begin

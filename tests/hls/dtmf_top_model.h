@@ -17,7 +17,7 @@
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_engine_config.h"
 #include "hls/frame_engine.h"
-#include "hls/frame_engine_asm.h"
+#include "hls/dtmf_ucode.h"
 
 namespace dtmf_model {
 
@@ -25,13 +25,6 @@ struct EngineCfg {
   static constexpr int IW = 11, DW = 15, KW = 12;
 };
 
-// The microcode assembled with a plan's symbols (file: rtl/ucode/dtmf_chain.fe).
-inline std::vector<uint32_t> assemble(const eskin::hls::EngineImage& im, const std::string& file) {
-  eskin::hls::fe_asm::Options o;
-  for (const auto& [n, v] : im.symbols) o.symbols[n] = v;
-  o.imem_words = eskin::hls::kDtmfImemWords;
-  return eskin::hls::fe_asm::assemble_file(file, o).words;
-}
 
 struct Packet {
   uint8_t type = 0;
@@ -48,9 +41,9 @@ class TopModel {
   static constexpr int KS_MAX = S::K + 1;
   using Bank = eskin::hls::SdftBank<KS_MAX, S::N, 12, 16, 10, S::ACC_W>;
 
-  TopModel(const eskin::hls::DtmfTopPlan& plan, const std::string& ucode_file, long clk_per_sample)
+  TopModel(const eskin::hls::DtmfTopPlan& plan, long clk_per_sample)
       : plan_(plan), im_(eskin::hls::dtmf_engine_image(plan)), period_(clk_per_sample) {
-    const auto words = assemble(im_, ucode_file);
+    const auto words = eskin::hls::dtmf_ucode_words(im_);
     eng_ = std::make_unique<eskin::hls::FrameEngine<EngineCfg>>();
     eng_->load_program(words.data(), uint32_t(words.size()));
     eng_->load_krom(im_.krom.data(), uint32_t(im_.krom.size()));

@@ -20,14 +20,13 @@
 namespace {
 
 using namespace eskin;
-const std::string kUcode = ESKIN_SOURCE_DIR "/rtl/ucode/dtmf_chain.fe";
 
 template <class S>
 void compare_scene(const std::string& scene_file, long clk_hz) {
   const sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/" + scene_file);
   const auto plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(sc, clk_hz));
   const long period = std::lround(double(clk_hz) / sc.skin.adc.rate_hz);
-  dtmf_model::TopModel<S> top(plan, kUcode, period);
+  dtmf_model::TopModel<S> top(plan, period);
   auto chain = std::make_unique<hls::DtmfChain<S>>(hls::chain_config<S>(plan));
   ASSERT_TRUE(chain->ok());
   sim::WorldModel world(sc);
@@ -66,7 +65,7 @@ TEST(DtmfUcode, DefaultSceneEqualsTheChain) {
 }
 
 TEST(DtmfUcode, Staggered10x10EqualsTheChain) {
-  compare_scene<hls::DtmfChainSizes<10, 10, 64>>("scenes/staggered10x10.yaml", 48000000);
+  compare_scene<hls::DtmfChainSizes<10, 10, 64>>("scenes/staggered10x10.yaml", 96000000);
 }
 
 }  // namespace

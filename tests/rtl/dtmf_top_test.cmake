@@ -1,0 +1,25 @@
+# Builds of dtmf_top for tests/rtl/dtmf_top_test.cpp. The integer
+# parameters are those hls/dtmf_top_config.h derives for the scene and clock
+# (the test checks every one against the plan, so a stale value here fails
+# it); the microcode and constants are written by the test itself into
+# ${dtmf_dir} from the plan (hls/dtmf_ucode.h) before the model is built.
+#  default: scenes/neuroskin2.yaml at 24 MHz (the iCE40 UP5K build: 12 MHz
+#           oscillator x 2 by the PLL);
+#  s10:     scenes/staggered10x10.yaml at 96 MHz (100 taxels, two neuron
+#           layers each: the engine needs ~80 000 clocks per 1 ms frame).
+set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
+set(dtmf_default -GCLK_HZ=24000000 -GSAMPLE_HZ=35000 -GBAUD=3000000 -GKS=7 -GN=32 -GACC_W=18
+  -GSTEP=35 -GIW=11 -GIMEM_WORDS=1280 -GDW=10 -GKW=9)
+set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
+  -GSTEP=70 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=8)
+set(eskin_default_args ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/neuroskin2.krom.hex\")
+eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10}
+  -GUCODE_HEX=\"${dtmf_dir}/staggered10x10.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/staggered10x10.krom.hex\")
+string(JOIN " " dtmf_default_str ${dtmf_default})
+string(JOIN " " dtmf_s10_str ${dtmf_s10})
+target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
+  DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=24000000
+  DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000)
+target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode)
