@@ -169,6 +169,12 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
     p.synapse.w[d] = weight(d == 4 ? s.layer2_centre : s.layer2_surround,
                             d == 4 ? "neuron.layer2.centre" : "neuron.layer2.surround");
   p.mask = kMaskAmplitudes | kMaskTaxels | (s.spikes ? kMaskSpikes : 0);
+  // Packets every `decim` frames so that the link carries them with a 1.5x
+  // margin (spikes, status, framing): amplitudes (10 + 2K bytes) and dense
+  // taxels (12 + 2T) per frame against baud / 10 bytes per second.
+  const double bytes = 1.5 * ((10.0 + 2 * p.K + 2) + (10.0 + 2 + 2.0 * p.T + 2));
+  const double link = double(s.baud) / 10.0 * frame_ms / 1000.0;
+  p.decim_amp = p.decim_tax = uint16_t(std::max(1.0, std::ceil(bytes / link)));
   return p;
 }
 

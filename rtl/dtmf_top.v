@@ -25,7 +25,7 @@
 // Start-up: the engine writes the carrier table to sdft_bank; the first
 // write with `last` enables the ADC, whose first conversion is sample t = 0.
 module dtmf_top #(
-    parameter integer CLK_HZ = 12_000_000,
+    parameter integer CLK_HZ = 24_000_000,
     parameter integer SAMPLE_HZ = 35_000,
     parameter integer BAUD = 3_000_000,
     parameter integer KS = 7,           // DFT channels: carriers (+ DC when demixing)
@@ -111,7 +111,9 @@ module dtmf_top #(
   wire [11:0] adc_code;
   wire [31:0] adc_t;
   wire [15:0] adc_overruns;
-  adc_ad7476 #(.CLK_HZ(CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .SCLK_DIV(1), .NCH(1)) u_adc (
+  // SCLK = CLK_HZ / (2 SCLK_DIV) at most 20 MHz (AD7476A): 12 MHz at 24 MHz.
+  localparam integer SCLK_DIV = (CLK_HZ + 39_999_999) / 40_000_000;
+  adc_ad7476 #(.CLK_HZ(CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .SCLK_DIV(SCLK_DIV), .NCH(1)) u_adc (
       .clk(clk), .rst(rst), .en(adc_en), .cs_n(adc_cs_n), .sclk(adc_sclk),
       .sdata(adc_sdata), .m_valid(adc_valid), .m_ready(sdft_in_ready),
       .m_data(adc_code), .m_t(adc_t), .overruns(adc_overruns), .clear(wr_clear));
