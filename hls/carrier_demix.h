@@ -104,6 +104,15 @@ class CarrierDemix {
   }
 
   int carriers() const { return cfg_.carriers; }
+  const Config& config() const { return cfg_; }
+  // One matrix entry (row-major, 0 .. (2K+1)^2 - 1) from the next frame on;
+  // phases and the rest unchanged (SET_DEMIX_COEF). False if out of range.
+  bool set_coef(int index, int32_t value) {
+    const int dim = 2 * cfg_.carriers + 1;
+    if (index < 0 || index >= dim * dim) return false;
+    cfg_.coef[index] = value;
+    return true;
+  }
   int32_t dc() const { return dc_; }
 
   // sin(2 pi idx / 2^TW) from the quarter table, idx mod 2^TW.

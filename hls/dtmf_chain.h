@@ -135,6 +135,7 @@ class DtmfChain {
           (!cfg.demix || demix_.configure(cfg.demix_cfg));
   }
   bool ok() const { return ok_; }  // false: a configuration field was rejected
+  uint32_t frames() const { return frames_; }  // frames processed so far
   uint32_t spikes_dropped() const { return enc_.dropped(); }
 
   // ---- commands (applied before the next sample) ----
@@ -156,6 +157,13 @@ class DtmfChain {
     (layer == 0 ? l0_ : l1_).set_config(c);
   }
   void set_weight(int id, int16_t w) { synapse_.set_weight(id, w); }
+  bool set_demix_coef(int index, int16_t value) { return demix_.set_coef(index, value); }
+  const CarrierDemixConfig<K>& demix_config() const { return demix_.config(); }
+  const SdftBankConfig<K + 1>& chain_sdft_config() const { return cfg_.sdft; }
+  const GhostFilterConfig& ghost_config() const { return ghost_.config(); }
+  const IzhikevichConfig& neuron_config(int layer) const {
+    return layer == 0 ? l0_.config() : l1_.config();
+  }
   void set_mask(uint8_t m) { cfg_.mask = m; }
   void set_decimation(int stream, uint16_t d) {  // 0 amplitudes, 1 taxels/spikes
     if (stream == 0) cfg_.decim_amp = d, amp_cnt_ = 0;
@@ -185,6 +193,7 @@ class DtmfChain {
 
  private:
   int frame(const typename Bank::Token* tok, uint32_t t, Packet (&out)[kMaxPackets]) {
+    ++frames_;
     // Amplitudes.
     typename Demix::Token dm[K];
     if (cfg_.demix)
@@ -273,6 +282,7 @@ class DtmfChain {
   IzhikevichLayer<T> l0_, l1_;
   SynapseWeights<R, C> synapse_;
   SpikeEncoder<S::MAX_SPIKES> enc_;
+  uint32_t frames_ = 0;
   int filled_ = 0;  // samples in the window since the last clear (<= N)
   int phase_ = 0;   // sample within the step once the window is full
   uint32_t amp_cnt_ = 0, tax_cnt_ = 0;

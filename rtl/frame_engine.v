@@ -121,6 +121,7 @@ module frame_engine #(
   // ---- memories -----------------------------------------------------------
   reg [31:0] imem [0:IMEM_WORDS-1];
   reg [31:0] krom [0:(1<<KW)-1];
+  (* ram_style = "huge" *)  // SPRAM on the UP5K (synth_ice40 -spram): keeps the EBRs free
   reg [31:0] dmem [0:(1<<DW)-1];
   reg [31:0] kq, dq;
   integer k;

@@ -108,7 +108,9 @@ class Board {
 
   std::map<uint32_t, Events> events;
   std::vector<uint64_t> carrier_loads;  // cycles of a carrier table's last write (window cleared)
+  std::vector<uint32_t> carrier_load_samples;  // the first sample into the cleared window
   uint16_t out_overflows = 0;           // bytes the engine wrote into a full output FIFO
+  uint32_t frames_done = 0;             // frames the engine finished
 
  private:
   int rx_level() {
@@ -145,9 +147,13 @@ class Board {
 
   void probe() {
     auto& r = *m_->rootp;
-    if (r.dtmf_top__DOT__p_cfg_done) carrier_loads.push_back(cycle_);
+    if (r.dtmf_top__DOT__p_cfg_done) {
+      carrier_loads.push_back(cycle_);
+      carrier_load_samples.push_back(seen_sample_ ? cur_t_ + 1 : 0);
+    }
     if (r.dtmf_top__DOT__p_adc_fire) {
       cur_t_ = r.dtmf_top__DOT__p_adc_t;
+      seen_sample_ = true;
       events[cur_t_].adc = cycle_;
     }
     if (r.dtmf_top__DOT__p_sd_fire && r.dtmf_top__DOT__p_sd_last) {
@@ -165,7 +171,10 @@ class Board {
       events[frame_t_].first_out = cycle_;
       want_out_ = false;
     }
-    if (r.dtmf_top__DOT__p_frame_done) events[frame_t_].done = cycle_;
+    if (r.dtmf_top__DOT__p_frame_done) {
+      events[frame_t_].done = cycle_;
+      ++frames_done;
+    }
     out_overflows = r.dtmf_top__DOT__p_out_overflows;
     // Samples the harness keeps no events for: drop what is not a frame.
     if (events.size() > 4096) {
@@ -185,7 +194,7 @@ class Board {
   int falls_ = 0;
   std::vector<uint64_t> sample_edge_;
   uint32_t cur_t_ = 0, frame_t_ = 0;
-  bool prev_frame_ = false, want_out_ = false;
+  bool prev_frame_ = false, want_out_ = false, seen_sample_ = false;
   // UART receive (FPGA -> host)
   bool busy_ = false, in_frame_ = false;
   uint64_t start_ = 0, frame_start_ = 0;

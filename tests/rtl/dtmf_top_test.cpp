@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -49,7 +50,7 @@ const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DT
 const Build kS10{"scenes/staggered10x10.yaml", "staggered10x10", DTMF_TOP_S10_PARAMS,
                  DTMF_TOP_S10_CLK_HZ};
 
-struct Setup {
+struct BuildSetup {
   eskin::sim::Scene scene;
   eskin::hls::DtmfTopPlan plan;
   std::vector<uint16_t> codes12;
@@ -59,8 +60,8 @@ struct Setup {
 // The plan of a build; writes its microcode and constants where the
 // Verilated model reads them (DTMF_TOP_DIR) and checks that every
 // parameter the plan asks for is the one the model was built with.
-Setup prepare(const Build& b) {
-  Setup s;
+BuildSetup prepare(const Build& b) {
+  BuildSetup s;
   s.scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/" + b.scene);
   s.plan = eskin::hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(s.scene, b.clk_hz));
   std::filesystem::create_directories(DTMF_TOP_DIR);
@@ -86,7 +87,7 @@ Setup prepare(const Build& b) {
 }
 
 template <class S>
-std::vector<Key> run_chain(const Setup& s, size_t n) {
+std::vector<Key> run_chain(const BuildSetup& s, size_t n) {
   auto chain = std::make_unique<eskin::hls::DtmfChain<S>>(eskin::hls::chain_config<S>(s.plan));
   EXPECT_TRUE(chain->ok());
   std::vector<Key> out;
@@ -149,7 +150,7 @@ void expect_clean_run(Board<M>& b, eskin::link::LinkEncoder& enc) {
 
 // The scene's accuracy from the FPGA's own taxel packets (g UQ1.15 ->
 // pressure through the scene's conductance curve), scored like golden.
-eskin::golden::DecodeScore score(const Setup& s, const std::vector<Received>& rx) {
+eskin::golden::DecodeScore score(const BuildSetup& s, const std::vector<Received>& rx) {
   eskin::sim::WorldModel world(s.scene);
   eskin::DecoderConfig dec = s.scene.decoder;
   dec.hop = s.plan.step;
@@ -171,7 +172,7 @@ eskin::golden::DecodeScore score(const Setup& s, const std::vector<Received>& rx
 
 template <class M, class S>
 void scene_test(const Build& build) {
-  const Setup s = prepare(build);
+  const BuildSetup s = prepare(build);
   const size_t n = s.codes12.size();
   auto codes = s.codes12;
   codes.resize(n + 400, 2048);  // quiet conversions while the last frames get out
@@ -201,6 +202,184 @@ void scene_test(const Build& build) {
 
 TEST(DtmfTop, DefaultSceneMatchesTheChainAndTheTruth) {
   scene_test<Vdtmf_top, eskin::hls::DtmfChainSizes<3, 3, 32>>(kDefault);
+}
+
+// Every command over the UART while the default scene runs, then the HLS
+// chain with the same changes before the same frames: the data packets
+// stay equal byte for byte (exact), so each command was applied, at once,
+// and to the right thing. Each bad command is rejected with its documented
+// reason (docs/protocol.md §5), answered by a STATUS packet naming its
+// type and seq, and changes nothing (the packets after it still equal the
+// chain's); a corrupted frame is counted as a CRC error; CLEAR_COUNTERS
+// zeroes the counters. Expected counts are counted here from what was sent.
+using Chain3 = eskin::hls::DtmfChain<eskin::hls::DtmfChainSizes<3, 3, 32>>;
+
+struct Command {
+  uint32_t after_frame;                    // sent once this many frames are done
+  std::vector<uint8_t> bytes;
+  std::function<void(Chain3&)> hls;        // the same change (none: rejected/no data effect)
+  uint8_t reject_reason = 0;               // 0: accepted
+  uint8_t type = 0, seq = 0;
+};
+
+TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
+  const BuildSetup s = prepare(kDefault);
+  const size_t n = 14000;
+  auto codes = s.codes12;
+  codes.resize(n + 400, 2048);
+  auto padded = s;
+  padded.codes12 = codes;
+  const auto& plan = s.plan;
+  eskin::link::LinkEncoder enc;
+  std::vector<Command> cmds;
+  auto add = [&](uint32_t f, std::vector<uint8_t> bytes, std::function<void(Chain3&)> h,
+                 uint8_t reason = 0) {
+    Command c{f, std::move(bytes), std::move(h), reason, 0, 0};
+    c.seq = uint8_t(enc.next_seq() - 1);
+    // type: the raw frame's first byte (COBS: the code byte comes first).
+    c.type = c.bytes[1];
+    cmds.push_back(std::move(c));
+  };
+  using namespace eskin::link;
+  // Rejections first, one reason each (and a corrupted frame).
+  add(10, enc.frame(0x90, 0, {}), nullptr, kRejectUnknownType);
+  add(12, enc.frame(kCmdSetThreshold, 0, {1, 2}), nullptr, kRejectBadLength);
+  add(14, enc.set_threshold(9, 1), nullptr, kRejectBadIndex);
+  add(16, enc.set_decimation(0, 0), nullptr, kRejectBadValue);
+  add(18, enc.set_output_mask(0x20), nullptr, kRejectReservedBits);
+  add(20, enc.set_neuron(0x20, 0), nullptr, kRejectBadIndex);
+  add(22, enc.set_neuron(0x07, 41), nullptr, kRejectBadValue);  // s2 > 40
+  add(24, enc.set_carrier_inc(6, 1000), nullptr, kRejectBadIndex);
+  add(26, enc.set_carrier_inc(0, 0x80000000u), nullptr, kRejectBadValue);
+  add(28, enc.set_weight(9, 0), nullptr, kRejectBadIndex);
+  add(30, enc.set_demix_coef(169, 0), nullptr, kRejectBadIndex);
+  // Accepted changes.
+  add(40, enc.set_output_mask(0x1F), [](Chain3& c) { c.set_mask(0x1F); });
+  add(50, enc.set_decimation(0, 3), [](Chain3& c) { c.set_decimation(0, 3); });
+  add(60, enc.set_decimation(1, 2), [](Chain3& c) { c.set_decimation(1, 2); });
+  add(70, enc.set_decimation(2, 25), [](Chain3&) {});  // periodic status only
+  add(80, enc.set_threshold(0, 2000), [](Chain3& c) { c.set_sparse_min(2000); });
+  const uint16_t onset = uint16_t(plan.ghost.onset / 2);
+  add(100, enc.set_threshold(1, onset), [onset](Chain3& c) {
+    const auto& g = c.ghost_config();
+    c.set_ghost_thresholds(onset, g.pair_tol, g.release);
+  });
+  add(120, enc.set_weight(4, 12 * 256), [](Chain3& c) { c.set_weight(4, 12 * 256); });
+  const int32_t gain1 = plan.neuron[1].gain / 2;
+  add(140, enc.set_neuron(0x10 | 2, gain1), [gain1](Chain3& c) {
+    auto n = c.neuron_config(1);
+    ASSERT_TRUE(eskin::hls::apply_neuron_param(n, 2, gain1));
+    c.set_neuron(1, n);
+  });
+  const int32_t gs0 = plan.neuron[0].gain_shift + 1;
+  add(150, enc.set_neuron(0x03, gs0), [gs0](Chain3& c) {
+    auto n = c.neuron_config(0);
+    ASSERT_TRUE(eskin::hls::apply_neuron_param(n, 3, gs0));
+    c.set_neuron(0, n);
+  });
+  const int16_t coef0 = int16_t(plan.demix.coef[0] + 64);
+  add(160, enc.set_demix_coef(0, coef0), [coef0](Chain3& c) { c.set_demix_coef(0, coef0); });
+  const uint32_t inc5 = plan.inc[5] + 100000;
+  add(200, enc.set_carrier_inc(5, inc5), nullptr);  // applied at its sample (below)
+  add(230, enc.request_status(), nullptr);
+  auto bad = enc.set_threshold(0, 1);
+  bad[3] ^= 0x04;  // a payload bit: the CRC catches it
+  add(240, bad, nullptr);
+  add(250, enc.clear_counters(), nullptr);
+  add(260, enc.request_status(), nullptr);
+
+  // ---- the RTL run ----
+  Board<Vdtmf_top> b(codes, double(kDefault.clk_hz), s.cpb);
+  std::vector<size_t> status_before(cmds.size());
+  size_t next = 0;
+  while (b.adc().samples_taken() < n + 60) {
+    b.tick();
+    if (next < cmds.size() && b.frames_done >= cmds[next].after_frame && !b.sending()) {
+      ASSERT_EQ(b.frames_done, cmds[next].after_frame) << "command " << next << " sent late";
+      status_before[next] = b.received().size();
+      b.send(cmds[next++].bytes);
+    }
+  }
+  b.run_cycles(200000);
+  ASSERT_EQ(next, cmds.size());
+
+  // Replies: one STATUS per rejection (and per request), counters as counted.
+  std::vector<const Received*> statuses;
+  for (const auto& r : b.received())
+    if (r.p.type == kStatus) statuses.push_back(&r);
+  int changes = 0, rejected = 0;
+  auto status_after = [&](size_t i) -> const Received* {
+    for (size_t j = status_before[i]; j < b.received().size(); ++j)
+      if (b.received()[j].p.type == kStatus) return &b.received()[j];
+    return nullptr;
+  };
+  for (size_t i = 0; i < cmds.size(); ++i) {
+    const Command& c = cmds[i];
+    if (!c.reject_reason) {
+      changes += c.hls || c.type == kCmdSetDecimation || c.type == kCmdSetCarrierInc;
+      continue;
+    }
+    ++rejected;
+    const Received* st = status_after(i);
+    ASSERT_NE(st, nullptr) << "no STATUS after rejected command " << i;
+    EXPECT_EQ(st->p.status.last_reject_reason, c.reject_reason) << "command " << i;
+    EXPECT_EQ(st->p.status.last_reject_type, c.type) << "command " << i;
+    EXPECT_EQ(st->p.status.last_reject_seq, c.seq) << "command " << i;
+    EXPECT_EQ(st->p.status.cmd_rejected, rejected) << "command " << i;
+    EXPECT_EQ(st->p.status.cmd_accepted, 0) << "command " << i;
+  }
+  // The first REQUEST_STATUS (command cmds.size() - 4) sees every change and
+  // itself; the corrupted frame after it is a CRC error; after CLEAR_COUNTERS
+  // the last request sees only itself.
+  const Received* req = status_after(cmds.size() - 4);
+  ASSERT_NE(req, nullptr);
+  EXPECT_EQ(changes, 11);
+  EXPECT_EQ(req->p.status.cmd_accepted, changes + 1);
+  EXPECT_EQ(req->p.status.cmd_rejected, rejected);
+  EXPECT_EQ(req->p.status.cmd_crc_errors, 0);
+  EXPECT_EQ(req->p.status.output_mask, 0x1F);
+  bool crc_seen = false;
+  for (const auto* st : statuses)
+    crc_seen |= st->p.t > req->p.t && st->p.status.cmd_crc_errors == 1;
+  EXPECT_TRUE(crc_seen) << "the corrupted frame was not counted";
+  const Received* last = status_after(cmds.size() - 1);
+  ASSERT_NE(last, nullptr);
+  EXPECT_EQ(last->p.status.cmd_accepted, 1);
+  EXPECT_EQ(last->p.status.cmd_rejected + last->p.status.cmd_crc_errors, 0);
+  EXPECT_EQ(last->p.status.last_reject_type, 0);
+  // Periodic status every 25 frames once the mask and decimation say so.
+  size_t periodic = 0;
+  for (const auto* st : statuses) periodic += st->p.t > 2504 && st->p.t < 8000;
+  EXPECT_GE(periodic, 5u);
+
+  // ---- the chain with the same changes ----
+  ASSERT_EQ(b.carrier_loads.size(), 2u);  // boot + the SET_CARRIER_INC
+  const size_t reload_sample = b.carrier_load_samples[1];
+  ASSERT_GT(reload_sample, 0u);
+  auto chain = std::make_unique<Chain3>(eskin::hls::chain_config<eskin::hls::DtmfChainSizes<3, 3, 32>>(plan));
+  std::vector<Key> want;
+  Chain3::Packet pk[Chain3::kMaxPackets];
+  size_t ci = 0;
+  for (size_t i = 0; i < n + 60; ++i) {
+    while (ci < cmds.size() && chain->frames() >= cmds[ci].after_frame) {
+      if (cmds[ci].hls) cmds[ci].hls(*chain);
+      ++ci;
+    }
+    if (i == reload_sample) {
+      auto sd = chain->chain_sdft_config();
+      sd.inc[5] = inc5;
+      auto dm = chain->demix_config();
+      dm.inc[5] = inc5 * uint32_t(plan.step);
+      for (int k = 0; k < 6; ++k) dm.phase0[k] = 0;
+      ASSERT_TRUE(chain->set_carriers(sd, dm));
+    }
+    const int np = chain->push(codes[i], uint32_t(i), pk);
+    for (int j = 0; j < np; ++j)
+      want.push_back({pk[j].type, pk[j].t, {pk[j].payload, pk[j].payload + pk[j].len}});
+  }
+  const uint32_t limit = uint32_t(n) - 4 * uint32_t(plan.step);
+  expect_same_packets(want, b.received(),
+                      {kAmplitudes, kTaxelsDense, kTaxelsSparse, kSpikes}, limit);
 }
 
 TEST(DtmfTop, Staggered10x10MatchesTheChainAndTheTruth) {
