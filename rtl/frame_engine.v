@@ -118,6 +118,24 @@ module frame_engine #(
   end
   wire [15:0] ea = addr + xv;
 
+  // Cycle B works from registered copies of IR and ea (taken at the end of
+  // A): B's long path (operand select -> 48-bit adder -> A) then starts at
+  // flip-flops instead of at the IMEM block RAM's output and its bank mux.
+  reg  [1:0]  cls_b;
+  reg  [25:0] irb;                     // IR[25:0] (IR[29:26], the function, is decoded in A)
+  reg  [15:0] eab;
+  always @(posedge clk) if (!ph) {cls_b, irb, eab} <= {ir[31:30], ir[25:0], ea};
+  wire [1:0] space_b = irb[25:24];
+  reg  [15:0] xv_b;                    // X of the instruction in B (txa)
+  always @* begin
+    case (irb[23:22])
+      2'd1: xv_b = x1;
+      2'd2: xv_b = x2;
+      2'd3: xv_b = x3;
+      default: xv_b = 16'd0;
+    endcase
+  end
+
   // ---- memories -----------------------------------------------------------
   reg [31:0] imem [0:IMEM_WORDS-1];
   reg [31:0] krom [0:(1<<KW)-1];
@@ -132,12 +150,12 @@ module frame_engine #(
   end
 
   always @(posedge clk) begin
-    if (ph && u_st) dmem[ea[DW-1:0]] <= acc[31:0];
+    if (ph && u_st) dmem[eab[DW-1:0]] <= acc[31:0];
     else if (!ph) dq <= dmem[ea[DW-1:0]];
   end
   always @(posedge clk) if (!ph) kq <= krom[ea[KW-1:0]];
 
-  assign io_addr = ea;
+  assign io_addr = ph ? eab : ea;
   assign io_re = !ph && memop && space == 2'd2 && fn <= F_RND;
   assign io_we = ph && u_out;
   assign io_wdata = acc[31:0];
@@ -146,9 +164,9 @@ module frame_engine #(
   // The word w: P for the P class, else the space's word.
   reg [31:0] w;
   always @* begin
-    if (cls == C_P) w = p;
+    if (cls_b == C_P) w = p;
     else begin
-      case (space)
+      case (space_b)
         2'd0: w = dq;
         2'd1: w = kq;
         2'd2: w = io_rdata;
@@ -167,8 +185,8 @@ module frame_engine #(
                     ({7{u_f_mid}} & w[14:8]) | ({7{u_f_h}} & w[30:24]) | ({7{u_f_h15}} & w[29:23]),
                     ({8{u_f_lo}} & w[7:0]) | ({8{u_f_h}} & w[23:16]) | ({8{u_f_h15}} & w[22:15])};
   wire [47:0] sha = u_left ? {acc[46:0], 1'b0} : {acc[47], acc[47:1]};
-  wire [47:0] m = fv | ({48{u_sel_i}} & {{22{ir[25]}}, ir[25:0]}) |
-                  ({48{u_sel_x}} & {32'd0, xv}) | ({48{u_step}} & sha) |
+  wire [47:0] m = fv | ({48{u_sel_i}} & {{22{irb[25]}}, irb[25:0]}) |
+                  ({48{u_sel_x}} & {32'd0, xv_b}) | ({48{u_step}} & sha) |
                   ({48{u_sel_q}} & {24'd0, root[24:1]});
 
   // ---- ALU: s = A + y + cin, lg = ~y / A & y / A | y / A ^ y ----------------
@@ -221,7 +239,7 @@ module frame_engine #(
   always @* begin
     if (u_latch) done = y[5:0] == 6'd0;
     else if (u_step) done = u_shift && !u_rnd && last_step;
-    else if (u_wait) done = |(events & addr);
+    else if (u_wait) done = |(events & irb[15:0]);
     else done = 1'b1;
   end
 
