@@ -26,3 +26,13 @@ add_test(NAME lint.frame_engine_tb_dw14
   COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module frame_engine_tb
     ${fe_dw14_params} ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v)
 set_tests_properties(lint.frame_engine_tb lint.frame_engine_tb_dw14 PROPERTIES LABELS lint)
+
+# The core (IW 10 with the self-test program, DW 14: SPRAM, KW 8) in the
+# small pin wrapper tests/rtl/frame_engine_pnr.v, placed and routed for the
+# UP5K: must fit and reach 13.2 MHz (12 MHz + 10 %). Figures:
+# build/synth/frame_engine_pnr/ (docs/frame_engine.md, "Resources").
+add_test(NAME pnr.frame_engine
+  COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ice40.sh ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_pnr.v
+    --param "UCODE_HEX=\"${fe_selftest_hex}\"" --pnr --freq 13.2
+    --out ${CMAKE_BINARY_DIR}/synth/frame_engine_pnr)
+set_tests_properties(pnr.frame_engine PROPERTIES LABELS "synth;pnr" TIMEOUT 1200)
