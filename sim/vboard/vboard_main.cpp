@@ -104,18 +104,18 @@ struct Args {
 
 int run(const Args& a) {
   const eskin::sim::Scene scene = eskin::sim::load_scene(a.scene);
-  const eskin::vboard::FpgaParams params = eskin::vboard::dtmf_top_params(scene);
-  if (params.key() != VBOARD_PARAMS_KEY)
+  const eskin::vboard::FpgaBuild params = eskin::vboard::fpga_build_for(scene);
+  if (params.key != VBOARD_PARAMS_KEY)
     throw std::runtime_error(fmt::format(
         "{}: this scene needs the FPGA build '{}', this virtual board is '{}' (run the scene "
         "with `eskin simulate`, which builds the board it needs)",
-        a.scene, params.key(), VBOARD_PARAMS_KEY));
+        a.scene, params.key, VBOARD_PARAMS_KEY));
 
   eskin::vboard::BoardConfig cfg;
-  cfg.clk_hz = params.clk_hz;
-  cfg.baud = params.baud;
+  cfg.clk_hz = params.clk_hz();
+  cfg.baud = params.baud();
   eskin::sim::WorldModel world(scene);
-  for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << params.adc_shift));
+  for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << params.adc_shift()));
   // A tail of mid-scale samples after the scene lets the last frames out.
   const size_t tail = size_t(std::ceil(a.tail_s * scene.skin.adc.rate_hz));
   cfg.codes.resize(cfg.codes.size() + tail, uint16_t(1u << 11));
@@ -127,14 +127,14 @@ int run(const Args& a) {
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);
   VerilatedFpga fpga;
-  fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz)));
+  fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz())));
   if (!a.trace.empty()) fpga.open_trace(a.trace);
   eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
 
   std::fprintf(json_out,
       "{\"event\":\"ready\",\"pty\":\"%s\",\"params\":\"%s\",\"clk_hz\":%.0f,\"baud\":%.0f,"
       "\"sample_hz\":%.0f,\"samples\":%llu,\"scene_samples\":%zu}\n",
-      pty.slave_path().c_str(), VBOARD_PARAMS_KEY, params.clk_hz, params.baud,
+      pty.slave_path().c_str(), VBOARD_PARAMS_KEY, params.clk_hz(), params.baud(),
       scene.skin.adc.rate_hz, (unsigned long long)cfg.samples, world.total_samples());
   std::fflush(json_out);
 

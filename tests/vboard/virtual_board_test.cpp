@@ -17,11 +17,11 @@
 #include <vector>
 
 #include "hls/dtmf_chain.h"
-#include "hls/izhikevich_layer_config.h"
-#include "hls/sdft_bank_config.h"
+#include "hls/dtmf_top_config.h"
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
 #include "sim/scene.h"
+#include "sim/vboard/fpga_params.h"
 #include "sim/vboard/vboard_process.h"
 #include "sim/world_model.h"
 
@@ -90,9 +90,9 @@ std::string short_scene(double duration_s, const std::string& name) {
   return path;
 }
 
-// The default scene's HLS chain (rtl/dtmf_top.v defaults: 3x3, N = 32,
-// conductance taxels, RA neurons at dt = 1/35 ms, decimation 35, mask 7):
-// the same configuration tests/rtl/dtmf_top_test.cpp derives.
+// The default scene's HLS chain, configured from the same derivation as
+// the board's FPGA build (hls/dtmf_top_config.h); mask 7 (no periodic
+// status: the chain has none).
 using Chain3 = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>;
 struct Key {
   uint8_t type;
@@ -102,21 +102,7 @@ struct Key {
 };
 
 std::vector<Key> chain_packets(const eskin::sim::Scene& sc, size_t n) {
-  Chain3::Config c;
-  const auto f = sc.skin.carrier_freqs_hz();
-  const double fs = sc.skin.adc.rate_hz;
-  c.sdft.carriers = int(f.size());
-  for (size_t k = 0; k < f.size(); ++k) c.sdft.inc[k] = eskin::hls::sdft_phase_increment(f[k], fs);
-  c.taxel.rows = uint8_t(sc.skin.rows);
-  c.taxel.cols = uint8_t(sc.skin.cols);
-  c.taxel.mode = eskin::hls::TaxelMode::Conductance;
-  c.taxel.recip_shift = 12;
-  c.taxel.recip = uint16_t(std::lround(
-      std::ldexp(1.0, 27) / (sc.decoder.window / 2.0 * sc.skin.full_carrier_lsb())));
-  c.neuron = eskin::hls::make_izhikevich_config(eskin::hls::izhikevich_fixed_preset(sc.neuron.preset),
-                                                1000.0 / fs, sc.neuron.input_scale / 32768.0, 1);
-  c.step = 1;
-  c.decim_amp = c.decim_tax = 35;
+  auto c = eskin::hls::chain_config<Chain3>(eskin::vboard::fpga_build_for(sc).plan);
   c.mask = 7;
   auto chain = std::make_unique<Chain3>(c);
   EXPECT_TRUE(chain->ok());
