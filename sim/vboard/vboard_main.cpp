@@ -123,12 +123,12 @@ int run(const Args& a) {
   cfg.codes.resize(cfg.codes.size() + 64, uint16_t(1u << 11));  // a batch may end past it
   cfg.wait_for_reader = !a.no_wait;
   cfg.reader_timeout_s = a.reader_timeout_s;
+  cfg.trace = a.trace;
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);
   VerilatedFpga fpga;
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz())));
-  if (!a.trace.empty()) fpga.open_trace(a.trace);
   eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
 
   std::fprintf(json_out,

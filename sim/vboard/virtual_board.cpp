@@ -60,6 +60,7 @@ void VirtualBoard::run_cycles(uint64_t until) {
 
 void VirtualBoard::fpga_thread() {
   if (!started_) wait(reader_ready_);
+  if (!cfg_.trace.empty()) fpga_.open_trace(cfg_.trace);  // needs elaboration done
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpu_seconds();
   const uint64_t batch = uint64_t(std::llround(kBatch.to_seconds() * cfg_.clk_hz));

@@ -34,6 +34,7 @@ struct BoardConfig {
   std::vector<uint16_t> codes;   // 12-bit ADC codes, one per conversion
   uint64_t samples = 0;          // stop once the ADC has taken this many
   bool wait_for_reader = true;   // hold time at 0 until a reader sets a baud rate
+  std::string trace;             // FST waveform file ("": none), from the first cycle
   double reader_timeout_s = 60;  // ... for at most this long (wall clock)
 };
 
