@@ -618,6 +618,8 @@ std::string disassemble(uint32_t w) {
   auto xname = [](uint32_t i) { return "x" + std::to_string(i); };
   auto memop = [&](uint32_t space) {
     const char* prefix = space == kKrom ? "k[" : space == kIo ? "io[" : "[";
+    // With an index, a high address reads better as a negative offset.
+    if (x != 0 && addr >= 0x8000) return prefix + xname(x) + " - " + std::to_string(0x10000 - addr) + "]";
     std::string t = prefix + std::to_string(addr);
     if (x != 0) t += " + " + xname(x);
     return t + "]";

@@ -17,7 +17,8 @@
 //            sqrt/sqrtr and wait stay in B for more clocks (docs: timing).
 // Memories: IMEM 2^IW x 32 ROM ($readmemh UCODE_HEX), KROM 2^KW x 32 ROM
 // (KROM_INIT, word k at [32k +: 32]), DMEM 2^DW x 32 single-port RAM, not
-// initialised (EBR, or SPRAM with `synth_ice40 -spram` for DW >= 14).
+// initialised: EBR for DW <= 11, SPRAM for DW >= 12 (ram_style "huge": two
+// SB_SPRAM256KA, four for DW = 15; no -spram option needed).
 `default_nettype none
 
 module frame_engine #(
@@ -139,8 +140,11 @@ module frame_engine #(
   // ---- memories -----------------------------------------------------------
   reg [31:0] imem [0:IMEM_WORDS-1];
   reg [31:0] krom [0:(1<<KW)-1];
-  (* ram_style = "huge" *)  // SPRAM on the UP5K (synth_ice40 -spram): keeps the EBRs free
-  reg [31:0] dmem [0:(1<<DW)-1];
+  // Yosys: SPRAM from 1K words on (the UP5K's EBRs are scarce), else EBR.
+  /* verilator lint_off UNUSEDPARAM */
+  localparam DMEM_STYLE = DW >= 10 ? "huge" : "block";
+  /* verilator lint_on UNUSEDPARAM */
+  (* ram_style = DMEM_STYLE *) reg [31:0] dmem [0:(1<<DW)-1];
   reg [31:0] kq, dq;
   integer k;
   initial begin
@@ -233,6 +237,26 @@ module frame_engine #(
   wire [IW-1:0] pc1 = pc + 1'b1;
   wire [IW-1:0] target = addr[IW-1:0];
 
+  // Next PC and X, at the end of cycle A.
+  wire call_op = ctl && fn == K_CALL;
+  wire ret_op = ctl && fn == K_RET;
+  wire jump = (ctl && fn == K_J && (ctaken ^ fld[2])) || (ctl && fn == K_DJNZ && xdec != 16'd0) ||
+              call_op;
+  wire [IW-1:0] pc_next = jump ? target : ret_op ? stk0 : pc1;
+  wire x_we = ctl && (fn == K_DJNZ || fn == K_LDX || fn == K_ADDX || fn == K_TAX);
+  wire [15:0] xval = fn == K_DJNZ ? xdec : fn == K_TAX ? acc[15:0] : ea;
+  // Return stack: call pushes (the older entry falls off), ret pops (the
+  // bottom entry stays).
+  always @(posedge clk) begin
+    if (rst) begin
+      stk0 <= {IW{1'b0}};
+      stk1 <= {IW{1'b0}};
+    end else if (!ph && (call_op || ret_op)) begin
+      stk0 <= call_op ? pc1 : stk1;
+      if (call_op) stk1 <= stk0;
+    end
+  end
+
   // ---- end of the current B clock ---------------------------------------------
   wire last_step = cnt == 6'd1;
   reg done;
@@ -266,11 +290,24 @@ module frame_engine #(
   wire reads_m = !ctl && fn <= F_RND && !imm_steps;
   wire sel_w = reads_m && cls != C_IMM;  // the operand is a field of w
 
+  // Square root registers: cleared at the end of cycle A of sqrt/sqrtr.
+  wire sq_clear = rst || (!ph && sq_op);
+  always @(posedge clk) begin
+    if (sq_clear) begin
+      rem <= 26'd0;
+      root <= 25'd0;
+    end else if (ph && u_sq && u_step) begin
+      rem <= (cnt[0] && dig) ? dif[25:0] : rsh[25:0];
+      if (cnt[0]) root <= {root[23:0], dig};
+    end
+  end
+  always @(posedge clk) if (!ph) sqneg <= acc[47];
+
   always @(posedge clk) begin
     if (rst) begin
       ph <= 1'b0; pc <= {IW{1'b0}}; acc <= 48'd0;
-      x1 <= 16'd0; x2 <= 16'd0; x3 <= 16'd0; stk0 <= {IW{1'b0}}; stk1 <= {IW{1'b0}};
-      cnt <= 6'd0; rbit <= 1'b0; rem <= 26'd0; root <= 25'd0; sqneg <= 1'b0;
+      x1 <= 16'd0; x2 <= 16'd0; x3 <= 16'd0;
+      cnt <= 6'd0; rbit <= 1'b0;
       {u_sel_i, u_sel_x, u_sel_q, u_step} <= 4'd0;
       {u_f_lo, u_f_mid, u_f_15, u_f_hi, u_f_h, u_f_h15, u_e15, u_e31, u_e31t} <= 9'd0;
       {u_sub, u_lop, u_use_s, u_we, u_min, u_max, u_cin_r, u_cin_q} <= 9'd0;
@@ -278,7 +315,10 @@ module frame_engine #(
     end else if (!ph) begin
       // ---- end of cycle A: control flow, X, the controls of B
       ph <= 1'b1;
-      pc <= pc1;
+      pc <= pc_next;
+      if (x_we && xs == 2'd1) x1 <= xval;
+      if (x_we && xs == 2'd2) x2 <= xval;
+      if (x_we && xs == 2'd3) x3 <= xval;
       rbit <= 1'b0;
       cnt <= sq_op ? SQ_STEPS : ir[5:0];
       u_f_lo <= sel_w && fld != 3'd4 && fld != 3'd6;
@@ -313,35 +353,6 @@ module frame_engine #(
       u_rnd <= !ctl && fn == F_RND;
       u_sq <= sq_op;
       u_wait <= ctl && fn == K_WAIT;
-      if (ctl) begin
-        case (fn)
-          K_J: if (ctaken ^ fld[2]) pc <= target;
-          K_DJNZ: if (xdec != 16'd0) pc <= target;
-          K_CALL: begin                // push: the oldest entry falls off
-            stk0 <= pc1;
-            stk1 <= stk0;
-            pc <= target;
-          end
-          K_RET: begin                 // pop: the bottom entry stays
-            pc <= stk0;
-            stk0 <= stk1;
-          end
-          default: ;
-        endcase
-        if (fn == K_DJNZ || fn == K_LDX || fn == K_ADDX || fn == K_TAX) begin
-          case (xs)
-            2'd1: x1 <= fn == K_DJNZ ? xdec : fn == K_TAX ? acc[15:0] : ea;
-            2'd2: x2 <= fn == K_DJNZ ? xdec : fn == K_TAX ? acc[15:0] : ea;
-            2'd3: x3 <= fn == K_DJNZ ? xdec : fn == K_TAX ? acc[15:0] : ea;
-            default: ;
-          endcase
-        end
-        if (sq_op) begin
-          rem <= 26'd0;
-          root <= 25'd0;
-          sqneg <= acc[47];
-        end
-      end
     end else begin
       // ---- end of a clock of cycle B
       if (done) ph <= 1'b0;
@@ -349,12 +360,6 @@ module frame_engine #(
       if (u_step) begin
         cnt <= cnt - 6'd1;
         rbit <= acc[0];
-      end
-      if (u_sq && u_step) begin
-        if (cnt[0]) begin
-          rem <= dig ? dif[25:0] : rsh[25:0];
-          root <= {root[23:0], dig};
-        end else rem <= rsh[25:0];
       end
       // Controls of the next B clock of a multi-clock instruction.
       if (u_latch) begin                 // count loaded: steps follow
