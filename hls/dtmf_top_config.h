@@ -25,6 +25,10 @@
 
 namespace eskin::hls {
 
+// The FPGA clock of the DTMF top (the UP5K build: its 12 MHz oscillator
+// through the PLL).
+constexpr long kDtmfTopClkHz = 24000000;
+
 // What a skin asks of the FPGA top.
 struct DtmfTopSpec {
   int rows = 3, cols = 3;
@@ -43,7 +47,7 @@ struct DtmfTopSpec {
   double neuron_input_scale = 10.0;  // taxel g (0..1) -> neuron input units
   std::string layer2_preset = "RS";
   double layer2_centre = 20.0, layer2_surround = -4.0;
-  long clk_hz = 12000000;          // FPGA clock
+  long clk_hz = kDtmfTopClkHz;     // FPGA clock
   long baud = 3000000;
 };
 

@@ -17,8 +17,8 @@
 //   void io_write(uint16_t addr, uint32_t data, uint64_t clock);  // `out`
 //   uint16_t events(uint64_t clock);                   // sampled by `wait`
 // `clock` is the index of the clock (0 = the first clock after reset) in
-// which the RTL drives the bus: io_re and io_addr in cycle A of the reading
-// instruction (the data is used in the clock after), io_we in its cycle B,
+// which the RTL drives the bus: io_re and io_raddr in cycle A of the reading
+// instruction (the data is used in the clock after), io_we and io_waddr in its cycle B,
 // and events in each clock of a `wait`'s cycle B (the wait ends at the end of
 // the first clock whose events match its mask).
 #pragma once
@@ -250,8 +250,14 @@ class FrameEngine {
         case fe::kLd: a_ = m; break;
         case fe::kAdd: a_ = wrap48(a_ + m); break;
         case fe::kSub: a_ = wrap48(a_ - m); break;
-        case fe::kMin: if (a_ >= m) a_ = m; break;
-        case fe::kMax: if (a_ < m) a_ = m; break;
+        case fe::kMin:  // compare, then write: one more B clock
+          if (a_ >= m) a_ = m;
+          clk = 3;
+          break;
+        case fe::kMax:
+          if (a_ < m) a_ = m;
+          clk = 3;
+          break;
         case fe::kAnd: a_ = wrap48(a_ & m); break;
         case fe::kOr: a_ = wrap48(a_ | m); break;
         case fe::kXor: a_ = wrap48(a_ ^ m); break;

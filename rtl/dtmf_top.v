@@ -66,19 +66,19 @@ module dtmf_top #(
   end
 
   // ---------------- frame engine IO bus ---------------------------------
-  wire [15:0] io_addr;
+  wire [15:0] io_raddr, io_waddr;
   wire        io_re, io_we;
   wire [31:0] io_wdata;
   reg  [31:0] io_reg;
   reg         io_frame_q;   // the read went to the frame buffer
   wire [31:0] cap_data;
   wire [31:0] io_rdata = io_frame_q ? cap_data : io_reg;
-  wire        wr_out = io_we && io_addr == 16'h0200;
-  wire        wr_done = io_we && io_addr == 16'h0201;
-  wire        wr_pop = io_we && io_addr == 16'h0202;
-  wire        wr_sdk = io_we && io_addr == 16'h0203;
-  wire        wr_sdinc = io_we && io_addr == 16'h0204;
-  wire        wr_clear = io_we && io_addr == 16'h0205;
+  wire        wr_out = io_we && io_waddr == 16'h0200;
+  wire        wr_done = io_we && io_waddr == 16'h0201;
+  wire        wr_pop = io_we && io_waddr == 16'h0202;
+  wire        wr_sdk = io_we && io_waddr == 16'h0203;
+  wire        wr_sdinc = io_we && io_waddr == 16'h0204;
+  wire        wr_clear = io_we && io_waddr == 16'h0205;
 
   // ---------------- carrier table writes to sdft_bank --------------------
   reg [7:0]  cfg_k;
@@ -135,7 +135,7 @@ module dtmf_top #(
   frame_capture #(.KS(KS), .W(ACC_W), .N(N), .STEP(STEP)) u_cap (
       .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(sdft_fire), .smp_t(adc_t),
       .tok_valid(sd_valid), .tok_ready(sd_ready), .tok_last(sd_last), .tok_re(sd_re),
-      .tok_im(sd_im), .rd_addr(io_addr[7:0]), .rd_data(cap_data), .pending(frame_pending),
+      .tok_im(sd_im), .rd_addr(io_raddr[7:0]), .rd_data(cap_data), .pending(frame_pending),
       .frame_t(frame_t), .done(wr_done), .clear(wr_clear), .overruns(frame_overruns));
   /* verilator lint_off UNUSEDSIGNAL */
   wire [7:0] sd_k_unused = sd_k;  // tokens arrive in k order; capture counts them
@@ -183,14 +183,14 @@ module dtmf_top #(
   wire [15:0] events = {14'd0, cmd_avail, frame_pending};
   frame_engine #(.IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX),
                  .KROM_HEX(KROM_HEX)) u_eng (
-      .clk(clk), .rst(rst), .io_addr(io_addr), .io_re(io_re), .io_rdata(io_rdata),
+      .clk(clk), .rst(rst), .io_raddr(io_raddr), .io_re(io_re), .io_waddr(io_waddr), .io_rdata(io_rdata),
       .io_we(io_we), .io_wdata(io_wdata), .events(events));
 
   // Registered reads (the engine samples one clock after io_re).
   always @(posedge clk) begin
     if (io_re) begin
-      io_frame_q <= io_addr < 16'h0200;
-      case (io_addr)
+      io_frame_q <= io_raddr < 16'h0200;
+      case (io_raddr)
         16'h0200: io_reg <= frame_t;
         16'h0201: io_reg <= {30'd0, cmd_avail, frame_pending};
         16'h0202: io_reg <= {24'd0, cmd_head};

@@ -17,7 +17,7 @@
 //            sqrt/sqrtr and wait stay in B for more clocks (docs: timing).
 // Memories: IMEM 2^IW x 32 ROM ($readmemh UCODE_HEX), KROM 2^KW x 32 ROM
 // (KROM_INIT, word k at [32k +: 32]), DMEM 2^DW x 32 single-port RAM, not
-// initialised: EBR for DW <= 11, SPRAM for DW >= 12 (ram_style "huge": two
+// initialised: EBR for DW <= 9, SPRAM for DW >= 10 (ram_style "huge": two
 // SB_SPRAM256KA, four for DW = 15; no -spram option needed).
 `default_nettype none
 
@@ -32,8 +32,9 @@ module frame_engine #(
 ) (
     input  wire        clk,
     input  wire        rst,            // synchronous, active high
-    output wire [15:0] io_addr,        // valid in cycles A and B
+    output wire [15:0] io_raddr,       // cycle A of an IO read (with io_re)
     output wire        io_re,          // cycle A of an IO read
+    output wire [15:0] io_waddr,       // cycle B of `out` (with io_we), registered
     input  wire [31:0] io_rdata,       // used in the first clock of B
     output wire        io_we,          // cycle B of `out`
     output wire [31:0] io_wdata,
@@ -92,6 +93,7 @@ module frame_engine #(
   reg u_we, u_min, u_max;              // A written: always, if A >= m, if A < m
   reg u_cin_r, u_cin_q;                // cin = rbit (rnd), = root[0] (sqrtr)
   reg u_lt, u_mpy, u_st, u_out;
+  reg u_put;                           // min/max second clock: A = m unless keep_r
   reg u_left;                          // shift direction (shl, sqrt)
   reg u_latch;                         // this clock loads the shift count from y
   reg u_shift, u_rnd, u_sq, u_wait;    // the instruction in B
@@ -106,11 +108,13 @@ module frame_engine #(
   wire        memop = cls == C_MEM;
 
   // ---- effective address --------------------------------------------------
-  // ldx ignores the index (X = imm), addx uses it (X = imm + X).
-  wire [1:0] xsel = (ctl && fn == K_LDX) ? 2'd0 : xs;
+  // X[xs] is added whatever the class, so the adder starts from IR's bits
+  // (cycle A's long path: IMEM bank mux -> X mux -> adder -> memory
+  // address); ldx, which ignores the index, takes the plain field instead
+  // (xval below).
   reg  [15:0] xv;
   always @* begin
-    case (xsel)
+    case (xs)
       2'd1: xv = x1;
       2'd2: xv = x2;
       2'd3: xv = x3;
@@ -153,13 +157,17 @@ module frame_engine #(
     else for (k = 0; k < (1 << KW); k = k + 1) krom[k] = KROM_INIT[32*k +: 32];
   end
 
+  // One address for both ports so the SPRAM (single-ported) can hold it:
+  // B writes at its registered ea, A reads at the decoded one.
+  wire [DW-1:0] dmem_a = ph ? eab[DW-1:0] : ea[DW-1:0];
   always @(posedge clk) begin
-    if (ph && u_st) dmem[eab[DW-1:0]] <= acc[31:0];
-    else if (!ph) dq <= dmem[ea[DW-1:0]];
+    if (ph && u_st) dmem[dmem_a] <= acc[31:0];
+    else if (!ph) dq <= dmem[dmem_a];
   end
   always @(posedge clk) if (!ph) kq <= krom[ea[KW-1:0]];
 
-  assign io_addr = ph ? eab : ea;
+  assign io_raddr = ea;
+  assign io_waddr = eab;
   assign io_re = !ph && memop && space == 2'd2 && fn <= F_RND;
   assign io_we = ph && u_out;
   assign io_wdata = acc[31:0];
@@ -208,8 +216,19 @@ module frame_engine #(
       default: lg = ~y;
     endcase
   end
-  wire acc_we = ph && (u_we || (u_min && !a_lt_m) || (u_max && a_lt_m));
-  wire [47:0] acc_d = u_use_s ? s[47:0] : lg;
+  // min/max take two B clocks: the first registers the comparison (the
+  // adder's carry out, B's latest signal), the second writes m (lg = ~y = m)
+  // or leaves A, so A's clock enable starts at a flip-flop.
+  // m is kept too: an IO word is only valid in B's first clock.
+  reg keep_r;                          // min/max: A stays (registered compare)
+  reg [47:0] m_r;                      // min/max: m of the first clock
+  always @(posedge clk)
+    if (u_min || u_max) begin
+      keep_r <= (u_min && a_lt_m) || (u_max && !a_lt_m);
+      m_r <= m;
+    end
+  wire acc_we = ph && (u_we || (u_put && !keep_r));
+  wire [47:0] acc_d = u_use_s ? s[47:0] : u_put ? m_r : lg;
 
   // ---- square root of 4 A: one root digit per two clocks -------------------
   // cnt = 50..1: A shifts left and its top bit enters rem (two zero bits
@@ -244,7 +263,7 @@ module frame_engine #(
               call_op;
   wire [IW-1:0] pc_next = jump ? target : ret_op ? stk0 : pc1;
   wire x_we = ctl && (fn == K_DJNZ || fn == K_LDX || fn == K_ADDX || fn == K_TAX);
-  wire [15:0] xval = fn == K_DJNZ ? xdec : fn == K_TAX ? acc[15:0] : ea;
+  wire [15:0] xval = fn == K_DJNZ ? xdec : fn == K_TAX ? acc[15:0] : fn == K_LDX ? addr : ea;
   // Return stack: call pushes (the older entry falls off), ret pops (the
   // bottom entry stays).
   always @(posedge clk) begin
@@ -264,7 +283,7 @@ module frame_engine #(
     if (u_latch) done = y[5:0] == 6'd0;
     else if (u_step) done = u_shift && !u_rnd && last_step;
     else if (u_wait) done = |(events & irb[15:0]);
-    else done = 1'b1;
+    else done = !(u_min || u_max);
   end
 
   // T and P. P has no reset of its own, so that it stays the SB_MAC16's
@@ -312,6 +331,7 @@ module frame_engine #(
       {u_f_lo, u_f_mid, u_f_15, u_f_hi, u_f_h, u_f_h15, u_e15, u_e31, u_e31t} <= 9'd0;
       {u_sub, u_lop, u_use_s, u_we, u_min, u_max, u_cin_r, u_cin_q} <= 9'd0;
       {u_lt, u_mpy, u_st, u_out, u_left, u_latch, u_shift, u_rnd, u_sq, u_wait} <= 10'd0;
+      u_put <= 1'b0;
     end else if (!ph) begin
       // ---- end of cycle A: control flow, X, the controls of B
       ph <= 1'b1;
@@ -341,6 +361,7 @@ module frame_engine #(
       u_we <= (alu_op && fn != F_MIN && fn != F_MAX) || imm_steps || sq_op || txa_op;
       u_min <= alu_op && fn == F_MIN;
       u_max <= alu_op && fn == F_MAX;
+      u_put <= 1'b0;
       u_cin_r <= 1'b0;
       u_cin_q <= 1'b0;
       u_lt <= !ctl && fn == F_LT;
@@ -357,6 +378,11 @@ module frame_engine #(
       // ---- end of a clock of cycle B
       if (done) ph <= 1'b0;
       if (acc_we) acc <= acc_d;
+      if (u_min || u_max) begin          // compared: the write follows
+        u_min <= 1'b0;
+        u_max <= 1'b0;
+        u_put <= 1'b1;
+      end
       if (u_step) begin
         cnt <= cnt - 6'd1;
         rbit <= acc[0];
@@ -382,3 +408,4 @@ module frame_engine #(
     end
   end
 endmodule
+`default_nettype wire

@@ -11,7 +11,7 @@
 
 namespace eskin::sim {
 
-inline hls::DtmfTopSpec dtmf_top_spec(const Scene& sc, long clk_hz = 12000000) {
+inline hls::DtmfTopSpec dtmf_top_spec(const Scene& sc, long clk_hz = hls::kDtmfTopClkHz) {
   hls::DtmfTopSpec s;
   s.rows = sc.skin.rows;
   s.cols = sc.skin.cols;

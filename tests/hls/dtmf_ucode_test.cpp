@@ -45,7 +45,7 @@ void compare_scene(const std::string& scene_file, long clk_hz) {
   for (const auto& p : top.packets())
     if (p.type != hls::kDtmfStatus) got.push_back(p);
   EXPECT_EQ(top.frame_overruns(), 0u);
-  ASSERT_GT(want.size(), 500u);
+  ASSERT_GT(want.size(), 250u);  // both scenes: hundreds of frames of every type
   // The last frame's packets may still be in the engine when the samples end.
   ASSERT_GE(got.size() + 4, want.size());
   const size_t n = std::min(got.size(), want.size());

@@ -8,8 +8,7 @@
 #  s10:     scenes/staggered10x10.yaml at 96 MHz (100 taxels, two neuron
 #           layers each: the engine needs ~80 000 clocks per 1 ms frame).
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
-set(dtmf_default -GCLK_HZ=24000000 -GSAMPLE_HZ=35000 -GBAUD=3000000 -GKS=7 -GN=32 -GACC_W=18
-  -GSTEP=35 -GIW=11 -GIMEM_WORDS=1280 -GDW=10 -GKW=9)
+set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
   -GSTEP=70 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=8)
 set(eskin_default_args ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucode.hex\"
@@ -20,6 +19,6 @@ eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top 
 string(JOIN " " dtmf_default_str ${dtmf_default})
 string(JOIN " " dtmf_s10_str ${dtmf_s10})
 target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
-  DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=24000000
+  DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=${ESKIN_DTMF_TOP_CLK_HZ}
   DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000)
 target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode)

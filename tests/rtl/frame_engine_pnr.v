@@ -26,15 +26,16 @@ module frame_engine_pnr #(
     end
   endfunction
 
-  wire [15:0] io_addr;
+  wire [15:0] io_raddr, io_waddr;
   wire        io_re, io_we;
   wire [31:0] io_wdata;
   reg  [31:0] rdata;
   always @(posedge clk) begin
     rdata <= {rdata[30:0], din};
-    dout <= ^{io_re, io_we, io_wdata, io_addr};
+    dout <= ^{io_re, io_we, io_wdata, io_raddr, io_waddr};
   end
   frame_engine #(.IW(IW), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX), .KROM_INIT(pattern(1))) u (
-      .clk(clk), .rst(rst), .io_addr(io_addr), .io_re(io_re), .io_rdata(rdata), .io_we(io_we),
+      .clk(clk), .rst(rst), .io_raddr(io_raddr), .io_re(io_re), .io_waddr(io_waddr), .io_rdata(rdata), .io_we(io_we),
       .io_wdata(io_wdata), .events({4{ev}}));
 endmodule
+`default_nettype wire

@@ -16,7 +16,8 @@ module frame_engine_tb #(
 ) (
     input  wire        clk,
     input  wire        rst,
-    output wire [15:0] io_addr,
+    output wire [15:0] io_raddr,
+    output wire [15:0] io_waddr,
     output wire        io_re,
     input  wire [31:0] io_rdata,
     output wire        io_we,
@@ -47,7 +48,7 @@ module frame_engine_tb #(
     output wire [IW-1:0] stk1
 );
   frame_engine #(.IW(IW), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX), .KROM_INIT(KROM_INIT)) u (
-      .clk(clk), .rst(rst), .io_addr(io_addr), .io_re(io_re), .io_rdata(io_rdata),
+      .clk(clk), .rst(rst), .io_raddr(io_raddr), .io_re(io_re), .io_waddr(io_waddr), .io_rdata(io_rdata),
       .io_we(io_we), .io_wdata(io_wdata), .events(events));
 
   always @(posedge clk) begin
@@ -76,3 +77,4 @@ module frame_engine_tb #(
   assign stk0 = u.stk0;
   assign stk1 = u.stk1;
 endmodule
+`default_nettype wire

@@ -151,8 +151,8 @@ class Lockstep {
       m.events = event_value(io_.seed, clock_);
       m.eval();
       read_pending_ = m.io_re;
-      read_addr_ = m.io_addr;
-      if (m.io_we) rtl_writes.push_back({m.io_addr, m.io_wdata, clock_});
+      read_addr_ = m.io_raddr;
+      if (m.io_we) rtl_writes.push_back({m.io_waddr, m.io_wdata, clock_});
       if (m.dm_we) {
         stored = true;
         st_addr = m.dm_addr & (FrameEngine<CFG>::kDmemWords - 1);
