@@ -192,7 +192,7 @@ class FrameEngine {
     return run(io, n, [](const FrameEngine&) { return false; });
   }
 
-  // ---- semantics shared with the tools -----------------------------------------
+  // ---- value helpers (the manual's definitions) ------------------------------
   static int64_t wrap48(int64_t v) {
     return int64_t(uint64_t(v) << 16) >> 16;
   }

@@ -41,3 +41,15 @@ add_test(NAME pnr.frame_engine
     --param "UCODE_HEX=\"${fe_selftest_hex}\"" --pnr --freq 13.2
     --out ${CMAKE_BINARY_DIR}/synth/frame_engine_pnr)
 set_tests_properties(pnr.frame_engine PROPERTIES LABELS "synth;pnr" TIMEOUT 1200)
+
+# Illegal parameters stop elaboration in both tools (IW 13 > 12, DW 3 < 4),
+# with the message naming the parameter and its range.
+add_test(NAME lint.frame_engine_rejects_iw13
+  COMMAND verilator --lint-only -Wall -GIW=13 ${CMAKE_SOURCE_DIR}/rtl/frame_engine.v)
+add_test(NAME synth.frame_engine_rejects_dw3
+  COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ice40.sh frame_engine --param DW=3
+    --out ${CMAKE_BINARY_DIR}/synth/frame_engine_dw3)
+set_tests_properties(lint.frame_engine_rejects_iw13 PROPERTIES LABELS lint
+  PASS_REGULAR_EXPRESSION "frame_engine_parameter_IW_must_be_4_to_12")
+set_tests_properties(synth.frame_engine_rejects_dw3 PROPERTIES LABELS synth
+  PASS_REGULAR_EXPRESSION "frame_engine_parameter_DW_must_be_4_to_15")
