@@ -25,6 +25,8 @@
 
 #include <cstdint>
 
+#include "hls/isqrt.h"
+
 namespace eskin::hls {
 
 // ---- encoding ----------------------------------------------------------------
@@ -190,7 +192,7 @@ class FrameEngine {
     return run(io, n, [](const FrameEngine&) { return false; });
   }
 
-  // ---- semantics shared with the tools -----------------------------------------
+  // ---- value helpers (the manual's definitions) ------------------------------
   static int64_t wrap48(int64_t v) {
     return int64_t(uint64_t(v) << 16) >> 16;
   }
@@ -331,7 +333,9 @@ class FrameEngine {
         stack_[0] = stack_[1];
         return 2;
       case fe::kSqrt: case fe::kSqrtr:
-        a_ = a_ < 0 ? 0 : (fn == fe::kSqrt ? isqrt48(a_) : (isqrt48(a_ * 4) + 1) >> 1);
+        // sqrtr: floor(sqrt(A) + 1/2) = (floor(sqrt(4 A)) + 1) >> 1.
+        a_ = a_ < 0 ? 0
+                    : int64_t(fn == fe::kSqrt ? isqrt64(uint64_t(a_)) : (isqrt64(uint64_t(a_) * 4) + 1) >> 1);
         return fe::kSqrtClocks;
       case fe::kLdx: if (xi != 0) x_[xi] = uint16_t(addr); return 2;
       case fe::kAddx: if (xi != 0) x_[xi] = uint16_t(addr + x_[xi]); return 2;
@@ -351,21 +355,6 @@ class FrameEngine {
         return;
       }
     }
-  }
-
-  // floor(sqrt(v)) for 0 <= v < 2^49, digit by digit (exact integer method).
-  static int64_t isqrt48(int64_t v) {
-    uint64_t rem = 0, root = 0;
-    for (int i = 24; i >= 0; --i) {
-      rem = (rem << 2) | ((uint64_t(v) >> (2 * i)) & 3u);
-      const uint64_t trial = (root << 2) | 1u;
-      root <<= 1;
-      if (rem >= trial) {
-        rem -= trial;
-        root |= 1u;
-      }
-    }
-    return int64_t(root);
   }
 
   uint16_t xreg(uint32_t i) const { return i == 0 ? 0 : x_[i]; }

@@ -26,6 +26,17 @@
 
 namespace eskin::hls::fe_asm {
 
+// Mnemonics by code (the assembler's and the disassembler's one table).
+namespace names {
+inline constexpr const char* kFieldNames[8] = {"w", "wu", "l", "lu", "h", "l15", "h15", "b"};
+inline constexpr const char* kCondNames[8] = {"", "eq", "lt", "le", "nv", "ne", "ge", "gt"};
+inline constexpr const char* kDataNames[16] = {"ld", "add", "sub", "min", "max", "and", "or", "xor",
+                                    "lt", "mpy", "shl", "shr", "rnd", "st", "out", nullptr};
+inline constexpr const char* kCtlNames[11] = {"j",    "djnz", "call", "ret", "wait", "sqrt",
+                                   "sqrtr", "ldx", "addx", "tax", "txa"};
+inline constexpr const char* kFieldList = "one of .w .wu .l .lu .h .l15 .h15 .b";
+}  // namespace names
+
 // An assembly error; what() is "FILE:LINE: message".
 class AsmError : public std::runtime_error {
  public:

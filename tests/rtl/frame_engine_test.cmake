@@ -17,15 +17,20 @@ verilate(${exe} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v
   VERILATOR_ARGS -y ${CMAKE_SOURCE_DIR}/rtl -Wno-fatal --x-assign unique --x-initial unique -O3
     ${fe_dw14_params})
 
-# Lint (every warning fatal) at the two sets above: the bench's defaults
-# (IW 9, DW 8, KW 4 with its KROM_INIT) and the DW=14 set.
+# Lint (every warning fatal) at every set built here: the bench's defaults
+# (IW 9, DW 8, KW 4 with its KROM_INIT), the DW=14 set, and the place-and-
+# route wrapper's (IW 10, DW 14, KW 8).
 add_test(NAME lint.frame_engine_tb
   COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module frame_engine_tb
     ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v)
 add_test(NAME lint.frame_engine_tb_dw14
   COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module frame_engine_tb
     ${fe_dw14_params} ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v)
-set_tests_properties(lint.frame_engine_tb lint.frame_engine_tb_dw14 PROPERTIES LABELS lint)
+add_test(NAME lint.frame_engine_pnr
+  COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module frame_engine_pnr
+    "-GUCODE_HEX=\"${fe_selftest_hex}\"" ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_pnr.v)
+set_tests_properties(lint.frame_engine_tb lint.frame_engine_tb_dw14 lint.frame_engine_pnr
+  PROPERTIES LABELS lint)
 
 # The core (IW 10 with the self-test program, DW 14: SPRAM, KW 8) in the
 # small pin wrapper tests/rtl/frame_engine_pnr.v, placed and routed for the
@@ -36,3 +41,15 @@ add_test(NAME pnr.frame_engine
     --param "UCODE_HEX=\"${fe_selftest_hex}\"" --pnr --freq 13.2
     --out ${CMAKE_BINARY_DIR}/synth/frame_engine_pnr)
 set_tests_properties(pnr.frame_engine PROPERTIES LABELS "synth;pnr" TIMEOUT 1200)
+
+# Illegal parameters stop elaboration in both tools (IW 13 > 12, DW 3 < 4),
+# with the message naming the parameter and its range.
+add_test(NAME lint.frame_engine_rejects_iw13
+  COMMAND verilator --lint-only -Wall -GIW=13 ${CMAKE_SOURCE_DIR}/rtl/frame_engine.v)
+add_test(NAME synth.frame_engine_rejects_dw3
+  COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ice40.sh frame_engine --param DW=3
+    --out ${CMAKE_BINARY_DIR}/synth/frame_engine_dw3)
+set_tests_properties(lint.frame_engine_rejects_iw13 PROPERTIES LABELS lint
+  PASS_REGULAR_EXPRESSION "frame_engine_parameter_IW_must_be_4_to_12")
+set_tests_properties(synth.frame_engine_rejects_dw3 PROPERTIES LABELS synth
+  PASS_REGULAR_EXPRESSION "frame_engine_parameter_DW_must_be_4_to_15")

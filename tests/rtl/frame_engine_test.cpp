@@ -188,6 +188,14 @@ class Lockstep {
     return !::testing::Test::HasFailure();
   }
 
+  // Runs until the model's PC is `stop` (at most `limit` instructions, and
+  // not past a difference); returns the PC reached.
+  uint32_t run_until(uint32_t stop, int limit) {
+    for (int i = 0; i < limit && model_->pc() != stop; ++i)
+      if (!step()) break;
+    return model_->pc();
+  }
+
   // Runs `count` instructions (stops at the first difference); counts the
   // instructions run by class and function code (word bits 31..26).
   void run(int count, std::vector<uint64_t>& by_code) {
@@ -282,13 +290,12 @@ TEST(FrameEngineRtl, DirectedFieldsOfKromInit) {
   ls.model().load_krom(kKromInit, 16);
   ls.clear_dmem();
   ls.reset();
-  int n = 0;
-  while (ls.model().pc() != uint32_t(p.symbols.at("halt")) && n++ < 2000 && ls.step()) {}
-  EXPECT_EQ(ls.model().pc(), uint32_t(p.symbols.at("halt")));
+  const uint32_t halt = uint32_t(p.symbols.at("halt"));
+  EXPECT_EQ(ls.run_until(halt, 2000), halt);
 }
 
-// Shifts and square roots at the edges: counts 0, 1, 47, 48, 63 from
-// immediates and from DMEM, on A = +-1, extremes and a mixed pattern.
+// Shifts and square roots at the edges: counts 0, 1, 15, 47, 48, 63 from
+// immediates and from DMEM, on A = +-2^22 and the 48-bit extremes.
 TEST(FrameEngineRtl, DirectedShiftsAndRootsAtTheEdges) {
   std::string src;
   const char* values[] = {"1", "-1", "0x1FFFFFF", "-0x2000000"};
@@ -315,9 +322,8 @@ TEST(FrameEngineRtl, DirectedShiftsAndRootsAtTheEdges) {
   ls.load_program(p.words);
   ls.clear_dmem();
   ls.reset();
-  int n = 0;
-  while (ls.model().pc() != uint32_t(p.symbols.at("halt")) && n++ < 5000 && ls.step()) {}
-  EXPECT_EQ(ls.model().pc(), uint32_t(p.symbols.at("halt")));
+  const uint32_t halt = uint32_t(p.symbols.at("halt"));
+  EXPECT_EQ(ls.run_until(halt, 5000), halt);
 }
 
 // The self-test program, loaded into the RTL by $readmemh (UCODE_HEX) and
@@ -336,10 +342,9 @@ TEST(FrameEngineRtl, SelfTestFromUcodeHex) {
   ls.model().load_program(words.data(), uint32_t(words.size()));
   ls.clear_dmem();
   ls.reset();
-  const uint32_t halt = uint32_t(prog.symbols.at("halt")), fail = uint32_t(prog.symbols.at("fail"));
-  int n = 0;
-  while (ls.model().pc() != halt && ls.model().pc() != fail && n++ < 5000 && ls.step()) {}
-  EXPECT_EQ(ls.model().pc(), halt);
+  const uint32_t halt = uint32_t(prog.symbols.at("halt"));
+  EXPECT_EQ(ls.run_until(halt, 5000), halt) << "the self-test did not reach halt (fail is at "
+                                            << prog.symbols.at("fail") << ")";
   ls.expect_same_dmem();
 }
 
