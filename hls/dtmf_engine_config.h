@@ -21,7 +21,9 @@
 
 namespace eskin::hls {
 
-// IO ports of the frame engine in rtl/dtmf_top.v (reads / writes).
+// IO ports of the frame engine in rtl/dtmf_top.v (reads / writes). The top
+// decodes reads partially (bit 9: frame or register; bits 3:0: which
+// register) and writes fully; the microcode uses only these addresses.
 enum DtmfIoPort : uint16_t {
   kIoFrame = 0x000,      // r: frame token k: re at 2k, im at 2k + 1 (k = 0..KS-1)
   kIoFrameT = 0x200,     // r: t of the frame's newest sample

@@ -25,9 +25,13 @@
 
 namespace eskin::hls {
 
-// The FPGA clock of the DTMF top (the UP5K build: its 12 MHz oscillator
-// through the PLL).
-constexpr long kDtmfTopClkHz = 24000000;
+// The FPGA clock of the DTMF top: the iCEBreaker's 12 MHz oscillator x 3/2
+// by the UP5K's PLL (VCO 576 MHz / 32). The top's place-and-route Fmax is
+// about 20 MHz (the frame engine's operand -> 48-bit adder path); 18 MHz
+// is the fastest PLL clock below it that divides into the 3 Mbaud link (6
+// clocks per bit). The default scene's longest frame takes 16 900 of the
+// 17 990 clocks between frames (docs/fpga.md).
+constexpr long kDtmfTopClkHz = 18000000;
 
 // What a skin asks of the FPGA top.
 struct DtmfTopSpec {

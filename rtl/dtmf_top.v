@@ -25,7 +25,7 @@
 // Start-up: the engine writes the carrier table to sdft_bank; the first
 // write with `last` enables the ADC, whose first conversion is sample t = 0.
 module dtmf_top #(
-    parameter integer CLK_HZ = 24_000_000,
+    parameter integer CLK_HZ = 18_000_000,
     parameter integer SAMPLE_HZ = 35_000,
     parameter integer BAUD = 3_000_000,
     parameter integer KS = 7,           // DFT channels: carriers (+ DC when demixing)
@@ -111,7 +111,7 @@ module dtmf_top #(
   wire [11:0] adc_code;
   wire [31:0] adc_t;
   wire [15:0] adc_overruns;
-  // SCLK = CLK_HZ / (2 SCLK_DIV) at most 20 MHz (AD7476A): 12 MHz at 24 MHz.
+  // SCLK = CLK_HZ / (2 SCLK_DIV) at most 20 MHz (AD7476A): 9 MHz at 18 MHz.
   localparam integer SCLK_DIV = (CLK_HZ + 39_999_999) / 40_000_000;
   adc_ad7476 #(.CLK_HZ(CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .SCLK_DIV(SCLK_DIV), .NCH(1)) u_adc (
       .clk(clk), .rst(rst), .en(adc_en), .cs_n(adc_cs_n), .sclk(adc_sclk),
@@ -186,27 +186,31 @@ module dtmf_top #(
       .clk(clk), .rst(rst), .io_raddr(io_raddr), .io_re(io_re), .io_waddr(io_waddr), .io_rdata(io_rdata),
       .io_we(io_we), .io_wdata(io_wdata), .events(events));
 
-  // Registered reads (the engine samples one clock after io_re).
+  // Registered reads (the engine samples one clock after io_re). Reads have
+  // no side effects, so the register loads every clock (no enable from the
+  // engine's decode), and the address is decoded partially: bit 9 picks
+  // the frame buffer (0x000-0x0FF) or the registers (0x200-0x20B, bits
+  // 3:0); the microcode uses only these addresses (hls/dtmf_engine_config.h).
+  // Both keep the path IMEM -> ea adder -> this register short.
   always @(posedge clk) begin
-    if (io_re) begin
-      io_frame_q <= io_raddr < 16'h0200;
-      case (io_raddr)
-        16'h0200: io_reg <= frame_t;
-        16'h0201: io_reg <= {30'd0, cmd_avail, frame_pending};
-        16'h0202: io_reg <= {24'd0, cmd_head};
-        16'h0203: io_reg <= {16'd0, out_free};
-        16'h0204: io_reg <= adc_t;
-        16'h0205: io_reg <= {16'd0, adc_overruns};
-        16'h0206: io_reg <= {16'd0, rx_errors};
-        16'h0207: io_reg <= {16'd0, cmd_crc_errors};
-        16'h0208: io_reg <= {16'd0, cmd_frame_errors};
-        16'h0209: io_reg <= {16'd0, frame_overruns};
-        16'h020A: io_reg <= {31'd0, cfg_valid};
-        16'h020B: io_reg <= {16'd0, cmd_overflows};
-        default:  io_reg <= 32'd0;
-      endcase
-    end
+    io_frame_q <= !io_raddr[9];
+    case (io_raddr[3:0])
+      4'h0: io_reg <= frame_t;
+      4'h1: io_reg <= {30'd0, cmd_avail, frame_pending};
+      4'h2: io_reg <= {24'd0, cmd_head};
+      4'h3: io_reg <= {16'd0, out_free};
+      4'h4: io_reg <= adc_t;
+      4'h5: io_reg <= {16'd0, adc_overruns};
+      4'h6: io_reg <= {16'd0, rx_errors};
+      4'h7: io_reg <= {16'd0, cmd_crc_errors};
+      4'h8: io_reg <= {16'd0, cmd_frame_errors};
+      4'h9: io_reg <= {16'd0, frame_overruns};
+      4'hA: io_reg <= {31'd0, cfg_valid};
+      4'hB: io_reg <= {16'd0, cmd_overflows};
+      default: io_reg <= 32'd0;
+    endcase
   end
+  wire unused_io = ^{io_re, io_raddr[15:10], io_raddr[8]};  // partial decode
 
   // ---------------- probes (tests and latency benchmarks) ---------------
   wire p_cfg_done /* verilator public_flat_rd */ = cfg_done;

@@ -61,7 +61,7 @@ void compare_scene(const std::string& scene_file, long clk_hz) {
 }
 
 TEST(DtmfUcode, DefaultSceneEqualsTheChain) {
-  compare_scene<hls::DtmfChainSizes<3, 3, 32>>("scenes/neuroskin2.yaml", 24000000);
+  compare_scene<hls::DtmfChainSizes<3, 3, 32>>("scenes/neuroskin2.yaml", hls::kDtmfTopClkHz);
 }
 
 TEST(DtmfUcode, Staggered10x10EqualsTheChain) {

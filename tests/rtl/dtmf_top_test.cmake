@@ -3,8 +3,8 @@
 # (the test checks every one against the plan, so a stale value here fails
 # it); the microcode and constants are written by the test itself into
 # ${dtmf_dir} from the plan (hls/dtmf_ucode.h) before the model is built.
-#  default: scenes/neuroskin2.yaml at 24 MHz (the iCE40 UP5K build: 12 MHz
-#           oscillator x 2 by the PLL);
+#  default: scenes/neuroskin2.yaml at 18 MHz (the iCE40 UP5K build: 12 MHz
+#           oscillator x 3/2 by the PLL);
 #  s10:     scenes/staggered10x10.yaml at 96 MHz (100 taxels, two neuron
 #           layers each: the engine needs ~80 000 clocks per 1 ms frame).
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
