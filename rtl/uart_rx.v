@@ -29,6 +29,14 @@ module uart_rx #(
     output reg        overrun
 );
   localparam integer CPB = (CLK_HZ + BAUD / 2) / BAUD;
+  // At least 2 clocks per bit (HALF >= 1), and the rounded bit period within
+  // 2 % of the baud rate (the bits are sampled mid-bit over 10 bits).
+  generate
+    if (BAUD < 1 || CPB < 2 || 50 * (CLK_HZ > CPB * BAUD ? CLK_HZ - CPB * BAUD : CPB * BAUD - CLK_HZ) >
+        CPB * BAUD) begin : g_bad_params
+      uart_rx_illegal_parameters u_stop ();  // no such module: stops elaboration
+    end
+  endgenerate
   localparam integer HALF = CPB / 2;
   localparam integer CW = (CPB > 2) ? $clog2(CPB) : 1;
   localparam [CW-1:0] CNT_LAST = CPB[CW-1:0] - 1'b1;
