@@ -26,6 +26,7 @@
 #include "host/report/simulate_report.h"
 #include "sim/scene.h"
 #include "sim/vboard/fpga_params.h"
+#include "sim/vboard/vboard_build.h"
 #include "sim/vboard/vboard_process.h"
 #include "sim/world_model.h"
 
@@ -68,15 +69,6 @@ class BoardLink {
   int fd_ = -1;
   link::LinkDecoder dec_;
 };
-
-// The virtual board executable for a build: the prebuilt one for the
-// default build.
-std::string board_executable(const vboard::FpgaBuild& b, const std::string& scene) {
-  if (b.key == "default") return ESKIN_VBOARD_DEFAULT;
-  throw ConfigError("skin", fmt::format("{} needs the FPGA build {} ({}x{}, window {}); only the "
-                                        "default build (scenes/neuroskin2.yaml) is prebuilt",
-                                        scene, b.key, b.plan.spec.rows, b.plan.spec.cols, b.plan.N));
-}
 
 struct Args {
   std::string scene, out = "eskin-out", trace;
@@ -169,7 +161,8 @@ std::string ms(double v) { return fmt::format("{:.3f}", v); }
 int run_simulate(const Args& a) {
   const sim::Scene scene = sim::load_scene(a.scene);  // a bad scene fails here, before anything runs
   const vboard::FpgaBuild build = vboard::fpga_build_for(scene);
-  const std::string exe = board_executable(build, a.scene);
+  const std::string exe = vboard::board_executable(
+      build, [](const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); });
   const SkinConfig& skin = scene.skin;
   const double fs = skin.adc.rate_hz;
   const int R = skin.rows, C = skin.cols, T = R * C, K = skin.carriers();
@@ -412,7 +405,8 @@ int run_simulate(const Args& a) {
   const std::string html = (std::filesystem::path(a.out) / "report.html").string();
   report::write_simulate_report(rep, html);
   {
-    nlohmann::json sum = {{"scene", a.scene}, {"fpga_build", build.key}, {"sim_s", sim_s},
+    nlohmann::json sum = {{"scene", a.scene}, {"fpga_build", build.key},
+                          {"fpga_clk_hz", build.clk_hz()}, {"sim_s", sim_s},
                           {"cpu_s", cpu_s}, {"wall_s", wall_s}, {"cycles", cyc},
                           {"packets", rx.size()}, {"link_errors", ls.crc_errors + ls.framing_errors + ls.payload_errors},
                           {"fpga_worst_rms_kpa", fs_.worst_rms_error_kpa()},
@@ -422,7 +416,11 @@ int run_simulate(const Args& a) {
                           {"golden_spikes_layer2", gspk2},
                           {"golden_spikes_scene_step", gold.scene_step_spikes},
                           {"golden_spikes_layer2_scene_step", gold.scene_step_spikes2},
-                          {"latency_median_us", lat_med}};
+                          {"latency_median_us", lat_med},
+                          {"status_packets", status_n},
+                          {"adc_overruns", last_status.adc_overruns},
+                          {"frame_overruns", last_status.frame_overruns},
+                          {"dropped_packets", last_status.dropped_frames}};
     auto js = fmt::output_file((std::filesystem::path(a.out) / "summary.json").string());
     js.print("{}\n", sum.dump(2));
   }
@@ -438,6 +436,10 @@ int run_simulate(const Args& a) {
              "the FPGA's neuron step ({} / {} at the scene's)\n",
              gs.worst_rms_error_kpa(), gspk.t_ms.size(), gspk2, gold.scene_step_spikes,
              gold.scene_step_spikes2);
+  if (last_status.frame_overruns > 0)
+    fmt::print("FPGA: {} frames skipped: the frame engine needs more clocks per frame than {:.0f} "
+               "MHz gives (docs/fpga.md, cycle budget)\n",
+               last_status.frame_overruns, build.clk_hz() / 1e6);
   if (lat_med >= 0)
     fmt::print("latency touch onset -> first FPGA frame on the host: median {:.0f} us over {} presses\n",
                lat_med, fpga_lat.size());

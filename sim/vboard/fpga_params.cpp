@@ -22,9 +22,9 @@
 namespace eskin::vboard {
 namespace {
 
-hls::DtmfTopPlan plan_of(const sim::Scene& scene) {
+hls::DtmfTopPlan plan_of(const sim::Scene& scene, long clk_hz) {
   try {
-    return hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, hls::kDtmfTopClkHz));
+    return hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, clk_hz));
   } catch (const std::invalid_argument& e) {
     // "skin.rows/cols: expected ..." -> a ConfigError on that field.
     const std::string what = e.what();
@@ -51,12 +51,12 @@ std::vector<std::string> FpgaBuild::verilator_args() const {
   return a;
 }
 
-FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir) {
+FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir, long clk_hz) {
   FpgaBuild b;
-  b.plan = plan_of(scene);
+  b.plan = plan_of(scene, clk_hz);
   const std::string mine = integer_params(b.plan);
-  static const std::string defaults =
-      integer_params(plan_of(sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml")));
+  static const std::string defaults = integer_params(
+      plan_of(sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml"), hls::kDtmfTopClkHz));
   if (mine == defaults) {
     b.key = "default";
   } else {

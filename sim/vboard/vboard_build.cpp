@@ -1,0 +1,86 @@
+#include "sim/vboard/vboard_build.h"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#if !defined(ESKIN_BINARY_DIR) || !defined(ESKIN_CMAKE_COMMAND) || !defined(ESKIN_VBOARD_DIR) || \
+    !defined(ESKIN_VBOARD_BIN_DIR)
+#error "sim/vboard/CMakeLists.txt defines where the build tree, cmake and the boards are"
+#endif
+
+namespace eskin::vboard {
+namespace {
+
+std::string quoted(const std::string& s) {  // one shell word
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string tail(const std::string& path, size_t lines) {
+  std::ifstream f(path);
+  std::deque<std::string> last;
+  for (std::string l; std::getline(f, l);) {
+    last.push_back(l);
+    if (last.size() > lines) last.pop_front();
+  }
+  std::string s;
+  for (const auto& l : last) s += "  " + l + "\n";
+  return s;
+}
+
+// Runs `args` (already quoted) with stdout and stderr appended to `log`.
+void run_logged(const std::string& args, const std::string& log, const std::string& what) {
+  const int st = std::system((args + " >>" + quoted(log) + " 2>&1").c_str());
+  if (st != 0 || !WIFEXITED(st))
+    throw std::runtime_error(what + " failed (" + log + "), its last lines:\n" + tail(log, 15));
+}
+
+}  // namespace
+
+std::string board_executable(const FpgaBuild& b,
+                             const std::function<void(const std::string&)>& note) {
+  const std::string bin = ESKIN_VBOARD_BIN_DIR;
+  if (b.key == "default") return bin + "/eskin-vboard";
+  const std::string dir = ESKIN_VBOARD_DIR, target = "eskin-vboard-" + b.key;
+  const std::string exe = bin + "/" + target, list = dir + "/builds.cmake";
+  BuildLock lock(dir, "builds");  // one writer of the list, one CMake run at a time
+  const bool listed = read_text(list).find("(" + target + " ") != std::string::npos;
+  if (!listed) {
+    std::string line = "eskin_vboard_target(" + target + " " + b.key + " " +
+                       std::to_string(b.plan.spec.clk_hz);
+    for (const auto& p : b.params)
+      if (p.name != "UCODE_HEX" && p.name != "KROM_HEX") line += " -G" + p.name + "=" + p.value;
+    std::ofstream f(list, std::ios::app);
+    if (!std::filesystem::exists(list) || std::filesystem::file_size(list) == 0)
+      f << "# Virtual boards that `eskin simulate` built for scenes (sim/vboard/vboard_build.h).\n";
+    f << line << ")\n";
+    if (!f) throw std::runtime_error(list + ": cannot append the board " + target);
+  }
+  const std::string log = dir + "/" + b.key + ".build.log";
+  if (!listed || !std::filesystem::exists(exe)) {
+    note("building the virtual board " + target + " for a " + std::to_string(b.plan.R) + "x" +
+         std::to_string(b.plan.C) + " skin at " + std::to_string(b.plan.spec.clk_hz / 1000000) +
+         " MHz (Verilator and C++, a few minutes, once; log " + log + ")");
+    std::ofstream(log, std::ios::trunc);
+  }
+  const std::string cmake = quoted(ESKIN_CMAKE_COMMAND), tree = quoted(ESKIN_BINARY_DIR);
+  if (!listed) run_logged(cmake + " " + tree, log, "configuring the build tree for " + target);
+  run_logged(cmake + " --build " + tree + " --target " + target, log, "building " + target);
+  return exe;
+}
+
+}  // namespace eskin::vboard

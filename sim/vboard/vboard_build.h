@@ -1,0 +1,24 @@
+// The virtual board executable for an FPGA build (docs/vboard.md, "Which
+// FPGA build a scene needs"). The default scene's board is prebuilt
+// (eskin-vboard); any other build is made the first time a scene needs it:
+// it is added to the build tree's list of boards (build/vboard/builds.cmake,
+// read by sim/vboard/CMakeLists.txt) and built by CMake, i.e. Verilator's
+// SystemC model of rtl/dtmf_top.v at the build's parameters plus
+// vboard_main.cpp. That takes minutes once; later runs find it up to date
+// (and rebuilt if the RTL changed).
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "sim/vboard/fpga_params.h"
+
+namespace eskin::vboard {
+
+// The board executable for `b`, built first when needed. `note` gets one
+// line before a build starts (it takes minutes). Throws std::runtime_error
+// naming the log and quoting its tail when CMake fails.
+std::string board_executable(const FpgaBuild& b,
+                             const std::function<void(const std::string&)>& note);
+
+}  // namespace eskin::vboard
