@@ -9,6 +9,20 @@ pkgs=(
   libyaml-cpp-dev libcli11-dev libfmt-dev
   libfftw3-dev libsndfile1-dev
   yosys nextpnr-ice40 fpga-icestorm jq
+  # host/stream: HDF5 recording (eskin stream --hdf5)
+  libhdf5-dev
+  # host/stream: the live view's HTTP server (eskin stream --live)
+  libcpp-httplib-dev
+  # host/stream: Chart.js, inlined into the live view page
+  libjs-chart.js
+  # tests/stream: the live view screenshot in headless Chromium
+  chromium
+  # tests/stream: PNG decoding of that screenshot
+  libpng-dev
+  # tests/stream: JSON parsing of eskin stream's NDJSON output
+  nlohmann-json3-dev
+  # tests/stream: libFuzzer (clang) for the link decoder fuzz test
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${pkgs[@]}"; do

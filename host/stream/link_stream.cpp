@@ -270,3 +270,22 @@ CommandReply LinkStream::command(const CommandSpec& spec, const std::vector<int6
 }
 
 }  // namespace eskin::stream
+
+namespace eskin::stream {
+
+std::string stats_json(const StreamStats& s) {
+  const auto kv = [](const char* k, uint64_t v) {
+    return std::string("\"") + k + "\":" + std::to_string(v);
+  };
+  std::string j = "{" + kv("bytes", s.link.bytes) + "," + kv("frames_ok", s.link.frames_ok) + "," +
+                  kv("crc_errors", s.link.crc_errors) + "," +
+                  kv("framing_errors", s.link.framing_errors) + "," +
+                  kv("payload_errors", s.link.payload_errors) + "," +
+                  kv("seq_gaps", s.link.seq_gaps) + "," + kv("lost_packets", s.link.lost_packets) +
+                  "," + kv("sync_bytes", s.sync_bytes) + "," + kv("connects", s.connects) + "," +
+                  kv("disconnects", s.disconnects) + "," + kv("queue_dropped", s.queue_dropped) +
+                  "}";
+  return j;
+}
+
+}  // namespace eskin::stream

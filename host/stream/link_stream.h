@@ -147,3 +147,8 @@ class LinkStream {
 };
 
 }  // namespace eskin::stream
+
+namespace eskin::stream {
+// The statistics as one JSON object (NDJSON summaries, the live view).
+std::string stats_json(const StreamStats& s);
+}  // namespace eskin::stream
