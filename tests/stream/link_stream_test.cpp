@@ -21,7 +21,7 @@
 
 #include "host/link/link_encoder.h"
 #include "host/stream/link_stream.h"
-#include "tests/common/dtmf_scene_chain.h"
+#include "tests/stream/frames.h"
 #include "tests/stream/pty_pair.h"
 
 namespace {
@@ -33,60 +33,11 @@ using eskin::stream::LinkEvent;
 using eskin::stream::LinkStream;
 using eskin::stream::StreamOptions;
 using eskin::testing::PtyPair;
+using eskin::testing::concat;
+using eskin::testing::random_frames;
+using eskin::testing::Sent;
 using eskin::testing::write_fully;
 using namespace std::chrono_literals;
-
-struct Sent {
-  uint8_t type, seq;
-  uint32_t t;
-  std::vector<uint8_t> payload;
-};
-
-// Random packets of every FPGA -> host type; returns wire bytes per frame.
-std::vector<std::vector<uint8_t>> random_frames(size_t n, uint32_t seed, std::vector<Sent>& sent) {
-  std::mt19937 rng(seed);
-  LinkEncoder enc;
-  std::vector<std::vector<uint8_t>> frames;
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t t = uint32_t(i * 35);
-    const uint8_t seq = enc.next_seq();
-    std::vector<uint8_t> w;
-    switch (i % 5) {
-      case 0: {
-        std::vector<uint16_t> m(6);
-        for (auto& x : m) x = uint16_t(rng());
-        w = enc.amplitudes(t, m);
-        break;
-      }
-      case 1: {
-        std::vector<uint16_t> v(9);
-        for (auto& x : v) x = uint16_t(rng() % 3 ? rng() : 0);
-        w = enc.taxels_dense(t, 3, 3, v);
-        break;
-      }
-      case 2:
-        w = enc.taxels_sparse(t, {{1, 2, uint16_t(rng())}, {0, 0, 0}});
-        break;
-      case 3:
-        w = enc.spikes(t, {{uint16_t(rng() % 35), 0, uint16_t(rng() % 9)}, {34, 1, 8}});
-        break;
-      default: {
-        eskin::link::StatusBlock s;
-        s.cmd_accepted = uint16_t(i);
-        s.samples = t;
-        w = enc.status(t, s);
-      }
-    }
-    // The raw frame is recovered from the encoder's own fields for comparison.
-    Packet probe;
-    eskin::link::LinkDecoder d;
-    d.feed(w);
-    EXPECT_TRUE(d.pop(probe));
-    sent.push_back({probe.type, seq, t, probe.payload});
-    frames.push_back(std::move(w));
-  }
-  return frames;
-}
 
 void expect_same(const std::vector<Sent>& want, const std::vector<Packet>& got) {
   ASSERT_EQ(got.size(), want.size());
@@ -148,12 +99,6 @@ StreamOptions pty_options(const std::string& path) {
   return o;
 }
 
-std::vector<uint8_t> concat(const std::vector<std::vector<uint8_t>>& frames) {
-  std::vector<uint8_t> all;
-  for (const auto& f : frames) all.insert(all.end(), f.begin(), f.end());
-  return all;
-}
-
 TEST(LinkStreamPty, DeliversEveryPacketToCallbackAndQueue) {
   PtyPair pty;
   std::vector<Sent> sent;
@@ -183,25 +128,8 @@ TEST(LinkStreamPty, DeliversEveryPacketToCallbackAndQueue) {
 // FPGA sends (tests/rtl/dtmf_top_test.cpp proves it packet for packet); with
 // the FPGA's framing (LinkEncoder: seq per packet) they arrive unchanged.
 TEST(LinkStreamPty, DefaultSceneChainPacketsArriveUnchanged) {
-  using Chain3 = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>;
-  const auto scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  const auto codes = eskin::testing::scene_codes12(scene);
-  auto chain = std::make_unique<Chain3>(eskin::testing::chain_config<Chain3>(scene, 1, 35, 7));
-  ASSERT_TRUE(chain->ok());
-  auto out = std::make_unique<Chain3::Packet[]>(3);
-  auto& p3 = *reinterpret_cast<Chain3::Packet(*)[3]>(out.get());
-  LinkEncoder enc;
   std::vector<Sent> sent;
-  std::vector<uint8_t> wire;
-  for (size_t i = 0; i < codes.size(); ++i) {
-    const int n = chain->push(codes[i], uint32_t(i), p3);
-    for (int j = 0; j < n; ++j) {
-      std::vector<uint8_t> pl(p3[j].payload, p3[j].payload + p3[j].len);
-      sent.push_back({p3[j].type, enc.next_seq(), p3[j].t, pl});
-      const auto f = enc.frame(p3[j].type, p3[j].t, pl);
-      wire.insert(wire.end(), f.begin(), f.end());
-    }
-  }
+  const std::vector<uint8_t> wire = eskin::testing::scene_frames(sent);
   size_t spikes = 0;
   for (const auto& x : sent) spikes += x.type == eskin::link::kSpikes;
   ASSERT_GE(spikes, 10u) << "the default scene's presses must make spikes";

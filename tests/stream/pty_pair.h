@@ -54,7 +54,9 @@ inline std::vector<uint8_t> read_some(int fd, int timeout_ms) {
 class PtyPair {
  public:
   PtyPair() {
-    master_ = posix_openpt(O_RDWR | O_NOCTTY);
+    // CLOEXEC: a child process (the eskin CLI under test) must not keep the
+    // board alive by inheriting the master.
+    master_ = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
     if (master_ < 0 || grantpt(master_) != 0 || unlockpt(master_) != 0)
       throw std::runtime_error("posix_openpt failed");
     slave_path_ = ptsname(master_);

@@ -1,0 +1,102 @@
+// Frames as the FPGA sends them, for the stream tests: random packets of
+// every type, and the default scene's packets from hls/dtmf_chain.h (what
+// rtl/dtmf_top.v sends, packet for packet: tests/rtl/dtmf_top_test.cpp),
+// framed by host/link/link_encoder with one seq per packet.
+#pragma once
+
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "host/link/link_decoder.h"
+#include "host/link/link_encoder.h"
+#include "tests/common/dtmf_scene_chain.h"
+
+namespace eskin::testing {
+
+using eskin::link::LinkEncoder;
+using eskin::link::Packet;
+
+struct Sent {
+  uint8_t type, seq;
+  uint32_t t;
+  std::vector<uint8_t> payload;
+};
+
+// Random packets of every FPGA -> host type; returns wire bytes per frame.
+inline std::vector<std::vector<uint8_t>> random_frames(size_t n, uint32_t seed,
+                                                     std::vector<Sent>& sent) {
+  std::mt19937 rng(seed);
+  LinkEncoder enc;
+  std::vector<std::vector<uint8_t>> frames;
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t t = uint32_t(i * 35);
+    const uint8_t seq = enc.next_seq();
+    std::vector<uint8_t> w;
+    switch (i % 5) {
+      case 0: {
+        std::vector<uint16_t> m(6);
+        for (auto& x : m) x = uint16_t(rng());
+        w = enc.amplitudes(t, m);
+        break;
+      }
+      case 1: {
+        std::vector<uint16_t> v(9);
+        for (auto& x : v) x = uint16_t(rng() % 3 ? rng() : 0);
+        w = enc.taxels_dense(t, 3, 3, v);
+        break;
+      }
+      case 2:
+        w = enc.taxels_sparse(t, {{1, 2, uint16_t(rng())}, {0, 0, 0}});
+        break;
+      case 3:
+        w = enc.spikes(t, {{uint16_t(rng() % 35), 0, uint16_t(rng() % 9)}, {34, 1, 8}});
+        break;
+      default: {
+        eskin::link::StatusBlock s;
+        s.cmd_accepted = uint16_t(i);
+        s.samples = t;
+        w = enc.status(t, s);
+      }
+    }
+    // The raw frame is recovered from the encoder's own fields for comparison.
+    Packet probe;
+    eskin::link::LinkDecoder d;
+    d.feed(w);
+    d.pop(probe);
+    sent.push_back({probe.type, seq, t, probe.payload});
+    frames.push_back(std::move(w));
+  }
+  return frames;
+}
+
+inline std::vector<uint8_t> concat(const std::vector<std::vector<uint8_t>>& frames) {
+  std::vector<uint8_t> all;
+  for (const auto& f : frames) all.insert(all.end(), f.begin(), f.end());
+  return all;
+}
+
+// The default scene (scenes/neuroskin2.yaml) through the 3x3 chain at the
+// top's defaults (decimation 35, mask 7), up to sample `limit`.
+inline std::vector<uint8_t> scene_frames(std::vector<Sent>& sent, size_t limit = SIZE_MAX) {
+  using Chain3 = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>;
+  const auto scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const auto codes = scene_codes12(scene);
+  auto chain = std::make_unique<Chain3>(chain_config<Chain3>(scene, 1, 35, 7));
+  auto out = std::make_unique<Chain3::Packet[]>(3);
+  auto& p3 = *reinterpret_cast<Chain3::Packet(*)[3]>(out.get());
+  LinkEncoder enc;
+  std::vector<uint8_t> wire;
+  for (size_t i = 0; i < codes.size() && i < limit; ++i) {
+    const int n = chain->push(codes[i], uint32_t(i), p3);
+    for (int j = 0; j < n; ++j) {
+      std::vector<uint8_t> pl(p3[j].payload, p3[j].payload + p3[j].len);
+      sent.push_back({p3[j].type, enc.next_seq(), p3[j].t, pl});
+      const auto f = enc.frame(p3[j].type, p3[j].t, pl);
+      wire.insert(wire.end(), f.begin(), f.end());
+    }
+  }
+  return wire;
+}
+
+}  // namespace eskin::testing
