@@ -87,19 +87,11 @@ speed_t standard_speed(int baud) {
 }  // namespace
 
 Endpoint Endpoint::serial(std::string path, int baud) {
-  Endpoint e;
-  e.kind = Kind::Serial;
-  e.path = std::move(path);
-  e.baud = baud;
-  return e;
+  return {Kind::Serial, std::move(path), baud, "", 0};
 }
 
 Endpoint Endpoint::tcp(std::string host, uint16_t port) {
-  Endpoint e;
-  e.kind = Kind::Tcp;
-  e.host = std::move(host);
-  e.port = port;
-  return e;
+  return {Kind::Tcp, "", kBoardBaud, std::move(host), port};
 }
 
 Endpoint Endpoint::parse_tcp(const std::string& s) {

@@ -99,18 +99,27 @@ StreamOptions pty_options(const std::string& path) {
   return o;
 }
 
+// Starts `s` (with `c` attached), writes `wire` into the pty from a writer
+// thread and waits until `n` packets arrived.
+::testing::AssertionResult pump(LinkStream& s, Collector& c, const PtyPair& pty,
+                                const std::vector<uint8_t>& wire, size_t n) {
+  c.attach(s);
+  s.start();
+  if (!c.wait_event(LinkEvent::Kind::Opened, 1)) return ::testing::AssertionFailure() << "no open";
+  std::thread writer([&] { write_fully(pty.master(), wire); });
+  const bool all = c.wait_packets(n);
+  writer.join();
+  if (!all) return ::testing::AssertionFailure() << c.got.size() << " of " << n << " packets";
+  return ::testing::AssertionSuccess();
+}
+
 TEST(LinkStreamPty, DeliversEveryPacketToCallbackAndQueue) {
   PtyPair pty;
   std::vector<Sent> sent;
   const auto frames = random_frames(2000, 1, sent);
   LinkStream s(pty_options(pty.slave_path()));
   Collector c;
-  c.attach(s);
-  s.start();
-  ASSERT_TRUE(c.wait_event(LinkEvent::Kind::Opened, 1));
-  std::thread writer([&] { write_fully(pty.master(), concat(frames)); });
-  ASSERT_TRUE(c.wait_packets(sent.size()));
-  writer.join();
+  ASSERT_TRUE(pump(s, c, pty, concat(frames), sent.size()));
   expect_same(sent, c.got);
   std::vector<Packet> pulled;
   Packet p;
@@ -137,12 +146,7 @@ TEST(LinkStreamPty, DefaultSceneChainPacketsArriveUnchanged) {
   PtyPair pty;
   LinkStream s(pty_options(pty.slave_path()));
   Collector c;
-  c.attach(s);
-  s.start();
-  ASSERT_TRUE(c.wait_event(LinkEvent::Kind::Opened, 1));
-  std::thread writer([&] { write_fully(pty.master(), wire); });
-  ASSERT_TRUE(c.wait_packets(sent.size()));
-  writer.join();
+  ASSERT_TRUE(pump(s, c, pty, wire, sent.size()));
   expect_same(sent, c.got);
   EXPECT_EQ(s.stats().corrupt(), 0u);
   std::printf("default scene: %zu packets (%zu spike packets), %zu wire bytes\n", sent.size(),
@@ -183,12 +187,7 @@ TEST(LinkStreamPty, CorruptAndMissingFramesAreCountedAndTheStreamGoesOn) {
   }
   LinkStream s(pty_options(pty.slave_path()));
   Collector c;
-  c.attach(s);
-  s.start();
-  ASSERT_TRUE(c.wait_event(LinkEvent::Kind::Opened, 1));
-  std::thread writer([&] { write_fully(pty.master(), wire); });
-  ASSERT_TRUE(c.wait_packets(want.size()));
-  writer.join();
+  ASSERT_TRUE(pump(s, c, pty, wire, want.size()));
   std::this_thread::sleep_for(50ms);
   expect_same(want, c.got);
   const auto st = s.stats();
