@@ -32,20 +32,44 @@
 #include "sim/world_model.h"
 
 #include "dtmf_top_board.h"
-#include "tests/common/dtmf_scene_chain.h"
 
 namespace {
 
 using namespace dtmf_bench;
 using eskin::link::Packet;
-using eskin::testing::chain_config;
-using eskin::testing::scene_codes12;
 
 // The default scene's chain (3x3, N = 32: the top's default parameters)
 // and the 16x16 build (tests/rtl/dtmf_top_test.cmake).
 // Widths: XW = 12 (code - 2048), ACC_W = XW + 1 + log2 N, CW 16, TW 10.
 using Chain3 = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>;
 using Chain16 = eskin::hls::DtmfChain<16, 16, 128, 12, 16, 10, 20>;
+
+// Host-side chain configuration from a scene: carriers as phase increments,
+// conductance taxels (recip from the full-carrier window magnitude in 10-bit
+// code units: N/2 * full_carrier_lsb), the scene's neuron at dt = step / fs.
+template <class Chain>
+typename Chain::Config chain_config(const eskin::sim::Scene& sc, int step, uint16_t decim,
+                                    uint8_t mask) {
+  typename Chain::Config c;
+  const auto f = sc.skin.carrier_freqs_hz();
+  const double fs = sc.skin.adc.rate_hz;
+  c.sdft.carriers = int(f.size());
+  for (size_t k = 0; k < f.size(); ++k) c.sdft.inc[k] = eskin::hls::sdft_phase_increment(f[k], fs);
+  c.taxel.rows = uint8_t(sc.skin.rows);
+  c.taxel.cols = uint8_t(sc.skin.cols);
+  c.taxel.mode = eskin::hls::TaxelMode::Conductance;
+  c.taxel.recip_shift = 12;
+  const double full = sc.decoder.window / 2.0 * sc.skin.full_carrier_lsb();
+  c.taxel.recip = uint16_t(std::lround(std::ldexp(1.0, 15 + 12) / full));
+  c.neuron = eskin::hls::make_izhikevich_config(
+      eskin::hls::izhikevich_fixed_preset(sc.neuron.preset), step * 1000.0 / fs,
+      sc.neuron.input_scale / 32768.0, 1);
+  c.step = step;
+  c.decim_amp = decim;
+  c.decim_tax = decim;
+  c.mask = mask;
+  return c;
+}
 
 template <class Chain>
 std::vector<Key> run_chain(Chain& chain, const std::vector<uint16_t>& codes12, size_t n) {
@@ -58,6 +82,13 @@ std::vector<Key> run_chain(Chain& chain, const std::vector<uint16_t>& codes12, s
       out.push_back({p3[j].type, p3[j].t, {p3[j].payload, p3[j].payload + p3[j].len}});
   }
   return out;
+}
+
+std::vector<uint16_t> scene_codes12(const eskin::sim::Scene& sc) {
+  eskin::sim::WorldModel world(sc);
+  std::vector<uint16_t> c;
+  for (int v : world.all_codes()) c.push_back(uint16_t(v << (12 - sc.skin.adc.bits)));
+  return c;
 }
 
 // Packets of `type` whose data is complete before sample `limit`

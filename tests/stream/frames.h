@@ -10,7 +10,11 @@
 
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
-#include "tests/common/dtmf_scene_chain.h"
+#include "hls/dtmf_chain.h"
+#include "hls/dtmf_top_config.h"
+#include "sim/dtmf_top_spec.h"
+#include "sim/scene.h"
+#include "sim/world_model.h"
 
 namespace eskin::testing {
 
@@ -76,13 +80,19 @@ inline std::vector<uint8_t> concat(const std::vector<std::vector<uint8_t>>& fram
   return all;
 }
 
-// The default scene (scenes/neuroskin2.yaml) through the 3x3 chain at the
-// top's defaults (decimation 35, mask 7), up to sample `limit`.
+// The default scene (scenes/neuroskin2.yaml) through the 3x3 chain
+// configured as its FPGA top is built (hls/dtmf_top_config.h: decimation
+// 35, amplitudes + taxels + spikes), up to sample `limit`. The world
+// model's 10-bit codes reach the chain left-aligned to 12 bits, as the
+// AD7476A delivers them.
 inline std::vector<uint8_t> scene_frames(std::vector<Sent>& sent, size_t limit = SIZE_MAX) {
   using Chain3 = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>;
   const auto scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  const auto codes = scene_codes12(scene);
-  auto chain = std::make_unique<Chain3>(chain_config<Chain3>(scene, 1, 35, 7));
+  const auto plan = eskin::hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(scene));
+  auto chain = std::make_unique<Chain3>(eskin::hls::chain_config<Chain3>(plan));
+  std::vector<uint16_t> codes;
+  for (int v : eskin::sim::WorldModel(scene).all_codes())
+    codes.push_back(uint16_t(v << (12 - scene.skin.adc.bits)));
   auto out = std::make_unique<Chain3::Packet[]>(3);
   auto& p3 = *reinterpret_cast<Chain3::Packet(*)[3]>(out.get());
   LinkEncoder enc;
