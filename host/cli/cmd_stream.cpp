@@ -122,10 +122,15 @@ int run_stream(const StreamArgs& a) {
 
   std::mutex rec_mu;
   std::atomic<uint64_t> packets{0};
+  std::string record_error;  // a recorder failed (disk full, ...): stop the run
   stream.on_packet([&](const eskin::link::Packet& p) {
-    if (a.count && packets >= a.count) return;
     std::lock_guard<std::mutex> lk(rec_mu);
-    recorders.write(p);
+    if ((a.count && packets >= a.count) || !record_error.empty()) return;
+    try {
+      recorders.write(p);
+    } catch (const std::exception& e) {
+      record_error = e.what();
+    }
     ++packets;
   });
   stream.on_event(print_event);
@@ -140,6 +145,10 @@ int run_stream(const StreamArgs& a) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
     const auto now = clock::now();
     if (a.count && packets >= a.count) break;
+    {
+      std::lock_guard<std::mutex> lk(rec_mu);
+      if (!record_error.empty()) throw std::runtime_error(record_error);
+    }
     if (a.duration_s > 0 && now - t0 >= std::chrono::duration<double>(a.duration_s)) break;
     if (now - last_flush >= std::chrono::milliseconds(a.flush_ms)) {
       std::lock_guard<std::mutex> lk(rec_mu);

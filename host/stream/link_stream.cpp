@@ -226,6 +226,9 @@ CommandReply LinkStream::command(const CommandSpec& spec, const std::vector<int6
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   CommandReply r;
   r.type = spec.type;
+  // Right after start() the reader may still be opening the link.
+  while (!connected_ && running_ && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   if (!last_status()) {  // no baseline yet: ask for one
     const uint64_t n = status_count();
     send(encoder_.request_status());

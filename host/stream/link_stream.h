@@ -105,8 +105,10 @@ class LinkStream {
   // Sends one wire frame as is (throws LinkError when not connected).
   void send(const std::vector<uint8_t>& wire);
   // Sends a named command (commands.h) and waits for the FPGA's verdict:
-  // requests a baseline STATUS first if none was seen, then sends the
-  // command and REQUEST_STATUS and judges the STATUS packets that follow.
+  // waits for the link to open (within the timeout), requests a baseline
+  // STATUS if none was seen, then sends the command and REQUEST_STATUS and
+  // judges the STATUS packets that follow. Throws LinkError if the link is
+  // not open by then.
   // Throws std::invalid_argument for an unknown name or bad arguments.
   CommandReply command(const std::string& name, const std::vector<std::string>& args,
                        std::chrono::milliseconds timeout = std::chrono::milliseconds(2000));

@@ -3,6 +3,7 @@
 // Debian's libjs-chart.js inlined, so it works offline) and its data:
 //   GET /           the page: taxel heatmap, carrier amplitudes over time,
 //                   spike raster, link statistics; it polls /data.json
+//                   (GET /?static: the data at request time, no polling)
 //   GET /data.json  {"taxels":{"t","rows","cols","values"},"amplitudes":
 //                   [{"t","amp":[..]}],"spikes":[{"t","neuron","layer"}],
 //                   "status":{..},"link":{..}}

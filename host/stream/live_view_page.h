@@ -2,7 +2,8 @@
 // /*INITIAL_DATA*/). Fixed geometry, so a screenshot can be checked by
 // pixel: the heatmap's cell (r, c) covers x in [20 + 60c, 80 + 60c),
 // y in [60 + 60r, 120 + 60r) at device scale 1. Colour: blue (0) to red
-// (the frame's maximum), linear in value / max.
+// (the frame's maximum), linear in value / max. "/?static" draws the data
+// embedded at request time and does not poll.
 #pragma once
 
 namespace eskin::stream {
@@ -88,11 +89,14 @@ function drawLink(d) {
 }
 function draw(d) { drawHeat(d.taxels); drawAmps(d.amplitudes); drawSpikes(d.spikes); drawLink(d); }
 if (initial) draw(initial);
+// ?static: draw the data embedded in the page and stop (screenshots: a page
+// that keeps polling never lets a headless browser's virtual time settle).
+const polling = !new URLSearchParams(location.search).has('static');
 async function poll() {
   try { draw(await (await fetch('/data.json', { cache: 'no-store' })).json()); } catch (e) {}
   setTimeout(poll, 250);
 }
-setTimeout(poll, 250);
+if (polling) setTimeout(poll, 250);
 </script></body></html>
 )PAGE";
 

@@ -42,18 +42,20 @@ hid_t create_set(hid_t group, const char* name, size_t width) {
   return set;
 }
 
-void append_rows(hid_t set, const int64_t* data, hsize_t old_rows, hsize_t rows, size_t width) {
+// False when HDF5 refused (the caller names the file and table).
+bool append_rows(hid_t set, const int64_t* data, hsize_t old_rows, hsize_t rows, size_t width) {
   const int rank = width ? 2 : 1;
   const hsize_t new_dims[2] = {old_rows + rows, width};
-  H5Dset_extent(set, new_dims);
+  if (H5Dset_extent(set, new_dims) < 0) return false;
   const hid_t fspace = H5Dget_space(set);
   const hsize_t start[2] = {old_rows, 0};
   const hsize_t count[2] = {rows, width};
   H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr);
   const hid_t mspace = H5Screate_simple(rank, count, nullptr);
-  H5Dwrite(set, H5T_NATIVE_INT64, mspace, fspace, H5P_DEFAULT, data);
+  const herr_t rc = H5Dwrite(set, H5T_NATIVE_INT64, mspace, fspace, H5P_DEFAULT, data);
   H5Sclose(mspace);
   H5Sclose(fspace);
+  return rc >= 0;
 }
 
 }  // namespace
@@ -123,14 +125,18 @@ void Hdf5Recorder::write(const PacketKind& kind, const std::vector<Row>& rows) {
   if (pending_ >= kFlushRows) flush();
 }
 
-void Hdf5Recorder::append(Table& t) {
+void Hdf5Recorder::append(const std::string& name, Table& t) {
   if (t.pending_rows == 0) return;
+  bool ok = true;
   for (size_t i = 0; i < t.scalar_sets.size(); ++i) {
-    append_rows(t.scalar_sets[i], t.pending_scalars[i].data(), t.rows_on_disk, t.pending_rows, 0);
+    ok &= append_rows(t.scalar_sets[i], t.pending_scalars[i].data(), t.rows_on_disk,
+                      t.pending_rows, 0);
     t.pending_scalars[i].clear();
   }
   if (t.vector_set >= 0 && t.width > 0)
-    append_rows(t.vector_set, t.pending_values.data(), t.rows_on_disk, t.pending_rows, t.width);
+    ok &= append_rows(t.vector_set, t.pending_values.data(), t.rows_on_disk, t.pending_rows,
+                      t.width);
+  if (!ok) throw h5_error(path_, "cannot append " + std::to_string(t.pending_rows) + " rows to /" + name);
   t.pending_values.clear();
   t.rows_on_disk += t.pending_rows;
   t.pending_rows = 0;
@@ -138,7 +144,7 @@ void Hdf5Recorder::append(Table& t) {
 
 void Hdf5Recorder::flush() {
   if (file_ < 0) return;
-  for (auto& [name, t] : tables_) append(t);
+  for (auto& [name, t] : tables_) append(name, t);
   pending_ = 0;
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw h5_error(path_, "flush failed");
 }

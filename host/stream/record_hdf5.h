@@ -51,7 +51,7 @@ class Hdf5Recorder : public Recorder {
     size_t pending_rows = 0;
   };
   Table& table(const PacketKind& kind, size_t width);
-  void append(Table& t);
+  void append(const std::string& name, Table& t);  // throws when HDF5 refuses
 
   std::string path_;
   int64_t file_ = -1;

@@ -14,6 +14,7 @@
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
 #include "host/stream/commands.h"
+#include "host/stream/link_stream.h"
 #include "tests/stream/process.h"
 #include "tests/stream/pty_pair.h"
 
@@ -161,6 +162,27 @@ TEST(ConfigCli, BadCommandsAndArgumentsAreNamed) {
       << count.err;
   const CliRun text = config(pty.slave_path(), {"set-neuron", "0", "abc"});
   EXPECT_NE(text.err.find("expected an integer"), std::string::npos) << text.err;
+}
+
+// The library call right after start(): it waits for the link to open.
+TEST(ConfigLibrary, CommandRightAfterStartWaitsForTheLink) {
+  PtyPair pty;
+  ProtocolBoard board(pty.master());
+  eskin::stream::StreamOptions opt;
+  opt.endpoint = eskin::stream::Endpoint::serial(pty.slave_path());
+  eskin::stream::LinkStream s(opt);
+  s.start();
+  const auto r = s.command("set-threshold", {"0", "120"});
+  EXPECT_EQ(r.ack, eskin::stream::Ack::Accepted) << r.message;
+  const auto bad = s.command("set-threshold", {"7", "120"});
+  EXPECT_EQ(bad.ack, eskin::stream::Ack::Rejected) << bad.message;
+  EXPECT_EQ(bad.status.last_reject_reason, eskin::link::kRejectBadIndex);
+  EXPECT_EQ(bad.status.last_reject_seq, bad.seq);
+  // The board's data (an amplitude packet every ~50 ms) still flows.
+  const auto amps = [&] { return s.stats().packets_by_type[eskin::link::kAmplitudes]; };
+  const uint64_t before = amps();
+  for (int i = 0; i < 400 && amps() == before; ++i) std::this_thread::sleep_for(5ms);
+  EXPECT_GT(amps(), before) << "no data packet after the commands";
 }
 
 // judge_reply against hand-made STATUS sequences (the rules in commands.h).

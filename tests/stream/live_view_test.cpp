@@ -98,7 +98,7 @@ TEST(LiveView, ChromiumScreenshotShowsThePressedTaxel) {
   const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu "
                           "--hide-scrollbars --force-device-scale-factor=1 "
                           "--window-size=1200,760 --virtual-time-budget=2000 --user-data-dir=" +
-                          (dir / "profile").string() + " --screenshot=" + png + " " + live.url() +
+                          (dir / "profile").string() + " --screenshot=" + png + " " + live.url() + "?static" +
                           " > " + (dir / "chromium.log").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd << "\n" << (dir / "chromium.log");
   int w = 0, h = 0;
