@@ -108,7 +108,8 @@ class LinkStream {
   // waits for the link to open (within the timeout), requests a baseline
   // STATUS if none was seen, then sends the command and REQUEST_STATUS and
   // judges the STATUS packets that follow. Throws LinkError if the link is
-  // not open by then.
+  // not open by then. Never call it from a packet callback: the verdict
+  // arrives through the reader thread that runs the callback.
   // Throws std::invalid_argument for an unknown name or bad arguments.
   CommandReply command(const std::string& name, const std::vector<std::string>& args,
                        std::chrono::milliseconds timeout = std::chrono::milliseconds(2000));
