@@ -9,18 +9,18 @@ pkgs=(
   libyaml-cpp-dev libcli11-dev libfmt-dev
   libfftw3-dev libsndfile1-dev
   yosys nextpnr-ice40 fpga-icestorm jq
+  # virtual board and `eskin simulate` (docs/vboard.md): JSON status lines,
+  # Chart.js inlined into the report, GTKWave (and fst2vcd) for --trace
+  nlohmann-json3-dev libjs-chart.js gtkwave
   # host/stream: HDF5 recording (eskin stream --hdf5)
   libhdf5-dev
-  # host/stream: the live view's HTTP server (eskin stream --live)
+  # host/stream: the live view's HTTP server (eskin stream --live; its
+  # Chart.js is libjs-chart.js above, tests/stream parse JSON with nlohmann)
   libcpp-httplib-dev
-  # host/stream: Chart.js, inlined into the live view page
-  libjs-chart.js
   # tests/stream: the live view screenshot in headless Chromium
   chromium
   # tests/stream: PNG decoding of that screenshot
   libpng-dev
-  # tests/stream: JSON parsing of eskin stream's NDJSON output
-  nlohmann-json3-dev
   # tests/stream: libFuzzer (clang) for the link decoder fuzz test
   clang libclang-rt-14-dev
 )

@@ -9,6 +9,10 @@
 
 #include "host/stream/live_view_page.h"
 
+#ifndef ESKIN_CHARTJS
+#error "ESKIN_CHARTJS: path of Debian's chart.min.js (libjs-chart.js), set by host/CMakeLists.txt"
+#endif
+
 namespace eskin::stream {
 
 namespace {
@@ -30,9 +34,9 @@ std::string json_array(const std::vector<int64_t>& v) {
 }  // namespace
 
 LiveView::LiveView(const std::string& addr, int port)
-    : chart_js_(read_file(kChartJsPath)), addr_(addr), server_(std::make_unique<httplib::Server>()) {
+    : chart_js_(read_file(ESKIN_CHARTJS)), addr_(addr), server_(std::make_unique<httplib::Server>()) {
   if (chart_js_.empty())
-    throw std::runtime_error(std::string("--live: ") + kChartJsPath +
+    throw std::runtime_error(std::string("--live: ") + ESKIN_CHARTJS +
                              ": missing (Debian package libjs-chart.js)");
   server_->Get("/", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(page_html(), "text/html; charset=utf-8");

@@ -75,7 +75,4 @@ class LiveView : public Recorder {
   std::thread thread_;
 };
 
-// Debian's Chart.js (libjs-chart.js).
-constexpr const char* kChartJsPath = "/usr/share/javascript/chart.js/chart.min.js";
-
 }  // namespace eskin::stream
