@@ -21,10 +21,11 @@ struct ConfigArgs {
 void print_status(const eskin::link::StatusBlock& s) {
   std::cout << "  status: accepted " << s.cmd_accepted << ", rejected " << s.cmd_rejected
             << ", cmd crc errors " << s.cmd_crc_errors << ", cmd frame errors "
-            << s.cmd_frame_errors << ", output mask 0x" << std::hex << int(s.output_mask)
-            << std::dec << ", dropped frames " << s.dropped_frames << ", adc overruns "
-            << s.adc_overruns << ", uart rx errors " << s.uart_rx_errors << ", samples "
-            << s.samples << "\n";
+            << s.cmd_frame_errors << ", cmd overflows " << s.cmd_overflows << ", output mask 0x"
+            << std::hex << int(s.output_mask) << std::dec << ", dropped frames "
+            << s.dropped_frames << ", frame overruns " << s.frame_overruns << ", spikes dropped "
+            << s.spikes_dropped << ", adc overruns " << s.adc_overruns << ", uart rx errors "
+            << s.uart_rx_errors << ", samples " << s.samples << "\n";
 }
 
 int run_config(const ConfigArgs& a) {

@@ -1,5 +1,6 @@
 #include "host/stream/commands.h"
 
+#include <cstdint>
 #include <stdexcept>
 
 namespace eskin::stream {
@@ -10,25 +11,45 @@ using link::LinkEncoder;
 using V = std::vector<int64_t>;
 
 constexpr int64_t kU8 = 0xFF, kU16 = 0xFFFF, kU32 = 0xFFFFFFFFLL;
+// SET_NEURON's id byte is layer << 4 | param: four bits each.
+constexpr int64_t kNibble = 0xF;
 
 }  // namespace
 
 const std::vector<CommandSpec>& command_specs() {
   static const std::vector<CommandSpec> specs = {
       {"set-carrier", link::kCmdSetCarrierInc, {{"k", 0, kU8}, {"inc", 0, kU32}},
-       "sdft_bank phase increment of carrier k: round(f / fs * 2^32)",
+       "phase increment of carrier k: round(f / fs * 2^32), 1 <= inc < 2^31; send the demix "
+       "coefficients after it when the FPGA demixes",
        [](LinkEncoder& e, const V& a) { return e.set_carrier_inc(uint8_t(a[0]), uint32_t(a[1])); }},
       {"set-threshold", link::kCmdSetThreshold, {{"id", 0, kU8}, {"value", 0, kU16}},
-       "threshold id (0 taxel activity, 1 ghost, 2 ghost onset, 3 spare)",
+       "threshold id: 0 sparse minimum (UQ1.15), 1 ghost onset (magnitude units), 2 ghost "
+       "release (UQ1.15), 3 ghost pairing tolerance (magnitude units)",
        [](LinkEncoder& e, const V& a) { return e.set_threshold(uint8_t(a[0]), uint16_t(a[1])); }},
-      {"set-neuron", link::kCmdSetNeuron, {{"id", 0, kU8}, {"value", INT32_MIN, INT32_MAX}},
-       "neuron parameter id (0 V_RESET, 1 U_JUMP, 2 GAIN, 3 X_SHIFT), raw fixed-point value",
-       [](LinkEncoder& e, const V& a) { return e.set_neuron(uint8_t(a[0]), int32_t(a[1])); }},
+      {"set-neuron", link::kCmdSetNeuron,
+       {{"layer", 0, kNibble}, {"param", 0, kNibble}, {"value", INT32_MIN, INT32_MAX}},
+       "parameter of neuron layer (0 receptors, 1 weighted): 0 v_reset, 1 u_jump, 2 gain, "
+       "3 gain_shift, 4 x_shift, 5 c_const, 6/8/10 m2/m3/m4, 7/9/11 s2/s3/s4, 12 u_frac, "
+       "13 input_change, 14 v_init, 15 u_init; raw fixed-point value (docs/protocol.md)",
+       [](LinkEncoder& e, const V& a) {
+         return e.set_neuron(uint8_t(a[0] << 4 | a[1]), int32_t(a[2]));
+       }},
+      {"set-weight", link::kCmdSetWeight, {{"id", 0, kU8}, {"value", INT16_MIN, INT16_MAX}},
+       "synaptic weight W[id / 3][id % 3] of layer 1 (id 0..8, centre 4), 8 fraction bits",
+       [](LinkEncoder& e, const V& a) { return e.set_weight(uint8_t(a[0]), int16_t(a[1])); }},
+      {"set-demix-coef", link::kCmdSetDemixCoef,
+       {{"index", 0, kU16}, {"value", INT16_MIN, INT16_MAX}},
+       "demix matrix entry, row-major, Q2.14 (index < (2K+1)^2; none without demixing)",
+       [](LinkEncoder& e, const V& a) {
+         return e.set_demix_coef(uint16_t(a[0]), int16_t(a[1]));
+       }},
       {"set-mask", link::kCmdSetOutputMask, {{"mask", 0, kU8}},
-       "output enable: bit 0 amplitudes, 1 taxels, 2 spikes, 3 periodic status",
+       "output enable: bit 0 amplitudes, 1 dense taxels, 2 spikes, 3 periodic status, "
+       "4 sparse taxels",
        [](LinkEncoder& e, const V& a) { return e.set_output_mask(uint8_t(a[0])); }},
       {"set-decimation", link::kCmdSetDecimation, {{"stream", 0, kU8}, {"d", 0, kU16}},
-       "emit stream (0 amplitudes, 1 taxels, 2 status) every d samples",
+       "one packet every d >= 1 frames: stream 0 amplitudes, 1 taxels and spike windows, "
+       "2 periodic status",
        [](LinkEncoder& e, const V& a) { return e.set_decimation(uint8_t(a[0]), uint16_t(a[1])); }},
       {"status", link::kCmdRequestStatus, {}, "request a STATUS packet",
        [](LinkEncoder& e, const V&) { return e.request_status(); }},

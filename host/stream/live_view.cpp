@@ -3,6 +3,7 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -48,7 +49,14 @@ LiveView::LiveView(const std::string& addr, int port)
   port_ = port == 0 ? server_->bind_to_any_port(addr) : (server_->bind_to_port(addr, port) ? port : -1);
   if (port_ < 0)
     throw std::runtime_error("--live: cannot listen on " + addr + ":" + std::to_string(port));
-  thread_ = std::thread([this] { server_->listen_after_bind(); });
+  thread_ = std::thread([this] {
+    server_->listen_after_bind();
+    listen_returned_ = true;
+  });
+  // httplib's stop() does nothing until the listen loop runs: without this
+  // wait a view destroyed at once would leave its thread in accept().
+  while (!server_->is_running() && !listen_returned_)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
 LiveView::~LiveView() {
@@ -66,6 +74,23 @@ void LiveView::set_link_stats(std::function<std::string()> fn) {
   link_stats_ = std::move(fn);
 }
 
+void LiveView::packet(const link::Packet& p) {
+  if (p.type != link::kTaxelsSparse) return;
+  std::lock_guard<std::mutex> lk(mu_);
+  if (taxel_dense_ && int64_t(p.t) == taxel_t_) return;
+  // The grid is the dense packets' size, grown to the sparse entries' reach.
+  int rows = rows_, cols = cols_;
+  for (const link::SparseTaxel& s : p.sparse) {
+    rows = std::max(rows, s.row + 1);
+    cols = std::max(cols, s.col + 1);
+  }
+  taxels_.assign(size_t(rows) * size_t(cols), 0);
+  rows_ = rows, cols_ = cols;
+  for (const link::SparseTaxel& s : p.sparse) taxels_[size_t(s.row) * size_t(cols) + s.col] = s.value;
+  taxel_t_ = p.t;
+  taxel_dense_ = false;
+}
+
 void LiveView::write(const PacketKind& kind, const std::vector<Row>& rows) {
   std::lock_guard<std::mutex> lk(mu_);
   const std::string table = kind.table;
@@ -73,24 +98,10 @@ void LiveView::write(const PacketKind& kind, const std::vector<Row>& rows) {
     const int64_t t = r.scalars.size() > 1 ? r.scalars[1] : 0;
     if (table == "taxels" && r.scalars.size() >= 4) {
       taxel_t_ = t;
+      taxel_dense_ = true;
       rows_ = int(r.scalars[2]);
       cols_ = int(r.scalars[3]);
       taxels_ = r.values;
-    } else if (table == "taxels_sparse" && r.scalars.size() >= 5) {
-      // Sparse frames: a new t starts a new frame; the grid grows as needed.
-      if (t != sparse_t_) std::fill(taxels_.begin(), taxels_.end(), 0);
-      sparse_t_ = taxel_t_ = t;
-      const int row = int(r.scalars[2]), col = int(r.scalars[3]);
-      if (row >= rows_ || col >= cols_) {
-        std::vector<int64_t> g(size_t(std::max(rows_, row + 1)) * std::max(cols_, col + 1), 0);
-        const int nc = std::max(cols_, col + 1);
-        for (int i = 0; i < rows_; ++i)
-          for (int j = 0; j < cols_; ++j) g[size_t(i) * nc + j] = taxels_[size_t(i) * cols_ + j];
-        rows_ = std::max(rows_, row + 1);
-        cols_ = nc;
-        taxels_ = std::move(g);
-      }
-      taxels_[size_t(row) * cols_ + col] = r.scalars[4];
     } else if (table == "amplitudes") {
       amps_.push_back({t, r.values});
       if (amps_.size() > kAmplitudeHistory) amps_.pop_front();

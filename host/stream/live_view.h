@@ -10,6 +10,7 @@
 // It is a Recorder: the stream's packets reach it like any other recorder.
 #pragma once
 
+#include <atomic>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -44,6 +45,10 @@ class LiveView : public Recorder {
   // JSON object with link statistics, called on each /data.json request.
   void set_link_stats(std::function<std::string()> fn);
 
+  // Sparse taxel frames are taken whole from the packet (an empty one
+  // clears the map); when dense taxels of the same frame arrived first,
+  // they are complete and the sparse packet adds nothing.
+  void packet(const link::Packet& p) override;
   void write(const PacketKind& kind, const std::vector<Row>& rows) override;
   void flush() override {}
 
@@ -60,7 +65,8 @@ class LiveView : public Recorder {
   };
 
   mutable std::mutex mu_;
-  int64_t taxel_t_ = -1, sparse_t_ = -1;
+  int64_t taxel_t_ = -1;
+  bool taxel_dense_ = false;  // taxels_ came from a dense packet
   int rows_ = 0, cols_ = 0;
   std::vector<int64_t> taxels_;
   std::deque<AmpFrame> amps_;
@@ -72,6 +78,7 @@ class LiveView : public Recorder {
   std::string addr_;
   int port_ = 0;
   std::unique_ptr<httplib::Server> server_;
+  std::atomic<bool> listen_returned_{false};
   std::thread thread_;
 };
 

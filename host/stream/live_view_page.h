@@ -61,12 +61,13 @@ const ampChart = new Chart(document.getElementById('amp'), {
     scales: { x: { type: 'linear', title: { display: true, text: 'sample' } },
               y: { title: { display: true, text: 'magnitude' } } } } });
 const spikeChart = new Chart(document.getElementById('spikes'), {
-  type: 'scatter', data: { datasets: [{ label: 'spikes', data: [], pointRadius: 2,
-    backgroundColor: '#222' }] },
+  type: 'scatter', data: { datasets: [
+    { label: 'layer 0 (receptors)', data: [], pointRadius: 2, backgroundColor: '#222' },
+    { label: 'layer 1 (weighted)', data: [], pointRadius: 2, backgroundColor: '#d62728' }] },
   options: { animation: false, parsing: false, responsive: true, maintainAspectRatio: false,
-    plugins: { title: { display: true, text: 'spike raster' }, legend: { display: false } },
+    plugins: { title: { display: true, text: 'spike raster' } },
     scales: { x: { type: 'linear', title: { display: true, text: 'sample' } },
-              y: { title: { display: true, text: 'neuron' } } } } });
+              y: { title: { display: true, text: 'neuron (taxel)' } } } } });
 function drawAmps(a) {
   if (!a.length) return;
   const k = a[0].amp.length;
@@ -77,7 +78,9 @@ function drawAmps(a) {
   ampChart.update();
 }
 function drawSpikes(s) {
-  spikeChart.data.datasets[0].data = s.map(e => ({ x: e.t, y: e.neuron }));
+  for (let l = 0; l < 2; ++l)
+    spikeChart.data.datasets[l].data =
+        s.filter(e => (e.layer > 0 ? 1 : 0) === l).map(e => ({ x: e.t, y: e.neuron }));
   spikeChart.update();
 }
 function drawLink(d) {

@@ -28,7 +28,8 @@ void status_rows(const Packet& p, std::vector<Row>& out) {
   const link::StatusBlock& s = p.status;
   out.push_back({{p.seq, p.t, s.cmd_crc_errors, s.cmd_frame_errors, s.cmd_accepted,
                   s.cmd_rejected, s.last_reject_type, s.last_reject_reason, s.last_reject_seq,
-                  s.output_mask, s.dropped_frames, s.adc_overruns, s.uart_rx_errors, s.samples},
+                  s.output_mask, s.dropped_frames, s.adc_overruns, s.uart_rx_errors,
+                  s.frame_overruns, s.spikes_dropped, s.cmd_overflows, s.samples},
                  {}});
 }
 
@@ -45,7 +46,8 @@ const std::vector<PacketKind>& packet_kinds() {
        "status",
        {"seq", "t", "cmd_crc_errors", "cmd_frame_errors", "cmd_accepted", "cmd_rejected",
         "last_reject_type", "last_reject_reason", "last_reject_seq", "output_mask",
-        "dropped_frames", "adc_overruns", "uart_rx_errors", "samples"},
+        "dropped_frames", "adc_overruns", "uart_rx_errors", "frame_overruns", "spikes_dropped",
+        "cmd_overflows", "samples"},
        nullptr,
        status_rows},
   };

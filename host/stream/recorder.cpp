@@ -47,6 +47,8 @@ void CsvRecorder::flush() {
 bool RecorderSet::write(const link::Packet& p) {
   const PacketKind* kind = find_kind(p.type);
   if (!kind) return false;
+  for (auto& r : recorders_) r->packet(p);
+  for (Recorder* r : borrowed_) r->packet(p);
   rows_.clear();
   kind->rows(p, rows_);
   for (auto& r : recorders_) r->write(*kind, rows_);

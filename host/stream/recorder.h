@@ -20,6 +20,10 @@ namespace eskin::stream {
 class Recorder {
  public:
   virtual ~Recorder() = default;
+  // Every packet, before its rows: for recorders that need a packet's
+  // bounds (an empty TAXELS_SPARSE packet is a frame with no taxel on, but
+  // has no rows).
+  virtual void packet(const link::Packet&) {}
   virtual void write(const PacketKind& kind, const std::vector<Row>& rows) = 0;
   virtual void flush() = 0;
 };

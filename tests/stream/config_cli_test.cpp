@@ -1,14 +1,16 @@
 // eskin config on a real pty. The other end answers as docs/protocol.md §5
-// specifies for rtl/cmd_decoder.v + the top's status packets: a rejected
-// command bumps cmd_rejected, records type/reason/seq and triggers a STATUS;
-// an accepted one bumps cmd_accepted; REQUEST_STATUS is accepted and sends
-// a STATUS; CLEAR_COUNTERS zeroes the counters. Periodic STATUS packets and
-// data packets flow meanwhile, as on the board. (The FPGA's own cmd_decoder
-// answering through the virtual board's pty is the `eskin simulate` test.)
+// specifies: a rejected command bumps cmd_rejected, records type/reason/seq
+// and triggers a STATUS; an accepted one bumps cmd_accepted; REQUEST_STATUS
+// is accepted and sends a STATUS; CLEAR_COUNTERS zeroes the counters (and
+// is not counted). Periodic STATUS packets and data packets flow meanwhile,
+// as on the board. Here the verdict logic and the CLI are tested under
+// control; the FPGA's own verdicts through the virtual board's pty are
+// tests/stream/vboard_stream_test.cpp.
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <filesystem>
+#include <mutex>
 #include <thread>
 
 #include "host/link/link_decoder.h"
@@ -58,7 +60,7 @@ class ProtocolBoard {
     using namespace eskin::link;
     switch (c.type) {
       case kCmdSetOutputMask:
-        if (c.cmd_value & 0xF0) return reject(c, kRejectReservedBits);
+        if (c.cmd_value & 0xE0) return reject(c, kRejectReservedBits);
         st_.output_mask = uint8_t(c.cmd_value);
         break;
       case kCmdSetDecimation:
@@ -67,6 +69,13 @@ class ProtocolBoard {
         break;
       case kCmdSetThreshold:
         if (c.cmd_index >= 4) return reject(c, kRejectBadIndex);
+        break;
+      case kCmdSetNeuron:  // id = layer << 4 | parameter
+        if (c.cmd_index >> 4 >= 2) return reject(c, kRejectBadIndex);
+        {
+          std::lock_guard<std::mutex> lk(mu_);
+          neuron_ids_.push_back(c.cmd_index);
+        }
         break;
       case kCmdRequestStatus:
         ++st_.cmd_accepted;
@@ -85,10 +94,23 @@ class ProtocolBoard {
     write_fully(fd_, enc_.status(samples_, st_));
   }
 
+ public:
+  std::vector<uint8_t> neuron_ids() {  // SET_NEURON ids accepted so far
+    std::lock_guard<std::mutex> lk(mu_);
+    return neuron_ids_;
+  }
+
+ private:
+  std::mutex mu_;
+  std::vector<uint8_t> neuron_ids_;
   int fd_;
   std::atomic<bool> stop_{false};
   eskin::link::LinkEncoder enc_;
-  eskin::link::StatusBlock st_{0, 0, 0, 0, 0, 0, 0, 0xF, 0, 0, 0, 0, 0};
+  eskin::link::StatusBlock st_ = [] {
+    eskin::link::StatusBlock b;
+    b.output_mask = 0xF;
+    return b;
+  }();
   uint32_t samples_ = 0;
   std::thread thread_;
 };
@@ -119,7 +141,7 @@ TEST(ConfigCli, AcceptedAndRejectedCommandsWithTheReasonDecoded) {
   EXPECT_NE(ok.out.find("set-mask (type 0x84, seq 1): accepted"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("output mask 0x7"), std::string::npos) << ok.out;
 
-  const CliRun bits = config(pty.slave_path(), {"set-mask", "0x30"});
+  const CliRun bits = config(pty.slave_path(), {"set-mask", "0x30"});  // bit 5
   EXPECT_EQ(bits.rc, 3) << bits.out << bits.err;
   EXPECT_NE(bits.out.find("rejected: reserved mask bits set"), std::string::npos) << bits.out;
 
@@ -130,11 +152,19 @@ TEST(ConfigCli, AcceptedAndRejectedCommandsWithTheReasonDecoded) {
   EXPECT_EQ(value.rc, 3);
   EXPECT_NE(value.out.find("rejected: value out of range"), std::string::npos) << value.out;
 
+  // SET_NEURON's id byte is layer << 4 | parameter.
+  const CliRun layer = config(pty.slave_path(), {"set-neuron", "2", "0", "0"});
+  EXPECT_EQ(layer.rc, 3) << layer.out;
+  EXPECT_NE(layer.out.find("rejected: index out of range"), std::string::npos) << layer.out;
+  const CliRun neuron = config(pty.slave_path(), {"set-neuron", "1", "3", "-2"});
+  EXPECT_EQ(neuron.rc, 0) << neuron.out << neuron.err;
+  EXPECT_EQ(board.neuron_ids(), std::vector<uint8_t>{0x13});
+
   const CliRun dec = config(pty.slave_path(), {"set-decimation", "1", "70"});
   EXPECT_EQ(dec.rc, 0) << dec.out;
   const CliRun st = config(pty.slave_path(), {"status"});
   EXPECT_EQ(st.rc, 0) << st.out;
-  EXPECT_NE(st.out.find("rejected 3"), std::string::npos) << st.out;
+  EXPECT_NE(st.out.find("rejected 4"), std::string::npos) << st.out;
   const CliRun clr = config(pty.slave_path(), {"clear"});
   EXPECT_EQ(clr.rc, 0) << clr.out;
   EXPECT_NE(clr.out.find("accepted 1, rejected 0"), std::string::npos) << clr.out;
@@ -160,8 +190,11 @@ TEST(ConfigCli, BadCommandsAndArgumentsAreNamed) {
   EXPECT_NE(count.rc, 0);
   EXPECT_NE(count.err.find("expected 2 argument(s) (id value), got 1"), std::string::npos)
       << count.err;
-  const CliRun text = config(pty.slave_path(), {"set-neuron", "0", "abc"});
+  const CliRun text = config(pty.slave_path(), {"set-neuron", "0", "1", "abc"});
   EXPECT_NE(text.err.find("expected an integer"), std::string::npos) << text.err;
+  const CliRun layer = config(pty.slave_path(), {"set-neuron", "16", "0", "1"});
+  EXPECT_NE(layer.err.find("set-neuron layer '16': expected 0..15"), std::string::npos)
+      << layer.err;
 }
 
 // The library call right after start(): it waits for the link to open.

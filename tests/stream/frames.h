@@ -58,8 +58,14 @@ inline std::vector<std::vector<uint8_t>> random_frames(size_t n, uint32_t seed,
         break;
       default: {
         eskin::link::StatusBlock s;
-        s.cmd_accepted = uint16_t(i);
-        s.samples = t;
+        s.cmd_crc_errors = uint16_t(rng()), s.cmd_frame_errors = uint16_t(rng());
+        s.cmd_accepted = uint16_t(i), s.cmd_rejected = uint16_t(rng());
+        s.last_reject_type = uint8_t(0x80 | rng() % 10), s.last_reject_reason = uint8_t(rng() % 6);
+        s.last_reject_seq = uint8_t(rng()), s.output_mask = uint8_t(rng() % 32);
+        s.dropped_frames = uint16_t(rng()), s.adc_overruns = uint16_t(rng());
+        s.uart_rx_errors = uint16_t(rng()), s.frame_overruns = uint16_t(rng());
+        s.spikes_dropped = uint16_t(rng()), s.cmd_overflows = uint16_t(rng());
+        s.samples = t + 1;
         w = enc.status(t, s);
       }
     }
@@ -81,28 +87,33 @@ inline std::vector<uint8_t> concat(const std::vector<std::vector<uint8_t>>& fram
 }
 
 // The default scene (scenes/neuroskin2.yaml) through the 3x3 chain
-// configured as its FPGA top is built (hls/dtmf_top_config.h: decimation
-// 35, amplitudes + taxels + spikes), up to sample `limit`. The world
-// model's 10-bit codes reach the chain left-aligned to 12 bits, as the
-// AD7476A delivers them.
-inline std::vector<uint8_t> scene_frames(std::vector<Sent>& sent, size_t limit = SIZE_MAX) {
-  using Chain3 = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>;
+// (hls/dtmf_chain.h) configured as its FPGA top is built (the plan of
+// hls/dtmf_top_config.h at the top's clock: amplitudes + dense taxels +
+// spikes every frame; `mask`, when given, replaces that output mask, e.g.
+// 0x1F adds sparse taxels), up to sample `limit`. The world model's codes
+// reach the chain left-aligned to 12 bits, as the AD7476A delivers them.
+inline std::vector<uint8_t> scene_frames(std::vector<Sent>& sent, size_t limit = SIZE_MAX,
+                                         int mask = -1) {
+  using Sizes3 = eskin::hls::DtmfChainSizes<3, 3, 32>;
+  using Chain3 = eskin::hls::DtmfChain<Sizes3>;
   const auto scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  const auto plan = eskin::hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(scene));
-  auto chain = std::make_unique<Chain3>(eskin::hls::chain_config<Chain3>(plan));
+  const auto plan = eskin::hls::make_dtmf_top_plan(
+      eskin::sim::dtmf_top_spec(scene, eskin::hls::kDtmfTopClkHz));
+  auto chain = std::make_unique<Chain3>(eskin::hls::chain_config<Sizes3>(plan));
+  if (mask >= 0) chain->set_mask(uint8_t(mask));
+  const int shift = 12 - plan.spec.adc_bits;
   std::vector<uint16_t> codes;
-  for (int v : eskin::sim::WorldModel(scene).all_codes())
-    codes.push_back(uint16_t(v << (12 - scene.skin.adc.bits)));
-  auto out = std::make_unique<Chain3::Packet[]>(3);
-  auto& p3 = *reinterpret_cast<Chain3::Packet(*)[3]>(out.get());
+  for (int v : eskin::sim::WorldModel(scene).all_codes()) codes.push_back(uint16_t(v << shift));
+  auto out = std::make_unique<Chain3::Packet[]>(Chain3::kMaxPackets);
+  auto& pk = *reinterpret_cast<Chain3::Packet(*)[Chain3::kMaxPackets]>(out.get());
   LinkEncoder enc;
   std::vector<uint8_t> wire;
   for (size_t i = 0; i < codes.size() && i < limit; ++i) {
-    const int n = chain->push(codes[i], uint32_t(i), p3);
+    const int n = chain->push(codes[i], uint32_t(i), pk);
     for (int j = 0; j < n; ++j) {
-      std::vector<uint8_t> pl(p3[j].payload, p3[j].payload + p3[j].len);
-      sent.push_back({p3[j].type, enc.next_seq(), p3[j].t, pl});
-      const auto f = enc.frame(p3[j].type, p3[j].t, pl);
+      std::vector<uint8_t> pl(pk[j].payload, pk[j].payload + pk[j].len);
+      sent.push_back({pk[j].type, enc.next_seq(), pk[j].t, pl});
+      const auto f = enc.frame(pk[j].type, pk[j].t, pl);
       wire.insert(wire.end(), f.begin(), f.end());
     }
   }

@@ -134,4 +134,34 @@ TEST(LiveView, ChromiumScreenshotShowsThePressedTaxel) {
   fs::remove_all(dir);
 }
 
+// Sparse taxel frames (docs/protocol.md §4, mask bit 4) in the heatmap's
+// data: a sparse frame replaces the map (so an empty one clears it); a
+// sparse packet of a frame whose dense packet came first changes nothing.
+TEST(LiveView, SparseFramesReplaceTheMapAndEmptyOnesClearIt) {
+  eskin::stream::LiveView live("127.0.0.1", 0);
+  eskin::stream::RecorderSet recorders;
+  recorders.add(&live);
+  eskin::link::LinkEncoder enc;
+  eskin::link::LinkDecoder dec;
+  dec.on_packet([&](const eskin::link::Packet& p) { recorders.write(p); });
+  const auto taxels = [&] { return nlohmann::json::parse(live.data_json())["taxels"]; };
+  const std::vector<uint16_t> dense = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+  dec.feed(enc.taxels_dense(35, 3, 3, dense));
+  dec.feed(enc.taxels_sparse(35, {{0, 0, 999}}));
+  EXPECT_EQ(taxels()["values"].get<std::vector<int>>(), std::vector<int>(dense.begin(), dense.end()));
+  dec.feed(enc.taxels_sparse(70, {{2, 1, 500}, {0, 2, 40}}));
+  EXPECT_EQ(taxels()["t"], 70);
+  EXPECT_EQ(taxels()["values"].get<std::vector<int>>(), (std::vector<int>{0, 0, 40, 0, 0, 0, 0, 500, 0}));
+  dec.feed(enc.taxels_sparse(105, {}));
+  EXPECT_EQ(taxels()["t"], 105);
+  EXPECT_EQ(taxels()["values"].get<std::vector<int>>(), std::vector<int>(9, 0));
+  dec.feed(enc.spikes(140, {{3, 0, 4}, {5, 1, 7}}));
+  const auto spikes = nlohmann::json::parse(live.data_json())["spikes"];
+  ASSERT_EQ(spikes.size(), 2u);
+  EXPECT_EQ(spikes[1]["layer"], 1);
+  EXPECT_EQ(spikes[1]["neuron"], 7);
+  EXPECT_EQ(spikes[1]["t"], 145);
+  EXPECT_EQ(dec.stats().frames_ok, 5u);
+}
+
 }  // namespace

@@ -47,10 +47,27 @@ std::vector<json> expected_lines(const std::vector<Sent>& sent) {
       for (size_t i = 2; i < s.payload.size(); i += 2) tax.push_back(le16(s.payload, i));
       v.push_back({{"type", "taxels"}, {"seq", s.seq}, {"t", s.t}, {"rows", s.payload[0]},
                    {"cols", s.payload[1]}, {"taxel", tax}});
+    } else if (s.type == eskin::link::kTaxelsSparse) {
+      for (size_t i = 0; i < s.payload.size(); i += 4)
+        v.push_back({{"type", "taxels_sparse"}, {"seq", s.seq}, {"t", s.t}, {"row", s.payload[i]},
+                     {"col", s.payload[i + 1]}, {"value", le16(s.payload, i + 2)}});
     } else if (s.type == eskin::link::kSpikes) {
       for (size_t i = 0; i < s.payload.size(); i += 5)
         v.push_back({{"type", "spikes"}, {"seq", s.seq}, {"t", s.t + le16(s.payload, i)},
                      {"layer", s.payload[i + 2]}, {"neuron", le16(s.payload, i + 3)}});
+    } else if (s.type == eskin::link::kStatus) {
+      // The 28-byte block: u16 fields, the four u8 fields at 8..11, u32 samples at 24.
+      json j = {{"type", "status"}, {"seq", s.seq}, {"t", s.t}};
+      const char* u16[] = {"cmd_crc_errors", "cmd_frame_errors", "cmd_accepted", "cmd_rejected"};
+      for (size_t k = 0; k < 4; ++k) j[u16[k]] = le16(s.payload, 2 * k);
+      const char* u8[] = {"last_reject_type", "last_reject_reason", "last_reject_seq",
+                          "output_mask"};
+      for (size_t k = 0; k < 4; ++k) j[u8[k]] = s.payload[8 + k];
+      const char* more[] = {"dropped_frames", "adc_overruns",   "uart_rx_errors",
+                            "frame_overruns", "spikes_dropped", "cmd_overflows"};
+      for (size_t k = 0; k < 6; ++k) j[more[k]] = le16(s.payload, 12 + 2 * k);
+      j["samples"] = uint32_t(le16(s.payload, 24) | uint32_t(le16(s.payload, 26)) << 16);
+      v.push_back(j);
     }
   }
   return v;
@@ -108,16 +125,21 @@ void expect_hdf5_matches(const std::string& path, const std::vector<json>& want)
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(f, 0) << path << " does not open";
   std::vector<hsize_t> dims;
-  for (const char* table : {"amplitudes", "taxels", "spikes"}) {
+  for (const char* table : {"amplitudes", "taxels", "taxels_sparse", "spikes", "status"}) {
     std::vector<const json*> rows;
     for (const json& j : want)
       if (j["type"] == table) rows.push_back(&j);
-    const auto seq = read_set(f, std::string("/") + table + "/seq", dims);
-    ASSERT_EQ(seq.size(), rows.size()) << table;
-    const auto t = read_set(f, std::string("/") + table + "/t", dims);
-    for (size_t i = 0; i < rows.size(); ++i) {
-      ASSERT_EQ(seq[i], (*rows[i])["seq"].get<int64_t>()) << table << " row " << i;
-      ASSERT_EQ(t[i], (*rows[i])["t"].get<int64_t>()) << table << " row " << i;
+    if (rows.empty()) {  // no packet of the type: no group
+      EXPECT_LE(H5Lexists(f, table, H5P_DEFAULT), 0) << table;
+      continue;
+    }
+    // Every scalar column of the expected rows, by name.
+    for (const auto& [column, value] : rows[0]->items()) {
+      if (column == "type" || value.is_array()) continue;
+      const auto got = read_set(f, std::string("/") + table + "/" + column, dims);
+      ASSERT_EQ(got.size(), rows.size()) << table << "/" << column;
+      for (size_t i = 0; i < rows.size(); ++i)
+        ASSERT_EQ(got[i], (*rows[i])[column].get<int64_t>()) << table << "/" << column << " row " << i;
     }
     const char* vec = std::string(table) == "amplitudes" ? "amp"
                       : std::string(table) == "taxels"   ? "taxel"
@@ -138,7 +160,7 @@ size_t lines(const std::string& s) { return size_t(std::count(s.begin(), s.end()
 TEST(StreamCli, DefaultSceneToNdjsonCsvAndHdf5) {
   const fs::path dir = tmpdir();
   std::vector<Sent> sent;
-  const auto wire = scene_frames(sent);
+  const auto wire = scene_frames(sent, SIZE_MAX, 0x1F);  // sparse taxels too
   const auto want = expected_lines(sent);
   PtyPair pty;
   Process p({ESKIN_BIN, "stream", "--port", pty.slave_path(), "--count",
@@ -154,8 +176,14 @@ TEST(StreamCli, DefaultSceneToNdjsonCsvAndHdf5) {
   for (size_t i = 0; i < want.size(); ++i) ASSERT_EQ(got[i], want[i]) << "line " << i;
 
   // CSV: header plus one line per row of each table, values as in NDJSON.
-  size_t amps = 0, spikes = 0;
-  for (const json& j : want) amps += j["type"] == "amplitudes", spikes += j["type"] == "spikes";
+  size_t amps = 0, spikes = 0, sparse = 0;
+  for (const json& j : want)
+    amps += j["type"] == "amplitudes", spikes += j["type"] == "spikes",
+        sparse += j["type"] == "taxels_sparse";
+  ASSERT_GT(sparse, 0u) << "the presses light taxels above g = 1";
+  const std::string sparse_csv = slurp((dir / "csv" / "taxels_sparse.csv").string());
+  EXPECT_EQ(sparse_csv.substr(0, sparse_csv.find('\n')), "seq,t,row,col,value");
+  EXPECT_EQ(lines(sparse_csv), sparse + 1);
   const std::string amp_csv = slurp((dir / "csv" / "amplitudes.csv").string());
   EXPECT_EQ(amp_csv.substr(0, amp_csv.find('\n')), "seq,t,amp0,amp1,amp2,amp3,amp4,amp5");
   EXPECT_EQ(lines(amp_csv), amps + 1);
