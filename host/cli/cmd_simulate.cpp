@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <mutex>
 #include <thread>
 
 #include "cli/command.h"
@@ -152,11 +151,11 @@ int run_simulate(const Args& a) {
   link_opt.reconnect = false;   // the port exists until the board exits
   link_opt.queue_capacity = 0;  // callbacks only
   stream::LinkStream port(link_opt);
-  std::mutex rx_mu;  // rx is filled on the stream's reader thread
+  // rx is filled on the stream's reader thread and read here only after
+  // port.stop() has joined it; the progress bar follows last_t.
   std::vector<FpgaFrame> rx;
   std::atomic<uint32_t> last_t{0};
   port.on_packet([&](const Packet& p) {
-    std::lock_guard<std::mutex> lk(rx_mu);
     rx.push_back({p, -1});
     last_t = p.t;
   });
