@@ -12,6 +12,17 @@ pkgs=(
   # virtual board and `eskin simulate` (docs/vboard.md): JSON status lines,
   # Chart.js inlined into the report, GTKWave (and fst2vcd) for --trace
   nlohmann-json3-dev libjs-chart.js gtkwave
+  # host/stream: HDF5 recording (eskin stream --hdf5)
+  libhdf5-dev
+  # host/stream: the live view's HTTP server (eskin stream --live; its
+  # Chart.js is libjs-chart.js above, tests/stream parse JSON with nlohmann)
+  libcpp-httplib-dev
+  # tests/stream: the live view screenshot in headless Chromium
+  chromium
+  # tests/stream: PNG decoding of that screenshot
+  libpng-dev
+  # tests/stream: libFuzzer (clang) for the link decoder fuzz test
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${pkgs[@]}"; do

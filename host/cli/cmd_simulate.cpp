@@ -3,14 +3,12 @@
 // like a real board; the golden model on the same samples; both scored
 // against the scene's ground truth; one self-contained HTML report plus
 // the raw outputs (docs/vboard.md).
-#include <fcntl.h>
-#include <poll.h>
-#include <termios.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -24,6 +22,7 @@
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
 #include "host/report/simulate_report.h"
+#include "host/stream/link_stream.h"
 #include "sim/scene.h"
 #include "sim/vboard/fpga_params.h"
 #include "sim/vboard/vboard_build.h"
@@ -34,41 +33,6 @@ namespace eskin::cli {
 namespace {
 
 using link::Packet;
-
-// The board's serial port as the host sees it: raw 8N1 at the board's
-// rate, packets decoded by host/link. The one seam to the host streaming
-// library (host/stream) once it lands.
-class BoardLink {
- public:
-  BoardLink(const std::string& path, double baud) {
-    fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
-    if (fd_ < 0) throw std::runtime_error("cannot open the board's serial port " + path);
-    termios t{};
-    tcgetattr(fd_, &t);
-    cfmakeraw(&t);
-    const speed_t s = baud == 3e6 ? B3000000 : baud == 1e6 ? B1000000 : B115200;
-    cfsetispeed(&t, s);
-    cfsetospeed(&t, s);
-    tcsetattr(fd_, TCSANOW, &t);
-  }
-  ~BoardLink() { ::close(fd_); }
-  void on_packet(std::function<void(const Packet&)> f) { dec_.on_packet(std::move(f)); }
-  void send(const std::vector<uint8_t>& b) {
-    if (::write(fd_, b.data(), b.size()) != ssize_t(b.size()))
-      throw std::runtime_error("cannot write to the board's serial port");
-  }
-  void pump(int timeout_ms) {
-    pollfd p{fd_, POLLIN, 0};
-    ::poll(&p, 1, timeout_ms);
-    uint8_t buf[8192];
-    for (ssize_t n; (n = ::read(fd_, buf, sizeof buf)) > 0;) dec_.feed(buf, size_t(n));
-  }
-  const link::DecoderStats& stats() const { return dec_.stats(); }
-
- private:
-  int fd_ = -1;
-  link::LinkDecoder dec_;
-};
 
 struct Args {
   std::string scene, out = "eskin-out", trace;
@@ -172,30 +136,47 @@ int run_simulate(const Args& a) {
   if (!a.trace.empty()) vargs.insert(vargs.end(), {"--trace", a.trace});
   vboard::VboardProcess board(exe, vargs);
   const size_t total = board.ready().at("scene_samples");
-  auto port_owner = std::make_unique<BoardLink>(board.pty(), build.baud());
-  BoardLink& port = *port_owner;
+  // The board's serial port through the host streaming library
+  // (host/stream), as a host program reads a real board: raw 8N1 at the
+  // board's rate, packets decoded and checked by host/link.
+  stream::StreamOptions link_opt;
+  link_opt.endpoint = stream::Endpoint::serial(board.pty(), int(build.baud()));
+  link_opt.reconnect = false;   // the port exists until the board exits
+  link_opt.queue_capacity = 0;  // callbacks only
+  stream::LinkStream port(link_opt);
+  // rx is filled on the stream's reader thread and read here only after
+  // port.stop() has joined it; the progress bar follows last_t.
+  std::vector<FpgaFrame> rx;
+  std::atomic<uint32_t> last_t{0};
+  port.on_packet([&](const Packet& p) {
+    rx.push_back({p, -1});
+    last_t = p.t;
+  });
+  port.start();
   // Configure the board like a host program: the scene's outputs, plus the
   // periodic status (its counters go into the report).
   link::LinkEncoder enc;
   port.send(enc.set_output_mask(uint8_t((scene.outputs.amplitudes ? 1 : 0) |
                                         (scene.outputs.taxels ? 2 : 0) |
                                         (scene.outputs.spikes ? 4 : 0) | 8)));
-  std::vector<FpgaFrame> rx;
-  port.on_packet([&](const Packet& p) { rx.push_back({p, -1}); });
   GoldenRun gold;
   std::thread golden_thread([&] { gold = run_golden(scene, build.plan.step); });  // the other core
   Progress bar(total);
   for (;;) {
-    port.pump(50);
-    if (!rx.empty()) bar.update(rx.back().p.t);
-    if (board.poll_done() && port.stats().bytes >= board.done().at("bytes_to_host").get<uint64_t>())
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    bar.update(last_t);
+    // Done when every byte the board sent has been read (or the port is gone).
+    const stream::StreamStats st = port.stats();
+    if (board.poll_done() &&
+        (st.link.bytes + st.sync_bytes >= board.done().at("bytes_to_host").get<uint64_t>() ||
+         !port.connected()))
       break;
   }
   bar.update(total);
   golden_thread.join();
   const nlohmann::json done = board.done();
-  const link::DecoderStats ls = port.stats();
-  port_owner.reset();  // the board exits once its reader has closed the port
+  const link::DecoderStats ls = port.stats().link;
+  port.stop();  // the board exits once its reader has closed the port
   // Frame k on the wire is packet k when nothing was lost or corrupt.
   const auto& ends = done.at("frame_end_ns");
   const bool timed = ls.crc_errors + ls.framing_errors + ls.payload_errors == 0 &&

@@ -1,0 +1,152 @@
+#include "host/stream/record_hdf5.h"
+
+#include <hdf5.h>
+
+#include <stdexcept>
+
+namespace eskin::stream {
+
+namespace {
+
+constexpr hsize_t kChunkRows = 1024;
+
+std::runtime_error h5_error(const std::string& path, const std::string& what) {
+  return std::runtime_error(path + ": HDF5: " + what);
+}
+
+void string_attribute(hid_t obj, const std::string& name, const std::string& value) {
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, value.empty() ? 1 : value.size());
+  H5Tset_strpad(type, H5T_STR_NULLTERM);
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t a = H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(a, type, value.empty() ? "" : value.c_str());
+  H5Aclose(a);
+  H5Sclose(space);
+  H5Tclose(type);
+}
+
+// An empty extendible int64 dataset of `width` columns (0: 1-D).
+hid_t create_set(hid_t group, const char* name, size_t width) {
+  const int rank = width ? 2 : 1;
+  const hsize_t dims[2] = {0, width};
+  const hsize_t maxdims[2] = {H5S_UNLIMITED, width};
+  const hsize_t chunk[2] = {width ? std::max<hsize_t>(1, kChunkRows / width * 8) : kChunkRows,
+                            width};
+  const hid_t space = H5Screate_simple(rank, dims, maxdims);
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, rank, chunk);
+  const hid_t set = H5Dcreate2(group, name, H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  return set;
+}
+
+// False when HDF5 refused (the caller names the file and table).
+bool append_rows(hid_t set, const int64_t* data, hsize_t old_rows, hsize_t rows, size_t width) {
+  const int rank = width ? 2 : 1;
+  const hsize_t new_dims[2] = {old_rows + rows, width};
+  if (H5Dset_extent(set, new_dims) < 0) return false;
+  const hid_t fspace = H5Dget_space(set);
+  const hsize_t start[2] = {old_rows, 0};
+  const hsize_t count[2] = {rows, width};
+  H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr);
+  const hid_t mspace = H5Screate_simple(rank, count, nullptr);
+  const herr_t rc = H5Dwrite(set, H5T_NATIVE_INT64, mspace, fspace, H5P_DEFAULT, data);
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  return rc >= 0;
+}
+
+}  // namespace
+
+Hdf5Recorder::Hdf5Recorder(const std::string& path,
+                           const std::map<std::string, std::string>& attributes)
+    : path_(path) {
+  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5AC_cache_config_t mdc;
+  mdc.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  H5Pget_mdc_config(fapl, &mdc);
+  // Nothing leaves the metadata cache except in H5Fflush (see header).
+  mdc.evictions_enabled = false;
+  mdc.incr_mode = H5C_incr__off;
+  mdc.flash_incr_mode = H5C_flash_incr__off;
+  mdc.decr_mode = H5C_decr__off;
+  H5Pset_mdc_config(fapl, &mdc);
+  H5E_BEGIN_TRY { file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl); }
+  H5E_END_TRY;
+  H5Pclose(fapl);
+  if (file_ < 0) throw h5_error(path, "cannot create the file");
+  for (const auto& [k, v] : attributes) string_attribute(file_, k, v);
+  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+}
+
+Hdf5Recorder::~Hdf5Recorder() {
+  try {
+    flush();
+  } catch (...) {
+  }
+  for (auto& [name, t] : tables_) {
+    for (hid_t s : t.scalar_sets) H5Dclose(s);
+    if (t.vector_set >= 0) H5Dclose(t.vector_set);
+    H5Gclose(t.group);
+  }
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+Hdf5Recorder::Table& Hdf5Recorder::table(const PacketKind& kind, size_t width) {
+  auto it = tables_.find(kind.table);
+  if (it != tables_.end()) return it->second;
+  Table t;
+  t.group = H5Gcreate2(file_, kind.table, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (t.group < 0) throw h5_error(path_, std::string("cannot create group /") + kind.table);
+  for (const char* c : kind.scalars) t.scalar_sets.push_back(create_set(t.group, c, 0));
+  if (kind.vector_name) {
+    t.width = width;
+    t.vector_set = create_set(t.group, kind.vector_name, width ? width : 1);
+  }
+  t.pending_scalars.resize(kind.scalars.size());
+  return tables_.emplace(kind.table, std::move(t)).first->second;
+}
+
+void Hdf5Recorder::write(const PacketKind& kind, const std::vector<Row>& rows) {
+  for (const Row& r : rows) {
+    Table& t = table(kind, r.values.size());
+    if (t.vector_set >= 0 && r.values.size() != (t.width ? t.width : 0)) {
+      ++rejected_;
+      continue;
+    }
+    for (size_t i = 0; i < t.pending_scalars.size(); ++i)
+      t.pending_scalars[i].push_back(i < r.scalars.size() ? r.scalars[i] : 0);
+    t.pending_values.insert(t.pending_values.end(), r.values.begin(), r.values.end());
+    ++t.pending_rows;
+    ++pending_;
+  }
+  if (pending_ >= kFlushRows) flush();
+}
+
+void Hdf5Recorder::append(const std::string& name, Table& t) {
+  if (t.pending_rows == 0) return;
+  bool ok = true;
+  for (size_t i = 0; i < t.scalar_sets.size(); ++i) {
+    ok &= append_rows(t.scalar_sets[i], t.pending_scalars[i].data(), t.rows_on_disk,
+                      t.pending_rows, 0);
+    t.pending_scalars[i].clear();
+  }
+  if (t.vector_set >= 0 && t.width > 0)
+    ok &= append_rows(t.vector_set, t.pending_values.data(), t.rows_on_disk, t.pending_rows,
+                      t.width);
+  if (!ok) throw h5_error(path_, "cannot append " + std::to_string(t.pending_rows) + " rows to /" + name);
+  t.pending_values.clear();
+  t.rows_on_disk += t.pending_rows;
+  t.pending_rows = 0;
+}
+
+void Hdf5Recorder::flush() {
+  if (file_ < 0) return;
+  for (auto& [name, t] : tables_) append(name, t);
+  pending_ = 0;
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw h5_error(path_, "flush failed");
+}
+
+}  // namespace eskin::stream

@@ -1,0 +1,167 @@
+// The live view in a real browser: the default scene's packets (what the
+// FPGA sends) stream through a pty into LinkStream and the LiveView
+// recorder, up to the middle of the press on taxel (1, 2) (scene: 0.235 s
+// + 5 ms ramp, held to 0.265 s; we stop at 0.245 s = sample 8575).
+// Headless Chromium (Debian's chromium) loads the page and takes a
+// screenshot; libpng decodes it and the heatmap cell of (1, 2) must be red
+// (the frame's maximum) and the cells of untouched taxels blue.
+// Geometry and colour ramp: host/stream/live_view_page.h.
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <png.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "host/stream/link_stream.h"
+#include "host/stream/live_view.h"
+#include "tests/stream/frames.h"
+#include "tests/stream/pty_pair.h"
+
+namespace fs = std::filesystem;
+using namespace eskin::testing;
+using namespace std::chrono_literals;
+
+namespace {
+
+struct Rgb {
+  int r, g, b;
+};
+
+// Decodes a PNG into 8-bit RGB.
+bool read_png(const std::string& path, int& w, int& h, std::vector<uint8_t>& rgb) {
+  png_image img{};
+  img.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&img, path.c_str())) return false;
+  img.format = PNG_FORMAT_RGB;
+  rgb.resize(PNG_IMAGE_SIZE(img));
+  if (!png_image_finish_read(&img, nullptr, rgb.data(), 0, nullptr)) return false;
+  w = int(img.width);
+  h = int(img.height);
+  return true;
+}
+
+TEST(LiveView, ChromiumScreenshotShowsThePressedTaxel) {
+  std::vector<Sent> sent;
+  const auto wire = scene_frames(sent, 8575);
+  // Precondition from the packets themselves: the last taxel frame peaks at (1, 2).
+  const Sent* last = nullptr;
+  for (const Sent& s : sent)
+    if (s.type == eskin::link::kTaxelsDense) last = &s;
+  ASSERT_NE(last, nullptr);
+  std::vector<int> values;
+  for (size_t i = 2; i < last->payload.size(); i += 2)
+    values.push_back(last->payload[i] | (last->payload[i + 1] << 8));
+  ASSERT_EQ(values.size(), 9u);
+  ASSERT_EQ(std::max_element(values.begin(), values.end()) - values.begin(), 1 * 3 + 2);
+  std::printf("taxel frame at t = %u:", last->t);
+  for (int v : values) std::printf(" %d", v);
+  std::printf("\n");
+
+  PtyPair pty;
+  eskin::stream::StreamOptions opt;
+  opt.endpoint = eskin::stream::Endpoint::serial(pty.slave_path());
+  eskin::stream::LinkStream stream(opt);
+  eskin::stream::LiveView live("127.0.0.1", 0);
+  live.set_link_stats([&stream] { return eskin::stream::stats_json(stream.stats()); });
+  eskin::stream::RecorderSet recorders;
+  recorders.add(&live);
+  std::atomic<size_t> n{0};
+  stream.on_packet([&](const eskin::link::Packet& p) {
+    recorders.write(p);
+    ++n;
+  });
+  stream.start();
+  for (int i = 0; i < 500 && !stream.connected(); ++i) std::this_thread::sleep_for(10ms);
+  ASSERT_TRUE(write_fully(pty.master(), wire));
+  for (int i = 0; i < 1000 && n < sent.size(); ++i) std::this_thread::sleep_for(10ms);
+  ASSERT_EQ(n, sent.size());
+
+  // The data endpoint over HTTP.
+  httplib::Client cli("127.0.0.1", live.port());
+  auto res = cli.Get("/data.json");
+  ASSERT_TRUE(res) << "GET /data.json failed";
+  const auto d = nlohmann::json::parse(res->body);
+  EXPECT_EQ(d["taxels"]["rows"], 3);
+  EXPECT_EQ(d["taxels"]["cols"], 3);
+  EXPECT_EQ(d["taxels"]["t"], last->t);
+  EXPECT_EQ(d["taxels"]["values"].get<std::vector<int>>(), values);
+  EXPECT_EQ(d["link"]["frames_ok"], sent.size());
+  EXPECT_GT(d["spikes"].size(), 0u);
+  EXPECT_EQ(d["amplitudes"].size(), 8575u / 35);  // one per 35 samples, all kept (< 500)
+
+  // The page in headless Chromium.
+  const fs::path dir = fs::temp_directory_path() / ("eskin_live_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string png = (dir / "live.png").string();
+  const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu "
+                          "--hide-scrollbars --force-device-scale-factor=1 "
+                          "--window-size=1200,760 --virtual-time-budget=2000 --user-data-dir=" +
+                          (dir / "profile").string() + " --screenshot=" + png + " " + live.url() + "?static" +
+                          " > " + (dir / "chromium.log").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd << "\n" << (dir / "chromium.log");
+  int w = 0, h = 0;
+  std::vector<uint8_t> rgb;
+  ASSERT_TRUE(read_png(png, w, h, rgb)) << png;
+  ASSERT_EQ(w, 1200);
+  ASSERT_EQ(h, 760);
+  const auto at = [&](int row, int col) {  // centre of the heatmap cell
+    const size_t i = (size_t(60 + 60 * row + 30) * size_t(w) + size_t(20 + 60 * col + 30)) * 3;
+    return Rgb{rgb[i], rgb[i + 1], rgb[i + 2]};
+  };
+  // Colour at value fraction f: (20 + 210 f, 40 - 10 f, 160 - 130 f).
+  const Rgb hot = at(1, 2);
+  EXPECT_GE(hot.r, 225) << "pressed taxel's cell is not red: " << hot.r << "," << hot.g << "," << hot.b;
+  EXPECT_LE(hot.b, 35);
+  const int max = values[5];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      if (r == 1 && c == 2) continue;
+      const Rgb px = at(r, c);
+      const double f = double(values[size_t(r * 3 + c)]) / max;
+      // Canvas colours are exact to +-1 from rounding; the ramp is linear.
+      EXPECT_NEAR(px.r, 20 + 210 * f, 2) << r << "," << c;
+      EXPECT_NEAR(px.b, 160 - 130 * f, 2) << r << "," << c;
+      EXPECT_LT(px.r, hot.r - 20) << "(" << r << "," << c << ") drawn as hot as the pressed taxel";
+      // Taxels sharing neither the pressed row nor its column see no
+      // carrier of the press (only leakage): they stay blue.
+      if (r != 1 && c != 2) {
+        EXPECT_GT(px.b, px.r) << "(" << r << "," << c << ") drawn hot";
+      }
+    }
+  stream.stop();
+  fs::remove_all(dir);
+}
+
+// Sparse taxel frames (docs/protocol.md §4, mask bit 4) in the heatmap's
+// data: a sparse frame replaces the map (so an empty one clears it); a
+// sparse packet of a frame whose dense packet came first changes nothing.
+TEST(LiveView, SparseFramesReplaceTheMapAndEmptyOnesClearIt) {
+  eskin::stream::LiveView live("127.0.0.1", 0);
+  eskin::stream::RecorderSet recorders;
+  recorders.add(&live);
+  eskin::link::LinkEncoder enc;
+  eskin::link::LinkDecoder dec;
+  dec.on_packet([&](const eskin::link::Packet& p) { recorders.write(p); });
+  const auto taxels = [&] { return nlohmann::json::parse(live.data_json())["taxels"]; };
+  const std::vector<uint16_t> dense = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+  dec.feed(enc.taxels_dense(35, 3, 3, dense));
+  dec.feed(enc.taxels_sparse(35, {{0, 0, 999}}));
+  EXPECT_EQ(taxels()["values"].get<std::vector<int>>(), std::vector<int>(dense.begin(), dense.end()));
+  dec.feed(enc.taxels_sparse(70, {{2, 1, 500}, {0, 2, 40}}));
+  EXPECT_EQ(taxels()["t"], 70);
+  EXPECT_EQ(taxels()["values"].get<std::vector<int>>(), (std::vector<int>{0, 0, 40, 0, 0, 0, 0, 500, 0}));
+  dec.feed(enc.taxels_sparse(105, {}));
+  EXPECT_EQ(taxels()["t"], 105);
+  EXPECT_EQ(taxels()["values"].get<std::vector<int>>(), std::vector<int>(9, 0));
+  dec.feed(enc.spikes(140, {{3, 0, 4}, {5, 1, 7}}));
+  const auto spikes = nlohmann::json::parse(live.data_json())["spikes"];
+  ASSERT_EQ(spikes.size(), 2u);
+  EXPECT_EQ(spikes[1]["layer"], 1);
+  EXPECT_EQ(spikes[1]["neuron"], 7);
+  EXPECT_EQ(spikes[1]["t"], 145);
+  EXPECT_EQ(dec.stats().frames_ok, 5u);
+}
+
+}  // namespace

@@ -1,0 +1,296 @@
+// eskin stream and eskin config as a user runs them: the real binary on a
+// real pty, its NDJSON parsed as JSON (nlohmann), its CSV files read back
+// and its HDF5 file opened with the HDF5 C API after a clean stop, after the
+// board vanished and came back mid-run, and after the process was killed.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "host/link/link_decoder.h"
+#include "tests/stream/frames.h"
+#include "tests/stream/process.h"
+#include "tests/stream/pty_pair.h"
+
+namespace fs = std::filesystem;
+using namespace eskin::testing;
+using namespace std::chrono_literals;
+using nlohmann::json;
+
+namespace {
+
+fs::path tmpdir() {
+  const fs::path d = fs::temp_directory_path() /
+                     ("eskin_stream_cli_" + std::to_string(getpid()) + "_" +
+                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+uint16_t le16(const std::vector<uint8_t>& b, size_t i) { return uint16_t(b[i] | (b[i + 1] << 8)); }
+
+// What the user must see for `sent`, derived from the payload bytes (the
+// wire layout of docs/protocol.md §4), one entry per NDJSON line.
+std::vector<json> expected_lines(const std::vector<Sent>& sent) {
+  std::vector<json> v;
+  for (const Sent& s : sent) {
+    if (s.type == eskin::link::kAmplitudes) {
+      json amp = json::array();
+      for (size_t i = 0; i < s.payload.size(); i += 2) amp.push_back(le16(s.payload, i));
+      v.push_back({{"type", "amplitudes"}, {"seq", s.seq}, {"t", s.t}, {"amp", amp}});
+    } else if (s.type == eskin::link::kTaxelsDense) {
+      json tax = json::array();
+      for (size_t i = 2; i < s.payload.size(); i += 2) tax.push_back(le16(s.payload, i));
+      v.push_back({{"type", "taxels"}, {"seq", s.seq}, {"t", s.t}, {"rows", s.payload[0]},
+                   {"cols", s.payload[1]}, {"taxel", tax}});
+    } else if (s.type == eskin::link::kTaxelsSparse) {
+      for (size_t i = 0; i < s.payload.size(); i += 4)
+        v.push_back({{"type", "taxels_sparse"}, {"seq", s.seq}, {"t", s.t}, {"row", s.payload[i]},
+                     {"col", s.payload[i + 1]}, {"value", le16(s.payload, i + 2)}});
+    } else if (s.type == eskin::link::kSpikes) {
+      for (size_t i = 0; i < s.payload.size(); i += 5)
+        v.push_back({{"type", "spikes"}, {"seq", s.seq}, {"t", s.t + le16(s.payload, i)},
+                     {"layer", s.payload[i + 2]}, {"neuron", le16(s.payload, i + 3)}});
+    } else if (s.type == eskin::link::kStatus) {
+      // The 28-byte block: u16 fields, the four u8 fields at 8..11, u32 samples at 24.
+      json j = {{"type", "status"}, {"seq", s.seq}, {"t", s.t}};
+      const char* u16[] = {"cmd_crc_errors", "cmd_frame_errors", "cmd_accepted", "cmd_rejected"};
+      for (size_t k = 0; k < 4; ++k) j[u16[k]] = le16(s.payload, 2 * k);
+      const char* u8[] = {"last_reject_type", "last_reject_reason", "last_reject_seq",
+                          "output_mask"};
+      for (size_t k = 0; k < 4; ++k) j[u8[k]] = s.payload[8 + k];
+      const char* more[] = {"dropped_frames", "adc_overruns",   "uart_rx_errors",
+                            "frame_overruns", "spikes_dropped", "cmd_overflows"};
+      for (size_t k = 0; k < 6; ++k) j[more[k]] = le16(s.payload, 12 + 2 * k);
+      j["samples"] = uint32_t(le16(s.payload, 24) | uint32_t(le16(s.payload, 26)) << 16);
+      v.push_back(j);
+    }
+  }
+  return v;
+}
+
+// NDJSON lines `sent` makes, all types (docs/streaming.md: one row per
+// packet, per active sparse taxel, per spike): what to wait for on stdout.
+size_t ndjson_rows(const std::vector<Sent>& sent) {
+  size_t n = 0;
+  for (const Sent& s : sent)
+    n += s.type == eskin::link::kTaxelsSparse ? s.payload.size() / 4
+         : s.type == eskin::link::kSpikes     ? s.payload.size() / 5
+                                              : 1;
+  return n;
+}
+
+std::vector<json> parse_ndjson(const std::string& text) {
+  std::vector<json> v;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) v.push_back(json::parse(line));
+  return v;
+}
+
+// Reads an int64 dataset (1-D or 2-D) of an HDF5 file, with its dims.
+std::vector<int64_t> read_set(hid_t file, const std::string& name, std::vector<hsize_t>& dims) {
+  const hid_t d = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+  EXPECT_GE(d, 0) << name;
+  if (d < 0) return {};
+  const hid_t sp = H5Dget_space(d);
+  dims.assign(size_t(H5Sget_simple_extent_ndims(sp)), 0);
+  H5Sget_simple_extent_dims(sp, dims.data(), nullptr);
+  hsize_t n = 1;
+  for (hsize_t x : dims) n *= x;
+  std::vector<int64_t> v(n);
+  if (n) H5Dread(d, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Sclose(sp);
+  H5Dclose(d);
+  return v;
+}
+
+std::string read_attr(hid_t file, const char* name) {
+  const hid_t a = H5Aopen(file, name, H5P_DEFAULT);
+  if (a < 0) return "<missing>";
+  const hid_t t = H5Aget_type(a);
+  std::string s(H5Tget_size(t), '\0');
+  H5Aread(a, t, s.data());
+  H5Tclose(t);
+  H5Aclose(a);
+  return std::string(s.c_str());
+}
+
+// The HDF5 file holds exactly the expected lines' values, table by table.
+void expect_hdf5_matches(const std::string& path, const std::vector<json>& want) {
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0) << path << " does not open";
+  std::vector<hsize_t> dims;
+  for (const char* table : {"amplitudes", "taxels", "taxels_sparse", "spikes", "status"}) {
+    std::vector<const json*> rows;
+    for (const json& j : want)
+      if (j["type"] == table) rows.push_back(&j);
+    if (rows.empty()) {  // no packet of the type: no group
+      EXPECT_LE(H5Lexists(f, table, H5P_DEFAULT), 0) << table;
+      continue;
+    }
+    // Every scalar column of the expected rows, by name.
+    for (const auto& [column, value] : rows[0]->items()) {
+      if (column == "type" || value.is_array()) continue;
+      const auto got = read_set(f, std::string("/") + table + "/" + column, dims);
+      ASSERT_EQ(got.size(), rows.size()) << table << "/" << column;
+      for (size_t i = 0; i < rows.size(); ++i)
+        ASSERT_EQ(got[i], (*rows[i])[column].get<int64_t>()) << table << "/" << column << " row " << i;
+    }
+    const char* vec = std::string(table) == "amplitudes" ? "amp"
+                      : std::string(table) == "taxels"   ? "taxel"
+                                                         : nullptr;
+    if (!vec || rows.empty()) continue;
+    const auto v = read_set(f, std::string("/") + table + "/" + vec, dims);
+    ASSERT_EQ(dims.size(), 2u);
+    ASSERT_EQ(dims[0], rows.size());
+    for (size_t i = 0; i < rows.size(); ++i)
+      for (size_t k = 0; k < dims[1]; ++k)
+        ASSERT_EQ(v[i * dims[1] + k], (*rows[i])[vec][k].get<int64_t>()) << table << " " << i;
+  }
+  H5Fclose(f);
+}
+
+size_t lines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
+
+TEST(StreamCli, DefaultSceneToNdjsonCsvAndHdf5) {
+  const fs::path dir = tmpdir();
+  std::vector<Sent> sent;
+  const auto wire = scene_frames(sent, SIZE_MAX, 0x1F);  // sparse taxels too
+  const auto want = expected_lines(sent);
+  PtyPair pty;
+  Process p({ESKIN_BIN, "stream", "--port", pty.slave_path(), "--count",
+             std::to_string(sent.size()), "--csv", (dir / "csv").string(), "--hdf5",
+             (dir / "run.h5").string(), "--scene", ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml"},
+            (dir / "out").string(), (dir / "err").string());
+  ASSERT_TRUE(p.wait_output([](const std::string& e) { return e.find("link open") != e.npos; },
+                            true, 10s));
+  ASSERT_TRUE(write_fully(pty.master(), wire));
+  ASSERT_EQ(p.wait_exit(30s), 0) << p.err();
+  const auto got = parse_ndjson(p.out());
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) ASSERT_EQ(got[i], want[i]) << "line " << i;
+
+  // CSV: header plus one line per row of each table, values as in NDJSON.
+  size_t amps = 0, spikes = 0, sparse = 0;
+  for (const json& j : want)
+    amps += j["type"] == "amplitudes", spikes += j["type"] == "spikes",
+        sparse += j["type"] == "taxels_sparse";
+  ASSERT_GT(sparse, 0u) << "the presses light taxels above g = 1";
+  const std::string sparse_csv = slurp((dir / "csv" / "taxels_sparse.csv").string());
+  EXPECT_EQ(sparse_csv.substr(0, sparse_csv.find('\n')), "seq,t,row,col,value");
+  EXPECT_EQ(lines(sparse_csv), sparse + 1);
+  const std::string amp_csv = slurp((dir / "csv" / "amplitudes.csv").string());
+  EXPECT_EQ(amp_csv.substr(0, amp_csv.find('\n')), "seq,t,amp0,amp1,amp2,amp3,amp4,amp5");
+  EXPECT_EQ(lines(amp_csv), amps + 1);
+  EXPECT_EQ(lines(slurp((dir / "csv" / "spikes.csv").string())), spikes + 1);
+  std::ostringstream first;
+  first << want[0]["seq"] << ',' << want[0]["t"];
+  for (const auto& a : want[0]["amp"]) first << ',' << a;
+  EXPECT_EQ(amp_csv.substr(amp_csv.find('\n') + 1, first.str().size()), first.str());
+
+  expect_hdf5_matches((dir / "run.h5").string(), want);
+  const hid_t f = H5Fopen((dir / "run.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(read_attr(f, "scene_name"), "neuroskin2");
+  EXPECT_EQ(read_attr(f, "skin_rows"), "3");
+  EXPECT_EQ(read_attr(f, "baud"), "3000000");
+  EXPECT_NE(read_attr(f, "scene_yaml").find("rows: [1900, 3300, 5000]"), std::string::npos);
+  EXPECT_NE(read_attr(f, "endpoint").find(pty.slave_path()), std::string::npos);
+  H5Fclose(f);
+  fs::remove_all(dir);
+}
+
+// The board disappears mid-run (pty master closed), comes back at the same
+// path: eskin stream says so on stderr, keeps running, and the HDF5 file
+// holds the packets of both sessions once it stops (SIGTERM: clean stop).
+TEST(StreamCli, LostBoardIsReportedReopenedAndTheRecordingKept) {
+  const fs::path dir = tmpdir();
+  std::vector<Sent> sent;
+  const auto frames = random_frames(400, 7, sent);
+  const auto want = expected_lines(sent);
+  const size_t first_lines = ndjson_rows({sent.begin(), sent.begin() + 200});
+  const size_t all_lines = ndjson_rows(sent);
+  const fs::path link = dir / "board.tty";
+  auto board = std::make_unique<PtyPair>();
+  fs::create_symlink(board->slave_path(), link);
+  Process p({ESKIN_BIN, "stream", "--port", link.string(), "--hdf5", (dir / "run.h5").string()},
+            (dir / "out").string(), (dir / "err").string());
+  const auto has = [](const char* what, size_t n) {
+    return [what, n](const std::string& e) { return count_of(e, what) >= n; };
+  };
+  ASSERT_TRUE(p.wait_output(has("link open", 1), true, 10s));
+  ASSERT_TRUE(write_fully(board->master(), concat({frames.begin(), frames.begin() + 200})));
+  ASSERT_TRUE(p.wait_output([&](const std::string& o) { return lines(o) >= first_lines; }, false,
+                            10s));
+  board->close_master();
+  ASSERT_TRUE(p.wait_output(has("link lost", 1), true, 10s)) << p.err();
+  auto board2 = std::make_unique<PtyPair>();
+  fs::remove(link);
+  fs::create_symlink(board2->slave_path(), link);
+  ASSERT_TRUE(p.wait_output(has("link open", 2), true, 10s)) << p.err();
+  ASSERT_TRUE(write_fully(board2->master(), concat({frames.begin() + 200, frames.end()})));
+  ASSERT_TRUE(p.wait_output([&](const std::string& o) { return lines(o) >= all_lines; }, false,
+                            10s));
+  p.signal(SIGTERM);
+  ASSERT_EQ(p.wait_exit(10s), 0) << p.err();
+  EXPECT_NE(p.err().find("\"connects\":2"), std::string::npos) << p.err();
+  EXPECT_NE(p.err().find("\"disconnects\":1"), std::string::npos) << p.err();
+  SCOPED_TRACE("eskin stream's stderr:\n" + p.err());
+  expect_hdf5_matches((dir / "run.h5").string(), want);
+  fs::remove_all(dir);
+}
+
+// SIGKILL, no chance to close the file: everything flushed before the kill
+// (the packets, then two flush periods) is in a file that opens.
+TEST(StreamCli, KilledRunLeavesAReadableHdf5File) {
+  const fs::path dir = tmpdir();
+  std::vector<Sent> sent;
+  const auto wire = scene_frames(sent, 10000);
+  const auto want = expected_lines(sent);
+  PtyPair pty;
+  Process p({ESKIN_BIN, "stream", "--port", pty.slave_path(), "--hdf5",
+             (dir / "run.h5").string(), "--flush-ms", "100"},
+            (dir / "out").string(), (dir / "err").string());
+  ASSERT_TRUE(p.wait_output([](const std::string& e) { return e.find("link open") != e.npos; },
+                            true, 10s));
+  ASSERT_TRUE(write_fully(pty.master(), wire));
+  const size_t all_lines = ndjson_rows(sent);
+  ASSERT_TRUE(p.wait_output([&](const std::string& o) { return lines(o) >= all_lines; }, false,
+                            10s));
+  std::this_thread::sleep_for(300ms);  // > 2 flush periods
+  p.signal(SIGKILL);
+  EXPECT_EQ(p.wait_exit(10s), 128 + SIGKILL);
+  expect_hdf5_matches((dir / "run.h5").string(), want);
+  fs::remove_all(dir);
+}
+
+TEST(StreamCli, BadOptionsFailWithAMessage) {
+  const fs::path dir = tmpdir();
+  const auto run = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), ESKIN_BIN);
+    Process p(args, (dir / "out").string(), (dir / "err").string());
+    const int rc = p.wait_exit(20s);
+    return std::make_pair(rc, p.err());
+  };
+  auto [rc1, e1] = run({"stream", "--tcp", "localhost"});
+  EXPECT_NE(rc1, 0);
+  EXPECT_NE(e1.find("expected HOST:PORT"), std::string::npos) << e1;
+  auto [rc2, e2] = run({"stream", "--duration", "1"});
+  EXPECT_NE(rc2, 0);
+  EXPECT_NE(e2.find("--port DEV or --tcp HOST:PORT"), std::string::npos) << e2;
+  auto [rc3, e3] = run({"stream", "--port", "/nonexistent/tty", "--duration", "0.3"});
+  EXPECT_EQ(rc3, 1);
+  EXPECT_NE(e3.find("/nonexistent/tty: cannot open"), std::string::npos) << e3;
+  EXPECT_NE(e3.find("never opened"), std::string::npos) << e3;
+  auto [rc4, e4] = run({"stream", "--port", "/dev/null", "--live", "127.0.0.1:99999"});
+  EXPECT_NE(rc4, 0);
+  EXPECT_NE(e4.find("--live '127.0.0.1:99999'"), std::string::npos) << e4;
+  fs::remove_all(dir);
+}
+
+}  // namespace
