@@ -5,18 +5,23 @@
 # then packed with icepack into OUT/TOP.bin.
 #
 #   scripts/synth_ice40.sh TOP [--param NAME=VALUE]... [--pnr] [--freq MHZ]
-#                              [--pcf FILE] [--out DIR]
+#                              [--pcf FILE] [--out DIR] [--seed N]
+#                              [--read FILE]... [--define NAME=VALUE]...
+#
+# --read adds a Verilog file (e.g. a generated wrapper module) read with the
+# top; --define sets a Verilog macro for every file read (`eskin bitstream`
+# uses both to put a scene's core into a board wrapper).
 #
 # Prints one line of figures: LUTs (ICESTORM_LC), DSPs, BRAMs, SPRAMs and,
 # after place and route, the achieved Fmax against the requested clock.
 # Exits non-zero if Yosys fails, the design does not fit, or Fmax < freq.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-top=${1:?usage: synth_ice40.sh TOP [--param N=V]... [--pnr] [--freq MHZ] [--pcf F] [--out DIR]}
+top=${1:?usage: synth_ice40.sh TOP [--param N=V]... [--pnr] [--freq MHZ] [--pcf F] [--out DIR] [--seed N] [--read F]... [--define N=V]...}
 shift
 src="$root/rtl/$top.v"
 case "$top" in *.v) src=$(realpath "$top"); top=$(basename "$top" .v) ;; esac
-params=() pnr=0 freq=12 pcf="" out=""
+params=() reads=() defines="" pnr=0 freq=12 pcf="" out="" seed=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --param) params+=("$2"); shift 2 ;;
@@ -24,6 +29,9 @@ while [ $# -gt 0 ]; do
     --freq) freq=$2; shift 2 ;;
     --pcf) pcf=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
+    --read) reads+=("$(realpath "$2")"); shift 2 ;;
+    --define) defines+=" -D$2"; shift 2 ;;
     *) echo "synth_ice40.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -37,7 +45,7 @@ done
 # instantiates are found as rtl/NAME.v by `hierarchy -libdir`.
 # Parameters are set before elaboration, so `hierarchy` derives the
 # submodules from the overridden values.
-yosys -q -l "$out/yosys.log" -p "read_verilog -sv $src; $chparam hierarchy -libdir $root/rtl -top $top; \
+yosys -q -l "$out/yosys.log" -p "read_verilog -sv$defines $src ${reads[*]+"${reads[*]}"}; $chparam hierarchy -libdir $root/rtl -top $top; \
   synth_ice40 -dsp -top $top -json $out/$top.json; tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+$1\s" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}'; }
 lc=$(cells SB_LUT4); dsp=$(cells SB_MAC16); bram=$(cells SB_RAM40_4K); spram=$(cells SB_SPRAM256KA)
@@ -47,7 +55,7 @@ if [ "$pnr" -eq 1 ]; then
   pcfarg=(--pcf-allow-unconstrained)
   [ -n "$pcf" ] && pcfarg=(--pcf "$pcf")
   nextpnr-ice40 --up5k --package sg48 --json "$out/$top.json" --asc "$out/$top.asc" \
-    "${pcfarg[@]}" --freq "$freq" --report "$out/report.json" --seed 1 -q \
+    "${pcfarg[@]}" --freq "$freq" --report "$out/report.json" --seed "$seed" -q \
     >"$out/nextpnr.log" 2>&1 || { tail -20 "$out/nextpnr.log" >&2; exit 1; }
   icepack "$out/$top.asc" "$out/$top.bin"
   used=$(jq '.utilization.ICESTORM_LC.used' "$out/report.json")
