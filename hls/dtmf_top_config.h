@@ -110,6 +110,40 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
   return p;
 }
 
+// The FPGA clocks at which the top keeps up with the spec's sample rate
+// (the spec's clk_hz is not used). `eskin bitstream` picks a board clock in
+// this range, and the scale table calls a skin "fits and meets timing" only
+// if the range is not empty and nextpnr's Fmax reaches the chosen clock.
+// Budgets of rtl/dtmf_top.v as built today (update with the top):
+//  - adc_ad7476 at SCLK_DIV = 1: f_SCLK = clk / 2 <= 20 MHz, so clk <= 40 MHz;
+//    per sample PERIOD = clk / fs clocks with (PERIOD - 28) clocks >= 250 ns
+//    of acquisition (tACQ, the tighter of its two limits).
+//  - sdft_bank: carrier k of a sample leaves at 8 + 6k clocks, so the K
+//    carriers need 6K + 2 clocks of every sample period (docs/fpga.md).
+//  - the stages after the DFT run every `step` samples, which the plan
+//    chooses to fit any clock.
+struct DtmfTopClockLimits {
+  long min_hz = 0, max_hz = 0;  // empty when min_hz > max_hz
+  std::string min_why, max_why;
+};
+
+inline DtmfTopClockLimits dtmf_top_clock_limits(const DtmfTopSpec& s) {
+  DtmfTopClockLimits l;
+  const long k = s.rows + s.cols;
+  const double dft = s.sample_hz * double(6 * k + 2);
+  const double acq = 28.0 / (1.0 / s.sample_hz - 250e-9);  // +inf-like when fs >= 4 MHz
+  l.max_hz = 40000000;
+  l.max_why = "AD7476A SCLK = clk / 2 <= 20 MHz";
+  if (!(acq > 0) || acq >= dft) {
+    l.min_hz = acq > 0 ? long(std::ceil(acq)) : 1L << 40;
+    l.min_why = "AD7476A: 28 clocks + 250 ns acquisition per sample";
+  } else {
+    l.min_hz = long(std::ceil(dft));
+    l.min_why = "sdft_bank: 6K + 2 = " + std::to_string(6 * k + 2) + " clocks per sample";
+  }
+  return l;
+}
+
 // The chain configuration (hls/dtmf_chain.h) of the same plan.
 template <class Chain>
 typename Chain::Config chain_config(const DtmfTopPlan& p) {
