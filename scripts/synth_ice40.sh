@@ -55,7 +55,7 @@ if [ "$pnr" -eq 1 ]; then
   pcfarg=(--pcf-allow-unconstrained)
   [ -n "$pcf" ] && pcfarg=(--pcf "$pcf")
   nextpnr-ice40 --up5k --package sg48 --json "$out/$top.json" --asc "$out/$top.asc" \
-    "${pcfarg[@]}" --freq "$freq" --report "$out/report.json" --seed "$seed" -q \
+    "${pcfarg[@]}" --freq "$freq" --report "$out/report.json" --seed "$seed" \
     >"$out/nextpnr.log" 2>&1 || { tail -20 "$out/nextpnr.log" >&2; exit 1; }
   icepack "$out/$top.asc" "$out/$top.bin"
   used=$(jq '.utilization.ICESTORM_LC.used' "$out/report.json")

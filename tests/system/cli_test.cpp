@@ -14,28 +14,15 @@
 #include "sim/scene.h"
 #include "sim/wav_io.h"
 #include "sim/world_model.h"
+#include "tests/cli_run.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int status;
-  std::string out;  // stdout and stderr together
-};
+using Result = eskin::test::CliResult;
 
-Result sh(const std::string& args) {
-  const std::string cmd = std::string(ESKIN_BIN) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  Result r{-1, ""};
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+Result sh(const std::string& args) { return eskin::test::run_cli(std::string(ESKIN_BIN) + " " + args); }
 
 fs::path tmpdir() {
   fs::path d = fs::temp_directory_path() /
