@@ -70,7 +70,7 @@ int run_scale_table(const BitstreamArgs& a) {
   opt.out_dir = a.out.empty() ? "build/bitstream/scale" : a.out;
   opt.seed = a.seed;
   const auto rows = eskin::fpga::run_scale_table(base, opt, a.sizes, [](const eskin::fpga::ScaleRow& r) {
-    std::cerr << fmt::format("scale: {} {:g} S/s {}x{}: {} ({:.0f} s)\n", r.target, r.sample_hz,
+    std::cerr << fmt::format("scale: {} {:.0f} S/s {}x{}: {} ({:.0f} s)\n", r.target, r.sample_hz,
                              r.rows, r.cols, r.ok() ? "fits and meets timing" : r.failure,
                              r.seconds);
   });

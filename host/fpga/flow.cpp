@@ -62,7 +62,7 @@ void check_tools(const Board& b, const std::string& source_dir) {
           t, (venv / "bin").string()));
 }
 
-std::string mhz(double hz) { return fmt::format("{:g}", hz / 1e6); }
+std::string mhz(double hz) { return fmt::format("{:.6g}", hz / 1e6); }
 
 // The last line of `log` that starts with "ERROR" (the tools' own message).
 std::string last_error(const std::string& log) {
@@ -137,9 +137,17 @@ FlowReport run_flow(const Board& b, hls::DtmfTopSpec spec, const std::string& sc
   spec.clk_hz = clk.clk_hz;
   spec.baud = clk.baud;
   r.spec = spec;
+  if (r.limits.min_hz > r.limits.max_hz) {
+    r.failure = fmt::format(
+        "timing: at {:.0f} S/s the core cannot keep up at any clock: it needs at least {} MHz "
+        "({}) and at most {} MHz ({})",
+        spec.sample_hz, mhz(double(r.limits.min_hz)), r.limits.min_why,
+        mhz(double(r.limits.max_hz)), r.limits.max_why);
+    return r;
+  }
   if (clk.clk_hz < r.limits.min_hz || clk.clk_hz > r.limits.max_hz) {
     r.failure = fmt::format(
-        "timing: at {:g} S/s the core keeps up only with a clock of {} .. {} MHz (at least: {}; "
+        "timing: at {:.0f} S/s the core keeps up only with a clock of {} .. {} MHz (at least: {}; "
         "at most: {}); board {} runs it at {} MHz",
         spec.sample_hz, mhz(double(r.limits.min_hz)), mhz(double(r.limits.max_hz)),
         r.limits.min_why, r.limits.max_why, b.name, mhz(double(clk.clk_hz)));
