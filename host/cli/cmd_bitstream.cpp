@@ -6,9 +6,10 @@
 // the table, and exits 1 with the numbers (and the skins that would fit,
 // from docs/scale_table.csv) when the design does not fit or misses timing.
 //
-// `eskin bitstream --scale-table [--scene BASE.yaml] [--out DIR]`: measures
-// the scale table (host/fpga/scale_table.h) with real runs (hours: see
-// docs/bitstream.md), writes docs/scale_table.csv and prints the table.
+// `eskin bitstream --scale-table [--scene BASE.yaml] [--out DIR] [--targets
+// L] [--rates L] [--sizes L]`: measures the scale table
+// (host/fpga/scale_table.h) with real runs (hours: see docs/bitstream.md),
+// updates docs/scale_table.csv and prints the table.
 #include <fmt/core.h>
 
 #include <cmath>
@@ -41,7 +42,7 @@ struct BitstreamArgs {
   int seed = 1;
   double clk_mhz = 0;
   bool scale_table = false;
-  std::vector<int> sizes;  // scale table: n of the n x n skins (default: scale_sizes())
+  eskin::fpga::ScaleSelection scale;  // --targets, --rates, --sizes
 };
 
 // The source tree: ESKIN_SOURCE_DIR from the environment (an installed or
@@ -69,14 +70,19 @@ int run_scale_table(const BitstreamArgs& a) {
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/scale" : a.out;
   opt.seed = a.seed;
-  const auto rows = eskin::fpga::run_scale_table(base, opt, a.sizes, [](const eskin::fpga::ScaleRow& r) {
+  // The CSV is rewritten after every probe, so an interrupted run keeps
+  // what it measured.
+  const std::string csv = source_dir() + "/docs/scale_table.csv";
+  const auto before = read_scale_table(csv);
+  std::vector<eskin::fpga::ScaleRow> done;
+  const auto rows = eskin::fpga::run_scale_table(base, opt, a.scale, [&](const eskin::fpga::ScaleRow& r) {
     std::cerr << fmt::format("scale: {} {:.0f} S/s {}x{}: {} ({:.0f} s)\n", r.target, r.sample_hz,
                              r.rows, r.cols, r.ok() ? "fits and meets timing" : r.failure,
                              r.seconds);
+    done.push_back(r);
+    std::ofstream(csv) << eskin::fpga::scale_csv(eskin::fpga::merge_scale_rows(before, done));
   });
-  const std::string csv = source_dir() + "/docs/scale_table.csv";
-  std::ofstream(csv) << eskin::fpga::scale_csv(rows);
-  std::cout << eskin::fpga::scale_markdown(rows);
+  std::cout << eskin::fpga::scale_markdown(eskin::fpga::merge_scale_rows(before, rows));
   std::cerr << "scale: wrote " << csv << "\n";
   return 0;
 }
@@ -131,9 +137,16 @@ std::function<int()> setup_bitstream(CLI::App& app) {
                   "Core clock (default: the slowest the board makes at which the core keeps up)");
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");
-  sub->add_option("--sizes", args->sizes,
+  sub->add_option("--sizes", args->scale.sizes,
                   "Scale table: the n of the n x n skins to search, ascending "
                   "(default 2,3,4,6,8,12,16,24,32,48,64)")
+      ->delimiter(',');
+  sub->add_option("--targets", args->scale.targets,
+                  "Scale table: up5k, ecp5-25k, ecp5-85k (default all); the rows of the "
+                  "targets and rates measured replace theirs in docs/scale_table.csv")
+      ->delimiter(',');
+  sub->add_option("--rates", args->scale.rates,
+                  "Scale table: sample rates in S/s (default 35000,1000000)")
       ->delimiter(',');
   return [args] { return run_bitstream(*args); };
 }

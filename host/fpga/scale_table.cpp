@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -75,16 +76,24 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
 }
 
 std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions& opt,
-                                      std::vector<int> sizes,
+                                      ScaleSelection sel,
                                       const std::function<void(const ScaleRow&)>& progress) {
   std::vector<ScaleRow> rows;
-  if (sizes.empty()) sizes = scale_sizes();
+  const auto& sizes = sel.sizes.empty() ? (sel.sizes = scale_sizes()) : sel.sizes;
   for (size_t i = 0; i < sizes.size(); ++i)
     if (sizes[i] < 1 || (i > 0 && sizes[i] <= sizes[i - 1]))
       throw std::invalid_argument("--sizes: expected ascending sizes >= 1");
-  for (const auto& t : scale_targets()) {
+  if (sel.rates.empty()) sel.rates = scale_rates();
+  std::vector<ScaleTarget> targets;
+  for (const auto& t : scale_targets())
+    if (sel.targets.empty() ||
+        std::find(sel.targets.begin(), sel.targets.end(), t.label) != sel.targets.end())
+      targets.push_back(t);
+  if (targets.size() < std::max<size_t>(1, sel.targets.size()))
+    throw std::invalid_argument("--targets: expected labels among up5k, ecp5-25k, ecp5-85k");
+  for (const auto& t : targets) {
     const Board b = find_board(t.board, t.device);
-    for (double fs : scale_rates()) {
+    for (double fs : sel.rates) {
       // Invariant: sizes[lo] passed (or lo = -1), sizes[hi] failed (or hi = size()).
       int lo = -1, hi = int(sizes.size());
       while (hi - lo > 1) {
@@ -92,7 +101,7 @@ std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions&
         const int n = sizes[size_t(mid)];
         const sim::Scene sc = scale_scene(base, n, fs);
         FlowOptions o = opt;
-        o.out_dir = fmt::format("{}/{}/{:g}/{}x{}", opt.out_dir, t.label, fs, n, n);
+        o.out_dir = fmt::format("{}/{}/{:.0f}/{}x{}", opt.out_dir, t.label, fs, n, n);
         FlowReport r;
         try {
           r = run_flow(b, sim::dtmf_top_spec(sc), sc.name, o);
@@ -107,6 +116,18 @@ std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions&
     }
   }
   return rows;
+}
+
+std::vector<ScaleRow> merge_scale_rows(const std::vector<ScaleRow>& old,
+                                       const std::vector<ScaleRow>& fresh) {
+  std::vector<ScaleRow> out;
+  for (const auto& r : old) {
+    bool replaced = false;
+    for (const auto& f : fresh) replaced |= f.target == r.target && f.sample_hz == r.sample_hz;
+    if (!replaced) out.push_back(r);
+  }
+  out.insert(out.end(), fresh.begin(), fresh.end());
+  return out;
 }
 
 namespace {

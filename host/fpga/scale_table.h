@@ -47,10 +47,21 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r);
 // For every target and rate: a binary search over scale_sizes() (assuming
 // that what does not fit at n does not fit above n either), one run_flow per
 // probe into OUT/<target>/<rate>/<n>x<n>/. `progress` sees every row.
-// `sizes` replaces scale_sizes() when not empty (ascending).
+// What to measure: empty lists mean all of scale_targets() (by label),
+// scale_rates() and scale_sizes() (ascending).
+struct ScaleSelection {
+  std::vector<std::string> targets;
+  std::vector<double> rates;
+  std::vector<int> sizes;
+};
 std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions& opt,
-                                      std::vector<int> sizes,
+                                      ScaleSelection sel,
                                       const std::function<void(const ScaleRow&)>& progress);
+
+// `old` without the rows of the targets and rates that `fresh` measured,
+// then `fresh`: a partial run replaces only what it measured.
+std::vector<ScaleRow> merge_scale_rows(const std::vector<ScaleRow>& old,
+                                       const std::vector<ScaleRow>& fresh);
 
 std::string scale_csv(const std::vector<ScaleRow>& rows);
 std::vector<ScaleRow> parse_scale_csv(const std::string& text);  // throws naming the line

@@ -188,6 +188,13 @@ TEST(ScaleTable, CsvRoundTripAndFitHint) {
   EXPECT_NE(fit_hint(rows, "icebreaker", "up5k", 900000).find("up to 4x4"), std::string::npos);
   EXPECT_NE(fit_hint(rows, "ulx3s", "85k", 35000).find("no entry"), std::string::npos);
   EXPECT_THROW(parse_scale_csv("target,nonsense\n"), std::runtime_error);
+  // A partial run replaces only the target and rate it measured.
+  ScaleRow d = a;
+  d.rows = d.cols = 8;
+  const auto merged = merge_scale_rows(rows, {d});
+  ASSERT_EQ(merged.size(), 2u);
+  EXPECT_EQ(merged[0].sample_hz, 1e6);
+  EXPECT_EQ(merged[1].rows, 8);
   const std::string md = scale_markdown(rows);
   EXPECT_NE(md.find("| up5k | 35 kS/s | 2x2 |"), std::string::npos) << md;
 }
