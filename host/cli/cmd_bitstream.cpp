@@ -1,5 +1,5 @@
 // `eskin bitstream --board icebreaker|ulx3s [--scene SCENE.yaml] [--out DIR]
-//  [--seed N] [--device 25k|45k|85k] [--clk-mhz F]`: builds the scene's DTMF
+//  [--seed N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]`: builds the scene's DTMF
 // core (parameters from hls/dtmf_top_config.h) in the board's wrapper with
 // Yosys, nextpnr and icepack / ecppack (host/fpga/flow.h), writes the
 // bitstream, OUT/bitstream_report.json and OUT/bitstream_report.txt, prints
@@ -23,7 +23,6 @@
 #include "cli/command.h"
 #include "host/fpga/flow.h"
 #include "host/fpga/scale_table.h"
-#include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
 
 #ifndef ESKIN_SOURCE_DIR
@@ -41,6 +40,7 @@ struct BitstreamArgs {
   std::string device;
   int seed = 1;
   double clk_mhz = 0;
+  std::string engine_load = "scene";
   bool scale_table = false;
   eskin::fpga::ScaleSelection scale;  // --targets, --rates, --sizes
 };
@@ -98,10 +98,12 @@ int run_bitstream(const BitstreamArgs& a) {
   opt.out_dir = a.out.empty() ? "build/bitstream/" + board.name : a.out;
   opt.seed = a.seed;
   opt.clk_hz = std::lround(a.clk_mhz * 1e6);
+  opt.load = a.engine_load == "stress" ? eskin::fpga::LoadPolicy::Stress
+                                       : eskin::fpga::LoadPolicy::Scene;
   if (opt.clk_hz > 0) eskin::fpga::choose_clock(board, 0, opt.clk_hz);  // throws naming --clk-mhz
   eskin::fpga::FlowReport r;
   try {
-    r = eskin::fpga::run_flow(board, eskin::sim::dtmf_top_spec(scene), scene.name, opt);
+    r = eskin::fpga::run_flow(board, scene, opt);
   } catch (const std::invalid_argument& e) {
     // The plan names the scene field it cannot build.
     throw std::invalid_argument(scene_path + ": " + e.what());
@@ -135,6 +137,12 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--device", args->device, "ulx3s: ECP5 size 25k, 45k or 85k (default 85k)");
   sub->add_option("--clk-mhz", args->clk_mhz,
                   "Core clock (default: the slowest the board makes at which the core keeps up)");
+  sub->add_option("--engine-load", args->engine_load,
+                  "What the clock must carry: scene (the scene's longest frame) or stress (the "
+                  "stress signals' longest frame + the longest command); the scale table uses "
+                  "stress")
+      ->check(CLI::IsMember({"scene", "stress"}))
+      ->capture_default_str();
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");
   sub->add_option("--sizes", args->scale.sizes,

@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -12,7 +13,7 @@ namespace {
 const std::vector<Board>& boards() {
   static const std::vector<Board> b = {
       {"icebreaker", Family::Ice40, "up5k", "sg48", "board_icebreaker",
-       "constraints/icebreaker.pcf", 12000000, 12000000, "ICESTORM_LC"},
+       "constraints/icebreaker.pcf", 12000000, hls::kDtmfTopClkHz, "ICESTORM_LC"},
       {"ulx3s", Family::Ecp5, "85k", "CABGA381", "board_ulx3s", "constraints/ulx3s.lpf",
        25000000, 30000000, "TRELLIS_COMB"},
   };
@@ -27,6 +28,41 @@ long exact_baud(long clk_hz) {
 }
 
 std::string mhz(long hz) { return fmt::format("{:g} MHz", hz / 1e6); }
+
+// iCE40 SB_PLL40_PAD, SIMPLE feedback (iCE40 sysCLOCK PLL guide, as
+// icestorm's icepll computes it): PFD = osc / (DIVR + 1) in 10..133 MHz,
+// VCO = PFD x (DIVF + 1) in 533..1066 MHz, CLK = VCO / 2^DIVQ in 16..275 MHz,
+// DIVR 0..15, DIVF 0..127, DIVQ 1..6; FILTER_RANGE from the PFD. Every
+// exact clock up to 100 MHz with an exact UART (above it the UP5K's logic
+// does not go), the first divider set icepll would list for it.
+std::vector<Clocking> ice40_clocks(long osc_hz) {
+  std::vector<Clocking> out;
+  for (int divr = 0; divr <= 15; ++divr) {
+    if (osc_hz % (divr + 1) != 0) continue;
+    const long pfd = osc_hz / (divr + 1);
+    if (pfd < 10000000L || pfd > 133000000L) continue;
+    const int filter = pfd < 17000000L ? 1 : pfd < 26000000L ? 2 : pfd < 44000000L ? 3
+                       : pfd < 66000000L ? 4 : pfd < 101000000L ? 5 : 6;
+    for (int divf = 0; divf <= 127; ++divf) {
+      const long vco = pfd * (divf + 1);
+      if (vco < 533000000L || vco > 1066000000L) continue;
+      for (int divq = 1; divq <= 6; ++divq) {
+        if (vco % (1L << divq) != 0) continue;
+        const long hz = vco >> divq;
+        if (hz < 16000000L || hz > 100000000L || exact_baud(hz) == 0) continue;
+        bool seen = false;
+        for (const auto& c : out) seen = seen || c.clk_hz == hz;
+        if (seen) continue;
+        out.push_back({hz, exact_baud(hz), {{"PLL_DIVR", std::to_string(divr)},
+                                            {"PLL_DIVF", std::to_string(divf)},
+                                            {"PLL_DIVQ", std::to_string(divq)},
+                                            {"PLL_FILTER_RANGE", std::to_string(filter)}}});
+      }
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.clk_hz < b.clk_hz; });
+  return out;
+}
 
 // ECP5 EHXPLLL from the 25 MHz oscillator: CLK = 25 MHz * FB / REF with the
 // phase detector at 25 MHz / REF >= 3.125 MHz (REF <= 8), VCO = CLK * OP in
@@ -88,9 +124,7 @@ Board find_board(const std::string& name, const std::string& device_override) {
 }
 
 std::vector<Clocking> board_clocks(const Board& b) {
-  if (b.family == Family::Ecp5) return ecp5_clocks(b.osc_hz);
-  // iCEBreaker: the core runs on the oscillator (rtl/board_icebreaker.v).
-  return {{b.osc_hz, exact_baud(b.osc_hz), {}}};
+  return b.family == Family::Ecp5 ? ecp5_clocks(b.osc_hz) : ice40_clocks(b.osc_hz);
 }
 
 Clocking choose_clock(const Board& b, long min_hz, long clk_hz) {

@@ -13,6 +13,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hls/dtmf_ucode.h"
+#include "sim/dtmf_top_spec.h"
+#include "sim/world_model.h"
+
 namespace eskin::fpga {
 
 namespace fs = std::filesystem;
@@ -114,50 +118,58 @@ std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text) {
   return out;
 }
 
-FlowReport run_flow(const Board& b, hls::DtmfTopSpec spec, const std::string& scene_name,
-                    const FlowOptions& opt) {
+FlowReport run_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt) {
   FlowReport r;
   r.board = b.name;
   r.device = b.device;
-  r.scene = scene_name;
+  r.scene = scene.name;
   r.logic_resource = b.logic_resource;
-  r.limits = hls::dtmf_top_clock_limits(spec);
-  Clocking clk;
-  if (opt.clk_hz > 0) {
-    clk = choose_clock(b, 0, opt.clk_hz);
-  } else {
-    const auto all = board_clocks(b);
-    clk = all.back();  // the fastest, when none is fast enough
-    for (const auto& c : all)
-      if (c.clk_hz >= std::max(r.limits.min_hz, b.default_clk_hz)) {
+  r.spec = sim::dtmf_top_spec(scene);
+  hls::DtmfTopPlan plan = hls::make_dtmf_top_plan(r.spec);
+  r.step = plan.step;
+  // The scene's samples as the top takes them: 12-bit codes minus 2048.
+  std::vector<int32_t> x;
+  sim::WorldModel world(scene);
+  for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
+  r.load = measure_engine_load(plan, x);
+  r.policy = opt.load;
+  r.engine_clocks = long(opt.load == LoadPolicy::Stress || r.load.scene_frames == 0
+                             ? r.load.stress_total() : r.load.scene_clocks);
+  r.core_min_hz = hls::dtmf_top_min_clock_hz(plan, r.engine_clocks);
+  auto budget_at = [&](const Clocking& c) {
+    plan.spec.clk_hz = c.clk_hz;
+    plan.spec.baud = c.baud;
+    return hls::dtmf_top_clock_budget(plan, c.clk_hz, r.engine_clocks);
+  };
+  Clocking clk = choose_clock(b, 0, opt.clk_hz);  // the asked-for or the board's default
+  if (opt.clk_hz == 0)
+    for (const auto& c : board_clocks(b))
+      if (c.clk_hz >= std::max(r.core_min_hz, b.default_clk_hz) && budget_at(c).ok()) {
         clk = c;
         break;
       }
-  }
-  spec.clk_hz = clk.clk_hz;
-  spec.baud = clk.baud;
-  r.spec = spec;
-  if (r.limits.min_hz > r.limits.max_hz) {
-    r.failure = fmt::format(
-        "timing: at {:.0f} S/s the core cannot keep up at any clock: it needs at least {} MHz "
-        "({}) and at most {} MHz ({})",
-        spec.sample_hz, mhz(double(r.limits.min_hz)), r.limits.min_why,
-        mhz(double(r.limits.max_hz)), r.limits.max_why);
+  r.budget = budget_at(clk);
+  r.spec = plan.spec;
+  const hls::DtmfTopSpec& spec = r.spec;
+  if (!r.budget.ok()) {
+    std::string why;
+    for (const auto& p : r.budget.problems) why += (why.empty() ? "" : "; ") + p;
+    r.failure = fmt::format("timing: the core does not keep up with {:.0f} S/s at {} MHz: {}. {}",
+                            spec.sample_hz, mhz(double(clk.clk_hz)), why,
+                            r.core_min_hz == 0
+                                ? std::string("No clock can: the AD7476A cannot convert that fast.")
+                            : opt.clk_hz > 0
+                                ? fmt::format("It needs at least {} MHz.", mhz(double(r.core_min_hz)))
+                                : fmt::format("It needs at least {} MHz; board {} has no clock "
+                                              "that meets every budget.",
+                                              mhz(double(r.core_min_hz)), b.name));
     return r;
   }
-  if (clk.clk_hz < r.limits.min_hz || clk.clk_hz > r.limits.max_hz) {
-    r.failure = fmt::format(
-        "timing: at {:.0f} S/s the core keeps up only with a clock of {} .. {} MHz (at least: {}; "
-        "at most: {}); board {} runs it at {} MHz",
-        spec.sample_hz, mhz(double(r.limits.min_hz)), mhz(double(r.limits.max_hz)),
-        r.limits.min_why, r.limits.max_why, b.name, mhz(double(clk.clk_hz)));
-    return r;
-  }
-  const hls::DtmfTopPlan plan = hls::make_dtmf_top_plan(spec);
-  r.step = plan.step;
-  r.params = hls::dtmf_top_params(plan);
   const fs::path out = fs::absolute(opt.out_dir);
   fs::create_directories(out);
+  // The microcode and constants as $readmemh files beside the core wrapper,
+  // which names them by absolute path.
+  r.params = hls::write_dtmf_top_build(plan, out.string(), "dtmf_scene");
   const fs::path wrapper = out / "dtmf_scene.v";
   std::ofstream(wrapper) << hls::dtmf_top_wrapper(r.params, "dtmf_scene");
   r.params.insert(r.params.end(), clk.wrapper_params.begin(), clk.wrapper_params.end());
@@ -235,6 +247,17 @@ FlowReport run_flow(const Board& b, hls::DtmfTopSpec spec, const std::string& sc
   return r;
 }
 
+std::vector<std::string> flow_warnings(const FlowReport& r) {
+  std::vector<std::string> w;
+  if (r.budget.frame_clocks > 0 && long(r.load.stress_total()) > r.budget.frame_clocks)
+    w.push_back(fmt::format(
+        "under the stress signals the engine needs {} + {} = {} clocks of the {} a frame has: "
+        "frames are lost (STATUS frame_overruns) while input like '{}' lasts",
+        r.load.stress_clocks, r.load.command_clocks, r.load.stress_total(),
+        r.budget.frame_clocks, r.load.stress_case));
+  return w;
+}
+
 std::string report_json(const FlowReport& r) {
   nlohmann::json j;
   j["board"] = r.board;
@@ -249,8 +272,22 @@ std::string report_json(const FlowReport& r) {
   j["clock"] = {{"clk_hz", r.spec.clk_hz},
                 {"baud", r.spec.baud},
                 {"step", r.step},
-                {"core_min_hz", r.limits.min_hz},
-                {"core_max_hz", r.limits.max_hz}};
+                {"sample_period_clocks", r.budget.period},
+                {"frame_clocks", r.budget.frame_clocks},
+                {"core_min_hz", r.core_min_hz}};
+  nlohmann::json cases = nlohmann::json::object();
+  for (const auto& [name, clocks] : r.load.cases) cases[name] = clocks;
+  j["engine"] = {{"policy", r.policy == LoadPolicy::Stress ? "stress" : "scene"},
+                 {"required_clocks", r.engine_clocks},
+                 {"scene_longest_frame_clocks", r.load.scene_clocks},
+                 {"scene_frames", r.load.scene_frames},
+                 {"stress_longest_frame_clocks", r.load.stress_clocks},
+                 {"stress_longest_frame_signal", r.load.stress_case},
+                 {"stress_frames", r.load.stress_frames},
+                 {"longest_command_clocks", r.load.command_clocks},
+                 {"longest_command", r.load.command_case},
+                 {"cases", cases}};
+  j["warnings"] = flow_warnings(r);
   nlohmann::json params = nlohmann::json::object();
   for (const auto& p : r.params) params[p.name] = p.value;
   j["parameters"] = params;
@@ -270,12 +307,26 @@ std::string report_json(const FlowReport& r) {
 }
 
 std::string report_table(const FlowReport& r) {
+  const double frame = double(std::max(1L, r.budget.frame_clocks));
   std::string t = fmt::format(
       "board {} ({}), scene {}: skin {}x{}, {} carriers, window {}, {:g} S/s, step {}\n"
-      "clock {} MHz (the core keeps up at {} .. {} MHz), UART {:g} Mbaud\n",
+      "clock {} MHz (the core needs at least {} MHz), UART {:g} Mbaud\n"
+      "frame engine, clocks of the {} a frame has (STEP x {} per sample):\n"
+      "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
+      "  stress longest frame  {:>9} ({:.0f} %, {})\n"
+      "  + longest command     {:>9} ({:.0f} %, {})\n"
+      "  the clock carries the {}\n",
       r.board, r.device, r.scene, r.spec.rows, r.spec.cols, r.spec.rows + r.spec.cols,
       r.spec.window, r.spec.sample_hz, r.step, mhz(double(r.spec.clk_hz)),
-      mhz(double(r.limits.min_hz)), mhz(double(r.limits.max_hz)), double(r.spec.baud) / 1e6);
+      mhz(double(r.core_min_hz)), double(r.spec.baud) / 1e6, r.budget.frame_clocks,
+      r.budget.period, r.load.scene_clocks, 100.0 * double(r.load.scene_clocks) / frame,
+      r.load.scene_frames, r.load.stress_clocks, 100.0 * double(r.load.stress_clocks) / frame,
+      r.load.stress_case, r.load.stress_total(), 100.0 * double(r.load.stress_total()) / frame,
+      r.load.command_case,
+      r.policy == LoadPolicy::Scene && r.load.scene_frames > 0
+          ? "scene's frames (--engine-load scene)"
+          : "stress frames and a command (--engine-load stress)");
+  for (const auto& w : flow_warnings(r)) t += "warning: " + w + "\n";
   if (!r.resources.empty()) {
     t += fmt::format("\n{:<16} {:>8} {:>10} {:>6}\n", "resource", "used", "available", "use");
     for (const auto& x : r.resources) {

@@ -9,14 +9,24 @@
 
 #include "hls/dtmf_top_config.h"
 #include "host/fpga/board.h"
+#include "host/fpga/engine_load.h"
+#include "sim/scene.h"
 
 namespace eskin::fpga {
+
+// Which engine load the clock must carry (engine_load.h): the scene's own
+// frames (its workload; a command may still delay one frame), or the
+// stress signals' longest frame plus the longest command (no frame lost
+// whatever the input).
+enum class LoadPolicy { Scene, Stress };
 
 struct FlowOptions {
   std::string source_dir;  // the eskin source tree (rtl/, scripts/, constraints/)
   std::string out_dir;     // where the wrapper, logs, reports and bitstream go
   int seed = 1;            // nextpnr placer seed
-  long clk_hz = 0;         // 0: the slowest board clock the core can use
+  LoadPolicy load = LoadPolicy::Scene;
+  long clk_hz = 0;         // 0: the slowest board clock (not below the board's
+                           // default) at which the core keeps up
 };
 
 struct Resource {
@@ -33,7 +43,11 @@ struct FlowReport {
   std::string board, device, scene;
   hls::DtmfTopSpec spec;            // clk_hz and baud as built
   int step = 1;                      // from the plan
-  hls::DtmfTopClockLimits limits;    // the clocks the core keeps up at
+  EngineLoad load;                   // the frame engine's clocks per frame
+  LoadPolicy policy = LoadPolicy::Scene;
+  long engine_clocks = 0;            // what the policy makes the clock carry
+  long core_min_hz = 0;              // no slower clock keeps up (a lower bound)
+  hls::DtmfTopClockBudget budget;    // at the chosen clock
   std::vector<hls::VerilogParam> params;  // dtmf_top's, then the wrapper's
   std::vector<Resource> resources;   // nextpnr's utilisation (post-pack)
   std::string logic_resource;        // the board's logic cell resource name
@@ -49,15 +63,20 @@ struct FlowReport {
   const Resource* resource(const std::string& name) const;
 };
 
-// Builds `spec` (its clk_hz and baud are chosen here) on board `b`. Never
-// throws for a design that does not fit or meet timing (the report says
-// so); throws std::runtime_error when a tool is missing or fails otherwise,
-// and std::invalid_argument for a clock the board cannot make.
-FlowReport run_flow(const Board& b, hls::DtmfTopSpec spec, const std::string& scene_name,
-                    const FlowOptions& opt);
+// Builds `spec` (its clk_hz and baud are chosen here) on board `b`: the
+// plan, the engine's load (engine_load.h), the clock, the microcode and
+// constant files and the core wrapper in OUT, then the tools. Never throws
+// for a design that does not fit or meet timing (the report says so);
+// throws std::runtime_error when a tool is missing or fails otherwise, and
+// std::invalid_argument for a clock the board cannot make or a skin the
+// plan or the frame engine cannot build (naming the field / the numbers).
+FlowReport run_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt);
 
 // The report as JSON (written to OUT/bitstream_report.json) and as a table.
 std::string report_json(const FlowReport& r);
+// What the report should say even when the build passed (a load beyond the
+// frame under the other policy).
+std::vector<std::string> flow_warnings(const FlowReport& r);
 std::string report_table(const FlowReport& r);
 
 // Parsers of the tools' output (public for the tests): nextpnr's

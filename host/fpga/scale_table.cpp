@@ -101,10 +101,11 @@ std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions&
         const int n = sizes[size_t(mid)];
         const sim::Scene sc = scale_scene(base, n, fs);
         FlowOptions o = opt;
+        o.load = LoadPolicy::Stress;  // the table's skins have no workload of their own
         o.out_dir = fmt::format("{}/{}/{:.0f}/{}x{}", opt.out_dir, t.label, fs, n, n);
         FlowReport r;
         try {
-          r = run_flow(b, sim::dtmf_top_spec(sc), sc.name, o);
+          r = run_flow(b, sc, o);
         } catch (const std::invalid_argument& e) {  // the plan rejects the skin
           r.spec = sim::dtmf_top_spec(sc);
           r.failure = e.what();

@@ -3,6 +3,8 @@
 // themselves are the bitstream.* ctests (tests/fpga/CMakeLists.txt).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <regex>
 #include <set>
 #include <string>
 
@@ -66,13 +68,41 @@ TEST(BoardClocks, UnmakeableClockIsRejectedWithTheList) {
   }
 }
 
-TEST(BoardClocks, IcebreakerRunsTheCoreOnTheOscillator) {
+// The iCEBreaker's default is the lead's 18 MHz = 12 MHz x 3/2 with the
+// dividers `icepll -i 12 -o 18` gives (DIVR 0, DIVF 47, DIVQ 5, FILTER_RANGE
+// 1: VCO 576 MHz), rtl/board_icebreaker.v's defaults; and every clock
+// offered has icepll's dividers (icestorm's own calculator, run here).
+TEST(BoardClocks, IcebreakerClocksAreIcepllsDividers) {
   const Board b = find_board("icebreaker");
+  const Clocking c = choose_clock(b, 0);
+  EXPECT_EQ(c.clk_hz, 18000000);
+  EXPECT_EQ(c.baud, 3000000);
+  EXPECT_EQ(param(c.wrapper_params, "PLL_DIVR"), "0");
+  EXPECT_EQ(param(c.wrapper_params, "PLL_DIVF"), "47");
+  EXPECT_EQ(param(c.wrapper_params, "PLL_DIVQ"), "5");
+  EXPECT_EQ(param(c.wrapper_params, "PLL_FILTER_RANGE"), "1");
   const auto clocks = board_clocks(b);
-  ASSERT_EQ(clocks.size(), 1u);
-  EXPECT_EQ(clocks[0].clk_hz, 12000000);
-  EXPECT_EQ(clocks[0].baud, 3000000);
-  EXPECT_THROW(choose_clock(b, 13000000), std::invalid_argument);
+  ASSERT_GT(clocks.size(), 10u);
+  // 16 and 17 MHz are not 12 MHz x (DIVF + 1) / 2^DIVQ with the VCO in
+  // range, and 16.5 MHz divides into no baud rate: 18 MHz is the lowest.
+  EXPECT_EQ(clocks.front().clk_hz, 18000000);
+  for (const auto& k : clocks) {
+    EXPECT_EQ(k.clk_hz % k.baud, 0) << k.clk_hz;
+    const std::string cmd = "icepll -i 12 -o " + std::to_string(k.clk_hz / 1e6) + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    std::string out;
+    char buf[256];
+    while (fgets(buf, sizeof buf, p)) out += buf;
+    ASSERT_EQ(pclose(p), 0) << cmd << ": " << out;
+    for (const char* f : {"DIVR", "DIVF", "DIVQ", "FILTER_RANGE"}) {
+      const std::regex re(std::string("\n") + f + R"(:\s+(\d+))");
+      std::smatch m;
+      ASSERT_TRUE(std::regex_search(out, m, re)) << out;
+      EXPECT_EQ(param(k.wrapper_params, std::string("PLL_") + f), m[1].str()) << k.clk_hz << " " << f;
+    }
+  }
+  EXPECT_THROW(choose_clock(b, 0, 13000000), std::invalid_argument);
   EXPECT_THROW(find_board("icebreaker", "85k"), std::invalid_argument);
   EXPECT_EQ(find_board("ulx3s", "25k").device, "25k");
   EXPECT_THROW(find_board("ulx4s"), std::invalid_argument);
@@ -115,46 +145,19 @@ TEST(NextpnrParse, ReportJsonGivesResourcesAndEveryClock) {
   EXPECT_EQ(r.resource("DP16KD"), nullptr);
 }
 
-// Clock limits of today's dtmf_top, against the figures docs/fpga.md gives
-// from the RTL tests: the 16x16 build's DFT needs 194 clocks per sample,
-// and 40 MHz with SCLK_DIV 1 is the top's 1 MSPS point (adc_ad7476.v).
-TEST(ClockLimits, MatchTheTopsDocumentedBudgets) {
-  eskin::hls::DtmfTopSpec s;
-  s.rows = s.cols = 16;
-  const auto l16 = eskin::hls::dtmf_top_clock_limits(s);
-  EXPECT_EQ(l16.min_hz, 35000L * 194);
-  EXPECT_EQ(l16.max_hz, 40000000);
-  s.rows = s.cols = 3;
-  s.sample_hz = 1e6;
-  const auto l3 = eskin::hls::dtmf_top_clock_limits(s);
-  EXPECT_EQ(l3.min_hz, 38000000);  // 6 K + 2 = 38 clocks of a 1 us sample
-  EXPECT_LE(l3.min_hz, l3.max_hz);
-  s.rows = s.cols = 4;  // 50 clocks per 1 us sample: above the 40 MHz limit
-  const auto l4 = eskin::hls::dtmf_top_clock_limits(s);
-  EXPECT_GT(l4.min_hz, l4.max_hz);
-}
-
-// The scale table's 16x16 scene must have the sizes of the 16x16 build the
-// RTL system test proves bit-exact (tests/rtl/dtmf_top_test.cmake): window
-// 128, carriers on the odd bins 1..63 (inc = bin << 25), TOKEN_FIFO 32,
-// ACC_W 20, TAX_RECIP 13517. (STEP and the decimations are the plan's own
-// choice, 14 and 2 against the test's hand-picked 16 and 8.)
-TEST(ScaleTable, SixteenBySixteenSceneIsTheSystemTestedBuild) {
+// The scale table's 16x16 scene: window 128 (the shortest power of two
+// whose bins hold 32 carriers below Nyquist), carriers on the odd bins
+// 1..63 (inc = bin << 25), so no demixing: 32 DFT channels, ACC_W 20
+// (12 + 1 + log2 128).
+TEST(ScaleTable, SixteenBySixteenSceneOnBinCentres) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const auto sc = scale_scene(base, 16, 35000.0);
   EXPECT_EQ(sc.decoder.window, 128);
   const auto plan = eskin::hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(sc));
-  const auto ps = eskin::hls::dtmf_top_params(plan);
-  EXPECT_EQ(param(ps, "TOKEN_FIFO"), "32");
-  EXPECT_EQ(param(ps, "ACC_W"), "20");
-  EXPECT_EQ(param(ps, "TAX_RECIP"), "13517");
-  std::string inc = "1024'h";
-  for (int bin = 63; bin >= 1; bin -= 2) {
-    char b[9];
-    std::snprintf(b, sizeof b, "%08x", unsigned(bin) << 25);
-    inc += b;
-  }
-  EXPECT_EQ(param(ps, "CARRIER_INC"), inc);
+  EXPECT_FALSE(plan.spec.demix);
+  ASSERT_EQ(plan.ks, 32);
+  EXPECT_EQ(plan.acc_w, 20);
+  for (int k = 0; k < 32; ++k) EXPECT_EQ(plan.inc[size_t(k)], uint32_t(2 * k + 1) << 25) << k;
 }
 
 TEST(ScaleTable, CsvRoundTripAndFitHint) {

@@ -11,18 +11,17 @@
 #include <sstream>
 #include <string>
 
+#include "cli_run.h"
 #include "sim/scene.h"
 #include "sim/wav_io.h"
 #include "sim/world_model.h"
-#include "tests/cli_run.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-using Result = eskin::test::CliResult;
-
-Result sh(const std::string& args) { return eskin::test::run_cli(std::string(ESKIN_BIN) + " " + args); }
+using Result = CliResult;
+Result sh(const std::string& args) { return run_eskin(args); }
 
 fs::path tmpdir() {
   fs::path d = fs::temp_directory_path() /

@@ -1,5 +1,4 @@
-// Runs a shell command line as a user would (the CLI tests): its exit code
-// and everything it printed on stdout and stderr.
+// Runs the built eskin CLI (ESKIN_BIN) as a user would, for the system tests.
 #pragma once
 
 #include <sys/wait.h>
@@ -8,15 +7,14 @@
 #include <cstdio>
 #include <string>
 
-namespace eskin::test {
-
 struct CliResult {
-  int status;       // exit code; -1 if it could not run or was killed
+  int status;       // exit code (-1: did not exit normally)
   std::string out;  // stdout and stderr together
 };
 
-inline CliResult run_cli(const std::string& command_line) {
-  const std::string cmd = command_line + " 2>&1";
+// `eskin ARGS` through the shell.
+inline CliResult run_eskin(const std::string& args) {
+  const std::string cmd = std::string(ESKIN_BIN) + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   CliResult r{-1, ""};
   if (!p) return r;
@@ -27,5 +25,3 @@ inline CliResult run_cli(const std::string& command_line) {
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
 }
-
-}  // namespace eskin::test
