@@ -20,6 +20,8 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 #include "cli/command.h"
 #include "host/fpga/flow.h"
 #include "host/fpga/scale_table.h"
@@ -71,18 +73,21 @@ int run_scale_table(const BitstreamArgs& a) {
   opt.out_dir = a.out.empty() ? "build/bitstream/scale" : a.out;
   opt.seed = a.seed;
   // The CSV is rewritten after every probe, so an interrupted run keeps
-  // what it measured.
+  // what it measured; it is read again each time (and replaced by a
+  // rename), so runs of other targets at the same time keep theirs.
   const std::string csv = source_dir() + "/docs/scale_table.csv";
-  const auto before = read_scale_table(csv);
   std::vector<eskin::fpga::ScaleRow> done;
-  const auto rows = eskin::fpga::run_scale_table(base, opt, a.scale, [&](const eskin::fpga::ScaleRow& r) {
+  eskin::fpga::run_scale_table(base, opt, a.scale, [&](const eskin::fpga::ScaleRow& r) {
     std::cerr << fmt::format("scale: {} {:.0f} S/s {}x{}: {} ({:.0f} s)\n", r.target, r.sample_hz,
                              r.rows, r.cols, r.ok() ? "fits and meets timing" : r.failure,
                              r.seconds);
     done.push_back(r);
-    std::ofstream(csv) << eskin::fpga::scale_csv(eskin::fpga::merge_scale_rows(before, done));
+    const std::string tmp = csv + ".tmp" + std::to_string(::getpid());
+    std::ofstream(tmp) << eskin::fpga::scale_csv(
+        eskin::fpga::merge_scale_rows(read_scale_table(csv), done));
+    std::filesystem::rename(tmp, csv);
   });
-  std::cout << eskin::fpga::scale_markdown(eskin::fpga::merge_scale_rows(before, rows));
+  std::cout << eskin::fpga::scale_markdown(read_scale_table(csv));
   std::cerr << "scale: wrote " << csv << "\n";
   return 0;
 }
