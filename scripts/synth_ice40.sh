@@ -39,10 +39,14 @@ while [ $# -gt 0 ]; do
 done
 out=${out:-$root/build/synth/$top}
 mkdir -p "$out"
+# One chparam for all of them: each chparam re-elaborates the module, and
+# a half-changed set (e.g. a PLL's new input divider with the old feedback
+# divider) can trip the module's own parameter checks.
 chparam=""
 for p in "${params[@]+"${params[@]}"}"; do
-  chparam+="chparam -set ${p%%=*} ${p#*=} $top; "
+  chparam+=" -set ${p%%=*} ${p#*=}"
 done
+if [ -n "$chparam" ]; then chparam="chparam$chparam $top; "; fi
 # The top comes from rtl/TOP.v (or a path given as TOP); the modules it
 # instantiates are found as rtl/NAME.v by `hierarchy -libdir`.
 # Parameters are set before elaboration, so `hierarchy` derives the

@@ -139,7 +139,8 @@ const char* kHeader =
 
 std::string csv_field(const std::string& s) {
   std::string q = "\"";
-  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  // One line per row: a tool's multi-line message is joined with spaces.
+  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c == '\n' || c == '\r' ? ' ' : c);
   return q + "\"";
 }
 

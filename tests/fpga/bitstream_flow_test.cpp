@@ -191,6 +191,13 @@ TEST(ScaleTable, CsvRoundTripAndFitHint) {
   EXPECT_NE(fit_hint(rows, "icebreaker", "up5k", 900000).find("up to 4x4"), std::string::npos);
   EXPECT_NE(fit_hint(rows, "ulx3s", "85k", 35000).find("no entry"), std::string::npos);
   EXPECT_THROW(parse_scale_csv("target,nonsense\n"), std::runtime_error);
+  // A tool's multi-line error stays one CSV row (Yosys's $error text ends
+  // in a newline before the flow's "(log: ...)").
+  ScaleRow e = b;
+  e.failure = "yosys failed: ERROR: x\n (log: y)";
+  const auto one = parse_scale_csv(scale_csv({e}));
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].failure, "yosys failed: ERROR: x  (log: y)");
   // A partial run replaces only the target and rate it measured.
   ScaleRow d = a;
   d.rows = d.cols = 8;
