@@ -82,9 +82,10 @@ int run_scale_table(const BitstreamArgs& a) {
                              r.rows, r.cols, r.ok() ? "fits and meets timing" : r.failure,
                              r.seconds);
     done.push_back(r);
+    const std::string text =
+        eskin::fpga::scale_csv(eskin::fpga::merge_scale_rows(read_scale_table(csv), done));
     const std::string tmp = csv + ".tmp" + std::to_string(::getpid());
-    std::ofstream(tmp) << eskin::fpga::scale_csv(
-        eskin::fpga::merge_scale_rows(read_scale_table(csv), done));
+    std::ofstream(tmp) << text;
     std::filesystem::rename(tmp, csv);
   });
   std::cout << eskin::fpga::scale_markdown(read_scale_table(csv));
