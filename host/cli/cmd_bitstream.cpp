@@ -1,6 +1,7 @@
 // `eskin bitstream --board icebreaker|ulx3s [--scene SCENE.yaml] [--out DIR]
-//  [--seed N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]`: builds the scene's DTMF
-// core (parameters from hls/dtmf_top_config.h) in the board's wrapper with
+//  [--seed N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]`:
+// builds the scene's DTMF core (parameters from hls/dtmf_top_config.h,
+// microcode and constants from hls/dtmf_ucode.h) in the board's wrapper with
 // Yosys, nextpnr and icepack / ecppack (host/fpga/flow.h), writes the
 // bitstream, OUT/bitstream_report.json and OUT/bitstream_report.txt, prints
 // the table, and exits 1 with the numbers (and the skins that would fit,
