@@ -238,8 +238,9 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    frame (commands run between frames) must fit in STEP x period clocks.
 //    `engine_clocks` is that sum; host/fpga/engine_load.h measures it on the
 //    instruction-set model (the microcode's time depends on the data).
-//  - the UART: a bit is round(clk / baud) clocks (uart_tx/uart_rx); more
-//    than 2 % rate error would eat half of the receivers' 5 % budget.
+//  - the UART: a bit is round(clk / baud) clocks (uart_tx/uart_rx, which
+//    stop at elaboration beyond 3 %); within 2 % here, leaving the host's
+//    own rate error room.
 struct DtmfTopClockBudget {
   long clk_hz = 0;
   long period = 0;         // clocks per ADC sample
