@@ -223,6 +223,93 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
   return c;
 }
 
+// ---- clock budget (`eskin bitstream`, the scale table) ---------------------
+// Whether rtl/dtmf_top.v keeps up with the plan's sample rate at clk_hz.
+// The top's budgets, from its modules' headers:
+//  - adc_ad7476: one conversion every period = round(clk / fs) clocks, SCLK
+//    = clk / (2 H) with H = ceil(clk / 40 MHz) (dtmf_top's SCLK_DIV, so SCLK
+//    <= 20 MHz at any clock); the AD7476A needs (period - 28 H) clocks >=
+//    250 ns of acquisition (tACQ) and (period - 31 H) clocks >= 86 ns of
+//    quiet time (t8 + tQUIET).
+//  - sdft_bank: the next sample is accepted 6 KS + 2 clocks after the last.
+//  - frame_engine: frame_capture loses a frame unless the engine has
+//    released the previous one when it is complete, so the engine's longest
+//    frame plus the longest command it may have started just before that
+//    frame (commands run between frames) must fit in STEP x period clocks.
+//    `engine_clocks` is that sum; host/fpga/engine_load.h measures it on the
+//    instruction-set model (the microcode's time depends on the data).
+//  - the UART: a bit is round(clk / baud) clocks (uart_tx/uart_rx, which
+//    stop at elaboration beyond 3 %); within 2 % here, leaving the host's
+//    own rate error room.
+struct DtmfTopClockBudget {
+  long clk_hz = 0;
+  long period = 0;         // clocks per ADC sample
+  long sclk_div = 0;       // H
+  long sdft_clocks = 0;    // 6 KS + 2
+  long frame_clocks = 0;   // STEP x period: the engine's time per frame
+  long engine_clocks = 0;  // what the engine needs of it
+  std::vector<std::string> problems;  // empty: the top keeps up
+  bool ok() const { return problems.empty(); }
+};
+
+inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_hz,
+                                                long engine_clocks) {
+  DtmfTopClockBudget b;
+  const double fs = p.spec.sample_hz, ns = 1e9 / double(clk_hz);
+  b.clk_hz = clk_hz;
+  b.period = std::lround(double(clk_hz) / fs);
+  b.sclk_div = (clk_hz + 39999999) / 40000000;
+  b.sdft_clocks = 6L * p.ks + 2;
+  b.frame_clocks = long(p.step) * b.period;
+  b.engine_clocks = engine_clocks;
+  auto at = [&] {
+    char s[64];
+    std::snprintf(s, sizeof s, " (%.6g MHz / %.6g S/s)", double(clk_hz) / 1e6, fs);
+    return std::string(s);
+  };
+  auto n = [](long v) { return std::to_string(v); };
+  const double acq = double(b.period - 28 * b.sclk_div) * ns;
+  const double quiet = double(b.period - 31 * b.sclk_div) * ns;
+  if (acq < 250.0 || quiet < 86.0) {
+    char s[200];
+    std::snprintf(s, sizeof s,
+                  "adc_ad7476: a sample period of %ld clocks leaves %.0f ns of acquisition "
+                  "(>= 250 ns) and %.0f ns of quiet time (>= 86 ns) at SCLK_DIV %ld",
+                  b.period, acq, quiet, b.sclk_div);
+    b.problems.push_back(s + at());
+  }
+  if (b.period < b.sdft_clocks)
+    b.problems.push_back("sdft_bank: needs 6 KS + 2 = " + n(b.sdft_clocks) +
+                         " clocks per sample, the sample period is " + n(b.period) + at());
+  if (engine_clocks > b.frame_clocks)
+    b.problems.push_back("frame_engine: its longest frame and command take " + n(engine_clocks) +
+                         " clocks, a frame is STEP x period = " + n(p.step) + " x " +
+                         n(b.period) + " = " + n(b.frame_clocks) + at());
+  const long cpb = std::lround(double(clk_hz) / double(p.spec.baud));
+  const double err = cpb > 0 ? double(clk_hz) / double(cpb * p.spec.baud) - 1.0 : 1.0;
+  if (cpb < 2 || std::fabs(err) > 0.02) {
+    char s[160];
+    std::snprintf(s, sizeof s, "uart: %ld baud is %ld clocks per bit at %.6g MHz (%.1f %% off)",
+                  p.spec.baud, cpb, double(clk_hz) / 1e6, 100.0 * err);
+    b.problems.push_back(s);
+  }
+  return b;
+}
+
+// The slowest clock the sdft_bank, the engine and the ADC's acquisition
+// time allow (each with SCLK_DIV = 1 at best). Only a lower bound: check a
+// clock with dtmf_top_clock_budget (the SCLK divider steps up at every
+// 40 MHz, and periods are rounded). 0 when the ADC cannot convert at the
+// sample rate at any clock.
+inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
+  const double fs = p.spec.sample_hz;
+  const double room = 1.0 / fs - 250e-9;  // s per sample left after tACQ
+  if (room <= 28.0 / 40e6) return 0;      // 28 H / clk >= 0.7 us at any clock
+  const double hz = std::max({28.0 / room, fs * double(6L * p.ks + 2),
+                              fs * double(engine_clocks) / double(p.step)});
+  return long(std::ceil(hz));
+}
+
 // "-GNAME=VALUE" arguments for verilator.
 inline std::vector<std::string> verilator_g_args(const std::vector<VerilogParam>& ps) {
   std::vector<std::string> a;

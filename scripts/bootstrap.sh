@@ -9,6 +9,7 @@ pkgs=(
   libyaml-cpp-dev libcli11-dev libfmt-dev
   libfftw3-dev libsndfile1-dev
   yosys nextpnr-ice40 fpga-icestorm jq
+  python3-venv
   # virtual board and `eskin simulate` (docs/vboard.md): JSON status lines,
   # Chart.js inlined into the report, GTKWave (and fst2vcd) for --trace
   nlohmann-json3-dev libjs-chart.js gtkwave
@@ -30,11 +31,13 @@ for p in "${pkgs[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "bootstrap: all ${#pkgs[@]} packages present"
-  exit 0
+else
+  echo "bootstrap: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update
+  $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
 fi
-echo "bootstrap: installing ${missing[*]}"
-SUDO=""
-[ "$(id -u)" -eq 0 ] || SUDO="sudo"
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update
-$SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+# ECP5 tools (no Debian package): PyPI, into build/venv.
+"$(dirname "$0")/bootstrap_yowasp.sh"

@@ -7,18 +7,23 @@
 # then packed with icepack into OUT/TOP.bin.
 #
 #   scripts/synth_ice40.sh TOP [--param NAME=VALUE]... [--pnr] [--freq MHZ]
-#                              [--pcf FILE] [--out DIR]
+#                              [--pcf FILE] [--out DIR] [--seed N]
+#                              [--read FILE]... [--define NAME=VALUE]...
+#
+# --read adds a Verilog file (e.g. a generated wrapper module) read with the
+# top; --define sets a Verilog macro for every file read (`eskin bitstream`
+# uses both to put a scene's core into a board wrapper).
 #
 # Prints one line of figures: LUTs (ICESTORM_LC), DSPs, BRAMs, SPRAMs and,
 # after place and route, the achieved Fmax against the requested clock.
 # Exits non-zero if Yosys fails, the design does not fit, or Fmax < freq.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-top=${1:?usage: synth_ice40.sh TOP [--param N=V]... [--pnr] [--freq MHZ] [--pcf F] [--out DIR]}
+top=${1:?usage: synth_ice40.sh TOP [--param N=V]... [--pnr] [--freq MHZ] [--pcf F] [--out DIR] [--seed N] [--read F]... [--define N=V]...}
 shift
 src="$root/rtl/$top.v"
 case "$top" in *.v) src=$(realpath "$top"); top=$(basename "$top" .v) ;; esac
-params=() pnr=0 freq=12 pcf="" out=""
+params=() reads=() defines="" pnr=0 freq=12 pcf="" out="" seed=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --param) params+=("$2"); shift 2 ;;
@@ -26,20 +31,27 @@ while [ $# -gt 0 ]; do
     --freq) freq=$2; shift 2 ;;
     --pcf) pcf=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
+    --read) reads+=("$(realpath "$2")"); shift 2 ;;
+    --define) defines+=" -D$2"; shift 2 ;;
     *) echo "synth_ice40.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
 out=${out:-$root/build/synth/$top}
 mkdir -p "$out"
+# One chparam for all of them: each chparam re-elaborates the module, and
+# a half-changed set (e.g. a PLL's new input divider with the old feedback
+# divider) can trip the module's own parameter checks.
 chparam=""
 for p in "${params[@]+"${params[@]}"}"; do
-  chparam+="chparam -set ${p%%=*} ${p#*=} $top; "
+  chparam+=" -set ${p%%=*} ${p#*=}"
 done
+if [ -n "$chparam" ]; then chparam="chparam$chparam $top; "; fi
 # The top comes from rtl/TOP.v (or a path given as TOP); the modules it
 # instantiates are found as rtl/NAME.v by `hierarchy -libdir`.
 # Parameters are set before elaboration, so `hierarchy` derives the
 # submodules from the overridden values.
-yosys -q -l "$out/yosys.log" -p "read_verilog -sv $src; $chparam hierarchy -libdir $root/rtl -top $top; \
+yosys -q -l "$out/yosys.log" -p "read_verilog -sv$defines $src ${reads[*]+"${reads[*]}"}; $chparam hierarchy -libdir $root/rtl -top $top; \
   synth_ice40 -dsp -spram -abc9 -top $top -json $out/$top.json; tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+$1\s" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}'; }
 lc=$(cells SB_LUT4); dsp=$(cells SB_MAC16); bram=$(cells SB_RAM40_4K); spram=$(cells SB_SPRAM256KA)
@@ -49,7 +61,7 @@ if [ "$pnr" -eq 1 ]; then
   pcfarg=(--pcf-allow-unconstrained)
   [ -n "$pcf" ] && pcfarg=(--pcf "$pcf")
   nextpnr-ice40 --up5k --package sg48 --json "$out/$top.json" --asc "$out/$top.asc" \
-    "${pcfarg[@]}" --freq "$freq" --report "$out/report.json" --seed 1 -q \
+    "${pcfarg[@]}" --freq "$freq" --report "$out/report.json" --seed "$seed" \
     >"$out/nextpnr.log" 2>&1 || { tail -20 "$out/nextpnr.log" >&2; exit 1; }
   icepack "$out/$top.asc" "$out/$top.bin"
   used=$(jq '.utilization.ICESTORM_LC.used' "$out/report.json")

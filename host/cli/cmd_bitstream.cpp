@@ -1,0 +1,171 @@
+// `eskin bitstream --board icebreaker|ulx3s [--scene SCENE.yaml] [--out DIR]
+//  [--seed N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]`:
+// builds the scene's DTMF core (parameters from hls/dtmf_top_config.h,
+// microcode and constants from hls/dtmf_ucode.h) in the board's wrapper with
+// Yosys, nextpnr and icepack / ecppack (host/fpga/flow.h), writes the
+// bitstream, OUT/bitstream_report.json and OUT/bitstream_report.txt, prints
+// the table, and exits 1 with the numbers (and the skins that would fit,
+// from docs/scale_table.csv) when the design does not fit or misses timing.
+//
+// `eskin bitstream --scale-table [--scene BASE.yaml] [--out DIR] [--targets
+// L] [--rates L] [--sizes L]`: measures the scale table
+// (host/fpga/scale_table.h) with real runs (hours: see docs/bitstream.md),
+// updates docs/scale_table.csv and prints the table.
+#include <fmt/core.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "cli/command.h"
+#include "host/fpga/flow.h"
+#include "host/fpga/scale_table.h"
+#include "sim/scene.h"
+
+#ifndef ESKIN_SOURCE_DIR
+#error "ESKIN_SOURCE_DIR must be defined (host/CMakeLists.txt)"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BitstreamArgs {
+  std::string board;
+  std::string scene;
+  std::string out;
+  std::string device;
+  int seed = 1;
+  double clk_mhz = 0;
+  std::string engine_load = "scene";
+  bool scale_table = false;
+  eskin::fpga::ScaleSelection scale;  // --targets, --rates, --sizes
+};
+
+// The source tree: ESKIN_SOURCE_DIR from the environment (an installed or
+// moved binary), else the tree this binary was built from.
+std::string source_dir() {
+  const char* env = std::getenv("ESKIN_SOURCE_DIR");
+  return env && *env ? env : ESKIN_SOURCE_DIR;
+}
+
+std::string scene_or_default(const std::string& scene) {
+  return scene.empty() ? source_dir() + "/scenes/neuroskin2.yaml" : scene;
+}
+
+std::vector<eskin::fpga::ScaleRow> read_scale_table(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) return {};
+  std::stringstream s;
+  s << f.rdbuf();
+  return eskin::fpga::parse_scale_csv(s.str());
+}
+
+int run_scale_table(const BitstreamArgs& a) {
+  const auto base = eskin::sim::load_scene(scene_or_default(a.scene));
+  eskin::fpga::FlowOptions opt;
+  opt.source_dir = source_dir();
+  opt.out_dir = a.out.empty() ? "build/bitstream/scale" : a.out;
+  opt.seed = a.seed;
+  // The CSV is rewritten after every probe, so an interrupted run keeps
+  // what it measured; it is read again each time (and replaced by a
+  // rename), so runs of other targets at the same time keep theirs.
+  const std::string csv = source_dir() + "/docs/scale_table.csv";
+  std::vector<eskin::fpga::ScaleRow> done;
+  eskin::fpga::run_scale_table(base, opt, a.scale, [&](const eskin::fpga::ScaleRow& r) {
+    std::cerr << fmt::format("scale: {} {:.0f} S/s {}x{}: {} ({:.0f} s)\n", r.target, r.sample_hz,
+                             r.rows, r.cols, r.ok() ? "fits and meets timing" : r.failure,
+                             r.seconds);
+    done.push_back(r);
+    const std::string text =
+        eskin::fpga::scale_csv(eskin::fpga::merge_scale_rows(read_scale_table(csv), done));
+    const std::string tmp = csv + ".tmp" + std::to_string(::getpid());
+    std::ofstream(tmp) << text;
+    std::filesystem::rename(tmp, csv);
+  });
+  std::cout << eskin::fpga::scale_markdown(read_scale_table(csv));
+  std::cerr << "scale: wrote " << csv << "\n";
+  return 0;
+}
+
+int run_bitstream(const BitstreamArgs& a) {
+  if (a.scale_table) return run_scale_table(a);
+  if (a.board.empty()) throw std::invalid_argument("--board: required (icebreaker or ulx3s)");
+  const auto board = eskin::fpga::find_board(a.board, a.device);
+  const std::string scene_path = scene_or_default(a.scene);
+  const auto scene = eskin::sim::load_scene(scene_path);
+  eskin::fpga::FlowOptions opt;
+  opt.source_dir = source_dir();
+  opt.out_dir = a.out.empty() ? "build/bitstream/" + board.name : a.out;
+  opt.seed = a.seed;
+  opt.clk_hz = std::lround(a.clk_mhz * 1e6);
+  opt.load = a.engine_load == "stress" ? eskin::fpga::LoadPolicy::Stress
+                                       : eskin::fpga::LoadPolicy::Scene;
+  if (opt.clk_hz > 0) eskin::fpga::choose_clock(board, 0, opt.clk_hz);  // throws naming --clk-mhz
+  eskin::fpga::FlowReport r;
+  try {
+    r = eskin::fpga::run_flow(board, scene, opt);
+  } catch (const std::invalid_argument& e) {
+    // The plan names the scene field it cannot build.
+    throw std::invalid_argument(scene_path + ": " + e.what());
+  }
+  fs::create_directories(opt.out_dir);
+  std::ofstream(fs::path(opt.out_dir) / "bitstream_report.json") << eskin::fpga::report_json(r);
+  const std::string table = eskin::fpga::report_table(r);
+  std::ofstream(fs::path(opt.out_dir) / "bitstream_report.txt") << table;
+  std::cout << table;
+  if (r.ok()) return 0;
+  std::cerr << "eskin bitstream: " << board.name << " (" << board.device << "): " << r.failure
+            << "\n  "
+            << eskin::fpga::fit_hint(read_scale_table(source_dir() + "/docs/scale_table.csv"),
+                                     board.name, board.device, r.spec.sample_hz)
+            << "\n";
+  return 1;
+}
+
+std::function<int()> setup_bitstream(CLI::App& app) {
+  auto args = std::make_shared<BitstreamArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "bitstream",
+      "Build a scene's FPGA bitstream for a board (Yosys, nextpnr, icepack/ecppack) and report "
+      "utilisation and Fmax; or measure the scale table");
+  sub->add_option("--board", args->board, "icebreaker (iCE40 UP5K) or ulx3s (ECP5)");
+  sub->add_option("--scene", args->scene, "Scene YAML (default scenes/neuroskin2.yaml)");
+  sub->add_option("--out", args->out,
+                  "Output directory (default build/bitstream/BOARD; scale table: "
+                  "build/bitstream/scale); must not be under /tmp for ECP5");
+  sub->add_option("--seed", args->seed, "nextpnr placer seed")->capture_default_str();
+  sub->add_option("--device", args->device, "ulx3s: ECP5 size 25k, 45k or 85k (default 85k)");
+  sub->add_option("--clk-mhz", args->clk_mhz,
+                  "Core clock (default: the slowest the board makes at which the core keeps up)");
+  sub->add_option("--engine-load", args->engine_load,
+                  "What the clock must carry: scene (the scene's longest frame) or stress (the "
+                  "stress signals' longest frame + the longest command); the scale table uses "
+                  "stress")
+      ->check(CLI::IsMember({"scene", "stress"}))
+      ->capture_default_str();
+  sub->add_flag("--scale-table", args->scale_table,
+                "Measure the scale table (all boards; hours) into docs/scale_table.csv");
+  sub->add_option("--sizes", args->scale.sizes,
+                  "Scale table: the n of the n x n skins to search, ascending "
+                  "(default 2,3,4,6,8,12,16,24,32,48,64)")
+      ->delimiter(',');
+  sub->add_option("--targets", args->scale.targets,
+                  "Scale table: up5k, ecp5-25k, ecp5-85k (default all); the rows of the "
+                  "targets and rates measured replace theirs in docs/scale_table.csv")
+      ->delimiter(',');
+  sub->add_option("--rates", args->scale.rates,
+                  "Scale table: sample rates in S/s (default 35000,1000000)")
+      ->delimiter(',');
+  return [args] { return run_bitstream(*args); };
+}
+
+}  // namespace
+
+ESKIN_COMMAND("bitstream", setup_bitstream);

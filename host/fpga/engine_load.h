@@ -1,0 +1,54 @@
+// How many clocks the frame engine of rtl/dtmf_top.v needs per frame for a
+// plan, measured on its instruction-set model (hls/frame_engine.h is clock
+// exact against rtl/frame_engine.v) running the plan's microcode
+// (hls/dtmf_ucode.h) on the frames sdft_bank would deliver (the exact window
+// sums of hls/sdft_bank.h). hls::dtmf_top_clock_budget() checks the result
+// against STEP x the sample period.
+//
+// The microcode's time depends on the data (ghost filter loops, spikes,
+// sparse packets) and on the commands, so this is a measurement, not a
+// proof. Three figures:
+//  - scene: the longest frame of a scene's own ADC samples (its presses and
+//    slides), the workload the scene describes;
+//  - stress: the longest frame of synthetic signals that drive every path
+//    hard (random levels, random on/off carriers, all carriers toggling,
+//    steady full, steady quiet; 64 frames or more each) at the plan's mask
+//    and decimations;
+//  - command: the longest command of docs/protocol.md §5, each accepted and
+//    each reason of rejection, which delays the frame after it (commands
+//    run between frames).
+// The output FIFO always has room (every packet is written, none dropped:
+// the slow case). tests/fpga/engine_load_test.cpp checks the scene figure
+// against the clocked top model of tests/hls.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hls/dtmf_top_config.h"
+
+namespace eskin::fpga {
+
+struct EngineLoad {
+  uint64_t scene_clocks = 0;    // longest frame of the scene's samples
+  int scene_frames = 0;         // frames of them (0: no samples given)
+  uint64_t stress_clocks = 0;   // longest frame of the stress signals
+  std::string stress_case;      // which signal
+  uint64_t command_clocks = 0;  // longest command: start -> back at `wait`
+  std::string command_case;
+  int stress_frames = 0;
+  // Each stress signal's longest frame, then each command's clocks.
+  std::vector<std::pair<std::string, uint64_t>> cases;
+  uint64_t stress_total() const { return stress_clocks + command_clocks; }
+};
+
+// Throws std::invalid_argument when the plan's engine image does not fit
+// the frame engine's address space (DMEM 2^15 words, KROM 2^12 words,
+// microcode kDtmfImemWords), naming the numbers.
+// `scene_x`: the scene's samples as dtmf_top takes them (12-bit codes minus
+// 2048), sample 0 first after the carriers are loaded; may be empty.
+EngineLoad measure_engine_load(const hls::DtmfTopPlan& plan, const std::vector<int32_t>& scene_x);
+
+}  // namespace eskin::fpga

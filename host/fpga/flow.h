@@ -1,0 +1,88 @@
+// `eskin bitstream`'s flow: a scene's DTMF core (hls/dtmf_top_config.h) in
+// a board wrapper, through Yosys, nextpnr and icepack / ecppack (run by
+// scripts/synth_ice40.sh and scripts/synth_ecp5.sh), and the report of what
+// it used and how fast it runs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hls/dtmf_top_config.h"
+#include "host/fpga/board.h"
+#include "host/fpga/engine_load.h"
+#include "sim/scene.h"
+
+namespace eskin::fpga {
+
+// Which engine load the clock must carry (engine_load.h): the scene's own
+// frames (its workload; a command may still delay one frame), or the
+// stress signals' longest frame plus the longest command (no frame lost
+// whatever the input).
+enum class LoadPolicy { Scene, Stress };
+
+struct FlowOptions {
+  std::string source_dir;  // the eskin source tree (rtl/, scripts/, constraints/)
+  std::string out_dir;     // where the wrapper, logs, reports and bitstream go
+  int seed = 1;            // nextpnr placer seed
+  LoadPolicy load = LoadPolicy::Scene;
+  long clk_hz = 0;         // 0: the slowest board clock (not below the board's
+                           // default) at which the core keeps up
+};
+
+struct Resource {
+  std::string name;  // nextpnr's name (ICESTORM_LC, TRELLIS_COMB, ...)
+  long used = 0, available = 0;
+};
+
+struct ClockResult {
+  std::string net;
+  double achieved_mhz = 0, required_mhz = 0;
+};
+
+struct FlowReport {
+  std::string board, device, scene;
+  hls::DtmfTopSpec spec;            // clk_hz and baud as built
+  int step = 1;                      // from the plan
+  EngineLoad load;                   // the frame engine's clocks per frame
+  LoadPolicy policy = LoadPolicy::Scene;
+  long engine_clocks = 0;            // what the policy makes the clock carry
+  long core_min_hz = 0;              // no slower clock keeps up (a lower bound)
+  hls::DtmfTopClockBudget budget;    // at the chosen clock
+  std::vector<hls::VerilogParam> params;  // dtmf_top's, then the wrapper's
+  std::vector<Resource> resources;   // nextpnr's utilisation (post-pack)
+  std::string logic_resource;        // the board's logic cell resource name
+  std::vector<ClockResult> clocks;   // per clock net
+  bool ran_tools = false;            // false: stopped before Yosys (clock)
+  bool fits = false, meets_timing = false;
+  std::string bitstream;             // path, empty if none was written
+  std::string failure;               // why it failed, with the numbers
+  std::string log;                   // the tools' combined output
+  double seconds = 0;                // wall time of the tools
+
+  bool ok() const { return fits && meets_timing && !bitstream.empty(); }
+  const Resource* resource(const std::string& name) const;
+};
+
+// Builds `spec` (its clk_hz and baud are chosen here) on board `b`: the
+// plan, the engine's load (engine_load.h), the clock, the microcode and
+// constant files and the core wrapper in OUT, then the tools. Never throws
+// for a design that does not fit or meet timing (the report says so);
+// throws std::runtime_error when a tool is missing or fails otherwise, and
+// std::invalid_argument for a clock the board cannot make or a skin the
+// plan or the frame engine cannot build (naming the field / the numbers).
+FlowReport run_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt);
+
+// The report as JSON (written to OUT/bitstream_report.json) and as a table.
+std::string report_json(const FlowReport& r);
+// What the report should say even when the build passed (a load beyond the
+// frame under the other policy).
+std::vector<std::string> flow_warnings(const FlowReport& r);
+std::string report_table(const FlowReport& r);
+
+// Parsers of the tools' output (public for the tests): nextpnr's
+// report.json, and its log's "Device utilisation" block when it stopped
+// before writing one.
+void parse_nextpnr_report(const std::string& json_text, FlowReport& r);
+std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text);
+
+}  // namespace eskin::fpga

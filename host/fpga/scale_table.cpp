@@ -1,0 +1,284 @@
+#include "host/fpga/scale_table.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "sim/dtmf_top_spec.h"
+
+namespace eskin::fpga {
+
+std::vector<ScaleTarget> scale_targets() {
+  return {{"up5k", "icebreaker", "up5k"}, {"ecp5-25k", "ulx3s", "25k"}, {"ecp5-85k", "ulx3s", "85k"}};
+}
+
+std::vector<double> scale_rates() { return {35000.0, 1000000.0}; }
+
+std::vector<int> scale_sizes() { return {2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64}; }
+
+sim::Scene scale_scene(const sim::Scene& base, int n, double fs) {
+  sim::Scene s = base;
+  s.name = fmt::format("scale_{}x{}_{:g}sps", n, n, fs);
+  s.skin.rows = n;
+  s.skin.cols = n;
+  s.skin.adc.rate_hz = fs;
+  int window = 32;
+  while (window / 2 - 1 < 2 * n) window *= 2;
+  s.decoder.window = window;
+  const auto f = plan_carriers(2 * n, fs, window);
+  s.skin.row_freq_hz.assign(f.begin(), f.begin() + n);
+  s.skin.col_freq_hz.assign(f.begin() + n, f.end());
+  s.skin.freq_error.clear();
+  s.presses.clear();
+  s.slides.clear();
+  return s;
+}
+
+ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
+  ScaleRow row;
+  row.target = t.label;
+  row.board = t.board;
+  row.device = t.device;
+  row.sample_hz = r.spec.sample_hz;
+  row.rows = r.spec.rows;
+  row.cols = r.spec.cols;
+  row.window = r.spec.window;
+  row.step = r.step;
+  row.clk_hz = r.spec.clk_hz;
+  row.fits = r.fits;
+  row.meets_timing = r.meets_timing;
+  auto take = [&](std::initializer_list<const char*> names, long& used, long* avail) {
+    for (const char* n : names)
+      if (const Resource* x = r.resource(n)) {
+        used = x->used;
+        if (avail) *avail = x->available;
+      }
+  };
+  take({r.logic_resource.c_str()}, row.logic_used, &row.logic_available);
+  take({"ICESTORM_DSP", "MULT18X18D"}, row.dsp_used, &row.dsp_available);
+  take({"ICESTORM_RAM", "DP16KD"}, row.ram_used, &row.ram_available);
+  take({"ICESTORM_SPRAM"}, row.spram_used, nullptr);
+  // The clock with the least margin (the core's; the ULX3S oscillator net
+  // has next to no logic).
+  double worst = 1e300;
+  for (const auto& c : r.clocks)
+    if (c.achieved_mhz / c.required_mhz < worst) {
+      worst = c.achieved_mhz / c.required_mhz;
+      row.fmax_mhz = c.achieved_mhz;
+    }
+  row.seconds = r.seconds;
+  row.failure = r.failure;
+  return row;
+}
+
+std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions& opt,
+                                      ScaleSelection sel,
+                                      const std::function<void(const ScaleRow&)>& progress) {
+  std::vector<ScaleRow> rows;
+  const auto& sizes = sel.sizes.empty() ? (sel.sizes = scale_sizes()) : sel.sizes;
+  for (size_t i = 0; i < sizes.size(); ++i)
+    if (sizes[i] < 1 || (i > 0 && sizes[i] <= sizes[i - 1]))
+      throw std::invalid_argument("--sizes: expected ascending sizes >= 1");
+  if (sel.rates.empty()) sel.rates = scale_rates();
+  std::vector<ScaleTarget> targets;
+  for (const auto& t : scale_targets())
+    if (sel.targets.empty() ||
+        std::find(sel.targets.begin(), sel.targets.end(), t.label) != sel.targets.end())
+      targets.push_back(t);
+  if (targets.size() < std::max<size_t>(1, sel.targets.size()))
+    throw std::invalid_argument("--targets: expected labels among up5k, ecp5-25k, ecp5-85k");
+  for (const auto& t : targets) {
+    const Board b = find_board(t.board, t.device);
+    for (double fs : sel.rates) {
+      // Invariant: sizes[lo] passed (or lo = -1), sizes[hi] failed (or hi = size()).
+      int lo = -1, hi = int(sizes.size());
+      while (hi - lo > 1) {
+        const int mid = (lo + hi) / 2;
+        const int n = sizes[size_t(mid)];
+        const sim::Scene sc = scale_scene(base, n, fs);
+        FlowOptions o = opt;
+        o.load = LoadPolicy::Stress;  // the table's skins have no workload of their own
+        o.out_dir = fmt::format("{}/{}/{:.0f}/{}x{}", opt.out_dir, t.label, fs, n, n);
+        FlowReport r;
+        try {
+          r = run_flow(b, sc, o);
+        } catch (const std::invalid_argument& e) {  // the plan rejects the skin
+          r.spec = sim::dtmf_top_spec(sc);
+          r.failure = e.what();
+        }
+        rows.push_back(scale_row(t, r));
+        progress(rows.back());
+        (rows.back().ok() ? lo : hi) = mid;
+      }
+    }
+  }
+  return rows;
+}
+
+std::vector<ScaleRow> merge_scale_rows(const std::vector<ScaleRow>& old,
+                                       const std::vector<ScaleRow>& fresh) {
+  std::vector<ScaleRow> out;
+  for (const auto& r : old) {
+    bool replaced = false;
+    for (const auto& f : fresh) replaced |= f.target == r.target && f.sample_hz == r.sample_hz;
+    if (!replaced) out.push_back(r);
+  }
+  out.insert(out.end(), fresh.begin(), fresh.end());
+  return out;
+}
+
+namespace {
+const char* kHeader =
+    "target,board,device,sample_hz,rows,cols,window,step,clk_hz,fits,meets_timing,"
+    "logic_used,logic_available,dsp_used,dsp_available,ram_used,ram_available,spram_used,"
+    "fmax_mhz,seconds,failure";
+
+std::string csv_field(const std::string& s) {
+  std::string q = "\"";
+  // One line per row: a tool's multi-line message is joined with spaces.
+  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c == '\n' || c == '\r' ? ' ' : c);
+  return q + "\"";
+}
+
+// Splits one CSV line (fields optionally in double quotes, "" inside them).
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> f(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      f.back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      f.emplace_back();
+    } else {
+      f.back() += c;
+    }
+  }
+  return f;
+}
+
+std::string khz(double fs) { return fs >= 1e6 ? fmt::format("{:g} MS/s", fs / 1e6) : fmt::format("{:g} kS/s", fs / 1e3); }
+}  // namespace
+
+std::string scale_csv(const std::vector<ScaleRow>& rows) {
+  std::string s = std::string(kHeader) + "\n";
+  for (const auto& r : rows)
+    s += fmt::format("{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{}\n",
+                     r.target, r.board, r.device, r.sample_hz, r.rows, r.cols, r.window, r.step,
+                     r.clk_hz, int(r.fits), int(r.meets_timing), r.logic_used, r.logic_available,
+                     r.dsp_used, r.dsp_available, r.ram_used, r.ram_available, r.spram_used,
+                     r.fmax_mhz, r.seconds, csv_field(r.failure));
+  return s;
+}
+
+std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
+  std::vector<ScaleRow> rows;
+  std::stringstream ss(text);
+  std::string line;
+  int lineno = 0;
+  while (std::getline(ss, line)) {
+    ++lineno;
+    if (lineno == 1) {
+      if (line != kHeader)
+        throw std::runtime_error("scale table line 1: expected the header '" + std::string(kHeader) + "'");
+      continue;
+    }
+    if (line.empty()) continue;
+    const auto f = split_csv(line);
+    if (f.size() != 21)
+      throw std::runtime_error(fmt::format("scale table line {}: expected 21 fields, got {}", lineno, f.size()));
+    try {
+      ScaleRow r;
+      r.target = f[0];
+      r.board = f[1];
+      r.device = f[2];
+      r.sample_hz = std::stod(f[3]);
+      r.rows = std::stoi(f[4]);
+      r.cols = std::stoi(f[5]);
+      r.window = std::stoi(f[6]);
+      r.step = std::stoi(f[7]);
+      r.clk_hz = std::stol(f[8]);
+      r.fits = f[9] == "1";
+      r.meets_timing = f[10] == "1";
+      r.logic_used = std::stol(f[11]);
+      r.logic_available = std::stol(f[12]);
+      r.dsp_used = std::stol(f[13]);
+      r.dsp_available = std::stol(f[14]);
+      r.ram_used = std::stol(f[15]);
+      r.ram_available = std::stol(f[16]);
+      r.spram_used = std::stol(f[17]);
+      r.fmax_mhz = std::stod(f[18]);
+      r.seconds = std::stod(f[19]);
+      r.failure = f[20];
+      rows.push_back(r);
+    } catch (const std::logic_error&) {
+      throw std::runtime_error(fmt::format("scale table line {}: a number field is not a number", lineno));
+    }
+  }
+  return rows;
+}
+
+std::string scale_markdown(const std::vector<ScaleRow>& rows) {
+  std::string t =
+      "| FPGA | rate | largest skin that fits and meets timing | carriers | window | clock | "
+      "logic | DSP | block RAM | Fmax | smallest that fails |\n"
+      "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+  for (const auto& tg : scale_targets())
+    for (double fs : scale_rates()) {
+      const ScaleRow* best = nullptr;
+      const ScaleRow* fail = nullptr;
+      for (const auto& r : rows) {
+        if (r.target != tg.label || r.sample_hz != fs) continue;
+        if (r.ok() && (!best || r.rows > best->rows)) best = &r;
+        if (!r.ok() && (!fail || r.rows < fail->rows)) fail = &r;
+      }
+      const std::string why =
+          fail ? fmt::format("{}x{}: {}", fail->rows, fail->cols, fail->failure) : "-";
+      if (!best) {
+        t += fmt::format("| {} | {} | none | | | | | | | | {} |\n", tg.label, khz(fs), why);
+        continue;
+      }
+      t += fmt::format("| {} | {} | {}x{} | {} | {} | {:g} MHz | {}/{} | {}/{} | {}/{} | {:.1f} MHz | {} |\n",
+                       tg.label, khz(fs), best->rows, best->cols, best->rows + best->cols,
+                       best->window, best->clk_hz / 1e6, best->logic_used, best->logic_available,
+                       best->dsp_used, best->dsp_available, best->ram_used, best->ram_available,
+                       best->fmax_mhz, why);
+    }
+  return t;
+}
+
+std::string fit_hint(const std::vector<ScaleRow>& rows, const std::string& board,
+                     const std::string& device, double fs) {
+  const ScaleRow* best = nullptr;
+  double rate = 0;
+  // The table's rate nearest to fs (on a log scale).
+  for (const auto& r : rows)
+    if (r.board == board && r.device == device &&
+        (rate == 0 || std::fabs(std::log(r.sample_hz / fs)) < std::fabs(std::log(rate / fs))))
+      rate = r.sample_hz;
+  for (const auto& r : rows)
+    if (r.board == board && r.device == device && r.sample_hz == rate && r.ok() &&
+        (!best || r.rows * r.cols > best->rows * best->cols))
+      best = &r;
+  if (rate == 0)
+    return fmt::format("the scale table (docs/scale_table.csv) has no entry for {} {}; "
+                       "`eskin bitstream --scale-table` measures it",
+                       board, device);
+  if (!best)
+    return fmt::format("per the scale table (docs/scale_table.csv) no skin tried fits {} {} at {}",
+                       board, device, khz(rate));
+  return fmt::format(
+      "per the scale table (docs/scale_table.csv), {} {} at {} fits skins up to {}x{} "
+      "({} carriers, window {}: {}/{} logic cells, Fmax {:.1f} MHz at a {:g} MHz clock)",
+      board, device, khz(rate), best->rows, best->cols, best->rows + best->cols, best->window,
+      best->logic_used, best->logic_available, best->fmax_mhz, best->clk_hz / 1e6);
+}
+
+}  // namespace eskin::fpga

