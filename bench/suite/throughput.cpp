@@ -56,6 +56,18 @@ Rate fftw_stft(const std::vector<double>& x, const std::vector<double>& freqs, d
 
 }  // namespace
 
+hls::DtmfTopPlan feasible_plan(const sim::Scene& sc, long& clk_hz) {
+  for (long clk : {12000000L, 48000000L, 100000000L, 200000000L, 400000000L}) {
+    try {
+      clk_hz = clk;
+      return engine::top_plan(sc.skin, sc.decoder, sc.neuron, true, clk);
+    } catch (const std::invalid_argument&) {
+      if (clk == 400000000L) throw;
+    }
+  }
+  throw std::logic_error("unreachable");
+}
+
 ThroughputResult measure_throughput(const std::string& scene_path, double min_s, int threads) {
   const sim::Scene scene = sim::load_scene(scene_path);
   sim::WorldModel world(scene);
@@ -94,9 +106,10 @@ ThroughputResult measure_throughput(const std::string& scene_path, double min_s,
   }
 
   // Engine amplitudes: same workload (every sample: push, K magnitudes).
-  const engine::EngineChoice choice{std::max(1, int(std::lround(fs / 35000.0))), 35, 7};
-  res.chain_step = choice.step;
-  const engine::EngineConfig ec = engine::engine_config(scene.skin, dec, scene.neuron, choice);
+  // The chain as the top is built for the scene (its step and decimation),
+  // at the slowest clock of kClocks that can take the skin.
+  const engine::EngineConfig ec = engine::engine_config(feasible_plan(scene, res.clk_hz));
+  res.chain_step = ec.step;
   const std::vector<uint16_t> c12 = engine::codes12(codes, scene.skin.adc.bits);
   std::vector<int32_t> xi(c12.size());
   for (size_t i = 0; i < c12.size(); ++i) xi[i] = int32_t(c12[i]) - 2048;
@@ -141,8 +154,8 @@ ThroughputResult measure_throughput(const std::string& scene_path, double min_s,
 
 std::string format_throughput(const ThroughputResult& r) {
   std::string s = fmt::format(
-      "scene {}: {} carriers, N = {}, fs = {:.0f} Hz, {} samples; engine chain step {}\n", r.scene,
-      r.carriers, r.window, r.fs, r.samples, r.chain_step);
+      "scene {}: {} carriers, N = {}, fs = {:.0f} Hz, {} samples; engine chain as built at {} MHz "
+      "(step {})\n", r.scene, r.carriers, r.window, r.fs, r.samples, r.clk_hz / 1000000, r.chain_step);
   s += fmt::format("{:<22} {:>13} {:>10} {:>9} {:>10} {:>6} {:>16}\n", "decoder", "samples/s",
                    "ns/sample", "vs FFTW", "x realtime", "clock", "checksum");
   for (const auto& row : r.rows)

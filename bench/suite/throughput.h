@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "hls/dtmf_top_config.h"
+#include "sim/scene.h"
+
 namespace eskin::bench {
 
 struct ThroughputRow {
@@ -24,11 +27,16 @@ struct ThroughputRow {
 struct ThroughputResult {
   std::string scene;
   int carriers = 0, window = 0, chain_step = 1, threads = 1;
+  long clk_hz = 0;  // clock of the top build the chain rows run
   double fs = 0;
   size_t samples = 0;
   std::vector<ThroughputRow> rows;
   const ThroughputRow& row(const std::string& name) const;
 };
+
+// The top's plan at the slowest of 12, 48, 100, 200, 400 MHz that can take
+// the scene's skin (a big skin needs a faster clock for a legal neuron step).
+hls::DtmfTopPlan feasible_plan(const sim::Scene& sc, long& clk_hz);
 
 ThroughputResult measure_throughput(const std::string& scene_path, double min_seconds, int threads);
 // Fixed-width table; `real_time_hz` adds a column "x real time".

@@ -121,7 +121,7 @@ int run_decode(const DecodeArgs& a) {
     for (size_t i = 0; i < pcm.size(); ++i)
       codes[i] = (shift >= 0 ? (int(pcm[i]) >> shift) : (int(pcm[i]) << -shift)) + half;
     return decode_fpga(skin, dec, neuron, codes,
-                       {a.taxels || a.spikes, a.spikes, !a.no_ghost, a.threads});
+                       {a.taxels || a.spikes, a.spikes, !a.no_ghost, a.threads, a.hop});
   }
   if (a.threads != 1) throw ConfigError("--threads", "only --engine fpga runs on several threads");
   golden::GoldenOptions opt;

@@ -20,12 +20,19 @@ int decode_fpga(const SkinConfig& skin, const DecoderConfig& dec, const NeuronCo
   if (opt.taxels && opt.ghost_correct)
     throw ConfigError("--no-ghost", "the fpga engine has no ghost filter (yet): pass --no-ghost "
                                     "with --taxels/--spikes, or use --engine golden");
-  if (dec.hop < 1 || dec.hop > 65535)
-    throw ConfigError("--hop", "expected 1..65535 for the fpga engine, got " +
-                                   std::to_string(dec.hop));
   const uint8_t mask = 1 | (opt.taxels || opt.spikes ? 2 : 0) | (opt.spikes ? 4 : 0);
-  const engine::EngineChoice choice{1, uint16_t(dec.hop), mask};
-  const engine::DtmfEngine eng(engine::engine_config(skin, dec, neuron, choice));
+  // The 12 MHz top's build for this skin; --hop (samples) sets the packet
+  // decimation, a whole number of the build's steps.
+  const hls::DtmfTopPlan plan = engine::top_plan(skin, dec, neuron, opt.spikes);
+  int decim = plan.decim;
+  if (opt.hop > 0) {
+    if (opt.hop % plan.step || opt.hop / plan.step > 65535)
+      throw ConfigError("--hop", "the fpga build steps every " + std::to_string(plan.step) +
+                                     " samples: expected a multiple of it up to 65535 steps, got " +
+                                     std::to_string(opt.hop));
+    decim = opt.hop / plan.step;
+  }
+  const engine::DtmfEngine eng(engine::engine_config(plan, plan.step, uint16_t(decim), mask));
   const auto c12 = engine::codes12(codes, skin.adc.bits);
   const engine::PacketStream ps = eng.run(c12.data(), c12.size(), {opt.threads});
 

@@ -1,7 +1,8 @@
 // `eskin decode --engine fpga`: a recording decoded by host/engine (the
 // FPGA's integers, bit for bit) instead of the golden model. Same NDJSON
 // fields as the golden decoder, one line per packet step (every `hop`
-// samples): "sample", "t_ms", "amp_lsb" (2 |sum| / N, skin code LSB peak),
+// samples, default: the build's packet rate): "sample", "t_ms", "amp_lsb"
+// (2 |sum| / N, skin code LSB peak),
 // with --taxels "pressure_kpa" (the taxel's g, UQ1.15, through the skin's
 // conductance curve), with --spikes "spikes" (taxels whose neuron fired in
 // the hop samples starting at this one).
@@ -17,6 +18,7 @@ namespace eskin::cli {
 struct FpgaDecodeOptions {
   bool taxels = false, spikes = false, ghost_correct = true;
   int threads = 1;
+  int hop = 0;  // samples between lines (0: the build's decimation)
 };
 
 // codes: the skin's unsigned ADC codes. Throws ConfigError naming the

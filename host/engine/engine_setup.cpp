@@ -1,42 +1,46 @@
 #include "host/engine/engine_setup.h"
 
-#include <cmath>
-#include <stdexcept>
-
 #include "hls/izhikevich_layer_config.h"
-#include "hls/sdft_bank.h"
-#include "hls/sdft_bank_config.h"
+#include "sim/dtmf_top_spec.h"
 
 namespace eskin::engine {
 
-EngineConfig engine_config(const SkinConfig& skin, const DecoderConfig& dec,
-                           const NeuronConfig& neuron, const EngineChoice& choice) {
-  if (skin.adc.bits < 1 || skin.adc.bits > 12)
-    throw ConfigError("skin.adc.bits", "expected 1..12 for the FPGA path (AD7476A, 12 bits), got " +
-                                           std::to_string(skin.adc.bits));
+hls::DtmfTopPlan top_plan(const SkinConfig& skin, const DecoderConfig& dec,
+                          const NeuronConfig& neuron, bool spikes, long clk_hz) {
+  sim::Scene sc;
+  sc.skin = skin;
+  sc.decoder = dec;
+  sc.neuron = neuron;
+  sc.outputs.spikes = spikes;
+  return hls::make_dtmf_top_plan(sim::dtmf_top_spec(sc, clk_hz));
+}
+
+EngineConfig engine_config(const hls::DtmfTopPlan& p, uint8_t mask) {
+  return engine_config(p, p.step, p.decim, mask);
+}
+
+EngineConfig engine_config(const hls::DtmfTopPlan& p, int step, uint16_t decim, uint8_t mask) {
   EngineConfig c;
-  c.rows = skin.rows;
-  c.cols = skin.cols;
-  c.sdft.n = dec.window;
-  c.sdft.xw = 12;
-  c.sdft.acc_w = hls::sdft_min_acc_width(dec.window, c.sdft.xw);
-  c.mag_shift = 12 - skin.adc.bits;
-  const double fs = skin.adc.rate_hz;
-  for (double f : skin.carrier_freqs_hz()) c.inc.push_back(hls::sdft_phase_increment(f, fs));
-  c.taxel.rows = uint8_t(skin.rows);
-  c.taxel.cols = uint8_t(skin.cols);
+  c.rows = p.spec.rows;
+  c.cols = p.spec.cols;
+  c.sdft.n = p.N;
+  c.sdft.xw = 12;  // dtmf_top: x = code - 2048; CW, TW, FB: the top's defaults
+  c.sdft.acc_w = p.acc_w;
+  c.mag_shift = p.mag_shift;
+  c.inc = p.carrier_inc;
+  c.taxel.rows = uint8_t(p.spec.rows);
+  c.taxel.cols = uint8_t(p.spec.cols);
   c.taxel.mode = hls::TaxelMode::Conductance;
-  const double full = dec.window / 2.0 * skin.full_carrier_lsb();
-  int rs = 12;
-  while (rs > 0 && std::lround(std::ldexp(1.0, 15 + rs) / full) > 65535) --rs;
-  c.taxel.recip_shift = uint8_t(rs);
-  c.taxel.recip = uint16_t(std::min(65535L, std::lround(std::ldexp(1.0, 15 + rs) / full)));
-  c.neuron = hls::make_izhikevich_config(hls::izhikevich_fixed_preset(neuron.preset),
-                                         choice.step * 1000.0 / fs, neuron.input_scale / 32768.0,
-                                         1);
-  c.step = choice.step;
-  c.decim_amp = c.decim_tax = choice.decim;
-  c.mask = choice.mask;
+  c.taxel.recip_shift = 12;
+  c.taxel.recip = p.tax_recip;
+  c.neuron = step == p.step
+                 ? p.neuron
+                 : hls::make_izhikevich_config(
+                       hls::izhikevich_fixed_preset(p.spec.neuron_preset),
+                       step * 1000.0 / p.spec.sample_hz, p.spec.neuron_input_scale / 32768.0, 1);
+  c.step = step;
+  c.decim_amp = c.decim_tax = decim;
+  c.mask = mask;
   return c;
 }
 

@@ -1,17 +1,9 @@
-// Scene -> engine configuration: the FPGA build a scene gets (dtmf_top's
-// parameters), as the runtime EngineConfig of host/engine/dtmf_engine.h.
-// This is the one place that knows how the top is parameterised for a scene;
-// when the top changes, only this file and its table follow.
-//
-// Rules (rtl/dtmf_top.v, docs/fpga.md):
-//   codes      the skin's ADC codes left-aligned to the AD7476A's 12 bits
-//              (code << (12 - bits)); XW = 12 (code - 2048)
-//   sdft       N = decoder.window, CW 16, TW 10, FB 0, ACC_W = XW + 1 + ceil(log2 N)
-//   magnitude  MAG_W 16, MAG_SHIFT = 12 - bits (window sums in skin code units)
-//   taxels     conductance g (UQ1.15): recip = round(2^(15 + rs) / (N/2 *
-//              full_carrier_lsb)), rs = 12 (lowered while recip >= 2^16)
-//   neurons    hls::make_izhikevich_config(preset, step / fs in ms,
-//              input_scale / 32768, x_shift 1)
+// Scene -> engine configuration: the FPGA build a scene gets, as the
+// runtime EngineConfig of host/engine/dtmf_engine.h. Everything the top is
+// built with (sizes, widths, step, decimation, taxel and neuron constants)
+// comes from hls/dtmf_top_config.h's plan, the one place the RTL builds and
+// the HLS chain take theirs from; this file only copies it across, so the
+// engine follows the top when the plan changes.
 #pragma once
 
 #include <cstdint>
@@ -19,19 +11,23 @@
 
 #include "eskin/neuron_config.h"
 #include "eskin/skin_config.h"
+#include "hls/dtmf_top_config.h"
 #include "host/engine/dtmf_engine.h"
 
 namespace eskin::engine {
 
-struct EngineChoice {
-  int step = 1;             // samples per processing step
-  uint16_t decim = 35;      // packets (and spike windows) every decim steps
-  uint8_t mask = 7;         // amplitudes | taxels | spikes
-};
+// The top's plan for a skin decoded with `dec` and `neuron` (clk_hz: the
+// FPGA clock; spikes: whether the build runs the neuron layer's budget).
+hls::DtmfTopPlan top_plan(const SkinConfig& skin, const DecoderConfig& dec,
+                          const NeuronConfig& neuron, bool spikes, long clk_hz = 12000000);
 
-// Throws ConfigError / std::invalid_argument naming the field.
-EngineConfig engine_config(const SkinConfig& skin, const DecoderConfig& dec,
-                           const NeuronConfig& neuron, const EngineChoice& choice);
+// The engine running exactly that build. mask: amplitudes | taxels | spikes.
+EngineConfig engine_config(const hls::DtmfTopPlan& plan, uint8_t mask = 7);
+
+// The same with another step and packet decimation (neuron dt follows the
+// step); for trade studies and decoding at another frame rate.
+EngineConfig engine_config(const hls::DtmfTopPlan& plan, int step, uint16_t decim,
+                           uint8_t mask);
 
 // The skin's codes as the FPGA sees them (12-bit, left aligned).
 std::vector<uint16_t> codes12(const std::vector<int>& codes, int adc_bits);

@@ -20,7 +20,6 @@
 namespace {
 
 using eskin::engine::DtmfEngine;
-using eskin::engine::EngineChoice;
 using eskin::engine::EngineConfig;
 
 struct Pk {
@@ -30,6 +29,7 @@ struct Pk {
   bool operator==(const Pk& o) const { return type == o.type && t == o.t && payload == o.payload; }
 };
 
+// The chain configured like an engine config (for runs off the top's plan).
 template <class Chain>
 typename Chain::Config chain_config(const EngineConfig& e) {
   typename Chain::Config c;
@@ -45,9 +45,9 @@ typename Chain::Config chain_config(const EngineConfig& e) {
 }
 
 template <class Chain>
-std::vector<Pk> run_chain(const EngineConfig& e, const std::vector<uint16_t>& codes,
+std::vector<Pk> run_chain(const typename Chain::Config& cfg, const std::vector<uint16_t>& codes,
                           uint32_t* dropped = nullptr) {
-  auto chain = std::make_unique<Chain>(chain_config<Chain>(e));
+  auto chain = std::make_unique<Chain>(cfg);
   EXPECT_TRUE(chain->ok());
   auto out = std::make_unique<typename Chain::Packet[]>(3);
   auto& p3 = *reinterpret_cast<typename Chain::Packet(*)[3]>(out.get());
@@ -97,28 +97,41 @@ SceneRun load(const std::string& path) {
   return r;
 }
 
+eskin::hls::DtmfTopPlan plan_of(const eskin::sim::Scene& sc, long clk_hz = 12000000) {
+  return eskin::engine::top_plan(sc.skin, sc.decoder, sc.neuron, true, clk_hz);
+}
+
 template <class Chain>
-void check_scene(const SceneRun& s, const EngineChoice& choice, size_t min_spike_packets) {
-  const EngineConfig e =
-      eskin::engine::engine_config(s.scene.skin, s.scene.decoder, s.scene.neuron, choice);
-  const auto want = run_chain<Chain>(e, s.codes);
+void check_scene(const std::vector<uint16_t>& codes, const EngineConfig& e,
+                 const typename Chain::Config& chain_cfg, size_t min_spike_packets) {
+  const auto want = run_chain<Chain>(chain_cfg, codes);
   EXPECT_GE(count(want, eskin::hls::kDtmfAmplitudes), 10u);
   EXPECT_GE(count(want, eskin::hls::kDtmfTaxelsDense), 10u);
   EXPECT_GE(count(want, eskin::hls::kDtmfSpikes), min_spike_packets);
-  expect_same(want, run_engine(e, s.codes, 1, size_t(1) << 18), "1 thread");
-  expect_same(want, run_engine(e, s.codes, 2, 1000), "2 threads, 1000-step chunks");
-  expect_same(want, run_engine(e, s.codes, 3, 777), "3 threads, 777-step chunks");
-  expect_same(want, run_engine(e, s.codes, 8, 5000), "8 threads, 5000-step chunks");
+  expect_same(want, run_engine(e, codes, 1, size_t(1) << 18), "1 thread");
+  expect_same(want, run_engine(e, codes, 2, 1000), "2 threads, 1000-step chunks");
+  expect_same(want, run_engine(e, codes, 3, 777), "3 threads, 777-step chunks");
+  expect_same(want, run_engine(e, codes, 8, 5000), "8 threads, 5000-step chunks");
+}
+
+// The top's own build for the scene: engine from the plan, chain from the
+// plan's chain_config (hls/dtmf_top_config.h), two independent copies.
+template <class Chain>
+void check_plan(const SceneRun& s, size_t min_spike_packets) {
+  const auto plan = plan_of(s.scene);
+  check_scene<Chain>(s.codes, eskin::engine::engine_config(plan),
+                     eskin::hls::chain_config<Chain>(plan), min_spike_packets);
 }
 
 TEST(DtmfEngine, DefaultSceneEqualsChainPacketForPacket) {
   const auto s = load(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   ASSERT_EQ(s.codes.size(), 21000u);
-  check_scene<eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>>(s, {1, 35, 7}, 20);
+  ASSERT_EQ(plan_of(s.scene).step, 1);
+  check_plan<eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>>(s, 20);
 }
 
-// The 16x16 build of the top (tests/rtl/dtmf_top_test.cmake): N 128, step 16,
-// packets every 8 steps; scene with presses so neurons fire.
+// A 16x16 skin as the top builds it at 12 MHz (N 128, a step of several
+// samples, a frame buffer); presses so neurons fire.
 TEST(DtmfEngine, Skin16x16EqualsChain) {
   auto s = load(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   s.scene = eskin::sim::parse_scene(R"(
@@ -139,13 +152,18 @@ stimuli:
 )", "skin16 (dtmf_engine_test)");
   eskin::sim::WorldModel world(s.scene);
   s.codes = eskin::engine::codes12(world.all_codes(), 10);
-  check_scene<eskin::hls::DtmfChain<16, 16, 128, 12, 16, 10, 20>>(s, {16, 8, 7}, 5);
+  ASSERT_GT(plan_of(s.scene).step, 1);
+  check_plan<eskin::hls::DtmfChain<16, 16, 128, 12, 16, 10, 20>>(s, 5);
 }
 
-// 64 carriers, N 256, 12-bit ADC (MAG_SHIFT 0), steps of 8 samples.
+// 64 carriers, N 256, 12-bit ADC (MAG_SHIFT 0), steps of 8 samples (at
+// 12 MHz the top cannot take this skin: 1024 taxels need a step longer than
+// the neurons allow; the plan at 100 MHz supplies the constants).
 TEST(DtmfEngine, Skin32x32EqualsChain) {
+  using Chain = eskin::hls::DtmfChain<32, 32, 256, 12, 16, 10, 21, 16, 0>;
   const auto s = load(ESKIN_SOURCE_DIR "/scenes/skin32x32.yaml");
-  check_scene<eskin::hls::DtmfChain<32, 32, 256, 12, 16, 10, 21, 16, 0>>(s, {8, 4, 7}, 0);
+  const EngineConfig e = eskin::engine::engine_config(plan_of(s.scene, 100000000), 8, 4, 7);
+  check_scene<Chain>(s.codes, e, chain_config<Chain>(e), 0);
 }
 
 // A spike window holding more than MAX_SPIKES events: the same events are
@@ -153,19 +171,19 @@ TEST(DtmfEngine, Skin32x32EqualsChain) {
 // give the same packets as the chain too.
 TEST(DtmfEngine, SpikeOverflowAndMasks) {
   const auto s = load(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  EngineConfig e = eskin::engine::engine_config(s.scene.skin, s.scene.decoder, s.scene.neuron,
-                                                {1, 200, 7});
+  const auto plan = plan_of(s.scene);
+  EngineConfig e = eskin::engine::engine_config(plan, 1, 200, 7);
   e.max_spikes = 3;
   uint32_t d_chain = 0, d_eng = 0;
   using Small = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18, 16, 2, 16, 3>;
-  const auto want = run_chain<Small>(e, s.codes, &d_chain);
+  const auto want = run_chain<Small>(chain_config<Small>(e), s.codes, &d_chain);
   expect_same(want, run_engine(e, s.codes, 2, 999, &d_eng), "max_spikes 3");
   EXPECT_GT(d_chain, 0u) << "the scene must overflow a 3-event window";
   EXPECT_EQ(d_eng, d_chain);
   using Chain = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>;
   for (uint8_t mask : {uint8_t(1), uint8_t(2), uint8_t(4)}) {
-    e = eskin::engine::engine_config(s.scene.skin, s.scene.decoder, s.scene.neuron, {2, 7, mask});
-    expect_same(run_chain<Chain>(e, s.codes), run_engine(e, s.codes, 2, 1234),
+    e = eskin::engine::engine_config(plan, 2, 7, mask);
+    expect_same(run_chain<Chain>(chain_config<Chain>(e), s.codes), run_engine(e, s.codes, 2, 1234),
                 "mask " + std::to_string(mask));
   }
 }

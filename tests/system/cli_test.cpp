@@ -188,7 +188,8 @@ TEST(Cli, DecodeFpgaEngineIsTheEnginesPackets) {
   const Result r = sh("decode --skin " + kScene + " " + (d / "s.wav").string() +
                       " --engine fpga --hop 35 --spikes --no-ghost --threads 2");
   ASSERT_EQ(r.status, 0) << r.out;
-  const auto cfg = eskin::engine::engine_config(scene.skin, scene.decoder, scene.neuron, {1, 35, 7});
+  const auto cfg = eskin::engine::engine_config(
+      eskin::engine::top_plan(scene.skin, scene.decoder, scene.neuron, true), 1, 35, 7);
   const auto c12 = eskin::engine::codes12(codes, scene.skin.adc.bits);
   const auto ps = eskin::engine::DtmfEngine(cfg).run(c12.data(), c12.size());
   std::map<uint32_t, std::string> amp, spk;
