@@ -1,15 +1,19 @@
 // eskin bench: the benchmarks (docs/bench.md), one subcommand each.
+//   latency     cycle-exact stage latencies (Verilator) against the baseline
 //   throughput  samples/s of golden, the fast engine and FFTW, side by side
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "bench/suite/latency.h"
 #include "bench/suite/throughput.h"
 #include "cli/command.h"
+#include "eskin/skin_config.h"
 
 namespace eskin::cli {
 namespace {
@@ -43,9 +47,46 @@ int run_throughput(const ThroughputArgs& a) {
   return 0;
 }
 
+struct LatencyArgs {
+  bool update = false;
+  std::string baseline = ESKIN_SOURCE_DIR "/bench/baselines/latency.csv";
+  std::string cache = ESKIN_BUILD_DIR "/bench/latency";
+  std::vector<std::string> configs;
+};
+
+// Fails (exit 1) naming config, stage and cycles when a latency grew, or a
+// stage appeared or vanished; the baseline is rewritten only on request.
+int run_latency(const LatencyArgs& a) {
+  std::vector<bench::LatencyRun> runs;
+  for (const auto& c : bench::latency_configs())
+    if (a.configs.empty() || std::find(a.configs.begin(), a.configs.end(), c.name) != a.configs.end())
+      runs.push_back(bench::measure_latency(c, a.cache, std::cout));
+  if (runs.empty()) throw ConfigError("--config", "no reference build of that name");
+  std::cout << "\n" << bench::format_latency(runs, ESKIN_BUILD_DIR) << "\n";
+  if (a.update) {
+    bench::write_latency_baseline(a.baseline, runs);
+    std::cout << "baseline written: " << a.baseline << "\n";
+    return 0;
+  }
+  std::vector<std::string> notes;
+  const auto fail = bench::compare_latency(runs, bench::read_latency_baseline(a.baseline), notes);
+  for (const auto& n : notes) std::cout << "faster than the baseline: " << n << "\n";
+  for (const auto& f : fail) std::cout << "LATENCY REGRESSION: " << f << "\n";
+  std::cout << (fail.empty() ? "latency: no stage slower than " : "latency: FAILED against ")
+            << a.baseline << "\n";
+  return fail.empty() ? 0 : 1;
+}
+
 std::function<int()> setup(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: throughput (docs/bench.md)");
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: latency, throughput (docs/bench.md)");
   bench->require_subcommand(1);
+  auto l = std::make_shared<LatencyArgs>();
+  CLI::App* lat = bench->add_subcommand(
+      "latency", "cycle-exact stage latencies of the reference FPGA builds against the baseline");
+  lat->add_flag("--update-baseline", l->update, "write the measured latencies as the new baseline");
+  lat->add_option("--baseline", l->baseline, "baseline CSV (config,stage,cycles)");
+  lat->add_option("--cache", l->cache, "directory of the cached Verilator builds");
+  lat->add_option("--config", l->configs, "only these reference builds (3x3, 16x16)");
   auto t = std::make_shared<ThroughputArgs>();
   CLI::App* tp = bench->add_subcommand(
       "throughput", "samples/s and ns/sample of golden, the fast engine and FFTW, in one run");
@@ -56,6 +97,7 @@ std::function<int()> setup(CLI::App& app) {
   tp->add_option("--threads", t->threads, "threads for the threaded engine row")
       ->check(CLI::Range(1, 256));
   return [=]() -> int {
+    if (lat->parsed()) return run_latency(*l);
     if (tp->parsed()) return run_throughput(*t);
     return 1;
   };

@@ -21,6 +21,12 @@ namespace eskin::engine {
 hls::DtmfTopPlan top_plan(const SkinConfig& skin, const DecoderConfig& dec,
                           const NeuronConfig& neuron, bool spikes, long clk_hz = 12000000);
 
+// The plan with another processing step (samples) and packet decimation
+// (steps; 0: about one packet per ms, the plan's rule); the neuron constants
+// (dt = step / fs) follow as make_dtmf_top_plan derives them. Throws like
+// the plan.
+hls::DtmfTopPlan with_step(const hls::DtmfTopPlan& plan, int step, int decim = 0);
+
 // The engine running exactly that build. mask: amplitudes | taxels | spikes.
 EngineConfig engine_config(const hls::DtmfTopPlan& plan, uint8_t mask = 7);
 
