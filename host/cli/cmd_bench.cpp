@@ -1,9 +1,11 @@
 // eskin bench: the benchmarks (docs/bench.md), one subcommand each.
 //   latency     cycle-exact stage latencies (Verilator) against the baseline
 //   throughput  samples/s of golden, the fast engine and FFTW, side by side
+//   tradeoff    speed/accuracy/resources map (CSV + HTML with Pareto fronts)
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -11,7 +13,9 @@
 #include <vector>
 
 #include "bench/suite/latency.h"
+#include "bench/suite/timing.h"
 #include "bench/suite/throughput.h"
+#include "bench/suite/tradeoff_run.h"
 #include "cli/command.h"
 #include "eskin/skin_config.h"
 
@@ -77,8 +81,45 @@ int run_latency(const LatencyArgs& a) {
   return fail.empty() ? 0 : 1;
 }
 
+struct TradeArgs {
+  bench::TradeRunOptions o;
+  bool quick = false, synth = false, write_table = false;
+  std::string points;  // array task: points file
+  int run_point = -1;
+  std::string part;
+};
+
+int run_tradeoff(TradeArgs a) {
+  if (a.synth && a.o.synth_cache.empty()) a.o.synth_cache = ESKIN_BUILD_DIR "/bench/synth";
+  if (a.run_point >= 0) {  // one Slurm array task
+    if (a.points.empty() || a.part.empty())
+      throw ConfigError("--run-point", "needs --points FILE and --part FILE");
+    bench::run_tradeoff_task(a.points, a.run_point, a.part, a.o);
+    return 0;
+  }
+  const auto pts = bench::tradeoff_points(a.quick);
+  std::cout << fmt::format("tradeoff: {} points ({} sweep), {}\n", pts.size(),
+                           a.quick ? "quick" : "full",
+                           a.o.slurm ? "as a Slurm job array" : fmt::format("{} threads", a.o.threads));
+  const double t0 = bench::wall_seconds();
+  const auto rows = bench::run_tradeoff(pts, a.o);
+  int front = 0;
+  for (const auto& r : rows) front += r.pareto_latency;
+  std::cout << fmt::format("{} rows in {:.0f} s: {}/tradeoff.csv, {}/tradeoff.html ({} on the "
+                           "error-latency front)\n", rows.size(), bench::wall_seconds() - t0,
+                           a.o.out_dir, a.o.out_dir, front);
+  if (a.write_table) {
+    bench::SynthTable t = bench::read_synth_table(a.o.synth_table);
+    for (const auto& r : rows)
+      if (r.luts >= 0) t[bench::synth_key(r.p)] = {r.luts, r.dsp, r.bram};
+    bench::write_synth_table(a.o.synth_table, t);
+    std::cout << "synthesis table written: " << a.o.synth_table << "\n";
+  }
+  return 0;
+}
+
 std::function<int()> setup(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: latency, throughput (docs/bench.md)");
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: latency, throughput, tradeoff (docs/bench.md)");
   bench->require_subcommand(1);
   auto l = std::make_shared<LatencyArgs>();
   CLI::App* lat = bench->add_subcommand(
@@ -87,6 +128,26 @@ std::function<int()> setup(CLI::App& app) {
   lat->add_option("--baseline", l->baseline, "baseline CSV (config,stage,cycles)");
   lat->add_option("--cache", l->cache, "directory of the cached Verilator builds");
   lat->add_option("--config", l->configs, "only these reference builds (3x3, 16x16)");
+  auto d = std::make_shared<TradeArgs>();
+  d->o.out_dir = "tradeoff";
+  d->o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  d->o.synth_table = ESKIN_SOURCE_DIR "/bench/baselines/tradeoff_synth.csv";
+  d->o.eskin_bin = std::filesystem::canonical("/proc/self/exe").string();
+  CLI::App* tr = bench->add_subcommand(
+      "tradeoff", "speed/accuracy/resources sweep: CSV and HTML report with Pareto fronts");
+  tr->add_flag("--quick", d->quick, "the small sweep CI runs");
+  tr->add_option("--out", d->o.out_dir, "output directory (tradeoff.csv, tradeoff.html)");
+  tr->add_option("--threads", d->o.threads, "local worker threads")->check(CLI::Range(1, 256));
+  tr->add_flag("--slurm", d->o.slurm, "run the points as a Slurm job array (sbatch --array --wait)");
+  tr->add_option("--sbatch-args", d->o.sbatch_args, "extra sbatch arguments (e.g. -p PARTITION)");
+  tr->add_flag("--synth", d->synth, "run Yosys for builds not in the synthesis table (cached)");
+  tr->add_option("--synth-cache", d->o.synth_cache, "directory of cached Yosys runs");
+  tr->add_option("--synth-table", d->o.synth_table, "stored synthesis results (CSV)");
+  tr->add_flag("--write-synth-table", d->write_table,
+               "add this run's synthesis results to --synth-table");
+  tr->add_option("--run-point", d->run_point, "(Slurm array task) evaluate point INDEX only");
+  tr->add_option("--points", d->points, "(Slurm array task) the points file");
+  tr->add_option("--part", d->part, "(Slurm array task) where to write the row");
   auto t = std::make_shared<ThroughputArgs>();
   CLI::App* tp = bench->add_subcommand(
       "throughput", "samples/s and ns/sample of golden, the fast engine and FFTW, in one run");
@@ -99,6 +160,7 @@ std::function<int()> setup(CLI::App& app) {
   return [=]() -> int {
     if (lat->parsed()) return run_latency(*l);
     if (tp->parsed()) return run_throughput(*t);
+    if (tr->parsed()) return run_tradeoff(*d);
     return 1;
   };
 }
