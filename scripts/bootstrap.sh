@@ -12,6 +12,8 @@ pkgs=(
   # virtual board and `eskin simulate` (docs/vboard.md): JSON status lines,
   # Chart.js inlined into the report, GTKWave (and fst2vcd) for --trace
   nlohmann-json3-dev libjs-chart.js gtkwave
+  # eskin bench tradeoff --slurm and its test's one-node cluster (docs/bench.md)
+  slurmctld slurmd slurm-client munge
 )
 missing=()
 for p in "${pkgs[@]}"; do

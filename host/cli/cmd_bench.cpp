@@ -2,6 +2,8 @@
 //   latency     cycle-exact stage latencies (Verilator) against the baseline
 //   throughput  samples/s of golden, the fast engine and FFTW, side by side
 //   tradeoff    speed/accuracy/resources map (CSV + HTML with Pareto fronts)
+//   stability   10^9-sample exact-DFT run, naive/damped drift, neuron extremes
+//   scale       golden and engine from 3x3 to 256x256 skins
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -13,6 +15,8 @@
 #include <vector>
 
 #include "bench/suite/latency.h"
+#include "bench/suite/scale.h"
+#include "bench/suite/stability.h"
 #include "bench/suite/timing.h"
 #include "bench/suite/throughput.h"
 #include "bench/suite/tradeoff_run.h"
@@ -118,8 +122,27 @@ int run_tradeoff(TradeArgs a) {
   return 0;
 }
 
+struct StabilityArgs {
+  double samples = 1e9, neuron_steps = 1e7;
+  int checkpoints = 40;
+  std::string out = "stability.html";
+};
+
+int run_stability(const StabilityArgs& a) {
+  const auto r = bench::run_stability(uint64_t(a.samples), uint64_t(a.neuron_steps), a.checkpoints);
+  std::cout << bench::format_stability(r);
+  bench::write_stability_report(a.out, r);
+  std::cout << "report: " << a.out << "\n";
+  bool ok = r.recovered;
+  for (const auto& d : r.drift) ok = ok && d.exact_lsb == 0;
+  for (const auto& e : r.neurons)
+    ok = ok && e.in_range && e.note.find("MISSED") == std::string::npos &&
+         e.note.find("NOT") == std::string::npos && e.note.find("FIRES") == std::string::npos;
+  return ok ? 0 : 1;
+}
+
 std::function<int()> setup(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: latency, throughput, tradeoff (docs/bench.md)");
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: latency, throughput, tradeoff, stability, scale (docs/bench.md)");
   bench->require_subcommand(1);
   auto l = std::make_shared<LatencyArgs>();
   CLI::App* lat = bench->add_subcommand(
@@ -148,6 +171,22 @@ std::function<int()> setup(CLI::App& app) {
   tr->add_option("--run-point", d->run_point, "(Slurm array task) evaluate point INDEX only");
   tr->add_option("--points", d->points, "(Slurm array task) the points file");
   tr->add_option("--part", d->part, "(Slurm array task) where to write the row");
+  auto st = std::make_shared<StabilityArgs>();
+  CLI::App* stab = bench->add_subcommand(
+      "stability", "exact sliding DFT over 10^9 worst-case samples, naive/damped drift, neurons "
+                   "at their range edges (exit 1 on any mismatch)");
+  stab->add_option("--samples", st->samples, "DFT samples (default 1e9)")->check(CLI::Range(64.0, 1e13));
+  stab->add_option("--neuron-steps", st->neuron_steps, "steps per extreme-input phase")
+      ->check(CLI::Range(1.0, 1e12));
+  stab->add_option("--checkpoints", st->checkpoints, "comparisons, spaced geometrically")
+      ->check(CLI::Range(1, 10000));
+  stab->add_option("--out", st->out, "HTML report");
+  auto sc = std::make_shared<std::pair<int, double>>(256, 0.5);
+  CLI::App* scale = bench->add_subcommand(
+      "scale", "golden and the fast engine on 3x3 .. 256x256 skins: samples/s per core, memory");
+  scale->add_option("--max-side", sc->first, "largest skin side")->check(CLI::Range(3, 256));
+  scale->add_option("--min-seconds", sc->second, "measure each row for at least this long")
+      ->check(CLI::PositiveNumber);
   auto t = std::make_shared<ThroughputArgs>();
   CLI::App* tp = bench->add_subcommand(
       "throughput", "samples/s and ns/sample of golden, the fast engine and FFTW, in one run");
@@ -161,6 +200,11 @@ std::function<int()> setup(CLI::App& app) {
     if (lat->parsed()) return run_latency(*l);
     if (tp->parsed()) return run_throughput(*t);
     if (tr->parsed()) return run_tradeoff(*d);
+    if (stab->parsed()) return run_stability(*st);
+    if (scale->parsed()) {
+      std::cout << bench::format_scale(bench::run_scale(sc->first, sc->second));
+      return 0;
+    }
     return 1;
   };
 }
