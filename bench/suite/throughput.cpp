@@ -129,7 +129,8 @@ ThroughputResult measure_throughput(const std::string& scene_path, double min_s,
 
   golden::GoldenOptions opt;
   opt.spikes = true;
-  add("golden-decoder", timed(codes.size(), min_s, [&] {
+  const DftVariant used = golden::resolve_variant(dec.variant, freqs, fs, dec);
+  add(std::string("golden-decoder-") + to_string(used), timed(codes.size(), min_s, [&] {
         golden::GoldenDecoder d(scene.skin, dec, scene.neuron, opt);
         double frames = 0;
         for (int c : codes) frames += d.push(c);

@@ -16,6 +16,7 @@
 #include "cli/csv_fields.h"
 #include "cli/decode_fpga.h"
 #include "host/golden/golden_decoder.h"
+#include "host/golden/sdft_bank.h"
 #include "sim/scene.h"
 
 namespace eskin::cli {
@@ -113,7 +114,6 @@ int run_decode(const DecodeArgs& a) {
   }
   validate(skin);
   validate(dec, skin);
-
   const int shift = 16 - skin.adc.bits;
   const int half = 1 << (skin.adc.bits - 1);
   if (a.engine == "fpga") {
@@ -123,6 +123,8 @@ int run_decode(const DecodeArgs& a) {
     return decode_fpga(skin, dec, neuron, codes,
                        {a.taxels || a.spikes, a.spikes, !a.no_ghost, a.threads, a.hop});
   }
+  dec.variant = golden::resolve_variant(dec.variant, skin.carrier_freqs_hz(), skin.adc.rate_hz, dec);
+
   if (a.threads != 1) throw ConfigError("--threads", "only --engine fpga runs on several threads");
   golden::GoldenOptions opt;
   opt.taxels = a.taxels || a.spikes;
@@ -164,7 +166,8 @@ std::function<int()> setup(CLI::App& app) {
   sub->add_option("input", a->wav, "WAV file: mono, 16-bit PCM, the skin's ADC rate")
       ->required()
       ->check(CLI::ExistingFile);
-  sub->add_option("--variant", a->variant, "direct|recursive|damped|exact|ls");
+  sub->add_option("--variant", a->variant,
+                  "auto (default: the most accurate for the skin)|direct|recursive|damped|exact|ls");
   sub->add_option("--window", a->window, "samples in the sliding window");
   sub->add_option("--hop", a->hop, "emit a frame every HOP samples");
   sub->add_flag("--taxels", a->taxels, "add calibrated, ghost-corrected taxel pressures");

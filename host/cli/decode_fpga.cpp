@@ -13,9 +13,9 @@ namespace eskin::cli {
 
 int decode_fpga(const SkinConfig& skin, const DecoderConfig& dec, const NeuronConfig& neuron,
                 const std::vector<int>& codes, const FpgaDecodeOptions& opt) {
-  if (dec.variant != DftVariant::Exact)
-    throw ConfigError("--variant", std::string("the fpga engine runs the exact sliding DFT only, got ") +
-                                       to_string(dec.variant));
+  if (dec.variant != DftVariant::Exact && dec.variant != DftVariant::Auto)
+    throw ConfigError("--variant", std::string("the fpga engine runs the exact sliding DFT only "
+                                               "(auto or exact), got ") + to_string(dec.variant));
   if (dec.hann) throw ConfigError("decoder.hann", "the fpga engine has a rectangular window only");
   if (opt.taxels && opt.ghost_correct)
     throw ConfigError("--no-ghost", "the fpga engine has no ghost filter (yet): pass --no-ghost "
