@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "bench/suite/text_file.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -49,12 +51,7 @@ const std::vector<Board>& boards() {
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string slurp(const fs::path& p) { return eskin::bench::read_text(p.string()); }
 
 uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
   for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
@@ -172,6 +169,12 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
                                          "dropped frames {}): its step does not hold the frame",
                                          c.name, run.overruns, run.dropped));
   return run;
+}
+
+int64_t model_cycles_to_last_neuron(const hls::DtmfTopPlan& p) {
+  const int64_t mag_in0 = p.token_fifo ? 8 + 3 : 8;
+  const int64_t mg_last = mag_in0 + 26 * int64_t(p.K - 1) + 25;
+  return mg_last + 1 + 18 * int64_t(p.T) + 11;
 }
 
 std::vector<std::pair<std::string, StageLatency>> read_latency_baseline(const std::string& path) {

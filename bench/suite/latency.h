@@ -59,6 +59,14 @@ std::vector<std::string> compare_latency(const std::vector<LatencyRun>& runs,
                                          const std::vector<std::pair<std::string, StageLatency>>& base,
                                          std::vector<std::string>& notes);
 
+// The cycle model of a build (docs/fpga.md schedule): cycles from the ADC's
+// last data edge to the step's last neuron update. DFT token 0 at 8;
+// magnitudes every 26 cycles (token 0 at 8 + 3 behind a frame buffer),
+// each 25 cycles after its input; taxels 18 cycles each from 1 cycle after
+// the last magnitude; a neuron 11 cycles after its taxel. The trade study
+// uses it; `eskin bench latency` checks it against Verilator.
+int64_t model_cycles_to_last_neuron(const hls::DtmfTopPlan& plan);
+
 // A board the top is built for, and its synthesised Fmax if a report exists.
 struct Board {
   std::string name;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "bench/suite/text_file.h"
+
 #include <atomic>
 #include <filesystem>
 #include <fstream>
@@ -14,12 +16,7 @@ namespace fs = std::filesystem;
 namespace eskin::bench {
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string slurp(const fs::path& p) { return eskin::bench::read_text(p.string()); }
 
 std::vector<TradeRow> run_local(const std::vector<TradePoint>& pts, const TradeRunOptions& o) {
   const SynthTable table = read_synth_table(o.synth_table);

@@ -71,6 +71,18 @@ int run_latency(const LatencyArgs& a) {
       runs.push_back(bench::measure_latency(c, a.cache, std::cout));
   if (runs.empty()) throw ConfigError("--config", "no reference build of that name");
   std::cout << "\n" << bench::format_latency(runs, ESKIN_BUILD_DIR) << "\n";
+  // The trade study's cycle model must match what Verilator measured.
+  bool model_ok = true;
+  for (const auto& r : runs) {
+    int64_t measured = -1;
+    for (const auto& s : r.stages)
+      if (s.stage == "izhikevich_layer.last") measured = s.cycles;
+    const int64_t model = bench::model_cycles_to_last_neuron(r.plan);
+    model_ok = model_ok && model == measured;
+    std::cout << fmt::format("cycle model {}: {} cycles to the last neuron, measured {} ({})\n",
+                             r.config.name, model, measured, model == measured ? "agrees" : "DISAGREES");
+  }
+  if (!model_ok) return 1;
   if (a.update) {
     bench::write_latency_baseline(a.baseline, runs);
     std::cout << "baseline written: " << a.baseline << "\n";

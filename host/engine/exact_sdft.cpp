@@ -1,8 +1,11 @@
 #include "host/engine/exact_sdft.h"
 
+#include <array>
 #include <cmath>
+#include <utility>
 #include <stdexcept>
 
+#include "hls/carrier_magnitude.h"
 #include "hls/sdft_bank.h"
 
 namespace eskin::engine {
@@ -135,20 +138,14 @@ size_t run_block(const Arrays& a, const MagCtx& m, const int32_t* x, size_t n, s
   return sets;
 }
 
-// carrier_magnitude's digit-by-digit root (any width; the slow exact path).
-uint32_t isqrt_steps(uint64_t q, int nb) {
-  uint64_t rem = 0, root = 0;
-  for (int i = nb - 1; i >= 0; --i) {
-    rem = (rem << 2) | ((q >> (2 * i)) & 3u);
-    const uint64_t trial = (root << 2) | 1u;
-    root <<= 1;
-    if (rem >= trial) {
-      rem -= trial;
-      root |= 1u;
-    }
-  }
-  return uint32_t(root);
+// carrier_magnitude's own digit-by-digit root (hls/carrier_magnitude.h),
+// one instance per MAG_W = 1..16 (it depends on MAG_W only).
+template <int... W>
+constexpr std::array<uint32_t (*)(uint64_t), sizeof...(W) + 1> isqrt_table(
+    std::integer_sequence<int, W...>) {
+  return {nullptr, &hls::CarrierMagnitude<32, W + 1, 0>::isqrt_steps...};
 }
+constexpr auto kIsqrt = isqrt_table(std::make_integer_sequence<int, 16>{});
 
 }  // namespace
 
@@ -268,7 +265,7 @@ uint32_t magnitude_exact(int32_t re, int32_t im, const MagnitudeWidths& mw) {
     q = p >> (2 * mw.shift - 2);
   }
   if (q >= (uint64_t(1) << (2 * nb))) return uint32_t(mag_max);
-  const uint64_t mag = (uint64_t(isqrt_steps(q, nb)) + 1u) >> 1;
+  const uint64_t mag = (uint64_t(kIsqrt[size_t(mw.mag_w)](q)) + 1u) >> 1;
   return uint32_t(mag > mag_max ? mag_max : mag);
 }
 

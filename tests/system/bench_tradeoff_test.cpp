@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/suite/text_file.h"
 #include "cli_run.h"
 #include "hls/sdft_bank_config.h"
 
@@ -24,12 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string slurp(const fs::path& p) { return eskin::bench::read_text(p.string()); }
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("eskin_" + name + "_" + std::to_string(::getpid()));
