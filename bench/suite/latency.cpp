@@ -44,7 +44,8 @@ const std::vector<Board>& boards() {
       {"iCEBreaker (iCE40 UP5K)", 12.0,
        {"synth/dtmf_top_pnr/report.json", "synth/board_icebreaker/report.json"}},
       {"ULX3S (ECP5-85F)", 30.0,
-       {"synth/board_ulx3s/report.json", "synth/dtmf_top_ecp5/report.json"}},
+       {"synth/board_ulx3s_ecp5/report.json", "synth/board_ulx3s/report.json",
+        "synth/dtmf_top_ecp5/report.json"}},
   };
   return b;
 }
