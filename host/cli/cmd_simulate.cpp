@@ -20,6 +20,7 @@
 #include "cli/csv_fields.h"
 #include "host/golden/decode_score.h"
 #include "host/golden/golden_decoder.h"
+#include "host/golden/sdft_bank.h"
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
 #include "host/report/simulate_report.h"
@@ -361,9 +362,12 @@ int run_simulate(const Args& a) {
       {"FPGA vs golden (no ghost correction): taxel max / RMS difference (kPa)",
        fmt::format("{:.3f} / {:.3f}", kpa_err, kpa_n ? std::sqrt(kpa_sq / double(kpa_n)) : 0.0)},
       {"latency onset -> first FPGA frame on the host, median (us)", fmt::format("{:.1f}", lat_med)}};
+  const DftVariant golden_variant = golden::resolve_variant(
+      scene.decoder.variant, skin.carrier_freqs_hz(), fs, scene.decoder);
   rep.summary = fmt::format(
-      "{}x{} skin, {} carriers, {} samples at {} Hz; FPGA build {} at {:.0f} MHz, UART {:.0f} baud.",
-      R, C, K, total, fs, build.key, build.clk_hz() / 1e6, build.baud());
+      "{}x{} skin, {} carriers, {} samples at {} Hz; FPGA build {} at {:.0f} MHz, UART {:.0f} "
+      "baud (exact sliding DFT, no ghost filter); golden model: variant {}, ghost-corrected.",
+      R, C, K, total, fs, build.key, build.clk_hz() / 1e6, build.baud(), to_string(golden_variant));
   const std::string html = (std::filesystem::path(a.out) / "report.html").string();
   report::write_simulate_report(rep, html);
   {
