@@ -81,6 +81,7 @@ TEST(BenchTradeoff, QuickSweepWritesTheMapAndItsFiguresHold) {
   const double bin = std::stod(rows.at("golden-exact,32,16,10,0,bin,off,1,35")[18]);
   EXPECT_LT(ls, exact / 5) << "cross-talk removal must cut the thesis carriers' error";
   EXPECT_LT(bin, exact / 5) << "bin-centred carriers must not leak";
+  fs::remove_all(out);
 }
 
 // A one-node Slurm cluster in a temporary directory; stopped by its pids.
@@ -122,12 +123,20 @@ class SlurmCluster {
       std::this_thread::sleep_for(std::chrono::milliseconds(500));
     ok_ = ok_ && idle();
   }
+  // Stops the daemons it started (by their pid files): SIGTERM, up to 10 s
+  // to exit, then SIGKILL; then removes the directory.
   ~SlurmCluster() {
     for (const char* pid : {"slurmd.pid", "slurmctld.pid", "munged.pid"}) {
       std::ifstream f(dir_ / pid);
       long p = 0;
-      if (f >> p && p > 1) ::kill(pid_t(p), SIGTERM);
+      if (!(f >> p) || p <= 1) continue;
+      ::kill(pid_t(p), SIGTERM);
+      for (int i = 0; i < 100 && ::kill(pid_t(p), 0) == 0; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (::kill(pid_t(p), 0) == 0) ::kill(pid_t(p), SIGKILL);
     }
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
   }
   bool ok() const { return ok_; }
   const std::string& conf() const { return conf_; }
@@ -163,6 +172,8 @@ TEST(BenchTradeoff, SlurmJobArrayEqualsTheLocalRun) {
   size_t parts = 0;
   for (const auto& e : fs::directory_iterator(remote / "parts")) parts += e.path().extension() == ".csv";
   EXPECT_EQ(parts, rows_by_point(want).size());
+  fs::remove_all(local);
+  fs::remove_all(remote);
 }
 
 }  // namespace
