@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numeric>
+#include <set>
 #include <ostream>
 #include <regex>
 #include <sstream>
@@ -16,7 +18,9 @@
 #include <unistd.h>
 #include <stdexcept>
 
+#include "bench/suite/engine_model.h"
 #include "bench/suite/timing.h"
+#include "hls/dtmf_ucode.h"
 #include "host/engine/engine_setup.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
@@ -28,26 +32,13 @@ namespace eskin::bench {
 
 const std::vector<LatencyConfig>& latency_configs() {
   static const std::vector<LatencyConfig> c = {
-      {"3x3", "scenes/neuroskin2.yaml", 12000000},
-      // Step 16 and packets every 8 steps, as tests/rtl/dtmf_top_test.cmake
-      // builds it. The plan's own step (14) overruns the ADC: a frame's
-      // magnitudes (32 x 26 cycles) and taxels (256 x 18) run one after the
-      // other. Its decimation (2 steps) drops frames: 578 bytes of packets
-      // every 0.9 ms is more than 3 Mbaud carries.
-      {"16x16", "bench/latency/skin16x16.yaml", 12000000, 16, 8},
+      // The UP5K build (iCEBreaker: 12 MHz x 3/2 by the PLL).
+      {"3x3", "scenes/neuroskin2.yaml", hls::kDtmfTopClkHz},
+      // 100 taxels, two neuron layers each: as tests/rtl/dtmf_top_test.cmake
+      // builds it (the engine needs ~80 000 clocks per 1 ms frame).
+      {"10x10", "scenes/staggered10x10.yaml", 96000000},
   };
   return c;
-}
-
-const std::vector<Board>& boards() {
-  static const std::vector<Board> b = {
-      {"iCEBreaker (iCE40 UP5K)", 12.0,
-       {"synth/dtmf_top_pnr/report.json", "synth/board_icebreaker/report.json"}},
-      {"ULX3S (ECP5-85F)", 30.0,
-       {"synth/board_ulx3s_ecp5/report.json", "synth/board_ulx3s/report.json",
-        "synth/dtmf_top_ecp5/report.json"}},
-  };
-  return b;
 }
 
 namespace {
@@ -78,6 +69,10 @@ void run_logged(const std::string& cmd, const fs::path& log_file) {
 // The harness for one parameter set: cached under cache_dir/<hash>.
 fs::path harness_for(const std::vector<hls::VerilogParam>& params, const fs::path& cache_dir,
                      double& build_seconds) {
+  // The microcode and constants the model reads at construction.
+  std::vector<fs::path> hex;
+  for (const auto& q : params)
+    if (q.name == "UCODE_HEX" || q.name == "KROM_HEX") hex.push_back(q.value.substr(1, q.value.size() - 2));
   const fs::path src = ESKIN_SOURCE_DIR;
   const fs::path harness = src / "bench/latency/latency_harness.cpp";
   uint64_t h = fnv1a(slurp(harness));
@@ -85,10 +80,13 @@ fs::path harness_for(const std::vector<hls::VerilogParam>& params, const fs::pat
   for (const auto& e : fs::directory_iterator(src / "rtl"))
     if (e.path().extension() == ".v") deps.push_back(e.path());
   std::sort(deps.begin(), deps.end());
-  for (const char* f : {"tests/rtl/dtmf_top_board.h", "sim/ad7476_model.h"}) deps.push_back(src / f);
+  for (const char* f : {"tests/rtl/dtmf_top_board.h", "sim/ad7476_model.h", "host/link/link_decoder.h",
+                        "host/link/link_encoder.h"})
+    deps.push_back(src / f);
   deps.push_back(ESKIN_LINK_LIB);
   deps.push_back(ESKIN_COMMON_LIB);
   for (const auto& d : deps) h = fnv1a(d.filename().string() + slurp(d), h);
+  for (const auto& d : hex) h = fnv1a(slurp(d), h);
   std::string args;
   for (const auto& a : hls::verilator_g_args(params)) {
     h = fnv1a(a, h);
@@ -127,21 +125,25 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
   run.config = c;
   const sim::Scene scene = sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/" + c.scene);
   run.plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, c.clk_hz));
-  if (c.step > 0 || c.decim > 0)
-    run.plan = engine::with_step(run.plan, c.step > 0 ? c.step : run.plan.step, c.decim);
   const auto& p = run.plan;
-  // The frame of the first packet step after two windows: DFT settled, the
-  // link idle (earlier packets long sent), no press yet.
-  const uint32_t period = uint32_t(p.step) * p.decim;
-  run.sample = (2 * uint32_t(p.N) + 64 + period - 1) / period * period;
-  const size_t run_to = run.sample + 4 * size_t(period) + 64;
+  // The first frame that sends every stream (frame count a multiple of
+  // both decimations) after two windows: DFT settled, the link idle
+  // (earlier packets long sent).
+  const uint32_t every = uint32_t(std::lcm(int(p.decim_amp), int(p.decim_tax)));
+  const uint32_t f_min = (2 * uint32_t(p.N) + 64 + uint32_t(p.step) - 1) / uint32_t(p.step);
+  const uint32_t frame = (f_min + every - 1) / every * every;
+  run.sample = uint32_t(p.N - 1) + frame * uint32_t(p.step);
+  const size_t run_to = run.sample + 2 * size_t(every) * size_t(p.step) + 64;
   sim::WorldModel world(scene);
   auto codes = engine::codes12(world.all_codes(), scene.skin.adc.bits);
   if (codes.size() <= run_to) codes.resize(run_to + 1, 2048);
 
-  log << fmt::format("latency {}: {} (K {}, T {}, N {}, step {}, decim {}) at {} MHz\n", c.name,
-                     c.scene, p.K, p.T, p.N, p.step, p.decim, c.clk_hz / 1e6);
-  const fs::path exe = harness_for(hls::dtmf_top_params(p), cache_dir, run.build_seconds);
+  log << fmt::format("latency {}: {} (K {}, T {}, N {}, step {}, decim {}/{}) at {} MHz\n", c.name,
+                     c.scene, p.K, p.T, p.N, p.step, p.decim_amp, p.decim_tax, c.clk_hz / 1e6);
+  const fs::path hex_dir = fs::path(cache_dir) / "ucode";
+  fs::create_directories(hex_dir);
+  const auto params = hls::write_dtmf_top_build(p, fs::absolute(hex_dir).string(), c.name);
+  const fs::path exe = harness_for(params, cache_dir, run.build_seconds);
   if (run.build_seconds > 0) log << fmt::format("  built {} in {:.0f} s\n", exe.string(), run.build_seconds);
   const std::string stem = fmt::format("{}.{}", c.name, ::getpid());  // concurrent runs
   const fs::path codes_file = exe.parent_path().parent_path() / (stem + ".u16");
@@ -150,32 +152,43 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
     for (uint16_t v : codes) f.put(char(v & 0xFF)).put(char(v >> 8));
   }
   const fs::path out = exe.parent_path().parent_path() / (stem + ".out");
-  run_logged(fmt::format("{} {} {} {}", quote(exe.string()), quote(codes_file.string()),
-                         run.sample, run_to), out);
+  const long cpb = std::lround(double(c.clk_hz) / double(p.spec.baud));
+  run_logged(fmt::format("{} {} {} {} {} {}", quote(exe.string()), quote(codes_file.string()),
+                         run.sample, run_to, c.clk_hz, cpb), out);
   std::istringstream lines(slurp(out));
   fs::remove(codes_file);
   fs::remove(out);
   std::string name;
   int64_t v;
+  std::map<std::string, int64_t> counters;
+  const std::set<std::string> counter_names = {
+      "engine_clocks", "engine_first_byte_clocks", "packets",     "adc_overruns",
+      "frame_overruns", "dropped_frames",          "out_overflows", "link_errors"};
   while (lines >> name >> v) {
-    if (name == "overruns") run.overruns = int(v);
-    else if (name == "dropped") run.dropped = int(v);
+    if (counter_names.count(name)) counters[name] = v;
     else run.stages.push_back({name, v});
   }
   int64_t end = 0;
   for (const auto& s : run.stages) end = std::max(end, s.cycles);
   run.stages.push_back({"end_to_end", end});
-  if (run.overruns || run.dropped)
-    throw std::runtime_error(fmt::format("latency {}: the build loses data (adc overruns {}, "
-                                         "dropped frames {}): its step does not hold the frame",
-                                         c.name, run.overruns, run.dropped));
+  for (const char* k : {"adc_overruns", "frame_overruns", "dropped_frames", "out_overflows", "link_errors"})
+    if (counters[k] != 0)
+      throw std::runtime_error(fmt::format("latency {}: the build loses data ({} = {}): the "
+                                           "engine or the link does not keep up", c.name, k,
+                                           counters[k]));
+  if (counters["packets"] < 1)
+    throw std::runtime_error(fmt::format("latency {}: no packet of frame {} on the wire", c.name,
+                                         run.sample));
+  run.engine_clocks = counters["engine_clocks"];
+  run.engine_first_byte = counters["engine_first_byte_clocks"];
+  // The same frame in the frame engine's instruction-set model.
+  EngineCycleModel model(p, std::lround(p.spec.sample_hz > 0 ? c.clk_hz / p.spec.sample_hz : 1));
+  for (size_t i = 0; i <= run.sample; ++i) model.sample(codes[i]);
+  for (size_t i = run.sample + 1; i < codes.size() && i <= run.sample + size_t(p.step); ++i)
+    model.sample(codes[i]);  // time to finish the frame
+  for (const auto& f : model.frames())
+    if (f.t == run.sample) run.model_clocks = f.done, run.model_first_byte = f.first_out;
   return run;
-}
-
-int64_t model_cycles_to_last_neuron(const hls::DtmfTopPlan& p) {
-  const int64_t mag_in0 = p.token_fifo ? 8 + 3 : 8;
-  const int64_t mg_last = mag_in0 + 26 * int64_t(p.K - 1) + 25;
-  return mg_last + 1 + 18 * int64_t(p.T) + 11;
 }
 
 std::vector<std::pair<std::string, StageLatency>> read_latency_baseline(const std::string& path) {
@@ -234,19 +247,8 @@ std::vector<std::string> compare_latency(
   return fail;
 }
 
-double report_fmax_mhz(const std::string& path) {
-  const std::string s = slurp(path);
-  double best = 0;
-  const std::regex re("\"achieved\"\\s*:\\s*([0-9.eE+-]+)");
-  for (auto it = std::sregex_iterator(s.begin(), s.end(), re); it != std::sregex_iterator(); ++it) {
-    const double v = std::stod((*it)[1]);
-    best = best == 0 ? v : std::min(best, v);
-  }
-  return best;
-}
-
-std::string format_latency(const std::vector<LatencyRun>& runs, const std::string& build_dir) {
-  std::string s = "Latency in cycles from the 16th SCLK falling edge of the measured sample\n";
+std::string format_latency(const std::vector<LatencyRun>& runs) {
+  std::string s = "Latency in cycles from the 16th SCLK falling edge of the frame's newest sample\n";
   s += fmt::format("{:<26}", "stage");
   for (const auto& r : runs) s += fmt::format(" {:>10}", r.config.name);
   s += "\n";
@@ -264,33 +266,17 @@ std::string format_latency(const std::vector<LatencyRun>& runs, const std::strin
     for (const auto& r : runs) s += fmt::format(" {:>10}", cycles(r, stage));
     s += "\n";
   }
-  s += "\nEnd to end in microseconds (cycles / clock):\n";
-  for (const auto& b : boards()) {
-    double f = 0;
-    std::string from;
-    for (const auto& rep : b.reports) {
-      const std::string path = build_dir + "/" + rep;
-      if (fs::exists(path) && (f = report_fmax_mhz(path)) > 0) {
-        from = "synthesised Fmax from " + path;
-        break;
-      }
-    }
-    if (f <= 0) {
-      f = b.nominal_mhz;
-      from = "nominal clock (no place-and-route report found)";
-    }
-    s += fmt::format("  {} at {:.2f} MHz, {}:", b.name, f, from);
-    for (const auto& r : runs)
-      s += fmt::format("  {} {:.2f} us", r.config.name, double(cycles(r, "end_to_end")) / f);
-    s += "\n";
-  }
-  s += "  The core stages (sdft_bank .. izhikevich_layer) are the same cycles at any clock; the\n"
-       "  ADC and UART stages are paced by CLK_HZ-derived dividers, exact at the build clock.\n";
+  s += "\nEnd to end at the build clock (the ADC and UART dividers are derived from CLK_HZ, so\n"
+       "the cycles hold at that clock only):\n";
   for (const auto& r : runs)
-    s += fmt::format("Anchors ({}): one ADC sample period {:.1f} us at {:.0f} S/s; the thesis's "
-                     "1 ms window; this build's window N/fs = {:.3f} ms, step {} samples\n",
-                     r.config.name, 1e6 / r.plan.spec.sample_hz, r.plan.spec.sample_hz,
-                     1e3 * r.plan.N / r.plan.spec.sample_hz, r.plan.step);
+    s += fmt::format("  {}: {} cycles = {:.2f} us at {:g} MHz; one ADC sample period {:.1f} us at "
+                     "{:.0f} S/s; the thesis's 1 ms window; this build's window N/fs = {:.3f} ms, "
+                     "a frame every {} samples ({:.3f} ms)\n",
+                     r.config.name, cycles(r, "end_to_end"),
+                     double(cycles(r, "end_to_end")) / (r.config.clk_hz / 1e6), r.config.clk_hz / 1e6,
+                     1e6 / r.plan.spec.sample_hz, r.plan.spec.sample_hz,
+                     1e3 * r.plan.N / r.plan.spec.sample_hz, r.plan.step,
+                     1e3 * r.plan.step / r.plan.spec.sample_hz);
   return s;
 }
 

@@ -3,11 +3,19 @@
 // compared with the baseline in the repository (bench/baselines/latency.csv).
 //
 // Each build is the top as hls/dtmf_top_config.h plans it for a reference
-// scene; its parameters (dtmf_top_params) go to Verilator as -G arguments,
-// and bench/latency/latency_harness.cpp (the tests/rtl/dtmf_top_board.h
-// bench: AD7476A pin model, UART line decoder, p_* probes) is compiled
-// against it. Builds are cached by a hash of the parameters and the sources
-// under build/bench/latency/.
+// scene and clock; hls::write_dtmf_top_build writes its microcode and
+// constants and returns its parameters, which go to Verilator as -G
+// arguments, and bench/latency/latency_harness.cpp (the
+// tests/rtl/dtmf_top_board.h bench: AD7476A pin model, UART line decoder,
+// p_* probes) is compiled against it. Builds are cached by a hash of the
+// parameters, the hex files and the sources under build/bench/latency/.
+//
+// Stages of one frame, cycles from the ADC's last data edge of its newest
+// sample: the sample into sdft_bank, its last DFT token, the frame handed
+// to the frame engine, the engine's first output byte, the frame released,
+// the first start bit of its packets on the UART, the stop bit of their
+// last byte (end to end). The engine's part is checked against the frame
+// engine's instruction-set model (bench/suite/engine_model.h).
 #pragma once
 
 #include <cstdint>
@@ -21,11 +29,9 @@ namespace eskin::bench {
 
 // One reference build: a scene and the FPGA clock it is planned for.
 struct LatencyConfig {
-  std::string name;   // "3x3", "16x16"
+  std::string name;   // "3x3", "10x10"
   std::string scene;  // path, relative to the source tree
-  long clk_hz = 12000000;
-  int step = 0;       // 0: the plan's; else engine::with_step (see the table)
-  int decim = 0;      // 0: the plan's
+  long clk_hz = hls::kDtmfTopClkHz;
 };
 // The reference builds (the table to extend when a new top exists).
 const std::vector<LatencyConfig>& latency_configs();
@@ -40,7 +46,8 @@ struct LatencyRun {
   hls::DtmfTopPlan plan;
   uint32_t sample = 0;  // the measured frame's sample
   std::vector<StageLatency> stages;
-  int overruns = 0, dropped = 0;
+  int64_t engine_clocks = 0, engine_first_byte = 0;  // Verilator: from frame_capture
+  int64_t model_clocks = -1, model_first_byte = -1;  // the ISS model of the same frame
   double build_seconds = 0;  // 0 when the cached build was used
 };
 
@@ -59,26 +66,8 @@ std::vector<std::string> compare_latency(const std::vector<LatencyRun>& runs,
                                          const std::vector<std::pair<std::string, StageLatency>>& base,
                                          std::vector<std::string>& notes);
 
-// The cycle model of a build (docs/fpga.md schedule): cycles from the ADC's
-// last data edge to the step's last neuron update. DFT token 0 at 8;
-// magnitudes every 26 cycles (token 0 at 8 + 3 behind a frame buffer),
-// each 25 cycles after its input; taxels 18 cycles each from 1 cycle after
-// the last magnitude; a neuron 11 cycles after its taxel. The trade study
-// uses it; `eskin bench latency` checks it against Verilator.
-int64_t model_cycles_to_last_neuron(const hls::DtmfTopPlan& plan);
-
-// A board the top is built for, and its synthesised Fmax if a report exists.
-struct Board {
-  std::string name;
-  double nominal_mhz;
-  std::vector<std::string> reports;  // nextpnr --report JSON, relative to the build dir
-};
-const std::vector<Board>& boards();
-// Lowest "achieved" Fmax (MHz) in a nextpnr report; 0 if none readable.
-double report_fmax_mhz(const std::string& path);
-
-// The latency table: cycles, and µs at each board's Fmax (or nominal clock,
-// stated), beside the physical anchors.
-std::string format_latency(const std::vector<LatencyRun>& runs, const std::string& build_dir);
+// The latency table: cycles, and µs at each build's clock, beside the
+// physical anchors and the model check.
+std::string format_latency(const std::vector<LatencyRun>& runs);
 
 }  // namespace eskin::bench

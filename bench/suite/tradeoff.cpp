@@ -15,8 +15,9 @@
 
 #include <unistd.h>
 
-#include "bench/suite/latency.h"
+#include "bench/suite/engine_model.h"
 #include "hls/dtmf_top_config.h"
+#include "hls/dtmf_ucode.h"
 #include "hls/sdft_bank_config.h"
 #include "hls/sdft_damped.h"
 #include "host/engine/dtmf_engine.h"
@@ -49,9 +50,10 @@ const std::vector<TradeAxis>& tradeoff_axes() {
       {"carriers", {"thesis", "bin"}, {"thesis", "bin"}},
       {"widths", {"16/10/0", "12/8/0", "14/9/0", "16/12/0", "18/12/2", "24/14/4"},
        {"16/10/0", "12/8/0"}},
-      {"ghost", {"off", "thesis", "improved"}, {"off", "improved"}},
-      {"step", {"1", "2", "4", "8", "16"}, {"1", "4"}},
-      {"decim", {"35", "1", "7", "70", "350"}, {"35", "7"}},
+      {"ghost", {"improved", "off", "thesis"}, {"improved", "off"}},
+      // Frames of 0.2 .. 1 ms (the neuron model takes dt <= ~1 ms).
+      {"step", {"35", "7", "14", "18", "28"}, {"35", "7"}},
+      {"decim", {"1", "2", "5", "35"}, {"1", "5"}},
       // Hall path (when it exists): {"osr", ...}, {"dig_filt", ...},
       // {"loc_table", ...}; add the axis here and its effect in apply_axis.
   };
@@ -67,18 +69,19 @@ bool top_buildable(const TradePoint& p);  // the plan accepts the point's top bu
 // 1.4 kHz apart: N >= 25 at 35 kHz) and its knobs apply to its variant.
 bool buildable(const TradePoint& p) {
   if (p.carriers == "thesis" && p.n < 32) return false;
-  if (p.variant == "fpga-goertzel" && (p.cw != 16 || p.tw != 10 || p.fb != 0)) return false;
-  if (!fpga(p) && (p.cw != 16 || p.tw != 10 || p.fb != 0)) return false;
-  if (fpga(p) != (p.ghost == "none")) return false;
-  if (p.variant != "fpga-exact" && p.step != 1) return false;
+  if (p.variant != "fpga-exact" && (p.cw != 16 || p.tw != 10 || p.fb != 0)) return false;
+  // The top's ghost filter is the improved (greedy pairing) one; the
+  // Goertzel bank makes amplitudes only.
+  if (p.variant == "fpga-exact" && p.ghost == "thesis") return false;
+  if (p.variant == "fpga-goertzel" && p.ghost != "off") return false;
+  if (p.variant != "fpga-exact" && p.step != 35) return false;
   return p.variant != "fpga-exact" || top_buildable(p);
 }
 
 void apply_axis(TradePoint& p, const std::string& axis, const std::string& v) {
   if (axis == "variant") {
     p.variant = v;
-    if (!fpga(p) && p.ghost == "none") p.ghost = "off";
-    if (fpga(p)) p.ghost = "none";
+    p.ghost = v == "fpga-exact" ? "improved" : "off";
   } else if (axis == "n") {
     p.n = std::stoi(v);
   } else if (axis == "carriers") {
@@ -86,11 +89,9 @@ void apply_axis(TradePoint& p, const std::string& axis, const std::string& v) {
   } else if (axis == "widths") {
     std::sscanf(v.c_str(), "%d/%d/%d", &p.cw, &p.tw, &p.fb);
   } else if (axis == "ghost") {
-    p.variant = "golden-exact";
     p.ghost = v;
   } else if (axis == "step") {
     p.step = std::stoi(v);
-    p.decim = std::max(1, 35 / p.step);  // packets stay about one per ms
   } else if (axis == "decim") {
     p.decim = std::stoi(v);
   }
@@ -116,15 +117,19 @@ std::vector<TradePoint> tradeoff_points(bool quick) {
         apply_axis(p, "carriers", c);
         add(p);
       }
-  // Every other axis alone, around the default point, on both carrier plans.
+  // Every other axis alone, around the default point, on both carrier
+  // plans (ghost correction also on the golden exact decoder).
   for (size_t a = 3; a < axes.size(); ++a)
     for (const auto& v : values(a))
-      for (const auto& c : values(2)) {
-        TradePoint p;
-        apply_axis(p, "carriers", c);
-        apply_axis(p, axes[a].name, v);
-        add(p);
-      }
+      for (const auto& c : values(2))
+        for (const char* variant : {"fpga-exact", "golden-exact"}) {
+          if (axes[a].name != "ghost" && std::string(variant) != "fpga-exact") continue;
+          TradePoint p;
+          apply_axis(p, "variant", variant);
+          apply_axis(p, "carriers", c);
+          apply_axis(p, axes[a].name, v);
+          add(p);
+        }
   return pts;
 }
 
@@ -151,9 +156,14 @@ sim::Scene scene_for(const TradePoint& p) {
 }
 
 hls::DtmfTopPlan plan_for(const TradePoint& p, const sim::Scene& sc) {
-  const auto plan = engine::top_plan(sc.skin, sc.decoder, sc.neuron, true);
-  return engine::with_step(plan, p.step, p.decim);
+  auto plan = engine::with_step(engine::top_plan(sc.skin, sc.decoder, sc.neuron, true), p.step,
+                                p.decim);
+  plan.spec.ghost = p.ghost == "improved";
+  return plan;
 }
+
+// The top exists for the widths of rtl/sdft_bank.v's build (CW 16, TW 10, FB 0).
+bool top_widths(const TradePoint& p) { return p.cw == 16 && p.tw == 10 && p.fb == 0; }
 
 bool top_buildable(const TradePoint& p) {
   try {
@@ -164,21 +174,20 @@ bool top_buildable(const TradePoint& p) {
   }
 }
 
-// The point's dtmf_top parameters: the plan's, with its DFT widths.
-std::vector<hls::VerilogParam> top_params(const TradePoint& p) {
-  const sim::Scene sc = scene_for(p);
-  auto ps = hls::dtmf_top_params(plan_for(p, sc));
-  ps.push_back({"CW", std::to_string(p.cw)});
-  ps.push_back({"TW", std::to_string(p.tw)});
-  return ps;
-}
-
 }  // namespace
 
 std::string synth_key(const TradePoint& p) {
-  if (p.variant != "fpga-exact" || p.fb != 0) return "";
+  if (p.variant != "fpga-exact" || !top_widths(p)) return "";
+  // The build: its integer parameters, its microcode and its constants
+  // (the hex files' contents, not their paths).
+  const hls::DtmfTopPlan plan = plan_for(p, scene_for(p));
+  const hls::EngineImage im = hls::dtmf_engine_image(plan);
   std::string s;
-  for (const auto& q : top_params(p)) s += q.name + "=" + q.value + ";";
+  for (const auto& q : hls::dtmf_top_params(plan, im, "", ""))
+    if (q.name != "UCODE_HEX" && q.name != "KROM_HEX") s += q.name + "=" + q.value + ";";
+  for (uint32_t w : hls::dtmf_ucode_words(im)) s += fmt::format("{:x},", w);
+  s += ";";
+  for (uint32_t w : im.krom) s += fmt::format("{:x},", w);
   return fmt::format("{:016x}", fnv1a(s));
 }
 
@@ -198,6 +207,7 @@ SynthTable read_synth_table(const std::string& path) {
     e.dsp = std::stol(v);
     std::getline(s, v, ',');
     e.bram = std::stol(v);
+    if (std::getline(s, v, ',')) e.spram = std::stol(v);
     t[key] = e;
   }
   return t;
@@ -205,10 +215,11 @@ SynthTable read_synth_table(const std::string& path) {
 
 void write_synth_table(const std::string& path, const SynthTable& t) {
   std::ofstream f(path);
-  f << "# Yosys synth_ice40 -dsp of the trade study's dtmf_top builds, keyed by a hash of\n"
-       "# their parameters. Regenerate: eskin bench tradeoff --synth --write-synth-table\n"
-       "key,luts,dsp,bram\n";
-  for (const auto& [k, e] : t) f << k << "," << e.luts << "," << e.dsp << "," << e.bram << "\n";
+  f << "# Yosys synth_ice40 -dsp -spram of the trade study's dtmf_top builds, keyed by a hash\n"
+       "# of their parameters, microcode and constants. Regenerate: eskin bench tradeoff --synth --write-synth-table\n"
+       "key,luts,dsp,bram,spram\n";
+  for (const auto& [k, e] : t)
+    f << k << "," << e.luts << "," << e.dsp << "," << e.bram << "," << e.spram << "\n";
   if (!f) throw std::runtime_error(path + ": write failed");
 }
 
@@ -220,10 +231,14 @@ SynthEntry synthesize(const TradePoint& p, const std::string& cache_dir) {
   if (!fs::exists(stat)) {
     const fs::path tmp = fs::path(cache_dir) / (key + ".tmp" + std::to_string(::getpid()));
     fs::create_directories(tmp);
-    std::ofstream(tmp / "top.v") << hls::dtmf_top_wrapper(top_params(p), "tradeoff_top");
+    // The build's microcode and constants beside the wrapper that sets its
+    // parameters (Yosys reads the hex files while it elaborates).
+    const auto params =
+        hls::write_dtmf_top_build(plan_for(p, scene_for(p)), fs::absolute(tmp).string(), "top");
+    std::ofstream(tmp / "top.v") << hls::dtmf_top_wrapper(params, "tradeoff_top");
     const std::string cmd = fmt::format(
         "cd '{}' && yosys -q -l yosys.log -p 'read_verilog -sv top.v; hierarchy -libdir {}/rtl "
-        "-top tradeoff_top; synth_ice40 -dsp -top tradeoff_top; tee -o stat.txt stat' "
+        "-top tradeoff_top; synth_ice40 -dsp -spram -top tradeoff_top; tee -o stat.txt stat' "
         "> /dev/null 2>&1",
         tmp.string(), ESKIN_SOURCE_DIR);
     if (std::system(cmd.c_str()) != 0)
@@ -234,7 +249,7 @@ SynthEntry synthesize(const TradePoint& p, const std::string& cache_dir) {
   }
   std::ifstream f(stat);
   std::string line;
-  SynthEntry e{0, 0, 0};
+  SynthEntry e{0, 0, 0, 0};
   const std::regex cell("^\\s+(SB_\\w+)\\s+([0-9]+)\\s*$");
   while (std::getline(f, line)) {
     std::smatch m;
@@ -243,6 +258,7 @@ SynthEntry synthesize(const TradePoint& p, const std::string& cache_dir) {
     if (m[1] == "SB_LUT4") e.luts = n;
     if (m[1] == "SB_MAC16") e.dsp = n;
     if (m[1] == "SB_RAM40_4K") e.bram = n;
+    if (m[1] == "SB_SPRAM256KA") e.spram = n;
   }
   return e;
 }
@@ -268,32 +284,37 @@ struct Frame {
 std::vector<Frame> decode_fpga_exact(const TradePoint& p, const sim::Scene& sc,
                                      const std::vector<int>& codes, long& spikes) {
   const auto plan = plan_for(p, sc);
-  engine::EngineConfig c = engine::engine_config(plan, p.step, uint16_t(p.decim), 7);
+  engine::EngineConfig c = engine::engine_config(plan);
   c.sdft.cw = p.cw;
   c.sdft.tw = p.tw;
   c.sdft.fb = p.fb;
   c.sdft.acc_w = hls::sdft_min_acc_width(p.n, c.sdft.xw, p.fb);
-  c.mag_shift += p.fb;  // magnitudes stay in skin code units
+  c.mag_shift += p.fb;  // magnitudes stay in sample-LSB units >> the plan's shift
   const engine::DtmfEngine eng(c);
   const auto c12 = engine::codes12(codes, sc.skin.adc.bits);
   const auto ps = eng.run(c12.data(), c12.size());
-  const double g = (std::ldexp(1.0, p.cw - 1) - 1) / std::ldexp(1.0, p.cw - 1);
+  // Magnitude units -> skin LSB peak: x 2^MAG_SHIFT (window sum of 12-bit
+  // codes), 2 / N, / 2^(12 - bits); the plain bank keeps its gain G.
+  const double g = plan.spec.demix ? 1.0 : (std::ldexp(1.0, p.cw - 1) - 1) / std::ldexp(1.0, p.cw - 1);
+  const double unit = std::ldexp(1.0, plan.mag_shift) * 2.0 / p.n /
+                      std::ldexp(1.0, 12 - sc.skin.adc.bits) / g;
   std::map<size_t, Frame> frames;
   spikes = 0;
   for (const auto& pk : ps.packets) {
     const uint8_t* b = ps.payload(pk);
     Frame& f = frames[pk.t];
     f.t = pk.t;
-    if (pk.type == 1)
-      for (uint32_t i = 0; i < pk.len; i += 2) f.amp.push_back((b[i] | b[i + 1] << 8) * 2.0 / p.n / g);
-    if (pk.type == 2)
+    if (pk.type == hls::kDtmfAmplitudes)
+      for (uint32_t i = 0; i < pk.len; i += 2) f.amp.push_back((b[i] | b[i + 1] << 8) * unit);
+    if (pk.type == hls::kDtmfTaxelsDense)
       for (uint32_t i = 2; i < pk.len; i += 2)
         f.kpa.push_back(sc.skin.conductance.inverse((b[i] | b[i + 1] << 8) / 32768.0));
-    if (pk.type == 4) spikes += pk.len / 5;
+    if (pk.type == hls::kDtmfSpikes)
+      for (uint32_t i = 0; i < pk.len; i += 5) spikes += b[i + 2] == 0;  // receptors (layer 0)
   }
   std::vector<Frame> out;
   for (auto& [t, f] : frames)
-    if (!f.amp.empty() && t + 1 >= size_t(p.n)) out.push_back(std::move(f));
+    if (!f.amp.empty()) out.push_back(std::move(f));
   return out;
 }
 
@@ -447,30 +468,36 @@ TradeRow evaluate_point(const TradePoint& p, const SynthTable& table,
   const double centre = (p.n - 1) / 2.0;
   if (p.variant == "fpga-exact") {
     const auto plan = plan_for(p, sc);
-    r.latency_cycles = double(model_cycles_to_last_neuron(plan));
-    r.latency_us = r.latency_cycles / (plan.spec.clk_hz / 1e6);
-    r.delay_ms = (centre + (p.step - 1)) / fs * 1e3 + r.latency_us / 1e3;
     r.update_hz = fs / p.step;
     r.packet_hz = fs / (p.step * p.decim);
+    if (top_widths(p)) {  // the top's frame engine: its slowest frame (ISS, clock-exact)
+      r.latency_cycles = double(max_engine_clocks(
+          plan, engine::codes12(codes, sc.skin.adc.bits), std::lround(plan.spec.clk_hz / fs)));
+      r.latency_us = r.latency_cycles / (plan.spec.clk_hz / 1e6);
+      r.delay_ms = (centre + (p.step - 1)) / fs * 1e3 + r.latency_us / 1e3;
+      r.keeps_up = r.latency_cycles <= double(p.step) * double(plan.spec.clk_hz) / fs ? 1 : 0;
+    } else {
+      r.delay_ms = -1;  // no RTL for these widths: no processing time to add
+    }
   } else if (p.variant == "fpga-goertzel") {
     r.delay_ms = (centre + (p.n - 1) / 2.0) / fs * 1e3;  // + the mean wait for the block end
     r.update_hz = r.packet_hz = fs / p.n;
   } else {
     r.delay_ms = centre / fs * 1e3;
-    r.update_hz = fs;
+    r.update_hz = fs / p.step;
     r.packet_hz = fs / (p.step * p.decim);
   }
 
   // Resources.
   const std::string key = synth_key(p);
   if (key.empty()) {
-    r.resources = p.variant == "fpga-exact" ? "n/a: FB is not a dtmf_top parameter" : "n/a: no RTL";
+    r.resources = p.variant == "fpga-exact" ? "n/a: the top's DFT is CW 16 / TW 10 / FB 0" : "n/a: no RTL";
   } else if (table.count(key)) {
     const auto& e = table.at(key);
-    r.luts = e.luts, r.dsp = e.dsp, r.bram = e.bram, r.resources = "table";
+    r.luts = e.luts, r.dsp = e.dsp, r.bram = e.bram, r.spram = e.spram, r.resources = "table";
   } else if (!synth_cache.empty()) {
     const auto e = synthesize(p, synth_cache);
-    r.luts = e.luts, r.dsp = e.dsp, r.bram = e.bram, r.resources = "synth";
+    r.luts = e.luts, r.dsp = e.dsp, r.bram = e.bram, r.spram = e.spram, r.resources = "synth";
   } else {
     r.resources = "n/a: not in the synthesis table (--synth)";
   }
@@ -499,16 +526,16 @@ void mark_pareto(std::vector<TradeRow>& rows) {
 
 std::string tradeoff_csv_header() {
   return "variant,n,cw,tw,fb,carriers,ghost,step,decim,latency_cycles,latency_us,delay_ms,"
-         "update_hz,packet_hz,luts,dsp,bram,resources,amp_err_truth_pct,amp_err_golden_pct,"
-         "pressure_err_kpa,spikes,spikes_ref,spike_err_pct,pareto_latency,pareto_resources";
+         "update_hz,packet_hz,luts,dsp,bram,spram,resources,amp_err_truth_pct,amp_err_golden_pct,"
+         "pressure_err_kpa,spikes,spikes_ref,spike_err_pct,pareto_latency,pareto_resources,keeps_up";
 }
 
 std::string tradeoff_csv_row(const TradeRow& r) {
-  return fmt::format("{},{:g},{:.4f},{:.5f},{:.6g},{:.6g},{},{},{},{},{:.6g},{:.6g},{:.6g},{},{},{:.4g},{},{}",
+  return fmt::format("{},{:g},{:.4f},{:.5f},{:.6g},{:.6g},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{},{},{:.4g},{},{},{}",
                      r.p.key(), r.latency_cycles, r.latency_us, r.delay_ms, r.update_hz,
-                     r.packet_hz, r.luts, r.dsp, r.bram, r.resources, r.amp_err_truth,
+                     r.packet_hz, r.luts, r.dsp, r.bram, r.spram, r.resources, r.amp_err_truth,
                      r.amp_err_golden, r.pressure_err, r.spikes, r.spikes_ref, r.spike_err, r.pareto_latency,
-                     r.pareto_resources);
+                     r.pareto_resources, r.keeps_up);
 }
 
 TradePoint parse_point(const std::string& line) {

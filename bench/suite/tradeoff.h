@@ -10,13 +10,15 @@
 //             damped, exact} (double), golden-ls (cross-talk removal on)
 //   n         window length;  cw/tw/fb  word widths of the exact DFT
 //   carriers  thesis (1.9..10 kHz, off the DFT bins) or bin (bin centres)
-//   ghost     none (the FPGA has no ghost filter) / off / thesis / improved
-//   step      samples per neuron and taxel step;  decim  packets per steps
-// Per point: latency (FPGA cycles to the step's last neuron, from the
-// cycle model checked against Verilator by `eskin bench latency`; µs at
-// 12 MHz; delay = window centre + step wait + processing, ms), update rates,
-// resources (Yosys synth_ice40 of the point's dtmf_top build, cached; or the
-// stored table), errors against ground truth and against the golden direct
+//   ghost     improved (the top's greedy pairing) / off / thesis (golden only)
+//   step      samples per frame (taxels, neuron step);  decim  packets per frames
+// Per point: latency (FPGA: the frame engine's clocks for the scene's
+// slowest frame, from its instruction-set model, which `eskin bench
+// latency` checks against Verilator; µs at the top's 18 MHz; delay =
+// window centre + step wait + processing, ms; whether that frame fits in
+// its step),  update rates, resources
+// (Yosys synth_ice40 -dsp -spram of the point's dtmf_top build with its
+// microcode, cached; or the stored table), errors against ground truth and against the golden direct
 // DFT (amplitude, % of a full carrier; pressure, kPa RMS), spikes against a
 // reference neuron layer (double, one step per sample, on the true taxels).
 #pragma once
@@ -31,8 +33,8 @@ struct TradePoint {
   std::string variant = "fpga-exact";
   int n = 32, cw = 16, tw = 10, fb = 0;
   std::string carriers = "thesis";
-  std::string ghost = "none";
-  int step = 1, decim = 35;
+  std::string ghost = "improved";
+  int step = 35, decim = 1;
   std::string key() const;  // unique, canonical: the CSV's first columns
 };
 
@@ -40,11 +42,12 @@ struct TradeRow {
   TradePoint p;
   // NaN / -1 where a figure does not apply (no RTL, no taxels, ...).
   double latency_cycles = -1, latency_us = -1, delay_ms = 0, update_hz = 0, packet_hz = 0;
-  long luts = -1, dsp = -1, bram = -1;
+  long luts = -1, dsp = -1, bram = -1, spram = -1;
   std::string resources;  // "synth", "table", or why not
   double amp_err_truth = 0, amp_err_golden = 0, pressure_err = -1, spike_err = -1;
   long spikes = -1, spikes_ref = -1;
   int pareto_latency = 0, pareto_resources = 0;
+  int keeps_up = -1;  // FPGA: 1 when the slowest frame fits in its step (no frame lost)
 };
 
 // One axis of the sweep: the values of the full and of the quick sweep.
@@ -59,7 +62,7 @@ const std::vector<TradeAxis>& tradeoff_axes();
 std::vector<TradePoint> tradeoff_points(bool quick);
 
 // Synthesis results keyed by the parameter set of the point's top build.
-struct SynthEntry { long luts = -1, dsp = -1, bram = -1; };
+struct SynthEntry { long luts = -1, dsp = -1, bram = -1, spram = -1; };
 using SynthTable = std::map<std::string, SynthEntry>;
 SynthTable read_synth_table(const std::string& path);   // empty if absent
 void write_synth_table(const std::string& path, const SynthTable& t);

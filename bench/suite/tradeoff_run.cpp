@@ -49,7 +49,7 @@ TradeRow parse_row(const std::string& line) {
   std::istringstream s(line);
   std::vector<std::string> f;
   for (std::string x; std::getline(s, x, ',');) f.push_back(x);
-  if (f.size() != 26) throw std::invalid_argument("tradeoff row: expected 26 columns in '" + line + "'");
+  if (f.size() != 28) throw std::invalid_argument("tradeoff row: expected 28 columns in '" + line + "'");
   r.latency_cycles = std::stod(f[9]);
   r.latency_us = std::stod(f[10]);
   r.delay_ms = std::stod(f[11]);
@@ -58,13 +58,15 @@ TradeRow parse_row(const std::string& line) {
   r.luts = std::stol(f[14]);
   r.dsp = std::stol(f[15]);
   r.bram = std::stol(f[16]);
-  r.resources = f[17];
-  r.amp_err_truth = std::stod(f[18]);
-  r.amp_err_golden = std::stod(f[19]);
-  r.pressure_err = std::stod(f[20]);
-  r.spikes = std::stol(f[21]);
-  r.spikes_ref = std::stol(f[22]);
-  r.spike_err = std::stod(f[23]);
+  r.spram = std::stol(f[17]);
+  r.resources = f[18];
+  r.amp_err_truth = std::stod(f[19]);
+  r.amp_err_golden = std::stod(f[20]);
+  r.pressure_err = std::stod(f[21]);
+  r.spikes = std::stol(f[22]);
+  r.spikes_ref = std::stol(f[23]);
+  r.spike_err = std::stod(f[24]);
+  r.keeps_up = std::stoi(f[27]);
   return r;
 }
 

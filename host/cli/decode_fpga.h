@@ -3,9 +3,11 @@
 // fields as the golden decoder, one line per packet step (every `hop`
 // samples, default: the build's packet rate): "sample", "t_ms", "amp_lsb"
 // (2 |sum| / N, skin code LSB peak),
-// with --taxels "pressure_kpa" (the taxel's g, UQ1.15, through the skin's
-// conductance curve), with --spikes "spikes" (taxels whose neuron fired in
-// the hop samples starting at this one).
+// with --taxels "pressure_kpa" (the taxel's g after the ghost filter
+// unless --no-ghost, UQ1.15, through the skin's conductance curve), with
+// --spikes "spikes" (receptors, layer 0) and "spikes_layer2" (the weighted
+// layer): taxels whose neuron fired in the hop starting at this line's
+// frame, once per spike. "sample" is the frame's newest sample.
 #pragma once
 
 #include <vector>

@@ -1,11 +1,8 @@
 #include "host/engine/engine_setup.h"
 
-#include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "hls/izhikevich_layer_config.h"
 #include "sim/dtmf_top_spec.h"
 
 namespace eskin::engine {
@@ -25,38 +22,40 @@ hls::DtmfTopPlan with_step(const hls::DtmfTopPlan& plan, int step, int decim) {
   if (decim < 0 || decim > 65535)
     throw std::invalid_argument("decim: expected 0..65535, got " + std::to_string(decim));
   hls::DtmfTopPlan p = plan;
-  if (decim > 0) p.decim = uint16_t(decim);
-  if (step == p.step) return p;
-  p.step = step;
-  if (decim == 0) p.decim = uint16_t(std::max(1L, std::lround(p.spec.sample_hz / 1000.0 / step)));
-  p.neuron = hls::make_izhikevich_config(hls::izhikevich_fixed_preset(p.spec.neuron_preset),
-                                         step * 1000.0 / p.spec.sample_hz,
-                                         p.spec.neuron_input_scale / 32768.0, 1);
+  if (step != plan.step) {
+    hls::DtmfTopSpec s = plan.spec;
+    s.frame_ms = step * 1000.0 / s.sample_hz;  // make_dtmf_top_plan rounds it back to `step`
+    p = hls::make_dtmf_top_plan(s);
+    if (p.step != step) throw std::logic_error("with_step: the plan rounded the step");
+  }
+  if (decim > 0) p.decim_amp = p.decim_tax = uint16_t(decim);
   return p;
 }
 
-EngineConfig engine_config(const hls::DtmfTopPlan& p, uint8_t mask) {
-  return engine_config(p, p.step, p.decim, mask);
-}
-
-EngineConfig engine_config(const hls::DtmfTopPlan& p, int step, uint16_t decim, uint8_t mask) {
+EngineConfig engine_config(const hls::DtmfTopPlan& p) {
   EngineConfig c;
-  c.rows = p.spec.rows;
-  c.cols = p.spec.cols;
+  c.rows = p.R;
+  c.cols = p.C;
   c.sdft.n = p.N;
-  c.sdft.xw = 12;  // dtmf_top: x = code - 2048; CW, TW, FB: the top's defaults
+  c.sdft.xw = 12;  // dtmf_chain: x = code - 2048; CW 16, TW 10, FB 0 (SdftWidthsRt's)
   c.sdft.acc_w = p.acc_w;
   c.mag_shift = p.mag_shift;
-  c.inc = p.carrier_inc;
-  c.taxel.rows = uint8_t(p.spec.rows);
-  c.taxel.cols = uint8_t(p.spec.cols);
-  c.taxel.mode = hls::TaxelMode::Conductance;
-  c.taxel.recip_shift = 12;
-  c.taxel.recip = p.tax_recip;
-  c.neuron = with_step(p, step).neuron;
-  c.step = step;
-  c.decim_amp = c.decim_tax = decim;
-  c.mask = mask;
+  c.inc = p.inc;
+  c.demix = p.spec.demix;
+  if (c.demix) c.demix_tables = p.demix;
+  c.taxel = p.taxel;
+  c.ghost = p.spec.ghost;
+  c.ghost_cfg = p.ghost;
+  c.neurons = p.spec.spikes;
+  c.neuron[0] = p.neuron[0];
+  c.neuron[1] = p.neuron[1];
+  c.synapse = p.synapse;
+  c.step = p.step;
+  c.decim_amp = p.decim_amp;
+  c.decim_tax = p.decim_tax;
+  c.sparse_min = p.sparse_min;
+  c.mask = p.mask;
+  c.max_spikes = p.max_spikes;
   return c;
 }
 

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 #include <stdexcept>
 
@@ -77,15 +78,26 @@ inline void mags_now(const Arrays& a, const MagCtx& m, int32_t* __restrict tmp, 
   for (int i = 0; i < k; ++i) out[i] = uint16_t(tmp[i]);
 }
 
-// Samples x[0..n) through every carrier, magnitudes at step samples.
+// What a frame writes: its K sums (re then im) or, fused into the sample
+// loop (the sums are hot in registers), its K magnitudes.
+struct FrameOut {
+  int32_t* sums = nullptr;   // 2K per frame, when mags is null
+  uint16_t* mags = nullptr;  // K per frame
+  MagCtx m;
+  int32_t* tmp = nullptr;    // kp lanes of scratch
+};
+
+// Samples x[0..n) through every carrier; at frame samples the K sums go to
+// sums (re[0..K) then im[0..K), then the next frame).
 // PACKED: C and -S in one int32 (CW <= 16); P: the product type (int32 when
 // XW + CW <= 32, else int64); KP: the padded carrier count if fixed (8, 16:
 // straight-line vector code, no loop overhead per sample), else 0.
-// Returns the magnitude sets written.
-template <bool PACKED, class P, int KP>
+// until: samples before the next frame sample (a frame after this sample
+// when 0; step 0: never). Returns the frames written.
+template <bool PACKED, class P, int KP, bool MAGS>
 __attribute__((target_clones("avx512f", "avx2", "default")))
-size_t run_block(const Arrays& a, const MagCtx& m, const int32_t* x, size_t n, size_t& slot,
-                 uint64_t& until, int step, uint16_t* mags, int32_t* tmp) {
+size_t run_block(const Arrays& a, const int32_t* x, size_t n, size_t& slot, uint64_t& until,
+                 int step, const FrameOut& fo) {
   const P half = P(1) << (a.sh - 1);
   // Locals: with struct members the compiler must assume the stores alias
   // the loop bound and the pointers, and will not vectorise.
@@ -129,7 +141,12 @@ size_t run_block(const Arrays& a, const MagCtx& m, const int32_t* x, size_t n, s
     slot = slot + 1 == a.n ? 0 : slot + 1;
     if (step <= 0) continue;
     if (until == 0) {
-      mags_now<KP>(a, m, tmp, mags + sets * size_t(a.k));
+      if constexpr (MAGS) {
+        mags_now<KP>(a, fo.m, fo.tmp, fo.mags + sets * size_t(a.k));
+      } else {
+        int32_t* out = fo.sums + sets * 2 * size_t(a.k);
+        for (int k = 0; k < a.k; ++k) out[k] = re[k], out[a.k + k] = im[k];
+      }
       ++sets;
       until = uint64_t(step);
     }
@@ -213,31 +230,48 @@ void ExactSdft::start_at(uint64_t s) {
   next_ = s;
 }
 
-size_t ExactSdft::push_block(const int32_t* x, size_t n, int step, const MagnitudeWidths& mw,
-                             uint16_t* mags) {
+size_t ExactSdft::push_block(const int32_t* x, size_t n, const FrameClock& fc, int32_t* sums) {
+  FrameOut fo;
+  fo.sums = sums;
+  return push(x, n, fc, fo);
+}
+
+size_t ExactSdft::push_block(const int32_t* x, size_t n, const FrameClock& fc,
+                             const MagnitudeWidths& mw, uint16_t* mags) {
+  tmp_.resize(size_t(kp_));
+  FrameOut fo;
+  fo.mags = mags;
+  fo.m = make_mag_ctx(mw);
+  fo.tmp = tmp_.data();
+  return push(x, n, fc, fo);
+}
+
+template <class FO>
+size_t ExactSdft::push(const int32_t* x, size_t n, const FrameClock& fc, const FO& fo) {
   const Arrays a{kp_, k_, inc_.data(), phase_.data(), re_.data(), im_.data(), ring_re_.data(),
                  ring_im_.data(), packed_.data(), cos_.data(), nsin_.data(), 31 - w_.tw,
                  w_.cw - 1 - w_.fb, 32 - w_.xw, (uint32_t(1) << w_.tw) - 1u, size_t(w_.n)};
-  const MagCtx m = step > 0 ? make_mag_ctx(mw) : MagCtx{};
-  uint64_t until = 0;  // samples until the next step sample
-  if (step > 0) {
-    const uint64_t r = next_ % uint64_t(step);
-    until = r == 0 ? 0 : uint64_t(step) - r;
+  uint64_t until = 0;  // samples until the next frame sample
+  if (fc.step > 0) {
+    if (next_ < fc.first) {
+      until = fc.first - next_;
+    } else {
+      const uint64_t r = (next_ - fc.first) % uint64_t(fc.step);
+      until = r == 0 ? 0 : uint64_t(fc.step) - r;
+    }
   }
-  tmp_.resize(size_t(kp_));
   const bool packed = w_.cw <= 16, narrow = w_.xw + w_.cw <= 32;
-  size_t sets;
-  int32_t* tmp = tmp_.data();
-  if (packed && narrow && kp_ == 8)
-    sets = run_block<true, int32_t, 8>(a, m, x, n, slot_, until, step, mags, tmp);
-  else if (packed && narrow && kp_ == 16)
-    sets = run_block<true, int32_t, 16>(a, m, x, n, slot_, until, step, mags, tmp);
-  else if (packed && narrow)
-    sets = run_block<true, int32_t, 0>(a, m, x, n, slot_, until, step, mags, tmp);
-  else if (narrow)
-    sets = run_block<false, int32_t, 0>(a, m, x, n, slot_, until, step, mags, tmp);
-  else
-    sets = run_block<false, int64_t, 0>(a, m, x, n, slot_, until, step, mags, tmp);
+  const auto run = [&](auto tag) {
+    constexpr bool kMags = decltype(tag)::value;
+    if (packed && narrow && kp_ == 8)
+      return run_block<true, int32_t, 8, kMags>(a, x, n, slot_, until, fc.step, fo);
+    if (packed && narrow && kp_ == 16)
+      return run_block<true, int32_t, 16, kMags>(a, x, n, slot_, until, fc.step, fo);
+    if (packed && narrow) return run_block<true, int32_t, 0, kMags>(a, x, n, slot_, until, fc.step, fo);
+    if (narrow) return run_block<false, int32_t, 0, kMags>(a, x, n, slot_, until, fc.step, fo);
+    return run_block<false, int64_t, 0, kMags>(a, x, n, slot_, until, fc.step, fo);
+  };
+  const size_t sets = fo.mags ? run(std::true_type{}) : run(std::false_type{});
   next_ += n;
   return sets;
 }

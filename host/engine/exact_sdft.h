@@ -33,6 +33,12 @@ struct SdftWidthsRt {
   int n = 32, xw = 12, cw = 16, tw = 10, acc_w = 18, fb = 0;
 };
 
+// Frame samples: s >= first with (s - first) % step == 0 (step 0: none).
+struct FrameClock {
+  uint64_t first = 0;
+  int step = 0;
+};
+
 struct MagnitudeWidths {
   int acc_w = 18, mag_w = 16, shift = 2;
 };
@@ -46,13 +52,16 @@ class ExactSdft {
   // Empty window, sums zero, phases of sample s (theta = s * inc mod 2^32).
   void start_at(uint64_t s);
   // Samples x[0..n) (ADC code minus mid code; the low XW bits are used).
-  // After each sample whose index (next_sample() before it) is a multiple
-  // of `step`, the K magnitudes go to mags (K u16 each time; mags
-  // advances). Returns the number of magnitude sets written.
-  size_t push_block(const int32_t* x, size_t n, int step, const MagnitudeWidths& mw,
+  // After each frame sample of fc, the K sums go to sums (re[0..K) then
+  // im[0..K); sums advances by 2K). Returns the number of frames written.
+  size_t push_block(const int32_t* x, size_t n, const FrameClock& fc, int32_t* sums);
+  // The same with the K magnitudes of each frame instead of its sums
+  // (carrier_magnitude of the sums for mw; K u16 per frame), computed in
+  // the sample loop while the sums are hot.
+  size_t push_block(const int32_t* x, size_t n, const FrameClock& fc, const MagnitudeWidths& mw,
                     uint16_t* mags);
-  // The same without magnitudes (warm-up).
-  void push_block(const int32_t* x, size_t n) { push_block(x, n, 0, {}, nullptr); }
+  // The same without frames (warm-up).
+  void push_block(const int32_t* x, size_t n) { push_block(x, n, FrameClock{}, nullptr); }
 
   int carriers() const { return k_; }
   int32_t re(int k) const { return re_[size_t(k)]; }
@@ -61,6 +70,9 @@ class ExactSdft {
   const SdftWidthsRt& widths() const { return w_; }
 
  private:
+  template <class FO>
+  size_t push(const int32_t* x, size_t n, const FrameClock& fc, const FO& fo);
+
   SdftWidthsRt w_;
   int k_ = 0, kp_ = 0;  // carriers, padded to a multiple of 16
   std::vector<uint32_t> inc_, phase_;
@@ -68,7 +80,7 @@ class ExactSdft {
   std::vector<int32_t> cos_, nsin_;  // full 2^TW tables: C(idx), -S(idx)
   std::vector<int32_t> packed_;      // CW <= 16: C << 16 | (-S & 0xffff)
   std::vector<int32_t> ring_re_, ring_im_;  // N x kp_ terms
-  std::vector<int32_t> tmp_;          // magnitude scratch, kp_ lanes
+  std::vector<int32_t> tmp_;                // magnitude scratch, kp_ lanes
   size_t slot_ = 0;
   uint64_t next_ = 0;
 };

@@ -1,5 +1,4 @@
-// Runs the built eskin CLI (ESKIN_BIN) as a user does: a real process, its
-// stdout and stderr together, and its exit status.
+// Runs the built eskin CLI (ESKIN_BIN) as a user would, for the system tests.
 #pragma once
 
 #include <sys/wait.h>
@@ -9,10 +8,11 @@
 #include <string>
 
 struct CliResult {
-  int status;
+  int status;       // exit code (-1: did not exit normally)
   std::string out;  // stdout and stderr together
 };
 
+// `eskin ARGS` through the shell.
 inline CliResult run_eskin(const std::string& args) {
   const std::string cmd = std::string(ESKIN_BIN) + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
