@@ -46,7 +46,8 @@ struct WorstCase {
 
 }  // namespace
 
-StabilityResult run_stability(uint64_t samples, uint64_t neuron_steps, int checkpoints) {
+StabilityResult run_stability(uint64_t samples, uint64_t neuron_steps, int checkpoints,
+                              const hls::IzhikevichConfig (&neurons)[2]) {
   StabilityResult res;
   res.samples = samples;
   res.carriers = kK;
@@ -104,59 +105,65 @@ StabilityResult run_stability(uint64_t samples, uint64_t neuron_steps, int check
     res.drift.push_back(d);
   }
 
-  // Neurons at the edges of their range. The receptor configuration of the
-  // top (RA, dt 1/35 ms, input g UQ1.15 x 10) at its largest and smallest
-  // inputs (x = +-2^31: the 16-bit operand saturates), then the same neuron
+  // Neurons at the edges of their range, both layers as the top runs them
+  // (the plan's configurations: one step per frame). Each at its largest
+  // and smallest inputs (x = +-2^31: the 16-bit operand saturates), then
   // with the gain at its maximum (mantissa 32767 << 15), where J saturates
   // at +-512 mV per step: hls/izhikevich_layer.h proves a spike every step
   // at +max and v pinned at V_MIN at -max.
-  const hls::IzhikevichConfig nc = hls::make_izhikevich_config(
-      hls::izhikevich_fixed_preset("RA"), 1000.0 / fs, 10.0 / 32768.0, 1);
-  hls::IzhikevichConfig big = nc;
-  big.gain = 32767;
-  big.gain_shift = -15;
-  const auto run = [&](const hls::IzhikevichConfig& c, const char* phase, int32_t& v, int32_t& u,
-                       int32_t x, uint64_t steps) {
-    NeuronEdge e{phase, steps, 0, true, ""};
-    for (uint64_t s = 0; s < steps; ++s) {
-      e.spikes += hls::izhikevich_update(c, v, u, x);
-      e.in_range = e.in_range && v >= hls::izh::kVMin && v < hls::izh::kVPeak &&
-                   u >= hls::izh::kUMin && u <= hls::izh::kUMax;
+  bool recovered = true;
+  for (int layer = 0; layer < 2; ++layer) {
+    const hls::IzhikevichConfig& nc = neurons[layer];
+    const std::string who = fmt::format("layer {}: ", layer + 1);
+    hls::IzhikevichConfig big = nc;
+    big.gain = 32767;
+    big.gain_shift = -15;
+    big.input_change = false;  // a held input: the drive itself, not its change
+    const auto run = [&](const hls::IzhikevichConfig& c, const std::string& phase, int32_t& v,
+                         int32_t& u, int32_t x, uint64_t steps) {
+      NeuronEdge e{who + phase, steps, 0, true, ""};
+      for (uint64_t s = 0; s < steps; ++s) {
+        e.spikes += hls::izhikevich_update(c, v, u, x);
+        e.in_range = e.in_range && v >= hls::izh::kVMin && v < hls::izh::kVPeak &&
+                     u >= hls::izh::kUMin && u <= hls::izh::kUMax;
+      }
+      return e;
+    };
+    int32_t v = nc.v_init, u = nc.u_init, fv = nc.v_init, fu = nc.u_init;
+    auto top = run(nc, "x = +max", v, u, INT32_MAX, neuron_steps);
+    top.note = fmt::format("the fastest this configuration fires: 1 spike per {:.1f} steps",
+                           double(top.steps) / double(std::max<uint64_t>(1, top.spikes)));
+    res.neurons.push_back(top);
+    auto bottom = run(nc, "x = -max", v, u, INT32_MIN, neuron_steps);
+    bottom.note = bottom.spikes == 0 ? "silent" : "FIRES";
+    res.neurons.push_back(bottom);
+    auto hi = run(big, "max gain, J = +512 mV/step", v, u, INT32_MAX, neuron_steps);
+    hi.note = hi.spikes == hi.steps ? "a spike every step" : "MISSED spikes";
+    res.neurons.push_back(hi);
+    auto lo = run(big, "max gain, J = -512 mV/step", v, u, INT32_MIN, neuron_steps);
+    lo.note = lo.spikes == 0 && v == hls::izh::kVMin ? "silent, v pinned at V_MIN" : "NOT pinned";
+    res.neurons.push_back(lo);
+    NeuronEdge alt{who + "max gain, +-512 mV alternating", 0, 0, true, ""};
+    for (uint64_t s = 0; s < neuron_steps; ++s) {
+      const auto one = run(big, "", v, u, (s & 1) ? INT32_MIN : INT32_MAX, 1);
+      alt.steps += 1, alt.spikes += one.spikes, alt.in_range = alt.in_range && one.in_range;
     }
-    return e;
-  };
-  int32_t v = nc.v_init, u = nc.u_init, fv = nc.v_init, fu = nc.u_init;
-  auto top = run(nc, "receptor config, x = +max", v, u, INT32_MAX, neuron_steps);
-  top.note = fmt::format("the fastest this configuration fires: 1 spike per {:.1f} steps",
-                         double(top.steps) / double(std::max<uint64_t>(1, top.spikes)));
-  res.neurons.push_back(top);
-  auto bottom = run(nc, "receptor config, x = -max", v, u, INT32_MIN, neuron_steps);
-  bottom.note = bottom.spikes == 0 ? "silent" : "FIRES";
-  res.neurons.push_back(bottom);
-  auto hi = run(big, "max gain, J = +512 mV/step", v, u, INT32_MAX, neuron_steps);
-  hi.note = hi.spikes == hi.steps ? "a spike every step" : "MISSED spikes";
-  res.neurons.push_back(hi);
-  auto lo = run(big, "max gain, J = -512 mV/step", v, u, INT32_MIN, neuron_steps);
-  lo.note = lo.spikes == 0 && v == hls::izh::kVMin ? "silent, v pinned at V_MIN" : "NOT pinned";
-  res.neurons.push_back(lo);
-  NeuronEdge alt{"max gain, +-512 mV alternating", 0, 0, true, ""};
-  for (uint64_t s = 0; s < neuron_steps; ++s) {
-    const auto one = run(big, "", v, u, (s & 1) ? INT32_MIN : INT32_MAX, 1);
-    alt.steps += 1, alt.spikes += one.spikes, alt.in_range = alt.in_range && one.in_range;
+    res.neurons.push_back(alt);
+    // Recovery: rest 1000 steps (1 s of 1 ms frames), then a firm press
+    // (x = 16384: g = 0.5 for the receptors) for 10 000; the spike trains
+    // and the final state must equal a fresh neuron's.
+    const uint64_t rest = 1000, press = 10000;
+    auto r1 = run(nc, "rest after the extremes", v, u, 0, rest);
+    run(nc, "", fv, fu, 0, rest);
+    auto p1 = run(nc, "x = 16384 after the extremes", v, u, 16384, press);
+    const auto p0 = run(nc, "", fv, fu, 16384, press);
+    p1.note = fmt::format("fresh neuron: {} spikes; state afterwards {}", p0.spikes,
+                          v == fv && u == fu ? "identical" : "differs");
+    recovered = recovered && p1.spikes == p0.spikes && v == fv && u == fu;
+    res.neurons.push_back(r1);
+    res.neurons.push_back(p1);
   }
-  res.neurons.push_back(alt);
-  // Recovery: both neurons rest for a second of steps, then get a firm
-  // press (g = 0.5); their spike trains must be identical.
-  const uint64_t rest = uint64_t(fs), press = 10 * uint64_t(fs);
-  auto r1 = run(nc, "rest after the extremes", v, u, 0, rest);
-  run(nc, "", fv, fu, 0, rest);
-  auto p1 = run(nc, "press g = 0.5 after the extremes", v, u, 16384, press);
-  const auto p0 = run(nc, "", fv, fu, 16384, press);
-  p1.note = fmt::format("fresh neuron: {} spikes; state afterwards {}", p0.spikes,
-                        v == fv && u == fu ? "identical" : "differs");
-  res.recovered = p1.spikes == p0.spikes && v == fv && u == fu;
-  res.neurons.push_back(r1);
-  res.neurons.push_back(p1);
+  res.recovered = recovered;
   res.seconds = wall_seconds() - t0;
   return res;
 }
@@ -175,9 +182,10 @@ std::string format_stability(const StabilityResult& r) {
   }
   s += fmt::format("exact: {} LSB from the direct sum over {} samples ({})\n\n", worst, r.samples,
                    worst == 0 ? "bit-exact" : "MISMATCH");
-  s += "Izhikevich neuron (hls, RA, dt 1/35 ms) at the edges of its input range:\n";
+  s += "Izhikevich neurons (hls, both layers of the top's plan, one step per frame) at the edges "
+       "of their input range:\n";
   for (const auto& e : r.neurons)
-    s += fmt::format("  {:<36} {:>11} steps {:>11} spikes  in range: {}  {}\n", e.phase, e.steps,
+    s += fmt::format("  {:<46} {:>11} steps {:>11} spikes  in range: {}  {}\n", e.phase, e.steps,
                      e.spikes, e.in_range ? "yes" : "NO", e.note);
   s += fmt::format("recovery (same spikes and state as a fresh neuron): {}\n",
                    r.recovered ? "yes" : "NO");

@@ -6,7 +6,8 @@
 //  * The golden naive recursive and damped sliding DFTs (double) on the same
 //    input: their amplitude error against the direct DFT at the same
 //    checkpoints (the naive form drifts; the damped one is biased, bounded).
-//  * Izhikevich neurons (hls/izhikevich_layer.h) held at the edges of their
+//  * Izhikevich neurons (hls/izhikevich_layer.h, both layers as the top's
+//    plan configures them) held at the edges of their
 //    input range for long runs: v and U stay in range (no wrap), a neuron
 //    driven to the maximum spikes every step, one at the minimum is pinned at
 //    V_MIN, and afterwards both answer a normal input exactly as a fresh
@@ -16,6 +17,8 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "hls/izhikevich_layer.h"
 
 namespace eskin::bench {
 
@@ -41,7 +44,9 @@ struct StabilityResult {
   double seconds = 0;
 };
 
-StabilityResult run_stability(uint64_t samples, uint64_t neuron_steps, int checkpoints);
+// neurons: the two layers' configurations (the top's plan for a scene).
+StabilityResult run_stability(uint64_t samples, uint64_t neuron_steps, int checkpoints,
+                              const hls::IzhikevichConfig (&neurons)[2]);
 std::string format_stability(const StabilityResult& r);
 void write_stability_report(const std::string& path, const StabilityResult& r);
 

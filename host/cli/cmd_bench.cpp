@@ -22,6 +22,8 @@
 #include "bench/suite/tradeoff_run.h"
 #include "cli/command.h"
 #include "eskin/skin_config.h"
+#include "host/engine/engine_setup.h"
+#include "sim/scene.h"
 
 namespace eskin::cli {
 namespace {
@@ -138,10 +140,15 @@ struct StabilityArgs {
   double samples = 1e9, neuron_steps = 1e7;
   int checkpoints = 40;
   std::string out = "stability.html";
+  std::string scene = ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml";
 };
 
 int run_stability(const StabilityArgs& a) {
-  const auto r = bench::run_stability(uint64_t(a.samples), uint64_t(a.neuron_steps), a.checkpoints);
+  // The neurons as the top runs them for the scene (both layers' constants).
+  const sim::Scene sc = sim::load_scene(a.scene);
+  const hls::DtmfTopPlan plan = engine::top_plan(sc.skin, sc.decoder, sc.neuron, true);
+  const auto r = bench::run_stability(uint64_t(a.samples), uint64_t(a.neuron_steps), a.checkpoints,
+                                      plan.neuron);
   std::cout << bench::format_stability(r);
   bench::write_stability_report(a.out, r);
   std::cout << "report: " << a.out << "\n";
@@ -193,6 +200,7 @@ std::function<int()> setup(CLI::App& app) {
   stab->add_option("--checkpoints", st->checkpoints, "comparisons, spaced geometrically")
       ->check(CLI::Range(1, 10000));
   stab->add_option("--out", st->out, "HTML report");
+  stab->add_option("--scene", st->scene, "scene whose top's neuron layers run (default neuroskin2)");
   auto sc = std::make_shared<std::pair<int, double>>(256, 0.5);
   CLI::App* scale = bench->add_subcommand(
       "scale", "golden and the fast engine on 3x3 .. 256x256 skins: samples/s per core, memory");
