@@ -188,6 +188,7 @@ std::string synth_key(const TradePoint& p) {
   for (uint32_t w : hls::dtmf_ucode_words(im)) s += fmt::format("{:x},", w);
   s += ";";
   for (uint32_t w : im.krom) s += fmt::format("{:x},", w);
+  s += ";synth_ice40 -dsp -spram -abc9";  // the flow: another flow, other keys
   return fmt::format("{:016x}", fnv1a(s));
 }
 
@@ -215,8 +216,9 @@ SynthTable read_synth_table(const std::string& path) {
 
 void write_synth_table(const std::string& path, const SynthTable& t) {
   std::ofstream f(path);
-  f << "# Yosys synth_ice40 -dsp -spram of the trade study's dtmf_top builds, keyed by a hash\n"
-       "# of their parameters, microcode and constants. Regenerate: eskin bench tradeoff --synth --write-synth-table\n"
+  f << "# Yosys synth_ice40 -dsp -spram -abc9 (scripts/synth_ice40.sh) of the trade study's\n"
+       "# dtmf_top builds, keyed by a hash of their parameters, microcode, constants and the flow.\n"
+       "# Regenerate: eskin bench tradeoff --quick --synth --write-synth-table\n"
        "key,luts,dsp,bram,spram\n";
   for (const auto& [k, e] : t)
     f << k << "," << e.luts << "," << e.dsp << "," << e.bram << "," << e.spram << "\n";
@@ -235,12 +237,12 @@ SynthEntry synthesize(const TradePoint& p, const std::string& cache_dir) {
     // parameters (Yosys reads the hex files while it elaborates).
     const auto params =
         hls::write_dtmf_top_build(plan_for(p, scene_for(p)), fs::absolute(tmp).string(), "top");
-    std::ofstream(tmp / "top.v") << hls::dtmf_top_wrapper(params, "tradeoff_top");
+    std::ofstream(tmp / "tradeoff_top.v") << hls::dtmf_top_wrapper(params, "tradeoff_top");
+    // The project's flow (scripts/synth_ice40.sh: -dsp -spram -abc9), as
+    // docs/fpga.md's figures; it writes stat.txt into --out.
     const std::string cmd = fmt::format(
-        "cd '{}' && yosys -q -l yosys.log -p 'read_verilog -sv top.v; hierarchy -libdir {}/rtl "
-        "-top tradeoff_top; synth_ice40 -dsp -spram -top tradeoff_top; tee -o stat.txt stat' "
-        "> /dev/null 2>&1",
-        tmp.string(), ESKIN_SOURCE_DIR);
+        "'{}/scripts/synth_ice40.sh' '{}' --out '{}' > /dev/null 2>&1", ESKIN_SOURCE_DIR,
+        (fs::absolute(tmp) / "tradeoff_top.v").string(), fs::absolute(tmp).string());
     if (std::system(cmd.c_str()) != 0)
       throw std::runtime_error("yosys failed for " + p.key() + ": see " + (tmp / "yosys.log").string());
     std::error_code ec;

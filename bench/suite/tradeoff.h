@@ -17,7 +17,7 @@
 // latency` checks against Verilator; µs at the top's 18 MHz; delay =
 // window centre + step wait + processing, ms; whether that frame fits in
 // its step),  update rates, resources
-// (Yosys synth_ice40 -dsp -spram of the point's dtmf_top build with its
+// (Yosys synth_ice40 -dsp -spram -abc9 of the point's dtmf_top build with its
 // microcode, cached; or the stored table), errors against ground truth and against the golden direct
 // DFT (amplitude, % of a full carrier; pressure, kPa RMS), spikes against a
 // reference neuron layer (double, one step per sample, on the true taxels).

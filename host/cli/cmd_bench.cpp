@@ -127,9 +127,10 @@ int run_tradeoff(TradeArgs a) {
                            "error-latency front)\n", rows.size(), bench::wall_seconds() - t0,
                            a.o.out_dir, a.o.out_dir, front);
   if (a.write_table) {
-    bench::SynthTable t = bench::read_synth_table(a.o.synth_table);
+    // This run's builds only: entries of older builds or flows would never match again.
+    bench::SynthTable t;
     for (const auto& r : rows)
-      if (r.luts >= 0) t[bench::synth_key(r.p)] = {r.luts, r.dsp, r.bram};
+      if (r.luts >= 0) t[bench::synth_key(r.p)] = {r.luts, r.dsp, r.bram, r.spram};
     bench::write_synth_table(a.o.synth_table, t);
     std::cout << "synthesis table written: " << a.o.synth_table << "\n";
   }
