@@ -24,6 +24,8 @@ pkgs=(
   libpng-dev
   # tests/stream: libFuzzer (clang) for the link decoder fuzz test
   clang libclang-rt-14-dev
+  # eskin bench tradeoff --slurm and its test's one-node cluster (docs/bench.md)
+  slurmctld slurmd slurm-client munge
 )
 missing=()
 for p in "${pkgs[@]}"; do

@@ -1,6 +1,7 @@
 // eskin decode --skin SKIN.yaml INPUT.wav: decodes a recorded mono 16-bit PCM
-// WAV of a skin's summed signal with the golden decoder; NDJSON to stdout,
-// one line per frame.
+// WAV of a skin's summed signal with the golden decoder (or, --engine fpga,
+// the FPGA's fixed-point chain: cli/decode_fpga.h); NDJSON to stdout, one
+// line per frame.
 #include <fmt/format.h>
 #include <sndfile.h>
 #include <yaml-cpp/yaml.h>
@@ -13,6 +14,7 @@
 
 #include "cli/command.h"
 #include "cli/csv_fields.h"
+#include "cli/decode_fpga.h"
 #include "host/golden/golden_decoder.h"
 #include "host/golden/sdft_bank.h"
 #include "sim/scene.h"
@@ -21,8 +23,8 @@ namespace eskin::cli {
 namespace {
 
 struct DecodeArgs {
-  std::string skin, wav, variant;
-  int window = 0, hop = 0;
+  std::string skin, wav, variant, engine = "golden";
+  int window = 0, hop = 0, threads = 1;
   bool taxels = false, spikes = false, no_ghost = false, rate_from_wav = false;
 };
 
@@ -112,15 +114,23 @@ int run_decode(const DecodeArgs& a) {
   }
   validate(skin);
   validate(dec, skin);
+  const int shift = 16 - skin.adc.bits;
+  const int half = 1 << (skin.adc.bits - 1);
+  if (a.engine == "fpga") {
+    std::vector<int> codes(pcm.size());
+    for (size_t i = 0; i < pcm.size(); ++i)
+      codes[i] = (shift >= 0 ? (int(pcm[i]) >> shift) : (int(pcm[i]) << -shift)) + half;
+    return decode_fpga(skin, dec, neuron, codes,
+                       {a.taxels || a.spikes, a.spikes, !a.no_ghost, a.threads, a.hop});
+  }
   dec.variant = golden::resolve_variant(dec.variant, skin.carrier_freqs_hz(), skin.adc.rate_hz, dec);
 
+  if (a.threads != 1) throw ConfigError("--threads", "only --engine fpga runs on several threads");
   golden::GoldenOptions opt;
   opt.taxels = a.taxels || a.spikes;
   opt.spikes = a.spikes;
   opt.ghost_correct = !a.no_ghost;
   golden::GoldenDecoder d(skin, dec, neuron, opt);
-  const int shift = 16 - skin.adc.bits;
-  const int half = 1 << (skin.adc.bits - 1);
   std::string line;
   for (short s : pcm) {
     const int code = (shift >= 0 ? (int(s) >> shift) : (int(s) << -shift)) + half;
@@ -163,6 +173,11 @@ std::function<int()> setup(CLI::App& app) {
   sub->add_flag("--taxels", a->taxels, "add calibrated, ghost-corrected taxel pressures");
   sub->add_flag("--spikes", a->spikes, "add receptor-layer spikes (implies --taxels)");
   sub->add_flag("--no-ghost", a->no_ghost, "taxels without ghost correction");
+  sub->add_option("--engine", a->engine,
+                  "golden (double-precision model) or fpga (the FPGA's integers, host/engine)")
+      ->check(CLI::IsMember({"golden", "fpga"}));
+  sub->add_option("--threads", a->threads, "fpga engine: threads for a long recording")
+      ->check(CLI::Range(1, 256));
   sub->add_flag("--rate-from-wav", a->rate_from_wav,
                 "decode at the WAV's rate instead of requiring skin.adc.rate_hz");
   return [a] { return run_decode(*a); };

@@ -17,10 +17,12 @@ namespace dtmf_bench {
 
 using eskin::link::Packet;
 
-// A packet as the host received it, with the cycle of its first start bit.
+// A packet as the host received it, with the cycle of its first start bit
+// and the cycle its last byte's stop bit was sampled.
 struct Received {
   Packet p;
   uint64_t start_cycle = 0;
+  uint64_t end_cycle = 0;
 };
 
 // One (type, t, payload) triple, comparable across RTL and HLS.
@@ -54,7 +56,7 @@ class Board {
  public:
   Board(std::vector<uint16_t> codes12, double clk_hz, int cpb)
       : m_(std::make_unique<M>()), adc_(std::move(codes12)), clk_hz_(clk_hz), cpb_(cpb) {
-    decoder_.on_packet([this](const Packet& p) { rx_.push_back({p, frame_start_}); });
+    decoder_.on_packet([this](const Packet& p) { rx_.push_back({p, frame_start_, cycle_}); });
     m_->clk = 0;
     m_->rst_n = 1;
     m_->uart_rxd = 1;

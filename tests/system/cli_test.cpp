@@ -11,10 +11,17 @@
 #include <sstream>
 #include <string>
 
-#include "cli_run.h"
+#include <fmt/format.h>
+
+#include <map>
+
+#include "host/engine/dtmf_engine.h"
+#include "host/engine/engine_setup.h"
 #include "sim/scene.h"
 #include "sim/wav_io.h"
 #include "sim/world_model.h"
+
+#include "cli_run.h"
 
 namespace fs = std::filesystem;
 
@@ -152,6 +159,59 @@ TEST(Cli, NeuronPrintsSpikesAndRejectsBadPresets) {
   const Result bad = sh("neuron --preset XX --input step:10 --duration 100");
   EXPECT_NE(bad.status, 0);
   EXPECT_NE(bad.out.find("XX"), std::string::npos) << bad.out;
+}
+
+
+// `eskin decode --engine fpga`: the NDJSON amplitudes, pressures and
+// spikes are the engine's packets (host/engine, itself equal to
+// hls/dtmf_chain.h) for the WAV's codes, line for line, with the top's
+// ghost filter on (taxels no longer need --no-ghost). Bound: amplitudes
+// equal to the printed 6 significant digits (2 mag / N is printed with
+// %.6g); spike lists equal.
+TEST(Cli, DecodeFpgaEngineIsTheEnginesPackets) {
+  const fs::path d = tmpdir();
+  const auto scene = eskin::sim::load_scene(kScene);
+  eskin::sim::WorldModel world(scene);
+  const std::vector<int> codes = world.all_codes();
+  eskin::sim::write_wav((d / "s.wav").string(), codes, scene.skin.adc);
+  const Result r = sh("decode --skin " + kScene + " " + (d / "s.wav").string() +
+                      " --engine fpga --hop 35 --spikes --threads 2");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto plan = eskin::engine::top_plan(scene.skin, scene.decoder, scene.neuron, true);
+  ASSERT_EQ(plan.step, 35);
+  ASSERT_TRUE(plan.spec.ghost);
+  const auto c12 = eskin::engine::codes12(codes, scene.skin.adc.bits);
+  const auto ps = eskin::engine::DtmfEngine(eskin::engine::engine_config(plan)).run(c12.data(), c12.size());
+  std::map<uint32_t, std::string> amp, spk;
+  for (const auto& p : ps.packets) {
+    const uint8_t* b = ps.payload(p);
+    std::string& s = p.type == 1 ? amp[p.t] : spk[p.t];
+    for (uint32_t i = 0; p.type == 1 && i < p.len; i += 2)
+      s += fmt::format("{}{:.6g}", i ? "," : "", (b[i] | b[i + 1] << 8) * 2.0 / 32);
+    for (uint32_t i = 0; p.type == 4 && i < p.len; i += 5)
+      if (b[i + 2] == 0) s += fmt::format("{}{}", s.empty() ? "" : ",", b[i + 3] | b[i + 4] << 8);
+  }
+  std::istringstream lines(r.out);
+  std::string line;
+  size_t n = 0, with_spikes = 0;
+  for (; std::getline(lines, line); ++n) {
+    const uint32_t t = uint32_t(std::stoul(line.substr(line.find(':') + 1)));
+    EXPECT_NE(line.find("\"amp_lsb\":[" + amp.at(t) + "]"), std::string::npos) << line;
+    EXPECT_NE(line.find("\"spikes\":[" + spk[t] + "]"), std::string::npos) << line;
+    EXPECT_NE(line.find("\"pressure_kpa\":["), std::string::npos) << line;
+    with_spikes += !spk[t].empty();
+  }
+  EXPECT_EQ(n, amp.size());
+  EXPECT_EQ(n, (codes.size() - 32) / 35 + 1);  // a frame once the window is full, then every 35
+  EXPECT_GE(with_spikes, 5u);
+  const Result bad = sh("decode --skin " + kScene + " " + (d / "s.wav").string() +
+                        " --engine fpga --variant recursive");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("--variant"), std::string::npos) << bad.out;
+  const Result hop = sh("decode --skin " + kScene + " " + (d / "s.wav").string() +
+                        " --engine fpga --taxels --hop 36");
+  EXPECT_EQ(hop.status, 2);
+  EXPECT_NE(hop.out.find("--hop"), std::string::npos) << hop.out;
 }
 
 }  // namespace

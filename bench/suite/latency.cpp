@@ -1,0 +1,283 @@
+#include "bench/suite/latency.h"
+
+#include <fmt/format.h>
+
+#include "bench/suite/text_file.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <set>
+#include <ostream>
+#include <regex>
+#include <sstream>
+
+#include <unistd.h>
+#include <stdexcept>
+
+#include "bench/suite/engine_model.h"
+#include "bench/suite/timing.h"
+#include "hls/dtmf_ucode.h"
+#include "host/engine/engine_setup.h"
+#include "sim/dtmf_top_spec.h"
+#include "sim/scene.h"
+#include "sim/world_model.h"
+
+namespace fs = std::filesystem;
+
+namespace eskin::bench {
+
+const std::vector<LatencyConfig>& latency_configs() {
+  static const std::vector<LatencyConfig> c = {
+      // The UP5K build (iCEBreaker: 12 MHz x 3/2 by the PLL).
+      {"3x3", "scenes/neuroskin2.yaml", hls::kDtmfTopClkHz},
+      // 100 taxels, two neuron layers each: as tests/rtl/dtmf_top_test.cmake
+      // builds it (the engine needs ~80 000 clocks per 1 ms frame).
+      {"10x10", "scenes/staggered10x10.yaml", 96000000},
+  };
+  return c;
+}
+
+namespace {
+
+std::string slurp(const fs::path& p) { return eskin::bench::read_text(p.string()); }
+
+uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// Runs a shell command, output into `log_file`; throws with its tail on failure.
+void run_logged(const std::string& cmd, const fs::path& log_file) {
+  const int st = std::system((cmd + " > " + quote(log_file.string()) + " 2>&1").c_str());
+  if (st != 0) {
+    std::string log = slurp(log_file);
+    if (log.size() > 3000) log = "..." + log.substr(log.size() - 3000);
+    throw std::runtime_error("command failed (" + log_file.string() + "):\n" + cmd + "\n" + log);
+  }
+}
+
+// The harness for one parameter set: cached under cache_dir/<hash>.
+fs::path harness_for(const std::vector<hls::VerilogParam>& params, const fs::path& cache_dir,
+                     double& build_seconds) {
+  // The microcode and constants the model reads at construction.
+  std::vector<fs::path> hex;
+  for (const auto& q : params)
+    if (q.name == "UCODE_HEX" || q.name == "KROM_HEX") hex.push_back(q.value.substr(1, q.value.size() - 2));
+  const fs::path src = ESKIN_SOURCE_DIR;
+  const fs::path harness = src / "bench/latency/latency_harness.cpp";
+  uint64_t h = fnv1a(slurp(harness));
+  std::vector<fs::path> deps;
+  for (const auto& e : fs::directory_iterator(src / "rtl"))
+    if (e.path().extension() == ".v") deps.push_back(e.path());
+  std::sort(deps.begin(), deps.end());
+  for (const char* f : {"tests/rtl/dtmf_top_board.h", "sim/ad7476_model.h", "host/link/link_decoder.h",
+                        "host/link/link_encoder.h"})
+    deps.push_back(src / f);
+  deps.push_back(ESKIN_LINK_LIB);
+  deps.push_back(ESKIN_COMMON_LIB);
+  for (const auto& d : deps) h = fnv1a(d.filename().string() + slurp(d), h);
+  for (const auto& d : hex) h = fnv1a(slurp(d), h);
+  std::string args;
+  for (const auto& a : hls::verilator_g_args(params)) {
+    h = fnv1a(a, h);
+    args += " " + quote(a);
+  }
+  const fs::path dir = cache_dir / fmt::format("{:016x}", h);
+  const fs::path exe = dir / "obj" / "latency_harness";
+  build_seconds = 0;
+  if (fs::exists(exe)) return exe;
+  // Built aside and renamed into place: concurrent runs never see half a build.
+  const fs::path tmp = cache_dir / fmt::format("{:016x}.tmp{}", h, ::getpid());
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  const double t0 = wall_seconds();
+  const std::string cmd =
+      "OBJCACHE=$(command -v ccache || true) verilator --cc --exe --build -j 2 -O3 -Wno-fatal "
+      "--x-assign unique --x-initial unique -y " + quote((src / "rtl").string()) +
+      " --top-module dtmf_top" + args + " " + quote((src / "rtl/dtmf_top.v").string()) + " " +
+      quote(harness.string()) + " -CFLAGS " +
+      quote("-std=c++17 -O2 -I" + src.string() + " -I" + (src / "tests/rtl").string()) +
+      " -LDFLAGS " + quote(std::string(ESKIN_LINK_LIB) + " " + ESKIN_COMMON_LIB) + " --Mdir " +
+      quote((tmp / "obj").string()) + " -o latency_harness";
+  run_logged(cmd, tmp / "build.log");
+  build_seconds = wall_seconds() - t0;
+  std::error_code ec;
+  fs::rename(tmp, dir, ec);
+  if (ec) fs::remove_all(tmp);  // another run built it first
+  return exe;
+}
+
+}  // namespace
+
+LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
+                           std::ostream& log) {
+  LatencyRun run;
+  run.config = c;
+  const sim::Scene scene = sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/" + c.scene);
+  run.plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, c.clk_hz));
+  const auto& p = run.plan;
+  // The first frame that sends every stream (frame count a multiple of
+  // both decimations) after two windows: DFT settled, the link idle
+  // (earlier packets long sent).
+  const uint32_t every = uint32_t(std::lcm(int(p.decim_amp), int(p.decim_tax)));
+  const uint32_t f_min = (2 * uint32_t(p.N) + 64 + uint32_t(p.step) - 1) / uint32_t(p.step);
+  const uint32_t frame = (f_min + every - 1) / every * every;
+  run.sample = uint32_t(p.N - 1) + frame * uint32_t(p.step);
+  const size_t run_to = run.sample + 2 * size_t(every) * size_t(p.step) + 64;
+  sim::WorldModel world(scene);
+  auto codes = engine::codes12(world.all_codes(), scene.skin.adc.bits);
+  if (codes.size() <= run_to) codes.resize(run_to + 1, 2048);
+
+  log << fmt::format("latency {}: {} (K {}, T {}, N {}, step {}, decim {}/{}) at {} MHz\n", c.name,
+                     c.scene, p.K, p.T, p.N, p.step, p.decim_amp, p.decim_tax, c.clk_hz / 1e6);
+  const fs::path hex_dir = fs::path(cache_dir) / "ucode";
+  fs::create_directories(hex_dir);
+  const auto params = hls::write_dtmf_top_build(p, fs::absolute(hex_dir).string(), c.name);
+  const fs::path exe = harness_for(params, cache_dir, run.build_seconds);
+  if (run.build_seconds > 0) log << fmt::format("  built {} in {:.0f} s\n", exe.string(), run.build_seconds);
+  const std::string stem = fmt::format("{}.{}", c.name, ::getpid());  // concurrent runs
+  const fs::path codes_file = exe.parent_path().parent_path() / (stem + ".u16");
+  {
+    std::ofstream f(codes_file, std::ios::binary);
+    for (uint16_t v : codes) f.put(char(v & 0xFF)).put(char(v >> 8));
+  }
+  const fs::path out = exe.parent_path().parent_path() / (stem + ".out");
+  const long cpb = std::lround(double(c.clk_hz) / double(p.spec.baud));
+  run_logged(fmt::format("{} {} {} {} {} {}", quote(exe.string()), quote(codes_file.string()),
+                         run.sample, run_to, c.clk_hz, cpb), out);
+  std::istringstream lines(slurp(out));
+  fs::remove(codes_file);
+  fs::remove(out);
+  std::string name;
+  int64_t v;
+  std::map<std::string, int64_t> counters;
+  const std::set<std::string> counter_names = {
+      "engine_clocks", "engine_first_byte_clocks", "packets",     "adc_overruns",
+      "frame_overruns", "dropped_frames",          "out_overflows", "link_errors"};
+  while (lines >> name >> v) {
+    if (counter_names.count(name)) counters[name] = v;
+    else run.stages.push_back({name, v});
+  }
+  int64_t end = 0;
+  for (const auto& s : run.stages) end = std::max(end, s.cycles);
+  run.stages.push_back({"end_to_end", end});
+  for (const char* k : {"adc_overruns", "frame_overruns", "dropped_frames", "out_overflows", "link_errors"})
+    if (counters[k] != 0)
+      throw std::runtime_error(fmt::format("latency {}: the build loses data ({} = {}): the "
+                                           "engine or the link does not keep up", c.name, k,
+                                           counters[k]));
+  if (counters["packets"] < 1)
+    throw std::runtime_error(fmt::format("latency {}: no packet of frame {} on the wire", c.name,
+                                         run.sample));
+  run.engine_clocks = counters["engine_clocks"];
+  run.engine_first_byte = counters["engine_first_byte_clocks"];
+  // The same frame in the frame engine's instruction-set model.
+  EngineCycleModel model(p, std::lround(p.spec.sample_hz > 0 ? c.clk_hz / p.spec.sample_hz : 1));
+  for (size_t i = 0; i <= run.sample; ++i) model.sample(codes[i]);
+  for (size_t i = run.sample + 1; i < codes.size() && i <= run.sample + size_t(p.step); ++i)
+    model.sample(codes[i]);  // time to finish the frame
+  for (const auto& f : model.frames())
+    if (f.t == run.sample) run.model_clocks = f.done, run.model_first_byte = f.first_out;
+  return run;
+}
+
+std::vector<std::pair<std::string, StageLatency>> read_latency_baseline(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot read the latency baseline");
+  std::vector<std::pair<std::string, StageLatency>> rows;
+  std::string line;
+  int no = 0;
+  while (std::getline(f, line)) {
+    ++no;
+    if (line.empty() || line[0] == '#' || line == "config,stage,cycles") continue;
+    std::smatch m;
+    if (!std::regex_match(line, m, std::regex("([^,]+),([^,]+),(-?[0-9]+)")))
+      throw std::runtime_error(fmt::format("{}:{}: expected config,stage,cycles, got '{}'", path,
+                                           no, line));
+    rows.push_back({m[1], {m[2], std::stoll(m[3])}});
+  }
+  return rows;
+}
+
+void write_latency_baseline(const std::string& path, const std::vector<LatencyRun>& runs) {
+  std::ofstream f(path);
+  f << "# Cycle latencies of the reference builds (eskin bench latency); changed only by\n"
+       "# `eskin bench latency --update-baseline`.\nconfig,stage,cycles\n";
+  for (const auto& r : runs)
+    for (const auto& s : r.stages) f << r.config.name << "," << s.stage << "," << s.cycles << "\n";
+  if (!f) throw std::runtime_error(path + ": write failed");
+}
+
+std::vector<std::string> compare_latency(
+    const std::vector<LatencyRun>& runs,
+    const std::vector<std::pair<std::string, StageLatency>>& base, std::vector<std::string>& notes) {
+  std::map<std::pair<std::string, std::string>, int64_t> want, got;
+  for (const auto& [c, s] : base) want[{c, s.stage}] = s.cycles;
+  for (const auto& r : runs)
+    for (const auto& s : r.stages) got[{r.config.name, s.stage}] = s.cycles;
+  std::vector<std::string> fail;
+  for (const auto& [k, v] : got) {
+    const auto it = want.find(k);
+    if (it == want.end())
+      fail.push_back(fmt::format("{} {}: {} cycles, not in the baseline", k.first, k.second, v));
+    else if (v > it->second)
+      fail.push_back(fmt::format("{} {}: latency grew from {} to {} cycles (+{})", k.first,
+                                 k.second, it->second, v, v - it->second));
+    else if (v < it->second)
+      notes.push_back(fmt::format("{} {}: {} -> {} cycles ({})", k.first, k.second, it->second, v,
+                                  v - it->second));
+  }
+  for (const auto& [k, v] : want) {
+    bool measured = false;
+    for (const auto& r : runs) measured |= r.config.name == k.first;
+    if (measured && !got.count(k))
+      fail.push_back(fmt::format("{} {}: in the baseline ({} cycles), not measured", k.first,
+                                 k.second, v));
+  }
+  return fail;
+}
+
+std::string format_latency(const std::vector<LatencyRun>& runs) {
+  std::string s = "Latency in cycles from the 16th SCLK falling edge of the frame's newest sample\n";
+  s += fmt::format("{:<26}", "stage");
+  for (const auto& r : runs) s += fmt::format(" {:>10}", r.config.name);
+  s += "\n";
+  std::vector<std::string> order;
+  for (const auto& r : runs)
+    for (const auto& st : r.stages)
+      if (std::find(order.begin(), order.end(), st.stage) == order.end()) order.push_back(st.stage);
+  const auto cycles = [](const LatencyRun& r, const std::string& stage) -> int64_t {
+    for (const auto& st : r.stages)
+      if (st.stage == stage) return st.cycles;
+    return -1;
+  };
+  for (const auto& stage : order) {
+    s += fmt::format("{:<26}", stage);
+    for (const auto& r : runs) s += fmt::format(" {:>10}", cycles(r, stage));
+    s += "\n";
+  }
+  s += "\nEnd to end at the build clock (the ADC and UART dividers are derived from CLK_HZ, so\n"
+       "the cycles hold at that clock only):\n";
+  for (const auto& r : runs)
+    s += fmt::format("  {}: {} cycles = {:.2f} us at {:g} MHz; one ADC sample period {:.1f} us at "
+                     "{:.0f} S/s; the thesis's 1 ms window; this build's window N/fs = {:.3f} ms, "
+                     "a frame every {} samples ({:.3f} ms)\n",
+                     r.config.name, cycles(r, "end_to_end"),
+                     double(cycles(r, "end_to_end")) / (r.config.clk_hz / 1e6), r.config.clk_hz / 1e6,
+                     1e6 / r.plan.spec.sample_hz, r.plan.spec.sample_hz,
+                     1e3 * r.plan.N / r.plan.spec.sample_hz, r.plan.step,
+                     1e3 * r.plan.step / r.plan.spec.sample_hz);
+  return s;
+}
+
+}  // namespace eskin::bench

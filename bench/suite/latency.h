@@ -1,0 +1,73 @@
+// `eskin bench latency`: cycle-exact latency of every stage of the DTMF top
+// and end to end, measured in Verilator for a table of reference builds,
+// compared with the baseline in the repository (bench/baselines/latency.csv).
+//
+// Each build is the top as hls/dtmf_top_config.h plans it for a reference
+// scene and clock; hls::write_dtmf_top_build writes its microcode and
+// constants and returns its parameters, which go to Verilator as -G
+// arguments, and bench/latency/latency_harness.cpp (the
+// tests/rtl/dtmf_top_board.h bench: AD7476A pin model, UART line decoder,
+// p_* probes) is compiled against it. Builds are cached by a hash of the
+// parameters, the hex files and the sources under build/bench/latency/.
+//
+// Stages of one frame, cycles from the ADC's last data edge of its newest
+// sample: the sample into sdft_bank, its last DFT token, the frame handed
+// to the frame engine, the engine's first output byte, the frame released,
+// the first start bit of its packets on the UART, the stop bit of their
+// last byte (end to end). The engine's part is checked against the frame
+// engine's instruction-set model (bench/suite/engine_model.h).
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "hls/dtmf_top_config.h"
+
+namespace eskin::bench {
+
+// One reference build: a scene and the FPGA clock it is planned for.
+struct LatencyConfig {
+  std::string name;   // "3x3", "10x10"
+  std::string scene;  // path, relative to the source tree
+  long clk_hz = hls::kDtmfTopClkHz;
+};
+// The reference builds (the table to extend when a new top exists).
+const std::vector<LatencyConfig>& latency_configs();
+
+struct StageLatency {
+  std::string stage;
+  int64_t cycles = 0;
+};
+
+struct LatencyRun {
+  LatencyConfig config;
+  hls::DtmfTopPlan plan;
+  uint32_t sample = 0;  // the measured frame's sample
+  std::vector<StageLatency> stages;
+  int64_t engine_clocks = 0, engine_first_byte = 0;  // Verilator: from frame_capture
+  int64_t model_clocks = -1, model_first_byte = -1;  // the ISS model of the same frame
+  double build_seconds = 0;  // 0 when the cached build was used
+};
+
+// Builds (or reuses) the harness and measures one reference build.
+LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
+                           std::ostream& log);
+
+// Baseline CSV: "config,stage,cycles" rows.
+std::vector<std::pair<std::string, StageLatency>> read_latency_baseline(const std::string& path);
+void write_latency_baseline(const std::string& path, const std::vector<LatencyRun>& runs);
+
+// Differences that fail the check (a stage slower than its baseline, or a
+// stage in one and not the other), one message each naming config, stage
+// and cycles; improvements go to `notes`.
+std::vector<std::string> compare_latency(const std::vector<LatencyRun>& runs,
+                                         const std::vector<std::pair<std::string, StageLatency>>& base,
+                                         std::vector<std::string>& notes);
+
+// The latency table: cycles, and µs at each build's clock, beside the
+// physical anchors and the model check.
+std::string format_latency(const std::vector<LatencyRun>& runs);
+
+}  // namespace eskin::bench

@@ -1,0 +1,236 @@
+// eskin bench: the benchmarks (docs/bench.md), one subcommand each.
+//   latency     cycle-exact stage latencies (Verilator) against the baseline
+//   throughput  samples/s of golden, the fast engine and FFTW, side by side
+//   tradeoff    speed/accuracy/resources map (CSV + HTML with Pareto fronts)
+//   stability   10^9-sample exact-DFT run, naive/damped drift, neuron extremes
+//   scale       golden and engine from 3x3 to 256x256 skins
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/suite/latency.h"
+#include "bench/suite/scale.h"
+#include "bench/suite/stability.h"
+#include "bench/suite/timing.h"
+#include "bench/suite/throughput.h"
+#include "bench/suite/tradeoff_run.h"
+#include "cli/command.h"
+#include "eskin/skin_config.h"
+#include "host/engine/engine_setup.h"
+#include "sim/scene.h"
+
+namespace eskin::cli {
+namespace {
+
+struct ThroughputArgs {
+  std::vector<std::string> scenes;
+  double min_seconds = 1.0;
+  int threads = int(std::max(1u, std::thread::hardware_concurrency()));
+};
+
+// The targets, checked on the rows that carry them.
+int run_throughput(const ThroughputArgs& a) {
+  std::vector<std::string> scenes = a.scenes;
+  if (scenes.empty())
+    scenes = {ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml", ESKIN_SOURCE_DIR "/scenes/skin32x32.yaml"};
+  std::cout << fmt::format(
+      "throughput: best pass of >= {:.1f} s; single-thread rows by thread CPU time, threaded rows "
+      "by wall clock beside the same engine on 1 thread\n\n", a.min_seconds);
+  for (const auto& path : scenes) {
+    const auto r = bench::measure_throughput(path, a.min_seconds, a.threads);
+    std::cout << bench::format_throughput(r);
+    const auto& amp = r.row("engine-amplitudes");
+    if (r.carriers <= 8)
+      std::cout << fmt::format("target: engine amplitudes >= 5x FFTW: {:.2f}x ({})\n", amp.vs_fftw,
+                               amp.vs_fftw >= 5 ? "met" : "MISSED");
+    std::cout << fmt::format("target: real time on one core at {:.0f} S/s: amplitudes {:.1f}x, "
+                             "chain {:.1f}x ({})\n\n", r.fs, amp.samples_per_s / r.fs,
+                             r.row("engine-chain").samples_per_s / r.fs,
+                             amp.samples_per_s >= r.fs ? "met" : "MISSED");
+  }
+  return 0;
+}
+
+struct LatencyArgs {
+  bool update = false;
+  std::string baseline = ESKIN_SOURCE_DIR "/bench/baselines/latency.csv";
+  std::string cache = ESKIN_BUILD_DIR "/bench/latency";
+  std::vector<std::string> configs;
+};
+
+// Fails (exit 1) naming config, stage and cycles when a latency grew, or a
+// stage appeared or vanished; the baseline is rewritten only on request.
+int run_latency(const LatencyArgs& a) {
+  std::vector<bench::LatencyRun> runs;
+  for (const auto& c : bench::latency_configs())
+    if (a.configs.empty() || std::find(a.configs.begin(), a.configs.end(), c.name) != a.configs.end())
+      runs.push_back(bench::measure_latency(c, a.cache, std::cout));
+  if (runs.empty()) throw ConfigError("--config", "no reference build of that name");
+  std::cout << "\n" << bench::format_latency(runs) << "\n";
+  // The frame engine's instruction-set model (the trade study's latency)
+  // must take the clocks Verilator measured for the same frame.
+  bool model_ok = true;
+  for (const auto& r : runs) {
+    const bool same = r.model_clocks == r.engine_clocks && r.model_first_byte == r.engine_first_byte;
+    model_ok = model_ok && same;
+    std::cout << fmt::format("engine model {}: frame {} released after {} clocks, first byte at {}; "
+                             "Verilator {} and {} ({})\n",
+                             r.config.name, r.sample, r.model_clocks, r.model_first_byte,
+                             r.engine_clocks, r.engine_first_byte, same ? "agrees" : "DISAGREES");
+  }
+  if (!model_ok) return 1;
+  if (a.update) {
+    bench::write_latency_baseline(a.baseline, runs);
+    std::cout << "baseline written: " << a.baseline << "\n";
+    return 0;
+  }
+  std::vector<std::string> notes;
+  const auto fail = bench::compare_latency(runs, bench::read_latency_baseline(a.baseline), notes);
+  for (const auto& n : notes) std::cout << "faster than the baseline: " << n << "\n";
+  for (const auto& f : fail) std::cout << "LATENCY REGRESSION: " << f << "\n";
+  std::cout << (fail.empty() ? "latency: no stage slower than " : "latency: FAILED against ")
+            << a.baseline << "\n";
+  return fail.empty() ? 0 : 1;
+}
+
+struct TradeArgs {
+  bench::TradeRunOptions o;
+  bool quick = false, synth = false, write_table = false;
+  std::string points;  // array task: points file
+  int run_point = -1;
+  std::string part;
+};
+
+int run_tradeoff(TradeArgs a) {
+  if (a.synth && a.o.synth_cache.empty()) a.o.synth_cache = ESKIN_BUILD_DIR "/bench/synth";
+  if (a.run_point >= 0) {  // one Slurm array task
+    if (a.points.empty() || a.part.empty())
+      throw ConfigError("--run-point", "needs --points FILE and --part FILE");
+    bench::run_tradeoff_task(a.points, a.run_point, a.part, a.o);
+    return 0;
+  }
+  const auto pts = bench::tradeoff_points(a.quick);
+  std::cout << fmt::format("tradeoff: {} points ({} sweep), {}\n", pts.size(),
+                           a.quick ? "quick" : "full",
+                           a.o.slurm ? "as a Slurm job array" : fmt::format("{} threads", a.o.threads));
+  const double t0 = bench::wall_seconds();
+  const auto rows = bench::run_tradeoff(pts, a.o);
+  int front = 0;
+  for (const auto& r : rows) front += r.pareto_latency;
+  std::cout << fmt::format("{} rows in {:.0f} s: {}/tradeoff.csv, {}/tradeoff.html ({} on the "
+                           "error-latency front)\n", rows.size(), bench::wall_seconds() - t0,
+                           a.o.out_dir, a.o.out_dir, front);
+  if (a.write_table) {
+    // This run's builds only: entries of older builds or flows would never match again.
+    bench::SynthTable t;
+    for (const auto& r : rows)
+      if (r.luts >= 0) t[bench::synth_key(r.p)] = {r.luts, r.dsp, r.bram, r.spram};
+    bench::write_synth_table(a.o.synth_table, t);
+    std::cout << "synthesis table written: " << a.o.synth_table << "\n";
+  }
+  return 0;
+}
+
+struct StabilityArgs {
+  double samples = 1e9, neuron_steps = 1e7;
+  int checkpoints = 40;
+  std::string out = "stability.html";
+  std::string scene = ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml";
+};
+
+int run_stability(const StabilityArgs& a) {
+  // The neurons as the top runs them for the scene (both layers' constants).
+  const sim::Scene sc = sim::load_scene(a.scene);
+  const hls::DtmfTopPlan plan = engine::top_plan(sc.skin, sc.decoder, sc.neuron, true);
+  const auto r = bench::run_stability(uint64_t(a.samples), uint64_t(a.neuron_steps), a.checkpoints,
+                                      plan.neuron);
+  std::cout << bench::format_stability(r);
+  bench::write_stability_report(a.out, r);
+  std::cout << "report: " << a.out << "\n";
+  bool ok = r.recovered;
+  for (const auto& d : r.drift) ok = ok && d.exact_lsb == 0;
+  for (const auto& e : r.neurons)
+    ok = ok && e.in_range && e.note.find("MISSED") == std::string::npos &&
+         e.note.find("NOT") == std::string::npos && e.note.find("FIRES") == std::string::npos;
+  return ok ? 0 : 1;
+}
+
+std::function<int()> setup(CLI::App& app) {
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: latency, throughput, tradeoff, stability, scale (docs/bench.md)");
+  bench->require_subcommand(1);
+  auto l = std::make_shared<LatencyArgs>();
+  CLI::App* lat = bench->add_subcommand(
+      "latency", "cycle-exact stage latencies of the reference FPGA builds against the baseline");
+  lat->add_flag("--update-baseline", l->update, "write the measured latencies as the new baseline");
+  lat->add_option("--baseline", l->baseline, "baseline CSV (config,stage,cycles)");
+  lat->add_option("--cache", l->cache, "directory of the cached Verilator builds");
+  lat->add_option("--config", l->configs, "only these reference builds (3x3, 10x10)");
+  auto d = std::make_shared<TradeArgs>();
+  d->o.out_dir = "tradeoff";
+  d->o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  d->o.synth_table = ESKIN_SOURCE_DIR "/bench/baselines/tradeoff_synth.csv";
+  d->o.eskin_bin = std::filesystem::canonical("/proc/self/exe").string();
+  CLI::App* tr = bench->add_subcommand(
+      "tradeoff", "speed/accuracy/resources sweep: CSV and HTML report with Pareto fronts");
+  tr->add_flag("--quick", d->quick, "the small sweep CI runs");
+  tr->add_option("--out", d->o.out_dir, "output directory (tradeoff.csv, tradeoff.html)");
+  tr->add_option("--threads", d->o.threads, "local worker threads")->check(CLI::Range(1, 256));
+  tr->add_flag("--slurm", d->o.slurm, "run the points as a Slurm job array (sbatch --array --wait)");
+  tr->add_option("--sbatch-args", d->o.sbatch_args, "extra sbatch arguments (e.g. -p PARTITION)");
+  tr->add_flag("--synth", d->synth, "run Yosys for builds not in the synthesis table (cached)");
+  tr->add_option("--synth-cache", d->o.synth_cache, "directory of cached Yosys runs");
+  tr->add_option("--synth-table", d->o.synth_table, "stored synthesis results (CSV)");
+  tr->add_flag("--write-synth-table", d->write_table,
+               "add this run's synthesis results to --synth-table");
+  tr->add_option("--run-point", d->run_point, "(Slurm array task) evaluate point INDEX only");
+  tr->add_option("--points", d->points, "(Slurm array task) the points file");
+  tr->add_option("--part", d->part, "(Slurm array task) where to write the row");
+  auto st = std::make_shared<StabilityArgs>();
+  CLI::App* stab = bench->add_subcommand(
+      "stability", "exact sliding DFT over 10^9 worst-case samples, naive/damped drift, neurons "
+                   "at their range edges (exit 1 on any mismatch)");
+  stab->add_option("--samples", st->samples, "DFT samples (default 1e9)")->check(CLI::Range(64.0, 1e13));
+  stab->add_option("--neuron-steps", st->neuron_steps, "steps per extreme-input phase")
+      ->check(CLI::Range(1.0, 1e12));
+  stab->add_option("--checkpoints", st->checkpoints, "comparisons, spaced geometrically")
+      ->check(CLI::Range(1, 10000));
+  stab->add_option("--out", st->out, "HTML report");
+  stab->add_option("--scene", st->scene, "scene whose top's neuron layers run (default neuroskin2)");
+  auto sc = std::make_shared<std::pair<int, double>>(256, 0.5);
+  CLI::App* scale = bench->add_subcommand(
+      "scale", "golden and the fast engine on 3x3 .. 256x256 skins: samples/s per core, memory");
+  scale->add_option("--max-side", sc->first, "largest skin side")->check(CLI::Range(3, 256));
+  scale->add_option("--min-seconds", sc->second, "measure each row for at least this long")
+      ->check(CLI::PositiveNumber);
+  auto t = std::make_shared<ThroughputArgs>();
+  CLI::App* tp = bench->add_subcommand(
+      "throughput", "samples/s and ns/sample of golden, the fast engine and FFTW, in one run");
+  tp->add_option("scenes", t->scenes, "scene files (default: neuroskin2 and skin32x32)")
+      ->check(CLI::ExistingFile);
+  tp->add_option("--min-seconds", t->min_seconds, "measure each row for at least this long")
+      ->check(CLI::PositiveNumber);
+  tp->add_option("--threads", t->threads, "threads for the threaded engine row")
+      ->check(CLI::Range(1, 256));
+  return [=]() -> int {
+    if (lat->parsed()) return run_latency(*l);
+    if (tp->parsed()) return run_throughput(*t);
+    if (tr->parsed()) return run_tradeoff(*d);
+    if (stab->parsed()) return run_stability(*st);
+    if (scale->parsed()) {
+      std::cout << bench::format_scale(bench::run_scale(sc->first, sc->second));
+      return 0;
+    }
+    return 1;
+  };
+}
+
+ESKIN_COMMAND("bench", setup);
+
+}  // namespace
+}  // namespace eskin::cli
