@@ -1,5 +1,6 @@
 #include "sim/i2c_bus.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace eskin::sim {
@@ -187,6 +188,9 @@ void I2cBus::check_edge(int line, bool level, double t) {
 }
 
 void I2cBus::violate(double t, const char* param, double value, const char* rel, double limit) {
+  // A value at the limit within 0.01 ns passes: simulated times are sums of
+  // clock periods (83.33.. ns) in floating point.
+  if (std::fabs(value - limit) < 0.01) return;
   ++violation_count_;
   const std::string p(param);
   ++violated_[p.substr(0, p.find(' '))];
