@@ -21,8 +21,8 @@
 //              pulses given; ERR_STUCK if SDA is still low after 9.
 // Response (rsp_valid/rsp_ready): rsp_data, rsp_nack, rsp_err (ERR_OK,
 // ERR_BUSY, ERR_TIMEOUT: SCL held low by someone else for longer than
-// TIMEOUT_US -- the master then releases both lines and gives up the bus --,
-// ERR_STUCK).
+// TIMEOUT_US, or SDA not released after our STOP for as long -- the master
+// then releases both lines and gives up the bus --, ERR_STUCK).
 //
 // Timing (UM10204, fast-mode above 100 kHz, else standard-mode), in clocks
 // of CLK_HZ, each rounded up:
@@ -254,11 +254,19 @@ module i2c_master #(
           end else if (op == OP_STOP && cnt == C_SU_STO) begin
             sda_oe <= 1'b0;
             cnt <= {CW{1'b0}};
+            sampled <= 1'b0;
             state <= S_BUF;
           end
-        S_BUF:  // STOP sent: bus free time from SDA seen high
-          if (!sda_s) begin
-            cnt <= {CW{1'b0}};
+        S_BUF:  // STOP sent: bus free time from SDA seen high (`sampled`
+                // marks that); SDA kept low by someone: timeout
+          if (!sampled) begin
+            if (sda_s) begin
+              sampled <= 1'b1;
+              cnt <= {CW{1'b0}};
+            end else if (cnt == C_TIMEOUT) begin
+              owned <= 1'b0;
+              respond(ERR_TIMEOUT);
+            end
           end else if (cnt == C_BUF) begin
             owned <= 1'b0;
             respond(ERR_OK);
