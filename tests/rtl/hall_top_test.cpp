@@ -190,6 +190,29 @@ TEST(HallTop, FramesCarryEveryReadingTokenForToken) {
   for (const auto& h : f[0]->hall_samples) EXPECT_EQ(h.flags, HallSample::kReply);
 }
 
+TEST(HallTop, MissingSensorFlaggedInFramesAndCountedInBusStatus) {
+  HallBoard<Vhall_top> b(2, 2, false);
+  b.dev[3]->set_absent(true);  // bus 1, sensor 1 never answers
+  b.run(66 * kConvCyc);        // HALL_BUS_STATUS follows every 64th frame
+  const auto f = b.frames();
+  ASSERT_GE(f.size(), 64u);
+  for (const Packet* p : f) EXPECT_EQ(p->hall_samples[3].flags, HallSample::kMissing);
+  for (size_t i = 2; i < f.size(); ++i)
+    for (int s = 0; s < 3; ++s) EXPECT_TRUE(f[i]->hall_samples[s].has_data()) << i;
+  b.expect_frames_equal_devices();
+  const Packet* st = nullptr;
+  for (const auto& p : b.packets)
+    if (p.type == eskin::link::kHallBusStatus) st = &p;
+  ASSERT_NE(st, nullptr);
+  ASSERT_EQ(st->hall_buses.size(), 2u);
+  EXPECT_EQ(st->hall_buses[0].nacks, 0);
+  // One NACKed attempt per frame: 64 frames, and the next round's attempt
+  // may already have happened while the 64th frame was being sent.
+  EXPECT_GE(st->hall_buses[1].nacks, 64);
+  EXPECT_LE(st->hall_buses[1].nacks, 65);
+  EXPECT_EQ(st->hall_buses[1].status_errors, 0);
+}
+
 TEST(HallTop, SixteenSensorsOnFourBusesAtTheMaximumRate) {
   HallBoard<Vhall_top_16s> b(4, 4, false);
   b.run(14 * kConvCyc);
