@@ -10,9 +10,11 @@
 
 #include "cli/command.h"
 #include "cli/csv_fields.h"
+#include "cli/hall_chain.h"
 #include "host/golden/decode_score.h"
 #include "host/golden/golden_decoder.h"
 #include "host/golden/izhikevich_layer.h"
+#include "sim/hall_world.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
 
@@ -29,6 +31,12 @@ struct GoldenArgs {
 
 int run_golden(const GoldenArgs& a) {
   sim::Scene scene = sim::load_scene(a.scene);
+  if (scene.has_hall) {
+    fmt::print("scene {} ({}): magnetic skin\n", scene.name, a.scene);
+    const sim::HallWorld hall(scene.hall);
+    run_hall_golden(hall, scene.duration_s, scene.seed, a.out);
+    if (!scene.has_skin) return 0;
+  }
   if (!a.variant.empty()) scene.decoder.variant = dft_variant_from_string(a.variant);
   if (a.hop > 0) scene.decoder.hop = a.hop;
   validate(scene.decoder, scene.skin);
