@@ -27,12 +27,14 @@ struct GoldenArgs {
   std::string variant;
   int hop = 0;
   bool no_ghost = false;
+  int hall_osr = -1, hall_dig_filt = -1;
 };
 
 int run_golden(const GoldenArgs& a) {
   sim::Scene scene = sim::load_scene(a.scene);
   if (scene.has_hall) {
     fmt::print("scene {} ({}): magnetic skin\n", scene.name, a.scene);
+    apply_speed(scene.hall.config, a.hall_osr, a.hall_dig_filt);
     const sim::HallWorld hall(scene.hall);
     run_hall_golden(hall, scene.duration_s, scene.seed, a.out);
     if (!scene.has_skin) return 0;
@@ -142,6 +144,11 @@ std::function<int()> setup(CLI::App& app) {
                   "override decoder.variant: direct|recursive|damped|exact|ls");
   sub->add_option("--hop", args->hop, "override decoder.hop (frames every HOP samples)");
   sub->add_flag("--no-ghost", args->no_ghost, "report taxels without ghost correction");
+  sub->add_option("--hall-osr", args->hall_osr, "Hall scenes: override the MLX90393 OSR (0..3)")
+      ->check(CLI::Range(0, 3));
+  sub->add_option("--hall-dig-filt", args->hall_dig_filt,
+                  "Hall scenes: override the MLX90393 DIG_FILT (0..7)")
+      ->check(CLI::Range(0, 7));
   return [args] { return run_golden(*args); };
 }
 

@@ -64,6 +64,15 @@ std::vector<Vec3> mean_of(sim::HallSampler& s, const std::vector<Vec3>& field, c
 
 }  // namespace
 
+void apply_speed(HallConfig& h, int osr, int dig_filt) {
+  mlx90393::Config to = h.mlx;
+  if (osr >= 0) to.osr = osr;
+  if (dig_filt >= 0) to.dig_filt = dig_filt;
+  mlx90393::validate(to, "--hall-osr/--hall-dig-filt");
+  h.noise_rms_ut = scaled_noise_ut(h.noise_rms_ut, h.mlx, to);
+  h.mlx = to;
+}
+
 std::vector<Vec3> mean_field(const sim::HallWorld& w, sim::HallSampler& s,
                              const std::vector<sim::ContactLoad>& contacts,
                              const std::vector<sim::PlateWrench>& plate, int frames) {

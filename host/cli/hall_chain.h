@@ -15,6 +15,10 @@
 
 namespace eskin::cli {
 
+// Sets OSR / DIG_FILT (-1: keep) and rescales the sensors' noise to it
+// (scaled_noise_ut); throws ConfigError for an illegal pair.
+void apply_speed(HallConfig& h, int osr, int dig_filt);
+
 // Mean field (uT per sensor) of `frames` noisy quantised frames under a load.
 std::vector<Vec3> mean_field(const sim::HallWorld& w, sim::HallSampler& s,
                              const std::vector<sim::ContactLoad>& contacts,

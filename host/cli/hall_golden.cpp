@@ -82,12 +82,19 @@ int run_hall_golden(const sim::HallWorld& w, double duration_s, uint64_t seed, c
   }
 
   sim::HallSampler sampler(h, seed);
-  golden::HallBaseline base(h.sensors.size(), kBaselineFrames);
+  // The baseline is captured before the first stimulus starts (at most
+  // kBaselineFrames frames, at least one).
+  double first = 1e300;
+  for (const auto& p : sc.presses) first = std::min(first, p.env.t_start_s);
+  for (const auto& r : sc.rolls) first = std::min(first, r.t_start_s);
+  for (const auto& x : sc.wrenches) first = std::min(first, x.env.t_start_s);
+  const int capture = std::clamp(int(first / sampler.period_s()), 1, kBaselineFrames);
+  golden::HallBaseline base(h.sensors.size(), capture);
   if (h.wants(HallDecode::Decouple)) {
     // Seed 001: the geomagnetic field recorded before the film is placed.
     const std::vector<Vec3> geo(h.sensors.size(), h.geomagnetic_ut);
     std::vector<Vec3> d;
-    for (int k = 0; k < kBaselineFrames; ++k) base.push(golden::frame_ut(sampler.sample(geo, 0), h.mlx), d);
+    for (int k = 0; k < capture; ++k) base.push(golden::frame_ut(sampler.sample(geo, 0), h.mlx), d);
   }
   const golden::Decoupled rest_d = golden::hall_decouple(dcal.rest_film_ut, dcal.params);
 
