@@ -101,28 +101,36 @@ DecoupleCalibration calibrate_decouple(const sim::HallWorld& w, uint64_t seed) {
   return cal;
 }
 
-WrenchCalibration calibrate_wrench(const sim::HallWorld& w, uint64_t seed, int presses) {
-  const HallConfig& h = w.config();
-  sim::HallSampler s(h, seed + 202);
+golden::Vec6 wrench_calibration_range() {
+  golden::Vec6 r;
+  r << 8, 8, 24, 150, 150, 120;
+  return r;
+}
+
+WrenchPresses simulate_wrench_presses(const sim::HallWorld& w, uint64_t seed, int presses) {
+  sim::HallSampler s(w.config(), seed + 202);
   std::mt19937_64 rng(seed + 303);
   std::uniform_real_distribution<double> u(-1, 1);
-  WrenchCalibration cal;
-  cal.presses = presses;
-  // Calibration ranges (the scene's stimuli stay inside them).
-  cal.full_scale << 8, 8, 24, 150, 150, 120;
+  const golden::Vec6 range = wrench_calibration_range();
   const auto rest = mean_field(w, s, {}, {}, kCalFrames);
-  std::vector<golden::Vec9> db;
-  std::vector<golden::Vec6> wr;
+  WrenchPresses p;
   for (int k = 0; k < presses; ++k) {
     golden::Vec6 x;
-    for (int a = 0; a < 6; ++a) x(a) = u(rng) * cal.full_scale(a);
+    for (int a = 0; a < 6; ++a) x(a) = u(rng) * range(a);
     x(2) = -std::fabs(x(2));  // pressing, never pulling
-    sim::PlateWrench pw{{x(0), x(1), x(2)}, {x(3), x(4), x(5)}};
-    const auto d = minus(mean_field(w, s, {}, {pw}, kCalFrames), rest);
-    db.push_back(flat(d));
-    wr.push_back(x);
+    const sim::PlateWrench pw{{x(0), x(1), x(2)}, {x(3), x(4), x(5)}};
+    p.db_ut.push_back(flat(minus(mean_field(w, s, {}, {pw}, kCalFrames), rest)));
+    p.wrench.push_back(x);
   }
-  cal.c = golden::ft_fit(db, wr);
+  return p;
+}
+
+WrenchCalibration calibrate_wrench(const sim::HallWorld& w, uint64_t seed, int presses) {
+  const WrenchPresses p = simulate_wrench_presses(w, seed, presses);
+  WrenchCalibration cal;
+  cal.presses = presses;
+  cal.full_scale = wrench_calibration_range();
+  cal.c = golden::ft_fit(p.db_ut, p.wrench);
   return cal;
 }
 

@@ -38,6 +38,13 @@ struct WrenchCalibration {
   golden::Vec6 full_scale = golden::Vec6::Ones();  // per axis, the calibration range
   int presses = 0;
 };
+struct WrenchPresses {
+  std::vector<golden::Vec9> db_ut;    // baseline-removed fields
+  std::vector<golden::Vec6> wrench;   // Fx Fy Fz (N) Tx Ty Tz (N*mm)
+};
+// The calibration ranges (the scene's stimuli stay inside them).
+golden::Vec6 wrench_calibration_range();
+WrenchPresses simulate_wrench_presses(const sim::HallWorld& w, uint64_t seed, int presses);
 WrenchCalibration calibrate_wrench(const sim::HallWorld& w, uint64_t seed, int presses = 200);
 // Recorded presses: CSV lines of b1x..b3z (uT, baseline removed), fx fy fz tx ty tz.
 WrenchCalibration calibrate_wrench_csv(const std::string& path);
