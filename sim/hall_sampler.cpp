@@ -21,7 +21,7 @@ HallFrame HallSampler::sample(const std::vector<Vec3>& field, double t_s) {
       const double b = field[s][size_t(a)] + cfg_.noise_rms_ut[size_t(a)] * noise_(rng_);
       const mlx90393::Code c = mlx90393::encode_uT(cfg_.mlx, a, b);
       x.lsb[size_t(a)] = int16_t(mlx90393::code_to_lsb(cfg_.mlx, a, c.code));
-      if (c.saturated) x.flags |= kHallSaturated;
+      if (c.saturated) x.flags |= uint8_t(kHallSatX << a);
     }
   }
   return f;

@@ -97,7 +97,7 @@ struct DecoupleParams {
 };
 
 // Seed 003 piecewise-linear force curve of one cell: breakpoints of the
-// field-magnitude change |B| - |B0| (uT, ascending) and force (N).
+// field change |B - B0| (uT, ascending) and force (N).
 struct ForceCurve {
   std::vector<double> db_ut;
   std::vector<double> force_n;

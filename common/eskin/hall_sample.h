@@ -11,9 +11,15 @@
 
 namespace eskin {
 
+// The flags of the FPGA sequencer's tokens (rtl/mlx90393_sequencer.v).
 enum HallSampleFlag : uint8_t {
-  kHallSaturated = 0x01,  // an axis code sat at its format's end (field clamped)
-  kHallError = 0x02,      // status ERROR or a bad reply: not a measurement
+  kHallSatX = 0x01, kHallSatY = 0x02, kHallSatZ = 0x04,  // code at its format's rail
+  kHallMissing = 0x08,    // the sensor NACKed
+  kHallError = 0x10,      // status ERROR: sample dropped
+  kHallReply = 0x20,      // unexpected reply: not trusted
+  kHallBus = 0x40,        // bus timeout / SDA stuck
+  kHallRecovered = 0x80,  // SDA was recovered before this transaction
+  kHallNoData = kHallMissing | kHallError | kHallReply | kHallBus,
 };
 
 struct HallSample {

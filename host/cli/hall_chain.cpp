@@ -179,7 +179,7 @@ std::vector<ForceCurve> calibrate_force_curves(const sim::HallWorld& w, uint64_t
     for (double force = 0; force <= lock.back() + 1e-9; force += lock.back() / 160) {
       const auto cl = press_at(w, c.centre_mm[0], c.centre_mm[1], {0, 0, -force}, 5.0, int(i));
       const auto b = mean_field(w, s, {cl}, {}, kCalFrames);
-      db.push_back(norm3(b[i]) - norm3(rest[i]));
+      db.push_back(norm3({b[i][0] - rest[i][0], b[i][1] - rest[i][1], b[i][2] - rest[i][2]}));
       f.push_back(force);
     }
     curves.push_back(golden::fit_force_curve(db, f, lock, per_range));

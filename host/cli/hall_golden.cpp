@@ -35,7 +35,6 @@ int active(const sim::HallScene& s, double t, bool& steady) {
 constexpr int kBaselineFrames = 20;  // 40 ms at OSR 0 / DIG_FILT 2, before any stimulus
 
 double norm3(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-Vec3 add3(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 Eigen::VectorXd flat3(const std::vector<Vec3>& v) {
   Eigen::VectorXd x(Eigen::Index(3 * v.size()));
   for (size_t s = 0; s < v.size(); ++s)
@@ -144,7 +143,7 @@ int run_hall_golden(const sim::HallWorld& w, double duration_s, uint64_t seed, c
       size_t ci = 0;
       for (size_t i = 0; i < h.cells.size(); ++i) {
         if (h.cells[i].kind != CellKind::Stack) continue;
-        const double d = norm3(add3(base.baseline()[i], delta[i])) - norm3(base.baseline()[i]);
+        const double d = norm3(delta[i]);
         fe.push_back(golden::force_curve_apply(curves[ci++], d));
         const double ft = -truth.cells[i].force_n[2];
         if (steady && ft > 0) {

@@ -1,7 +1,9 @@
 // Golden seed-003 multi-range force curve. A metamaterial block's layers lock
 // one after the other, so force against the field change is piecewise: one
-// sensitivity per range. The curve is piecewise linear in d = |B| - |B0|
-// (uT): breakpoints (d_k, F_k), linear between them, clamped to the last
+// sensitivity per range. The curve is piecewise linear in d = |B - B0| (uT,
+// the magnitude of the baseline-removed field; the magnet moves along its
+// axis, so this is the seed's |B| - |B0| up to the small off-axis part):
+// breakpoints (d_k, F_k), linear between them, clamped to the last
 // segment's slope beyond the ends.
 #pragma once
 
