@@ -86,3 +86,8 @@ template class eskin::hls::FtCalibrate<16>;
 #include "hls/force_curve.h"
 template class eskin::hls::ForceCurve<9, 13, 3>;
 #endif
+
+#if __has_include("hls/hall_decouple.h")
+#include "hls/hall_decouple.h"
+template class eskin::hls::HallDecouple<0>;
+#endif
