@@ -71,3 +71,23 @@ template class eskin::hls::DtmfChain<3, 3, 32>;
 template class eskin::hls::CarrierDemix<6, 32>;
 template struct eskin::hls::CarrierDemixConfig<6>;
 #endif
+
+#if __has_include("hls/hall_baseline.h")
+#include "hls/hall_baseline.h"
+template class eskin::hls::HallBaseline<16, 4>;
+#endif
+
+#if __has_include("hls/ft_calibrate.h")
+#include "hls/ft_calibrate.h"
+template class eskin::hls::FtCalibrate<16>;
+#endif
+
+#if __has_include("hls/force_curve.h")
+#include "hls/force_curve.h"
+template class eskin::hls::ForceCurve<9, 13, 3>;
+#endif
+
+#if __has_include("hls/hall_decouple.h")
+#include "hls/hall_decouple.h"
+template class eskin::hls::HallDecouple<0>;
+#endif
