@@ -15,7 +15,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "Vhall_top.h"
@@ -24,7 +27,10 @@
 #include "clocked_dut.h"
 #include "host/link/link_decoder.h"
 #include "i2c_pin_bench.h"
+#include "sim/hall_top_spec.h"
+#include "sim/hall_world.h"
 #include "sim/mlx90393_model.h"
+#include "sim/scene.h"
 #include "sim/tca9548a_model.h"
 
 namespace {
@@ -56,7 +62,8 @@ struct RampField : eskin::sim::HallFieldSource {
 template <class V>
 struct HallBoard {
   ClockedDut<V> d;
-  RampField field;
+  RampField ramp;
+  const eskin::sim::HallFieldSource* field = &ramp;
   std::vector<std::unique_ptr<I2cPinBus>> buses;
   std::vector<std::unique_ptr<Tca9548aModel>> muxes;
   std::vector<std::unique_ptr<Mlx90393Model>> dev;
@@ -64,6 +71,26 @@ struct HallBoard {
   std::vector<Packet> packets;
   std::vector<uint64_t> first_byte_cycle;  // start bit of each packet's first byte
 
+  // A scene's sensors (their own field source, noise and addresses) in the
+  // FPGA slots of its hall_top spec.
+  HallBoard(const eskin::sim::HallFieldSource& src, const eskin::HallConfig& h,
+            const eskin::sim::HallTopSpec& spec)
+      : field(&src) {
+    for (int b = 0; b < spec.nb; ++b) buses.push_back(std::make_unique<I2cPinBus>());
+    dev.resize(h.sensors.size());
+    for (size_t i = 0; i < h.sensors.size(); ++i) {
+      const auto& hs = h.sensors[i];
+      EXPECT_LT(hs.mux_address, 0) << "this bench has no muxes";
+      Mlx90393Options o;
+      o.base_address = uint8_t(hs.i2c_address);
+      o.config = h.mlx;
+      o.noise_rms_uT = {h.noise_rms_ut[0], h.noise_rms_ut[1], h.noise_rms_ut[2]};
+      o.seed = 1000 + i;
+      dev[spec.slot[i]] =
+          std::make_unique<Mlx90393Model>(buses[hs.bus]->bus, *field, int(i), o, 0);
+    }
+    start();
+  }
   // nb buses of nsb sensors: direct at 0x0C + k, or all 0x0C behind mux channel k.
   HallBoard(int nb, int nsb, bool mux) {
     for (int b = 0; b < nb; ++b) {
@@ -76,9 +103,12 @@ struct HallBoard {
           o.a0 = k & 1;
         }
         const int seg = mux ? muxes[b]->channel_segment(k) : 0;
-        dev.push_back(std::make_unique<Mlx90393Model>(buses[b]->bus, field, b * nsb + k, o, seg));
+        dev.push_back(std::make_unique<Mlx90393Model>(buses[b]->bus, *field, b * nsb + k, o, seg));
       }
     }
+    start();
+  }
+  void start() {
     dec.on_packet([this](const Packet& p) { packets.push_back(p); });
     d.m.rst = 1;
     d.m.scl_i = 0;
@@ -249,6 +279,39 @@ TEST(HallTop, EightSensorsPerBusBehindMuxesCannotKeepUp) {
   const uint32_t period = (f.back()->t - f[2]->t) / uint32_t(f.size() - 3);
   std::printf("16 sensors / 2 buses of 8 behind TCA9548A: mean frame period %u us\n", period);
   EXPECT_GT(period, 2053u);
+}
+
+// The system path: the seed-000 scene's physics (hall-decode's HallWorld)
+// -> 16 MLX90393 models on 4 simulated buses -> the hall_top build generated
+// for that scene -> UART -> host/link -> every reading equals what the models
+// sent, token for token.
+TEST(HallTop, Seed000SceneThroughTheFpgaEqualsTheDeviceModels) {
+  const auto sc = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/hall_000_skin.yaml");
+  ASSERT_TRUE(sc.has_hall);
+  const auto spec = eskin::sim::hall_top_spec(sc.hall.config);
+  // The Vhall_top_16s build is this scene's: its parameters in
+  // tests/rtl/hall_top_test.cmake are exactly the generated ones.
+  std::ifstream cm(ESKIN_SOURCE_DIR "/tests/rtl/hall_top_test.cmake");
+  std::stringstream text;
+  text << cm.rdbuf();
+  std::string want = "set(hall_16s";
+  for (const auto& p : spec.verilog_params()) want += " " + p;
+  want += ")";
+  std::string flat;
+  for (char c : text.str()) flat += (c == '\n') ? ' ' : c;
+  for (size_t i; (i = flat.find("  ")) != std::string::npos;) flat.erase(i, 1);
+  EXPECT_NE(flat.find(want), std::string::npos) << "expected in the cmake file: " << want;
+
+  const eskin::sim::HallWorld world(sc.hall);
+  HallBoard<Vhall_top_16s> b(world, sc.hall.config, spec);
+  b.run(10 * kConvCyc);
+  const auto f = b.frames();
+  ASSERT_GE(f.size(), 8u);
+  b.expect_frames_equal_devices();
+  for (size_t i = 2; i < f.size(); ++i)
+    for (const auto& h : f[i]->hall_samples) EXPECT_TRUE(h.has_data()) << i;
+  for (auto& bus : b.buses)
+    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
 }
 
 }  // namespace
