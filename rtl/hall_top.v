@@ -42,9 +42,7 @@ module hall_top #(
     output wire [NB-1:0]     scl_oe,
     output wire [NB-1:0]     sda_oe,
     input  wire [NB*NSB-1:0] drdy,
-    output wire              uart_txd,
-    output reg  [31:0]       t_us,   // µs since reset (timestamps)
-    output reg  [15:0]       frames  // HALL_SAMPLES packets started
+    output wire              uart_txd
 );
   localparam integer NSENS = NB * NSB;
   localparam integer FB = NSENS * 10;  // frame payload bytes
@@ -61,6 +59,7 @@ module hall_top #(
   endgenerate
 
   // ---- µs time base
+  reg [31:0] t_us;  // µs since reset (timestamps)
   reg [$clog2(US_DIV + 1)-1:0] us_cnt;
   always @(posedge clk) begin
     if (rst) begin
@@ -226,7 +225,6 @@ module hall_top #(
       p_valid <= 1'b0;
       p_data <= 8'd0;
       since_status <= 16'd0;
-      frames <= 16'd0;
     end else begin
       if (taking && wbyte == 4'd9) got[tok[72 +: SW]] <= 1'b1;
       case (estate)
@@ -238,7 +236,6 @@ module hall_top #(
             hdr_type <= T_SAMPLES;
             hdr_t <= t_us;
             hdr_len <= 16'(FB);
-            frames <= frames + 16'd1;
             estate <= E_HDR;
           end
         E_HDR:
