@@ -8,3 +8,7 @@ add_test(NAME lint.mlx90393_sequencer.single
   COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module mlx90393_sequencer_tb
     -GBURST=0 ${CMAKE_CURRENT_SOURCE_DIR}/mlx90393_sequencer_tb.v)
 set_tests_properties(lint.mlx90393_sequencer.single PROPERTIES LABELS lint)
+add_test(NAME lint.mlx90393_sequencer.tb
+  COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module mlx90393_sequencer_tb
+    ${CMAKE_CURRENT_SOURCE_DIR}/mlx90393_sequencer_tb.v)
+set_tests_properties(lint.mlx90393_sequencer.tb PROPERTIES LABELS lint)
