@@ -13,8 +13,12 @@
 // so carrier_magnitude and the rest of the pipeline are unchanged.
 // sdft_bank's sums use the absolute phase theta_k(m) = m inc_k, so each is
 // first rotated by e^{+j theta_k(s)}, s = n - N + 1; this kernel keeps its
-// own per-carrier phase of s (starts at (1 - N) inc_k, += inc_k per frame),
-// in step with sdft_bank when both are reset together.
+// own per-carrier phase of s: phase0[k] = theta_k(s) of the first frame
+// after configure(), + inc[k] (the phase advance per frame: STEP samples x
+// the per-sample increment) for every later frame, in step with sdft_bank
+// when both are reset together. Frames on every sample from sample 0:
+// phase0 = (1 - N) inc_k; frames every STEP samples once the window is
+// full (hls/dtmf_chain.h): phase0 = 0, inc = STEP inc_k.
 //
 // Input per frame (one sample of sdft_bank): K+1 tokens k = 0..K in order,
 // `last` on k = K. k < K are the carriers; k = K is the DC channel: an extra
@@ -64,7 +68,8 @@ struct CarrierDemixConfig {
   static constexpr int DIM_MAX = 2 * K_MAX + 1;
   static constexpr int QN = (1 << (TW - 2)) + 1;
   int carriers = 0;                      // K (without the DC channel)
-  uint32_t inc[K_MAX] = {};              // phase increment per sample, 2^32 = 1 cycle
+  uint32_t inc[K_MAX] = {};              // phase advance per frame, 2^32 = 1 cycle
+  uint32_t phase0[K_MAX] = {};           // theta_k(s) of the first frame's oldest sample
   int32_t qsin[QN] = {};                 // quarter-wave sine, SW-bit signed
   int32_t coef[DIM_MAX * DIM_MAX] = {};  // CW-bit signed, Q(CW-CF).CF, row-major
 };
@@ -94,8 +99,7 @@ class CarrierDemix {
     if (cfg.carriers < 1 || cfg.carriers > K_MAX) return false;
     cfg_ = cfg;
     clear();
-    for (int k = 0; k < cfg_.carriers; ++k)
-      phase_[k] = uint32_t(1 - N) * cfg_.inc[k];  // theta(s) for n = 0, mod 2^32
+    for (int k = 0; k < cfg_.carriers; ++k) phase_[k] = cfg_.phase0[k];
     return true;
   }
 

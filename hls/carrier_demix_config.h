@@ -25,9 +25,15 @@ struct CarrierDemixStatus {
 
 // M = (N/2) G^{-1} / (sum_gain * rotation gain), quantised to Q(CW-CF).CF.
 // sum_gain: gain of the incoming sums (sdft_bank: 1 - 2^-(CW_sdft-1)).
+// Frames: the first frame's oldest sample is sample `first_oldest` after the
+// bank's clear (frames on every sample from sample 0: 1 - N; frames every
+// STEP samples from the first full window: 0), then one frame every
+// `frame_step` samples.
 template <class Demix>
 CarrierDemixStatus make_carrier_demix_config(const std::vector<double>& freqs_hz, double fs_hz,
-                                             double sum_gain, typename Demix::Config& out) {
+                                             double sum_gain, typename Demix::Config& out,
+                                             int frame_step = 1,
+                                             int first_oldest = 1 - Demix::kN) {
   constexpr int N = Demix::kN, SW = Demix::kSW, CW = Demix::kCW, CF = Demix::kCF,
                 KMAX = Demix::kKMax;
   CarrierDemixStatus st;
@@ -46,6 +52,8 @@ CarrierDemixStatus make_carrier_demix_config(const std::vector<double>& freqs_hz
     if (!(freqs_hz[c] > 0 && freqs_hz[c] < fs_hz / 2))
       return fail("carriers[" + std::to_string(c) + "]: expected 0 < f < fs/2 = " +
                   std::to_string(fs_hz / 2) + " Hz, got " + std::to_string(freqs_hz[c]));
+  if (frame_step < 1)
+    return fail("frame_step: expected >= 1 sample per frame, got " + std::to_string(frame_step));
   if (!(sum_gain > 0.5 && sum_gain <= 2))
     return fail("sum_gain: expected 0.5 < gain <= 2, got " + std::to_string(sum_gain));
 
@@ -55,7 +63,8 @@ CarrierDemixStatus make_carrier_demix_config(const std::vector<double>& freqs_hz
   std::vector<double> w(static_cast<size_t>(k), 0.0);
   for (int c = 0; c < k; ++c) {
     const uint64_t inc = uint64_t(std::llround(freqs_hz[c] / fs_hz * two32)) & 0xffffffffu;
-    cfg.inc[c] = uint32_t(inc);
+    cfg.inc[c] = uint32_t(inc) * uint32_t(frame_step);        // mod 2^32
+    cfg.phase0[c] = uint32_t(inc) * uint32_t(first_oldest);   // mod 2^32
     w[size_t(c)] = 2 * M_PI * double(inc) / two32;  // the frequency the phases realise
   }
   const int qn = Demix::Config::QN;

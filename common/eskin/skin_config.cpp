@@ -207,6 +207,7 @@ void validate(const DecoderConfig& d, const SkinConfig& s, const std::string& p)
 
 const char* to_string(DftVariant v) {
   switch (v) {
+    case DftVariant::Auto: return "auto";
     case DftVariant::Direct: return "direct";
     case DftVariant::Recursive: return "recursive";
     case DftVariant::Damped: return "damped";
@@ -217,11 +218,11 @@ const char* to_string(DftVariant v) {
 }
 
 DftVariant dft_variant_from_string(const std::string& s) {
-  for (DftVariant v : {DftVariant::Direct, DftVariant::Recursive, DftVariant::Damped,
-                       DftVariant::Exact, DftVariant::LsDemix})
+  for (DftVariant v : {DftVariant::Auto, DftVariant::Direct, DftVariant::Recursive,
+                       DftVariant::Damped, DftVariant::Exact, DftVariant::LsDemix})
     if (s == to_string(v)) return v;
   throw ConfigError("decoder.variant",
-                    "expected one of direct, recursive, damped, exact, ls; got '" + s + "'");
+                    "expected one of auto, direct, recursive, damped, exact, ls; got '" + s + "'");
 }
 
 }  // namespace eskin

@@ -75,12 +75,15 @@ struct SkinConfig {
   }
 };
 
-// Which sliding-window amplitude estimator the decoder uses.
-enum class DftVariant { Direct, Recursive, Damped, Exact, LsDemix };
+// Which sliding-window amplitude estimator the decoder uses. Auto picks the
+// most accurate one for the skin (golden::resolve_variant): joint LS
+// demixing when carriers are off bin centres and the fit is well posed,
+// else the exact sliding DFT (which equals LS for bin-centred carriers).
+enum class DftVariant { Auto, Direct, Recursive, Damped, Exact, LsDemix };
 
 struct DecoderConfig {
   int window = 32;             // N, samples in the sliding window
-  DftVariant variant = DftVariant::Exact;
+  DftVariant variant = DftVariant::Auto;
   double damping = 0.9999;     // r of the damped sliding DFT
   bool hann = false;           // Hann window instead of rectangular
   int hop = 1;                 // emit a frame every `hop` samples

@@ -14,6 +14,7 @@
 #include "cli/command.h"
 #include "cli/csv_fields.h"
 #include "host/golden/golden_decoder.h"
+#include "host/golden/sdft_bank.h"
 #include "sim/scene.h"
 
 namespace eskin::cli {
@@ -111,6 +112,7 @@ int run_decode(const DecodeArgs& a) {
   }
   validate(skin);
   validate(dec, skin);
+  dec.variant = golden::resolve_variant(dec.variant, skin.carrier_freqs_hz(), skin.adc.rate_hz, dec);
 
   golden::GoldenOptions opt;
   opt.taxels = a.taxels || a.spikes;
@@ -154,7 +156,8 @@ std::function<int()> setup(CLI::App& app) {
   sub->add_option("input", a->wav, "WAV file: mono, 16-bit PCM, the skin's ADC rate")
       ->required()
       ->check(CLI::ExistingFile);
-  sub->add_option("--variant", a->variant, "direct|recursive|damped|exact|ls");
+  sub->add_option("--variant", a->variant,
+                  "auto (default: the most accurate for the skin)|direct|recursive|damped|exact|ls");
   sub->add_option("--window", a->window, "samples in the sliding window");
   sub->add_option("--hop", a->hop, "emit a frame every HOP samples");
   sub->add_flag("--taxels", a->taxels, "add calibrated, ghost-corrected taxel pressures");

@@ -14,6 +14,7 @@
 #include "host/golden/decode_score.h"
 #include "host/golden/golden_decoder.h"
 #include "host/golden/izhikevich_layer.h"
+#include "host/golden/sdft_bank.h"
 #include "sim/hall_world.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
@@ -42,6 +43,8 @@ int run_golden(const GoldenArgs& a) {
   if (!a.variant.empty()) scene.decoder.variant = dft_variant_from_string(a.variant);
   if (a.hop > 0) scene.decoder.hop = a.hop;
   validate(scene.decoder, scene.skin);
+  scene.decoder.variant = golden::resolve_variant(
+      scene.decoder.variant, scene.skin.carrier_freqs_hz(), scene.skin.adc.rate_hz, scene.decoder);
   const SkinConfig& skin = scene.skin;
   const double fs = skin.adc.rate_hz;
 
@@ -141,7 +144,8 @@ std::function<int()> setup(CLI::App& app) {
       ->check(CLI::ExistingFile);
   sub->add_option("--out", args->out, "output directory (created)")->capture_default_str();
   sub->add_option("--variant", args->variant,
-                  "override decoder.variant: direct|recursive|damped|exact|ls");
+                  "override decoder.variant: auto (default: the most accurate for the skin)|direct|"
+                  "recursive|damped|exact (what the FPGA did before demixing)|ls");
   sub->add_option("--hop", args->hop, "override decoder.hop (frames every HOP samples)");
   sub->add_flag("--no-ghost", args->no_ghost, "report taxels without ghost correction");
   sub->add_option("--hall-osr", args->hall_osr, "Hall scenes: override the MLX90393 OSR (0..3)")

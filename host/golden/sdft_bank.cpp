@@ -154,6 +154,23 @@ std::string num(double v) {
 
 }  // namespace
 
+DftVariant resolve_variant(DftVariant variant, const std::vector<double>& freqs_hz, double fs_hz,
+                           const DecoderConfig& cfg) {
+  if (variant != DftVariant::Auto) return variant;
+  bool on_bins = !cfg.hann;
+  for (double f : freqs_hz) {
+    const double bin = f * cfg.window / fs_hz;
+    on_bins = on_bins && std::fabs(bin - std::round(bin)) < 1e-9;
+  }
+  if (on_bins) return DftVariant::Exact;
+  try {
+    CarrierDemix probe(freqs_hz, fs_hz, cfg.window, cfg.hann);
+    return DftVariant::LsDemix;
+  } catch (const ConfigError&) {
+    return DftVariant::Exact;  // carriers too close / too many for the window
+  }
+}
+
 std::unique_ptr<SdftBank> make_sdft_bank(DftVariant variant, const std::vector<double>& freqs_hz,
                                          double fs_hz, const DecoderConfig& cfg) {
   const int n = cfg.window;
@@ -167,7 +184,9 @@ std::unique_ptr<SdftBank> make_sdft_bank(DftVariant variant, const std::vector<d
                             num(freqs_hz[k]));
   const int k = int(freqs_hz.size());
   const std::vector<double> taps = make_taps(freqs_hz, fs_hz, n, cfg.hann);
-  switch (variant) {
+  switch (resolve_variant(variant, freqs_hz, fs_hz, cfg)) {
+    case DftVariant::Auto:
+      break;  // resolved above
     case DftVariant::Direct:
       return std::make_unique<DirectBank>(freqs_hz, fs_hz, n, cfg.hann);
     case DftVariant::Recursive:

@@ -75,6 +75,14 @@ class SdftBank {
   virtual double dc() const = 0;
 };
 
+// The variant Auto stands for, for these carriers and this window: Exact
+// when every carrier sits on a bin centre k fs/N under a rectangular window
+// (no leakage: LS would give the same amplitudes at more cost), LsDemix when
+// the joint fit is well posed (2K+1 <= N, condition within the default
+// limit), else Exact. Any other variant is returned unchanged.
+DftVariant resolve_variant(DftVariant variant, const std::vector<double>& freqs_hz, double fs_hz,
+                           const DecoderConfig& cfg);
+
 // Throws ConfigError naming the field: "decoder.window" (N < 2, or LsDemix
 // with 2K+1 > N or carriers too close), "decoder.damping" (Damped needs
 // 0 < r < 1; Recursive ignores it), "carriers[k]" (expected 0 < f < fs/2),

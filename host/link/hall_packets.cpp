@@ -25,11 +25,11 @@ bool parse_hall_payload(uint8_t type, const std::vector<uint8_t>& b, HallPayload
   const size_t n = b.size();
   known = true;
   switch (type) {
-    case kHallSamples:
     case kHallDeltas:
-      if (n % 12) return bad(why, "hall samples: payload length must be a multiple of 12");
-      for (size_t i = 0; i < n; i += 12)
-        h.samples.push_back({b[i], b[i + 1], g32(&b[i + 2]), g16(&b[i + 6]), g16(&b[i + 8]), g16(&b[i + 10])});
+      if (n % 10) return bad(why, "hall deltas: payload length must be a multiple of 10");
+      for (size_t i = 0; i < n; i += 10)
+        h.deltas.push_back({b[i], b[i + 1], g16(&b[i + 2]), int16_t(g16(&b[i + 4])), int16_t(g16(&b[i + 6])),
+                            int16_t(g16(&b[i + 8]))});
       return true;
     case kHallDecouple3:
       if (n != 14) return bad(why, "decouple3: payload length must be 14");
@@ -46,13 +46,10 @@ bool parse_hall_payload(uint8_t type, const std::vector<uint8_t>& b, HallPayload
       for (size_t i = 0; i < n; i += 11)
         h.forces.push_back({b[i], b[i + 1], b[i + 2], g32(&b[i + 3]), int32_t(g32(&b[i + 7]))});
       return true;
-    case kHallStatus: {
-      if (n != 16) return bad(why, "hall status: payload length must be 16");
-      uint16_t v[8];
-      for (int i = 0; i < 8; ++i) v[i] = g16(&b[size_t(2 * i)]);
-      h.status = {v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
+    case kHallDecodeStatus:
+      if (n != 8) return bad(why, "hall decode status: payload length must be 8");
+      h.status = {g16(&b[0]), g16(&b[2]), g16(&b[4]), g16(&b[6])};
       return true;
-    }
     case kCmdHallLoadC:
       if (n != 6) return bad(why, "hall_load_c: payload length must be 6");
       h.cmd.index = b[0], h.cmd.sub = b[1], h.cmd.value = int32_t(g32(&b[2]));
@@ -79,13 +76,13 @@ bool parse_hall_payload(uint8_t type, const std::vector<uint8_t>& b, HallPayload
   }
 }
 
-std::vector<uint8_t> hall_samples(LinkEncoder& e, uint8_t type, uint32_t t, const std::vector<HallSampleRecord>& s) {
+std::vector<uint8_t> hall_deltas(LinkEncoder& e, uint32_t t, const std::vector<HallDeltaRecord>& s) {
   std::vector<uint8_t> p;
   for (const auto& r : s) {
     p.push_back(r.id), p.push_back(r.flags);
-    p32(p, r.t), p16(p, r.x), p16(p, r.y), p16(p, r.z);
+    p16(p, r.t16), p16(p, uint16_t(r.dx)), p16(p, uint16_t(r.dy)), p16(p, uint16_t(r.dz));
   }
-  return e.frame(type, t, p);
+  return e.frame(kHallDeltas, t, p);
 }
 
 std::vector<uint8_t> hall_decouple3(LinkEncoder& e, uint32_t t, const DecoupleRecord& d) {
@@ -111,12 +108,10 @@ std::vector<uint8_t> hall_force_curve(LinkEncoder& e, uint32_t t, const std::vec
   return e.frame(kHallForceCurve, t, p);
 }
 
-std::vector<uint8_t> hall_status(LinkEncoder& e, uint32_t t, const HallStatusBlock& s) {
+std::vector<uint8_t> hall_decode_status(LinkEncoder& e, uint32_t t, const HallDecodeStatus& s) {
   std::vector<uint8_t> p;
-  for (uint16_t v : {s.baseline_dropped, s.ft_skipped, s.nacks, s.status_errors, s.reply_errors,
-                     s.recoveries, s.bus_errors, s.reserved})
-    p16(p, v);
-  return e.frame(kHallStatus, t, p);
+  for (uint16_t v : {s.baseline_dropped, s.ft_skipped, s.reserved0, s.reserved1}) p16(p, v);
+  return e.frame(kHallDecodeStatus, t, p);
 }
 
 std::vector<uint8_t> hall_load_c(LinkEncoder& e, uint8_t row, uint8_t col, int32_t value) {

@@ -1,6 +1,6 @@
-// Host-link packets of the Hall decoding chain (docs/protocol.md, "Hall
-// packets"): data 0x11..0x16 (FPGA -> host) and commands 0x98..0x9C (host ->
-// FPGA). Parsed by the LinkDecoder into Packet::hall; built by the
+// Host-link packets of the Hall decoding chain (docs/protocol.md section
+// 9): data 0x12..0x16 (FPGA -> host) and commands 0x98..0x9C (host -> FPGA);
+// the raw readings (0x10) and bus counters (0x20) are section 8's. Parsed by the LinkDecoder into Packet::hall; built by the
 // functions at the end for tests and for configuring the FPGA.
 #pragma once
 
@@ -11,12 +11,11 @@
 namespace eskin::link {
 
 enum HallPacketType : uint8_t {
-  kHallSamples = 0x11,     // n x HallSampleRecord, codes as the MLX90393 sends them
-  kHallDeltas = 0x12,      // n x HallSampleRecord, baseline-removed signed LSB
+  kHallDeltas = 0x12,      // n x HallDeltaRecord: baseline-removed signed LSB
   kHallDecouple3 = 0x13,   // DecoupleRecord: seed-001 Rx, Ry, Sz
   kHallWrench6 = 0x14,     // WrenchRecord: seed-002 force/torque
   kHallForceCurve = 0x15,  // n x ForceRecord: seed-003 cell forces
-  kHallStatus = 0x16,      // HallStatusBlock
+  kHallDecodeStatus = 0x16,  // HallDecodeStatus
   kCmdHallLoadC = 0x98,        // row u8, col u8, value s32
   kCmdHallSetBaseline = 0x99,  // sensor u8, axis u8, value s16
   kCmdHallRecapture = 0x9A,    // no payload
@@ -24,10 +23,10 @@ enum HallPacketType : uint8_t {
   kCmdHallSetDecouple = 0x9C,  // k1 s16, c1 s32, k2 s16, c2 s32
 };
 
-struct HallSampleRecord {  // 12 bytes
+struct HallDeltaRecord {  // 10 bytes, HALL_SAMPLES' layout
   uint8_t id = 0, flags = 0;
-  uint32_t t = 0;
-  uint16_t x = 0, y = 0, z = 0;  // codes (0x11) or int16 deltas as bits (0x12)
+  uint16_t t16 = 0;
+  int16_t dx = 0, dy = 0, dz = 0;
 };
 struct DecoupleRecord {  // 14 bytes
   int32_t rx = 0, ry = 0, sz = 0;  // Q8.24 rad / ln(uT)
@@ -42,9 +41,8 @@ struct ForceRecord {  // 11 bytes
   uint32_t t = 0;
   int32_t force_mn = 0;
 };
-struct HallStatusBlock {  // 16 bytes, u16 each
-  uint16_t baseline_dropped = 0, ft_skipped = 0, nacks = 0, status_errors = 0;
-  uint16_t reply_errors = 0, recoveries = 0, bus_errors = 0, reserved = 0;
+struct HallDecodeStatus {  // 8 bytes, u16 each
+  uint16_t baseline_dropped = 0, ft_skipped = 0, reserved0 = 0, reserved1 = 0;
 };
 struct HallCommand {
   uint8_t index = 0, sub = 0, which = 0;  // row/sensor/cell, col/axis/index, curve field
@@ -54,11 +52,11 @@ struct HallCommand {
 };
 
 struct HallPayload {
-  std::vector<HallSampleRecord> samples;  // 0x11, 0x12
+  std::vector<HallDeltaRecord> deltas;    // 0x12
   DecoupleRecord decouple;                // 0x13
   WrenchRecord wrench;                    // 0x14
   std::vector<ForceRecord> forces;        // 0x15
-  HallStatusBlock status;                 // 0x16
+  HallDecodeStatus status;                // 0x16
   HallCommand cmd;                        // 0x98..0x9C
 };
 
@@ -69,12 +67,11 @@ bool parse_hall_payload(uint8_t type, const std::vector<uint8_t>& payload, HallP
 
 class LinkEncoder;
 // Data packets as the FPGA sends them.
-std::vector<uint8_t> hall_samples(LinkEncoder& e, uint8_t type, uint32_t t,
-                                  const std::vector<HallSampleRecord>& s);
+std::vector<uint8_t> hall_deltas(LinkEncoder& e, uint32_t t, const std::vector<HallDeltaRecord>& s);
 std::vector<uint8_t> hall_decouple3(LinkEncoder& e, uint32_t t, const DecoupleRecord& d);
 std::vector<uint8_t> hall_wrench6(LinkEncoder& e, uint32_t t, const WrenchRecord& w);
 std::vector<uint8_t> hall_force_curve(LinkEncoder& e, uint32_t t, const std::vector<ForceRecord>& f);
-std::vector<uint8_t> hall_status(LinkEncoder& e, uint32_t t, const HallStatusBlock& s);
+std::vector<uint8_t> hall_decode_status(LinkEncoder& e, uint32_t t, const HallDecodeStatus& s);
 // Commands.
 std::vector<uint8_t> hall_load_c(LinkEncoder& e, uint8_t row, uint8_t col, int32_t value);
 std::vector<uint8_t> hall_set_baseline(LinkEncoder& e, uint8_t sensor, uint8_t axis, int16_t value);

@@ -89,6 +89,18 @@ bool parse_payload(Packet& p, std::string* why) {
       s.samples = le32(&b[20]);
       return true;
     }
+    case kHallSamples:
+      if (n % 10) return fail(why, "hall samples: payload length must be a multiple of 10");
+      for (size_t i = 0; i < n; i += 10)
+        p.hall_samples.push_back(
+            {b[i], b[i + 1], le16(&b[i + 2]), le16(&b[i + 4]), le16(&b[i + 6]), le16(&b[i + 8])});
+      return true;
+    case kHallBusStatus:
+      if (n % 10) return fail(why, "hall bus status: payload length must be a multiple of 10");
+      for (size_t i = 0; i < n; i += 10)
+        p.hall_buses.push_back({le16(&b[i]), le16(&b[i + 2]), le16(&b[i + 4]), le16(&b[i + 6]),
+                                le16(&b[i + 8])});
+      return true;
     case kCmdSetCarrierInc:
       if (n != 5) return fail(why, "set_carrier_inc: payload length must be 5");
       p.cmd_index = b[0];

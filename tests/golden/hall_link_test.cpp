@@ -22,9 +22,8 @@ TEST(HallLink, DataPacketsRoundTrip) {
   LinkEncoder e;
   std::vector<uint8_t> w;
   auto add = [&](const std::vector<uint8_t>& f) { w.insert(w.end(), f.begin(), f.end()); };
-  const std::vector<HallSampleRecord> s = {{3, 0x01, 123456, 0x8001, 0xFFFF, 0}, {15, 0x80, 7, 1, 2, 3}};
-  add(hall_samples(e, kHallSamples, 10, s));
-  add(hall_samples(e, kHallDeltas, 11, s));
+  const std::vector<HallDeltaRecord> s = {{3, 0x01, 54321, -32768, 32767, 0}, {15, 0x80, 7, 1, -2, 3}};
+  add(hall_deltas(e, 11, s));
   add(hall_decouple3(e, 12, {-2099, 7975, 117286817, 1, 0x04}));
   WrenchRecord wr;
   for (int i = 0; i < 6; ++i) wr.w[i] = (i % 2 ? -1 : 1) * (1000 * i + 7);
@@ -32,7 +31,7 @@ TEST(HallLink, DataPacketsRoundTrip) {
   wr.flags = 0x20;
   add(hall_wrench6(e, 13, wr));
   add(hall_force_curve(e, 14, {{0, 0, 0, 99, 60}, {8, 2, 0x01, 100, 15500}}));
-  add(hall_status(e, 15, {1, 2, 3, 4, 5, 6, 7, 0}));
+  add(hall_decode_status(e, 15, {1, 2, 0, 0}));
   LinkDecoder d;
   // Fed in 5-byte pieces: any split of the stream decodes the same.
   std::vector<Packet> got;
@@ -41,23 +40,24 @@ TEST(HallLink, DataPacketsRoundTrip) {
     auto more = decode(piece, d);
     got.insert(got.end(), more.begin(), more.end());
   }
-  ASSERT_EQ(got.size(), 6u);
-  EXPECT_EQ(d.stats().frames_ok, 6u);
-  ASSERT_EQ(got[0].hall.samples.size(), 2u);
-  EXPECT_EQ(got[0].hall.samples[0].t, 123456u);
-  EXPECT_EQ(got[0].hall.samples[0].x, 0x8001);
-  EXPECT_EQ(got[1].type, kHallDeltas);
-  EXPECT_EQ(int16_t(got[1].hall.samples[0].y), -1);
-  EXPECT_EQ(got[2].hall.decouple.sz, 117286817);
-  EXPECT_EQ(got[2].hall.decouple.rx, -2099);
-  EXPECT_EQ(got[2].hall.decouple.valid, 1);
-  for (int i = 0; i < 6; ++i) EXPECT_EQ(got[3].hall.wrench.w[i], wr.w[i]);
-  EXPECT_EQ(got[3].hall.wrench.flags, 0x20);
-  ASSERT_EQ(got[4].hall.forces.size(), 2u);
-  EXPECT_EQ(got[4].hall.forces[1].force_mn, 15500);
-  EXPECT_EQ(got[4].hall.forces[1].range, 2);
-  EXPECT_EQ(got[5].hall.status.bus_errors, 7);
-  EXPECT_EQ(got[5].t, 15u);
+  ASSERT_EQ(got.size(), 5u);
+  EXPECT_EQ(d.stats().frames_ok, 5u);
+  ASSERT_EQ(got[0].hall.deltas.size(), 2u);
+  EXPECT_EQ(got[0].type, kHallDeltas);
+  EXPECT_EQ(got[0].hall.deltas[0].t16, 54321);
+  EXPECT_EQ(got[0].hall.deltas[0].dx, -32768);
+  EXPECT_EQ(got[0].hall.deltas[0].dy, 32767);
+  EXPECT_EQ(got[0].hall.deltas[1].dy, -2);
+  EXPECT_EQ(got[1].hall.decouple.sz, 117286817);
+  EXPECT_EQ(got[1].hall.decouple.rx, -2099);
+  EXPECT_EQ(got[1].hall.decouple.valid, 1);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(got[2].hall.wrench.w[i], wr.w[i]);
+  EXPECT_EQ(got[2].hall.wrench.flags, 0x20);
+  ASSERT_EQ(got[3].hall.forces.size(), 2u);
+  EXPECT_EQ(got[3].hall.forces[1].force_mn, 15500);
+  EXPECT_EQ(got[3].hall.forces[1].range, 2);
+  EXPECT_EQ(got[4].hall.status.ft_skipped, 2);
+  EXPECT_EQ(got[4].t, 15u);
 }
 
 TEST(HallLink, CommandsRoundTrip) {
@@ -91,13 +91,13 @@ TEST(HallLink, WrongPayloadSizesAreCountedAndSkipped) {
   std::vector<uint8_t> w;
   auto add = [&](const std::vector<uint8_t>& f) { w.insert(w.end(), f.begin(), f.end()); };
   add(e.frame(kHallWrench6, 1, std::vector<uint8_t>(24, 1)));     // one byte short
-  add(e.frame(kHallSamples, 2, std::vector<uint8_t>(13, 1)));     // not a multiple of 12
+  add(e.frame(kHallDeltas, 2, std::vector<uint8_t>(13, 1)));      // not a multiple of 10
   add(e.frame(kHallDecouple3, 3, {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0}));  // valid = 2
   add(e.frame(kCmdHallSetBaseline, 0, {1, 2, 3}));
-  add(hall_status(e, 4, {}));                                      // a good one after them
+  add(hall_decode_status(e, 4, {}));                               // a good one after them
   const auto got = decode(w, d);
   ASSERT_EQ(got.size(), 1u);
-  EXPECT_EQ(got[0].type, kHallStatus);
+  EXPECT_EQ(got[0].type, kHallDecodeStatus);
   EXPECT_EQ(d.stats().payload_errors, 4u);
 }
 

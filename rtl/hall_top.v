@@ -1,0 +1,298 @@
+`default_nettype none
+// hall_top: the FPGA top of a magnetic (Hall) skin: NB I2C buses in
+// parallel, each an i2c_master driven by an mlx90393_sequencer with NSB
+// MLX90393 sensors (directly on the bus or behind TCA9548A channels), a frame
+// assembler, and the host link (link_framer + uart_tx, docs/protocol.md).
+// The parameters are generated from the scene (sensor addresses, mux
+// channels, register settings, conversion wait).
+//
+// Sensor s = b * NSB + k is sensor k of bus b; its DRDY (INT) pin is drdy[s].
+// Frames: one token per sensor per round (data, or flags saying why not)
+// goes into slot s of a frame buffer (one RAM); when every slot is filled a
+// HALL_SAMPLES packet (type 0x10) carries all of them, 10 bytes per sensor
+// in sensor order: id u8, flags u8, t16 u16 (low 16 bits of the µs time the
+// reading's status byte arrived), x u16, y u16, z u16 (the device's codes).
+// The packet's t is the µs counter when the frame completed. While a frame
+// is being sent, and while a sensor's slot is already full, its bus waits
+// (the sequencer holds its token), so rounds of all buses stay aligned.
+// Every STATUS_EVERY frames a HALL_BUS_STATUS packet (type 0x20) follows:
+// per bus nacks, status_errors, reply_errors, recoveries, bus_errors (u16
+// each, LE).
+module hall_top #(
+    parameter integer CLK_HZ = 12_000_000,
+    parameter integer BAUD = 3_000_000,
+    parameter integer SCL_HZ = 400_000,
+    parameter integer NB = 2,
+    parameter integer NSB = 2,
+    parameter [NB*NSB*7-1:0] ADDR = {7'h0D, 7'h0C, 7'h0D, 7'h0C},
+    parameter [NB*NSB*7-1:0] MUX_ADDR = {NB * NSB{7'h00}},
+    parameter [NB*NSB*3-1:0] MUX_CH = {NB * NSB{3'd0}},
+    parameter [15:0] REG0 = 16'h007C,
+    parameter [15:0] REG1 = 16'hE000,
+    parameter [15:0] REG2 = 16'h0008,
+    parameter integer BURST = 1,
+    parameter integer CONV_CYC = 29_564,
+    parameter integer STALE_CYC = 36_954,
+    parameter integer STATUS_EVERY = 64
+) (
+    input  wire              clk,
+    input  wire              rst,
+    input  wire [NB-1:0]     scl_i,
+    input  wire [NB-1:0]     sda_i,
+    output wire [NB-1:0]     scl_oe,
+    output wire [NB-1:0]     sda_oe,
+    input  wire [NB*NSB-1:0] drdy,
+    output wire              uart_txd
+);
+  localparam integer NSENS = NB * NSB;
+  localparam integer FB = NSENS * 10;  // frame payload bytes
+  localparam integer AW = $clog2(FB + 1);
+  localparam integer BW = (NB > 1) ? $clog2(NB) : 1;
+  localparam integer SW = (NSENS > 1) ? $clog2(NSENS) : 1;  // slot index bits
+  localparam integer US_DIV = CLK_HZ / 1_000_000;
+  localparam [7:0] T_SAMPLES = 8'h10, T_BUS_STATUS = 8'h20;
+
+  generate
+    if (NSENS > 255 || CLK_HZ % 1_000_000 != 0) begin : g_bad
+      hall_top_needs_at_most_255_sensors_and_a_whole_MHz_clock bad ();
+    end
+  endgenerate
+
+  // ---- µs time base
+  reg [31:0] t_us;  // µs since reset (timestamps)
+  reg [$clog2(US_DIV + 1)-1:0] us_cnt;
+  always @(posedge clk) begin
+    if (rst) begin
+      us_cnt <= 0;
+      t_us <= 32'd0;
+    end else if (us_cnt == US_DIV[$clog2(US_DIV + 1)-1:0] - 1'b1) begin
+      us_cnt <= 0;
+      t_us <= t_us + 32'd1;
+    end else begin
+      us_cnt <= us_cnt + 1'b1;
+    end
+  end
+
+  // ---- buses
+  wire [NB-1:0] tv;
+  reg  [NB-1:0] tr;
+  wire [NB*8-1:0] tid, tflags;
+  wire [NB*32-1:0] tt;
+  wire [NB*48-1:0] txyz;
+  wire [NB*80-1:0] counters;
+  genvar b;
+  generate
+    for (b = 0; b < NB; b = b + 1) begin : g_bus
+      wire cv, cr, ca, rv, rr, rn, own;
+      wire [2:0] co;
+      wire [7:0] cd, rd;
+      wire [1:0] re;
+      i2c_master #(.CLK_HZ(CLK_HZ), .SCL_HZ(SCL_HZ)) u_master (
+          .clk(clk), .rst(rst), .cmd_valid(cv), .cmd_ready(cr), .cmd_op(co), .cmd_data(cd),
+          .cmd_ack(ca), .rsp_valid(rv), .rsp_ready(rr), .rsp_data(rd), .rsp_nack(rn),
+          .rsp_err(re), .scl_i(scl_i[b]), .sda_i(sda_i[b]), .scl_oe(scl_oe[b]),
+          .sda_oe(sda_oe[b]), .owned(own));
+      mlx90393_sequencer #(
+          .NS(NSB), .ADDR(ADDR[b*NSB*7 +: NSB*7]), .MUX_ADDR(MUX_ADDR[b*NSB*7 +: NSB*7]),
+          .MUX_CH(MUX_CH[b*NSB*3 +: NSB*3]), .ID_BASE(8'(b * NSB)), .REG0(REG0), .REG1(REG1),
+          .REG2(REG2), .BURST(BURST), .CONV_CYC(CONV_CYC), .STALE_CYC(STALE_CYC)
+      ) u_seq (
+          .clk(clk), .rst(rst), .drdy(drdy[b*NSB +: NSB]), .tstamp(t_us), .m_cmd_valid(cv),
+          .m_cmd_ready(cr), .m_cmd_op(co), .m_cmd_data(cd), .m_cmd_ack(ca), .m_rsp_valid(rv),
+          .m_rsp_ready(rr), .m_rsp_data(rd), .m_rsp_nack(rn), .m_rsp_err(re),
+          .s_valid(tv[b]), .s_ready(tr[b]), .s_id(tid[b*8 +: 8]), .s_t(tt[b*32 +: 32]),
+          .s_x(txyz[b*48+32 +: 16]), .s_y(txyz[b*48+16 +: 16]), .s_z(txyz[b*48 +: 16]),
+          .s_flags(tflags[b*8 +: 8]), .nacks(counters[b*80 +: 16]),
+          .status_errors(counters[b*80+16 +: 16]), .reply_errors(counters[b*80+32 +: 16]),
+          .recoveries(counters[b*80+48 +: 16]), .bus_errors(counters[b*80+64 +: 16]));
+      wire unused_bus = &{1'b0, own, tt[b*32+16 +: 16]};
+    end
+  endgenerate
+
+  // ---- frame buffer (one RAM, byte wide)
+  reg [7:0] fb[0:FB-1];
+  reg        fb_we;
+  reg [AW-1:0] fb_waddr, fb_raddr;
+  reg [7:0]  fb_wdata, fb_rdata;
+  always @(posedge clk) begin
+    if (fb_we) fb[fb_waddr] <= fb_wdata;
+    fb_rdata <= fb[fb_raddr];
+  end
+
+  // ---- token intake: round robin over the buses, 10 bytes into slot id
+  reg [NSENS-1:0] got;
+  reg             emitting;   // a packet is being sent: intake waits
+  reg             taking;     // writing a token's 10 bytes
+  reg [3:0]       wbyte;
+  reg [79:0]      tok;        // {id, flags, t16, x, y, z}, bytes LSB first per field
+  reg [AW-1:0]    slot_base;
+  reg [BW-1:0]    rr_next;
+
+  // The bus whose token is taken next: the first at or after rr_next with a
+  // token whose slot is free.
+  reg             cand_ok;
+  reg [BW-1:0]    cand;
+  integer j;
+  always @(*) begin
+    cand_ok = 1'b0;
+    cand = {BW{1'b0}};
+    for (j = 2 * NB - 1; j >= 0; j = j - 1)
+      if (j >= {{(32 - BW) {1'b0}}, rr_next} && j < {{(32 - BW) {1'b0}}, rr_next} + NB &&
+          tv[j % NB] && !got[tid[(j % NB)*8 +: SW]]) begin
+        cand_ok = 1'b1;
+        cand = BW'(j % NB);
+      end
+  end
+  always @(*) begin
+    tr = {NB{1'b0}};
+    if (!emitting && !taking && cand_ok) tr[cand] = 1'b1;
+  end
+
+  wire [7:0] c_id = tid[cand*8 +: 8];
+  always @(posedge clk) begin
+    if (rst) begin
+      taking <= 1'b0;
+      wbyte <= 4'd0;
+      tok <= 80'd0;
+      slot_base <= {AW{1'b0}};
+      rr_next <= {BW{1'b0}};
+      fb_we <= 1'b0;
+      fb_waddr <= {AW{1'b0}};
+      fb_wdata <= 8'd0;
+    end else begin
+      fb_we <= 1'b0;
+      if (!taking && |tr) begin
+        taking <= 1'b1;
+        wbyte <= 4'd0;
+        slot_base <= AW'(c_id * 10);
+        tok <= {c_id, tflags[cand*8 +: 8], tt[cand*32 +: 16], txyz[cand*48 +: 48]};
+        rr_next <= (cand == BW'(NB - 1)) ? {BW{1'b0}} : cand + 1'b1;
+      end else if (taking) begin
+        fb_we <= 1'b1;
+        fb_waddr <= slot_base + AW'(wbyte);
+        case (wbyte)  // id, flags, then t16, x, y, z little endian
+          4'd0: fb_wdata <= tok[79:72];
+          4'd1: fb_wdata <= tok[71:64];
+          4'd2: fb_wdata <= tok[55:48];
+          4'd3: fb_wdata <= tok[63:56];
+          4'd4: fb_wdata <= tok[39:32];
+          4'd5: fb_wdata <= tok[47:40];
+          4'd6: fb_wdata <= tok[23:16];
+          4'd7: fb_wdata <= tok[31:24];
+          4'd8: fb_wdata <= tok[7:0];
+          default: fb_wdata <= tok[15:8];
+        endcase
+        wbyte <= wbyte + 4'd1;
+        if (wbyte == 4'd9) taking <= 1'b0;
+      end
+    end
+  end
+
+  // ---- packets out
+  reg         hdr_valid;
+  wire        hdr_ready;
+  reg  [7:0]  hdr_type;
+  reg  [31:0] hdr_t;
+  reg  [15:0] hdr_len;
+  reg         p_valid;
+  wire        p_ready;
+  reg  [7:0]  p_data;
+  wire        l_valid, l_ready;
+  wire [7:0]  l_data, l_seq;
+
+  localparam [2:0] E_IDLE = 3'd0, E_HDR = 3'd1, E_READ = 3'd2, E_WAIT = 3'd3, E_OFFER = 3'd4,
+                   E_STATUS = 3'd5;
+  reg [2:0]  estate;
+  reg        e_status;  // the packet being sent is HALL_BUS_STATUS
+  reg [AW-1:0] e_idx;
+  reg [15:0] since_status;
+  localparam integer SBW = $clog2(NB * 10 + 1);
+  wire [NSENS-1:0] all = {NSENS{1'b1}};
+  wire frame_done = (got == all) && !taking;
+
+  always @(posedge clk) begin
+    if (rst) begin
+      got <= {NSENS{1'b0}};
+      emitting <= 1'b0;
+      estate <= E_IDLE;
+      e_status <= 1'b0;
+      e_idx <= {AW{1'b0}};
+      fb_raddr <= {AW{1'b0}};
+      hdr_valid <= 1'b0;
+      hdr_type <= T_SAMPLES;
+      hdr_t <= 32'd0;
+      hdr_len <= 16'd0;
+      p_valid <= 1'b0;
+      p_data <= 8'd0;
+      since_status <= 16'd0;
+    end else begin
+      if (taking && wbyte == 4'd9) got[tok[72 +: SW]] <= 1'b1;
+      case (estate)
+        E_IDLE:
+          if (frame_done) begin
+            emitting <= 1'b1;
+            e_status <= 1'b0;
+            hdr_valid <= 1'b1;
+            hdr_type <= T_SAMPLES;
+            hdr_t <= t_us;
+            hdr_len <= 16'(FB);
+            estate <= E_HDR;
+          end
+        E_HDR:
+          if (hdr_ready) begin
+            hdr_valid <= 1'b0;
+            e_idx <= {AW{1'b0}};
+            fb_raddr <= {AW{1'b0}};
+            estate <= e_status ? E_STATUS : E_READ;
+          end
+        E_READ: estate <= E_WAIT;  // the RAM's read takes a clock
+        E_WAIT: begin
+          p_valid <= 1'b1;
+          p_data <= fb_rdata;
+          estate <= E_OFFER;
+        end
+        E_STATUS: begin
+          p_valid <= 1'b1;
+          p_data <= counters[e_idx[SBW-1:0]*8 +: 8];
+          estate <= E_OFFER;
+        end
+        E_OFFER:
+          if (p_ready) begin
+            p_valid <= 1'b0;
+            e_idx <= e_idx + 1'b1;
+            fb_raddr <= e_idx + 1'b1;
+            if (e_idx == (e_status ? AW'(NB * 10 - 1) : AW'(FB - 1))) begin
+              if (!e_status) got <= {NSENS{1'b0}};
+              if (!e_status && STATUS_EVERY != 0 &&
+                  since_status + 16'd1 >= 16'(STATUS_EVERY)) begin
+                since_status <= 16'd0;
+                e_status <= 1'b1;
+                hdr_valid <= 1'b1;
+                hdr_type <= T_BUS_STATUS;
+                hdr_t <= t_us;
+                hdr_len <= 16'(NB * 10);
+                estate <= E_HDR;
+              end else begin
+                if (!e_status) since_status <= since_status + 16'd1;
+                emitting <= 1'b0;
+                estate <= E_IDLE;
+              end
+            end else begin
+              estate <= e_status ? E_STATUS : E_READ;
+            end
+          end
+        default: estate <= E_IDLE;
+      endcase
+    end
+  end
+
+  link_framer u_framer (
+      .clk(clk), .rst(rst), .hdr_valid(hdr_valid), .hdr_ready(hdr_ready), .hdr_type(hdr_type),
+      .hdr_t(hdr_t), .hdr_len(hdr_len), .s_valid(p_valid), .s_ready(p_ready), .s_data(p_data),
+      .m_valid(l_valid), .m_ready(l_ready), .m_data(l_data), .seq(l_seq));
+  uart_tx #(.CLK_HZ(CLK_HZ), .BAUD(BAUD)) u_tx (
+      .clk(clk), .rst(rst), .s_valid(l_valid), .s_ready(l_ready), .s_data(l_data),
+      .tx(uart_txd));
+  wire unused_top = &{1'b0, l_seq};
+endmodule
+`default_nettype wire

@@ -1,0 +1,317 @@
+// rtl/hall_top.v with MLX90393 models on simulated I2C buses, its UART line
+// decoded by host/link: every HALL_SAMPLES frame carries one reading per
+// sensor, each equal to what that sensor's model sent (token for token);
+// frame rate and DRDY-to-host latency in exact cycles.
+//
+// Figures (docs/hall_fpga.md):
+//  * 16 sensors on 4 buses of 4 keep up with back-to-back 2053 us
+//    conversions (OSR 0, DIG_FILT 2, XYZ: 487.1 Hz): consecutive frames are
+//    exactly 2053 us apart.
+//  * 16 sensors on 2 buses of 8 behind TCA9548A channels cannot: one reading
+//    with its channel selection takes about 0.3 ms, 8 of them more than a
+//    conversion, so frames come further apart than 2053 us.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "Vhall_top.h"
+#include "Vhall_top_16s.h"
+#include "Vhall_top_mux8.h"
+#include "clocked_dut.h"
+#include "host/link/link_decoder.h"
+#include "i2c_pin_bench.h"
+#include "sim/hall_top_spec.h"
+#include "sim/hall_world.h"
+#include "sim/mlx90393_model.h"
+#include "sim/scene.h"
+#include "sim/tca9548a_model.h"
+
+namespace {
+
+using eskin::link::HallSample;
+using eskin::link::LinkDecoder;
+using eskin::link::Packet;
+using eskin::sim::Mlx90393Model;
+using eskin::sim::Mlx90393Options;
+using eskin::sim::Tca9548aModel;
+
+constexpr double kClkNs = 1e9 / 12e6;
+constexpr uint64_t kConvCyc = 24636;  // 2053 us
+constexpr int kCpb = 4;               // 12 MHz / 3 Mbaud
+// DRDY of the frame-completing reading to the frame's first UART start bit,
+// 16 sensors on 4 buses: mostly the RM read itself (START, 10 bytes of 9
+// bits at 34 clocks = 3060, repeated START, STOP and tBUF: about 3150
+// clocks), plus DRDY synchronisation and pick (4), the token's 10-byte write
+// into the frame RAM, the HALL_SAMPLES header into link_framer and COBS's
+// look-ahead to the first zero byte of the raw frame, and the UART start.
+constexpr uint64_t kLatency16s = 3268;  // 272.3 us
+
+struct RampField : eskin::sim::HallFieldSource {
+  std::array<double, 3> field_uT(int sensor, double t_s) const override {
+    return {5.0 * sensor + 2000.0 * t_s, -30.0 + 2.0 * sensor, 80.0 - sensor};
+  }
+};
+
+template <class V>
+struct HallBoard {
+  ClockedDut<V> d;
+  RampField ramp;
+  const eskin::sim::HallFieldSource* field = &ramp;
+  std::vector<std::unique_ptr<I2cPinBus>> buses;
+  std::vector<std::unique_ptr<Tca9548aModel>> muxes;
+  std::vector<std::unique_ptr<Mlx90393Model>> dev;
+  LinkDecoder dec;
+  std::vector<Packet> packets;
+  std::vector<uint64_t> first_byte_cycle;  // start bit of each packet's first byte
+
+  // A scene's sensors (their own field source, noise and addresses) in the
+  // FPGA slots of its hall_top spec.
+  HallBoard(const eskin::sim::HallFieldSource& src, const eskin::HallConfig& h,
+            const eskin::sim::HallTopSpec& spec)
+      : field(&src) {
+    for (int b = 0; b < spec.nb; ++b) buses.push_back(std::make_unique<I2cPinBus>());
+    dev.resize(h.sensors.size());
+    for (size_t i = 0; i < h.sensors.size(); ++i) {
+      const auto& hs = h.sensors[i];
+      EXPECT_LT(hs.mux_address, 0) << "this bench has no muxes";
+      Mlx90393Options o;
+      o.base_address = uint8_t(hs.i2c_address);
+      o.config = h.mlx;
+      o.noise_rms_uT = {h.noise_rms_ut[0], h.noise_rms_ut[1], h.noise_rms_ut[2]};
+      o.seed = 1000 + i;
+      dev[spec.slot[i]] =
+          std::make_unique<Mlx90393Model>(buses[hs.bus]->bus, *field, int(i), o, 0);
+    }
+    start();
+  }
+  // nb buses of nsb sensors: direct at 0x0C + k, or all 0x0C behind mux channel k.
+  HallBoard(int nb, int nsb, bool mux) {
+    for (int b = 0; b < nb; ++b) {
+      buses.push_back(std::make_unique<I2cPinBus>());
+      if (mux) muxes.push_back(std::make_unique<Tca9548aModel>(buses[b]->bus, 0, 0, 0));
+      for (int k = 0; k < nsb; ++k) {
+        Mlx90393Options o;
+        if (!mux) {
+          o.a1 = (k >> 1) & 1;
+          o.a0 = k & 1;
+        }
+        const int seg = mux ? muxes[b]->channel_segment(k) : 0;
+        dev.push_back(std::make_unique<Mlx90393Model>(buses[b]->bus, *field, b * nsb + k, o, seg));
+      }
+    }
+    start();
+  }
+  void start() {
+    dec.on_packet([this](const Packet& p) { packets.push_back(p); });
+    d.m.rst = 1;
+    d.m.scl_i = 0;
+    step();
+    step();
+    d.m.rst = 0;
+  }
+  void step() {
+    const double t = double(d.cycle) * kClkNs;
+    uint64_t scl = 0, sda = 0, drdy = 0;
+    for (size_t b = 0; b < buses.size(); ++b) {
+      bool c, a;
+      buses[b]->before(t, c, a);
+      scl |= uint64_t(c) << b;
+      sda |= uint64_t(a) << b;
+    }
+    for (size_t s = 0; s < dev.size(); ++s) drdy |= uint64_t(dev[s]->drdy()) << s;
+    d.m.scl_i = scl;
+    d.m.sda_i = sda;
+    d.m.drdy = drdy;
+    d.tick();
+    for (size_t b = 0; b < buses.size(); ++b)
+      buses[b]->after(t, (d.m.scl_oe >> b) & 1, (d.m.sda_oe >> b) & 1);
+    uart(d.m.uart_txd);
+  }
+  void run(uint64_t n) {
+    for (uint64_t i = 0; i < n; ++i) step();
+  }
+  std::vector<const Packet*> frames() const {
+    std::vector<const Packet*> r;
+    for (const auto& p : packets)
+      if (p.type == eskin::link::kHallSamples) r.push_back(&p);
+    return r;
+  }
+  // Each sensor's data readings across the frames equal its model's
+  // deliveries in order (the last one may still be in flight).
+  void expect_frames_equal_devices() const {
+    for (size_t s = 0; s < dev.size(); ++s) {
+      std::vector<HallSample> got;
+      for (const Packet* f : frames()) {
+        ASSERT_EQ(f->hall_samples.size(), dev.size());
+        const HallSample& h = f->hall_samples[s];
+        EXPECT_EQ(h.id, s);
+        if (h.has_data()) got.push_back(h);
+      }
+      const auto& want = dev[s]->delivered();
+      ASSERT_TRUE(got.size() == want.size() || got.size() + 1 == want.size())
+          << "sensor " << s << ": " << got.size() << " vs " << want.size();
+      for (size_t i = 0; i < got.size(); ++i) {
+        EXPECT_EQ(got[i].x, want[i].x) << s << "/" << i;
+        EXPECT_EQ(got[i].y, want[i].y) << s << "/" << i;
+        EXPECT_EQ(got[i].z, want[i].z) << s << "/" << i;
+      }
+    }
+  }
+  // DRDY time (cycles) of the newest reading in frame f: the one that
+  // completed it.
+  double newest_drdy_cycle(size_t f) const {
+    double newest = 0;
+    for (size_t s = 0; s < dev.size(); ++s) {
+      size_t k = 0;  // index among sensor s's data readings
+      for (size_t g = 0; g < f; ++g) k += frames()[g]->hall_samples[s].has_data();
+      if (!frames()[f]->hall_samples[s].has_data()) continue;
+      newest = std::max(newest, dev[s]->delivered()[k].t_done_ns / kClkNs);
+    }
+    return newest;
+  }
+
+ private:
+  void uart(int level) {  // 8N1 at exactly kCpb clocks per bit
+    const uint64_t c = d.cycle;
+    if (!busy_) {
+      if (level == 0) {
+        busy_ = true;
+        start_ = c;
+        byte_ = 0;
+      }
+      return;
+    }
+    const uint64_t off = c - start_;
+    if (off % kCpb != kCpb / 2) return;
+    const uint64_t j = off / kCpb;
+    if (j >= 1 && j <= 8) byte_ |= uint8_t(level << (j - 1));
+    if (j == 9) {
+      busy_ = false;
+      if (!in_frame_ && byte_ != 0) {
+        in_frame_ = true;
+        first_byte_cycle.push_back(start_);
+      }
+      if (byte_ == 0) in_frame_ = false;
+      dec.feed(&byte_, 1);
+    }
+  }
+  bool busy_ = false, in_frame_ = false;
+  uint64_t start_ = 0;
+  uint8_t byte_ = 0;
+};
+
+TEST(HallTop, FramesCarryEveryReadingTokenForToken) {
+  HallBoard<Vhall_top> b(2, 2, false);
+  b.run(12 * kConvCyc);
+  const auto f = b.frames();
+  ASSERT_GE(f.size(), 9u);
+  b.expect_frames_equal_devices();
+  EXPECT_EQ(b.dec.stats().crc_errors + b.dec.stats().framing_errors, 0u);
+  for (auto& bus : b.buses)
+    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+  // The first frame comes from the configuration round: no data yet.
+  for (const auto& h : f[0]->hall_samples) EXPECT_EQ(h.flags, HallSample::kReply);
+}
+
+TEST(HallTop, MissingSensorFlaggedInFramesAndCountedInBusStatus) {
+  HallBoard<Vhall_top> b(2, 2, false);
+  b.dev[3]->set_absent(true);  // bus 1, sensor 1 never answers
+  b.run(66 * kConvCyc);        // HALL_BUS_STATUS follows every 64th frame
+  const auto f = b.frames();
+  ASSERT_GE(f.size(), 64u);
+  for (const Packet* p : f) EXPECT_EQ(p->hall_samples[3].flags, HallSample::kMissing);
+  for (size_t i = 2; i < f.size(); ++i)
+    for (int s = 0; s < 3; ++s) EXPECT_TRUE(f[i]->hall_samples[s].has_data()) << i;
+  b.expect_frames_equal_devices();
+  const Packet* st = nullptr;
+  for (const auto& p : b.packets)
+    if (p.type == eskin::link::kHallBusStatus) st = &p;
+  ASSERT_NE(st, nullptr);
+  ASSERT_EQ(st->hall_buses.size(), 2u);
+  EXPECT_EQ(st->hall_buses[0].nacks, 0);
+  // One NACKed attempt per frame: 64 frames, and the next round's attempt
+  // may already have happened while the 64th frame was being sent.
+  EXPECT_GE(st->hall_buses[1].nacks, 64);
+  EXPECT_LE(st->hall_buses[1].nacks, 65);
+  EXPECT_EQ(st->hall_buses[1].status_errors, 0);
+}
+
+TEST(HallTop, SixteenSensorsOnFourBusesAtTheMaximumRate) {
+  HallBoard<Vhall_top_16s> b(4, 4, false);
+  b.run(14 * kConvCyc);
+  const auto f = b.frames();
+  ASSERT_GE(f.size(), 12u);
+  b.expect_frames_equal_devices();
+  for (auto& bus : b.buses)
+    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+  // Steady state (from the third frame): all 48 values present, frames
+  // exactly one conversion (2053 us) apart, 487.1 Hz.
+  for (size_t i = 2; i < f.size(); ++i) {
+    for (const auto& h : f[i]->hall_samples) EXPECT_TRUE(h.has_data()) << i;
+    EXPECT_EQ(f[i]->t - f[i - 1]->t, 2053u) << i;
+  }
+  // Latency from the DRDY of the reading that completes a frame to the
+  // start bit of the frame's first byte on the UART: the same number of
+  // clocks in every steady-state frame.
+  std::vector<uint64_t> lat;
+  for (size_t i = 2; i < f.size(); ++i)
+    lat.push_back(b.first_byte_cycle[i] - uint64_t(std::ceil(b.newest_drdy_cycle(i))));
+  for (size_t i = 1; i < lat.size(); ++i) EXPECT_EQ(lat[i], lat[0]);
+  std::printf("16 sensors / 4 buses: frame period 2053 us (487.1 Hz); DRDY -> first byte %llu "
+              "clocks = %.1f us\n",
+              (unsigned long long)lat[0], lat[0] * kClkNs / 1000.0);
+  EXPECT_EQ(lat[0], kLatency16s);
+}
+
+TEST(HallTop, EightSensorsPerBusBehindMuxesCannotKeepUp) {
+  HallBoard<Vhall_top_mux8> b(2, 8, true);
+  b.run(14 * kConvCyc);
+  const auto f = b.frames();
+  ASSERT_GE(f.size(), 6u);
+  b.expect_frames_equal_devices();
+  const uint32_t period = (f.back()->t - f[2]->t) / uint32_t(f.size() - 3);
+  std::printf("16 sensors / 2 buses of 8 behind TCA9548A: mean frame period %u us\n", period);
+  EXPECT_GT(period, 2053u);
+}
+
+// The system path: the seed-000 scene's physics (hall-decode's HallWorld)
+// -> 16 MLX90393 models on 4 simulated buses -> the hall_top build generated
+// for that scene -> UART -> host/link -> every reading equals what the models
+// sent, token for token.
+TEST(HallTop, Seed000SceneThroughTheFpgaEqualsTheDeviceModels) {
+  const auto sc = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/hall_000_skin.yaml");
+  ASSERT_TRUE(sc.has_hall);
+  const auto spec = eskin::sim::hall_top_spec(sc.hall.config);
+  // The Vhall_top_16s build is this scene's: its parameters in
+  // tests/rtl/hall_top_test.cmake are exactly the generated ones.
+  std::ifstream cm(ESKIN_SOURCE_DIR "/tests/rtl/hall_top_test.cmake");
+  std::stringstream text;
+  text << cm.rdbuf();
+  std::string want = "set(hall_16s";
+  for (const auto& p : spec.verilog_params()) want += " " + p;
+  want += ")";
+  std::string flat;
+  for (char c : text.str()) flat += (c == '\n') ? ' ' : c;
+  for (size_t i; (i = flat.find("  ")) != std::string::npos;) flat.erase(i, 1);
+  EXPECT_NE(flat.find(want), std::string::npos) << "expected in the cmake file: " << want;
+
+  const eskin::sim::HallWorld world(sc.hall);
+  HallBoard<Vhall_top_16s> b(world, sc.hall.config, spec);
+  b.run(10 * kConvCyc);
+  const auto f = b.frames();
+  ASSERT_GE(f.size(), 8u);
+  b.expect_frames_equal_devices();
+  for (size_t i = 2; i < f.size(); ++i)
+    for (const auto& h : f[i]->hall_samples) EXPECT_TRUE(h.has_data()) << i;
+  for (auto& bus : b.buses)
+    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+}
+
+}  // namespace
