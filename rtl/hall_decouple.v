@@ -15,8 +15,9 @@
 //   RX   1 product (2 Bx z1), s1 prescale halvings, 24 CORDIC steps
 //   RY   1 product (2 By z1), s2 halvings, 24 steps
 //   SZ   1 product (2 By z2), 1 cycle for |N|, s3 halvings, 24 steps, then
-//        two logarithms of 1 + 24 + 1 cycles each and the sum
-// Latency (input handshake to out_valid, no back-pressure): 144 + s1 + s2
+//        two logarithms of 1 + 6 + 1 + 24 + 1 cycles each (normalise in six
+//        fixed shift steps, 24 squarings) and the sum
+// Latency (input handshake to out_valid, no back-pressure): 158 + s1 + s2
 // + s3 cycles for a valid token (s: hls::cordic_prescale of each vector),
 // 11 for a guarded one. (N and 2 By z2 cannot both be 0 after the guards,
 // z2 > 0; the check stays as the kernel's own guard.)
@@ -65,7 +66,7 @@ module hall_decouple #(
 
   localparam [3:0] S_IDLE = 4'd0, S_MUL = 4'd1, S_GUARD = 4'd2, S_VEC = 4'd3, S_PRE = 4'd4,
                    S_ROT = 4'd5, S_POST = 4'd6, S_LNSTART = 4'd7, S_LNSQ = 4'd8, S_LNEND = 4'd9,
-                   S_OUT = 4'd10;
+                   S_OUT = 4'd10, S_LNNORM = 4'd11, S_LNSET = 4'd12;
   reg [3:0] state;
   reg [4:0] step;       // product index in S_MUL, CORDIC step in S_ROT, squaring in S_LNSQ
   reg [1:0] which;      // CORDIC / logarithm in progress: 0 Rx, 1 Ry, 2 Sz (ln 0: |v|, 1: 2 z2)
@@ -82,16 +83,19 @@ module hall_decouple #(
   reg [31:0] m;                     // Q1.30 mantissa
   reg [23:0] frac;
   reg [5:0] e;
+  reg [63:0] v;                     // the logarithm's argument, normalised left
+  reg [6:0] lz;                     // its leading zeros
+  reg [5:0] sh_sz;                  // the Sz vector's prescale: ln(x << s) = ln x + s ln 2
 
   // ---- the shared multiplier ----
   reg signed [32:0] ma, mb;
   wire signed [65:0] mp = ma * mb;
   // Round half up by s bits (the products stay below 2^63: no bits lost).
   /* verilator lint_off UNUSEDSIGNAL */
-  function signed [63:0] rnd(input signed [65:0] v, input integer s);
+  function signed [63:0] rnd(input signed [65:0] x, input integer s);
     reg signed [65:0] r;
     begin
-      r = (v + (66'sd1 <<< (s - 1))) >>> s;
+      r = (x + (66'sd1 <<< (s - 1))) >>> s;
       rnd = r[63:0];
     end
   endfunction
@@ -133,26 +137,28 @@ module hall_decouple #(
       default: atan_q24 = 32'sd1 <<< (5'd24 - i);  // round(atan(2^-i) 2^24) = 2^(24-i) for i >= 8
     endcase
   endfunction
-  wire signed [63:0] xs = cx >>> step;
-  wire signed [63:0] ys = cy >>> step;
+  // After the prescale |x|, |y| < 2^30 and the rotations keep them below
+  // 2^32 (gain K < 1.65, |(x, y)| < 2^30.5): 34-bit shifters suffice.
+  /* verilator lint_off UNUSEDSIGNAL */
+  wire signed [33:0] xs = $signed(cx[33:0]) >>> step;
+  wire signed [33:0] ys = $signed(cy[33:0]) >>> step;
+  /* verilator lint_on UNUSEDSIGNAL */
   wire pre_more = (cx >= 64'sd1073741824) || (cy >= 64'sd1073741824) || (cy <= -64'sd1073741824);
 
   // ---- logarithm ----
-  // Index of the top set bit of a positive 64-bit value.
-  function [5:0] top_bit(input [63:0] v);
-    integer i;
-    begin
-      top_bit = 6'd0;
-      for (i = 0; i < 64; i = i + 1)
-        if (v[i]) top_bit = 6'(i);
-    end
-  endfunction
+  // Normalising left in six fixed steps (32, 16, ... 1 bits): with the top
+  // bit at 63, the Q1.30 mantissa is v >> 33 and the exponent 63 - lz; the
+  // Sz magnitude is used before its prescale is undone, which adds s to e.
   wire [63:0] ln_arg = (which == 2'd0) ? cx : (z2 <<< 1);
-  wire [5:0] ln_e = top_bit(ln_arg);
+  wire [5:0] nstep = 6'd32 >> step;
+  wire [63:0] v_top = v >> (7'd64 - {1'b0, nstep});  // the nstep top bits
+  // e <= 62 (the kernel's argument stays below 2^63): bit 6 is never set.
+  /* verilator lint_off UNUSEDSIGNAL */
+  wire [6:0] e_sum = 7'd63 - lz + ((which == 2'd0) ? {1'b0, sh_sz} : 7'd0);
+  /* verilator lint_on UNUSEDSIGNAL */
   // The normalised mantissa is below 2^31, its square >> 30 below 2^32, the
   // logarithm below 2^31 in Q8.24: the top bits of these are zero/sign.
   /* verilator lint_off UNUSEDSIGNAL */
-  wire [63:0] ln_m = (ln_e >= 6'd30) ? (ln_arg >> (ln_e - 6'd30)) : (ln_arg << (6'd30 - ln_e));
   wire [63:0] sq = mp[63:0] >> 30;  // (m * m) >> 30 in Q2.30
   wire signed [63:0] mp_r30 = rnd(mp, 30);  // (e.frac) * ln 2, Q8.24
   wire signed [63:0] mp_r10 = rnd(mp, 10);
@@ -182,6 +188,9 @@ module hall_decouple #(
       m <= 32'd0;
       frac <= 24'd0;
       e <= 6'd0;
+      v <= 64'd0;
+      lz <= 7'd0;
+      sh_sz <= 6'd0;
       out_t <= 32'd0;
       {out_rx, out_ry, out_sz} <= 96'd0;
       out_ok <= 1'b0;
@@ -246,15 +255,15 @@ module hall_decouple #(
         end
         S_ROT: begin
           if (!cy[63]) begin
-            cx <= cx + ys; cy <= cy - xs; cz <= cz + atan_q24(step);
+            cx <= cx + 64'(ys); cy <= cy - 64'(xs); cz <= cz + atan_q24(step);
           end else begin
-            cx <= cx - ys; cy <= cy + xs; cz <= cz - atan_q24(step);
+            cx <= cx - 64'(ys); cy <= cy + 64'(xs); cz <= cz - atan_q24(step);
           end
           step <= step + 1'b1;
           if (step == 5'd23) state <= S_POST;
         end
         S_POST: begin
-          cx <= cx <<< sh;
+          sh_sz <= sh;  // kept for the Sz logarithm (Rx, Ry need only the angle)
           case (which)
             2'd0: begin out_rx <= cz; which <= 2'd1; state <= S_VEC; end
             2'd1: begin out_ry <= cz; which <= 2'd2; state <= S_VEC; end
@@ -262,8 +271,22 @@ module hall_decouple #(
           endcase
         end
         S_LNSTART: begin
-          e <= ln_e;
-          m <= ln_m[31:0];
+          v <= ln_arg;
+          lz <= 7'd0;
+          step <= 5'd0;
+          state <= S_LNNORM;
+        end
+        S_LNNORM: begin
+          if (v_top == 64'd0) begin
+            v <= v << nstep;
+            lz <= lz + {1'b0, nstep};
+          end
+          step <= step + 1'b1;
+          if (step == 5'd5) state <= S_LNSET;
+        end
+        S_LNSET: begin
+          e <= e_sum[5:0];
+          m <= {1'b0, v[63:33]};
           frac <= 24'd0;
           step <= 5'd0;
           state <= S_LNSQ;
