@@ -5,7 +5,8 @@
 // ID_BASE + NC - 1, one sensor per cell. Per token:
 //   p_a = (d_a * g_a + 32) >> 6          g_a: per-axis uT/LSB in UQ4.12 (16 bits);
 //                                        p_a: field change in 1/64 uT (arith. shift,
-//                                        round half up), |p_a| < 2^23
+//                                        round half up); the radicand below needs
+//                                        |p_a| < 2^23, i.e. |dB| < 1.3 T per axis
 //   m   = isqrt(p_x^2 + p_y^2 + p_z^2)   |dB| in 1/64 uT, floor, 24-bit root of a
 //                                        48-bit radicand (one bit per step)
 //   k   = the last breakpoint with db[k] <= m (k = 0 when m < db[0]; at most
@@ -15,8 +16,8 @@
 // Curve per cell: NB breakpoints db (1/64 uT, ascending), f (mN), slope
 // (mN per 1/64 uT in Q15.16, from the builder hls/force_curve_config.h).
 // Output ForceToken {cell, t, force_mn, range, flags}.
-// RTL timing: 3 cycles (scale, square-sum), 24 cycles root, NB - 1 search
-// cycles, 1 interpolation cycle, then the output.
+// RTL timing: out_valid NB + 32 cycles after the input handshake (schedule
+// in rtl/force_curve.v).
 #pragma once
 
 #include <cstdint>
@@ -86,7 +87,7 @@ class ForceCurve {
     int k = 0;
     for (int i = 1; i < NB - 1; ++i)
       if (t.db[i] <= m) k = i;
-    const int64_t x = int64_t(m - t.db[k]) * int64_t(t.slope[k]);
+    const int64_t x = (int64_t(m) - int64_t(t.db[k])) * int64_t(t.slope[k]);
     const int64_t f = int64_t(t.f[k]) + ((x + (int64_t(1) << 15)) >> 16);
     out.cell = uint8_t(c);
     out.t = in.t;

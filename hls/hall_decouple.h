@@ -8,9 +8,11 @@
 // Input: HallDeltaToken of sensor ID (the film field, geomagnetic baseline
 // removed by hall_baseline). Fixed point, all arithmetic shifts round half up
 // (+2^(s-1) then >>, on two's complement):
-//   B_a  = (d_a * g_a + 2^9) >> 10      g_a: uT/LSB in UQ16.16 (32 bits);
-//                                        B_a in 1/64 uT, |B_a| < 2^24
-//   z    = ((Bz * k) + 2^13 >> 14) + c  k: Q2.14 (int16), c: 1/64 uT (int32)
+//   B_a  = (d_a * g_a + 2^9) >> 10      g_a: uT/LSB in UQ16.16, g_a < 2^20
+//                                        (<= 16 uT/LSB); B_a in 1/64 uT, |B_a| < 2^25
+//   z    = ((Bz * k) + 2^13 >> 14) + c  k: Q2.14 (int16), c: 1/64 uT, |c| < 2^26,
+//                                        so |z| < 2^27 and every square or product
+//                                        below fits 56 bits
 //   guard: z1 > 0, z2 > 0, both atan2 denominators > 0, else valid = 0 and
 //          Rx = Ry = Sz = 0 (no division happens anywhere: nothing to trap)
 //   squares and products: 50 bits signed (int64 here)
@@ -59,15 +61,23 @@ constexpr int32_t kLn64Q24 = 69774480;         // round(ln 64 * 2^24): B in 1/64
 
 inline int64_t shr_round(int64_t v, int s) { return s > 0 ? (v + (int64_t(1) << (s - 1))) >> s : v; }
 
-// CORDIC vectoring of (x, y), x > 0: returns the angle (Q8.24) and leaves
-// the scaled magnitude in x.
-inline int32_t cordic_vector(int64_t& x, int64_t y) {
+// Halves x and y (arithmetic shifts) until both are inside (-2^30, 2^30);
+// returns the number of halvings (the RTL spends one cycle on each).
+inline int cordic_prescale(int64_t& x, int64_t& y) {
   int s = 0;
   while ((x >= (int64_t(1) << 30)) || (y >= (int64_t(1) << 30)) || (y <= -(int64_t(1) << 30))) {
     x >>= 1;
     y >>= 1;
     ++s;
   }
+  return s;
+}
+
+// CORDIC vectoring of (x, y), x > 0: returns the angle (Q8.24) and leaves
+// the scaled magnitude in x.
+inline int32_t cordic_vector(int64_t& x, int64_t y, int* halvings = nullptr) {
+  const int s = cordic_prescale(x, y);
+  if (halvings) *halvings = s;
   int32_t z = 0;
   for (int i = 0; i < kCordicSteps; ++i) {
     const int64_t xs = x >> i, ys = y >> i;
@@ -102,8 +112,13 @@ class HallDecouple {
  public:
   explicit HallDecouple(const HallDecoupleConfig& c) : cfg_(c) {}
 
+  // The prescale halvings of the last token's three vectors (the RTL's
+  // variable part of the latency), -1 where no CORDIC ran.
+  int halvings(int i) const { return halv_[i]; }
+
   bool push(const HallDeltaToken& in, DecoupleToken& out) {
     if (in.id != ID) return false;
+    halv_[0] = halv_[1] = halv_[2] = -1;
     out = DecoupleToken{};
     out.t = in.t;
     out.flags = in.flags;
@@ -115,15 +130,15 @@ class HallDecouple {
     const int64_t den_x = z1 * z1 + by2 - bx2, den_y = z1 * z1 + bx2 - by2;
     if (z1 <= 0 || z2 <= 0 || den_x <= 0 || den_y <= 0) return true;
     int64_t x = den_x;
-    out.rx = cordic_vector(x, 2 * b[0] * z1);
+    out.rx = cordic_vector(x, 2 * b[0] * z1, &halv_[0]);
     x = den_y;
-    out.ry = cordic_vector(x, 2 * b[1] * z1);
+    out.ry = cordic_vector(x, 2 * b[1] * z1, &halv_[1]);
     const int64_t n = z2 * z2 - by2 + bx2;
     int64_t mag = n < 0 ? -n : n;
     const int64_t y = 2 * b[1] * z2;
     if (mag == 0 && y == 0) return true;  // a zero vector has no logarithm
     if (mag == 0) mag = 1;                // keep x > 0: angle irrelevant, magnitude ~ |y|
-    cordic_vector(mag, y);
+    cordic_vector(mag, y, &halv_[2]);
     out.sz = ln_q24(uint64_t(mag)) - kLnCordicGainQ24 - ln_q24(uint64_t(2 * z2)) - kLn64Q24;
     out.valid = true;
     return true;
@@ -131,6 +146,7 @@ class HallDecouple {
 
  private:
   HallDecoupleConfig cfg_;
+  int halv_[3] = {-1, -1, -1};
 };
 
 }  // namespace eskin::hls

@@ -18,6 +18,13 @@
 // Every STATUS_EVERY frames a HALL_BUS_STATUS packet (type 0x20) follows:
 // per bus nacks, status_errors, reply_errors, recoveries, bus_errors (u16
 // each, LE).
+// DELTAS = 1 adds the decoding's first block: every token also goes through
+// hall_baseline (each sensor's first 16 readings with data are its baseline)
+// and each HALL_SAMPLES frame is followed by a HALL_DELTAS packet (type
+// 0x12, docs/protocol.md section 9) in the same 10-byte layout with the
+// baseline-removed field (s16 LSB) instead of the codes; a slot without a
+// delta (baseline still capturing, or a reading without data) has x, y, z 0
+// and flag bit 5 (REPLY: not trusted) set.
 module hall_top #(
     parameter integer CLK_HZ = 12_000_000,
     parameter integer BAUD = 3_000_000,
@@ -33,7 +40,8 @@ module hall_top #(
     parameter integer BURST = 1,
     parameter integer CONV_CYC = 29_564,
     parameter integer STALE_CYC = 36_954,
-    parameter integer STATUS_EVERY = 64
+    parameter integer STATUS_EVERY = 64,
+    parameter integer DELTAS = 0
 ) (
     input  wire              clk,
     input  wire              rst,
@@ -50,7 +58,12 @@ module hall_top #(
   localparam integer BW = (NB > 1) ? $clog2(NB) : 1;
   localparam integer SW = (NSENS > 1) ? $clog2(NSENS) : 1;  // slot index bits
   localparam integer US_DIV = CLK_HZ / 1_000_000;
-  localparam [7:0] T_SAMPLES = 8'h10, T_BUS_STATUS = 8'h20;
+  localparam [7:0] T_SAMPLES = 8'h10, T_BUS_STATUS = 8'h20, T_DELTAS = 8'h12;
+  // Code format per axis (mlx90393_config.h): offset binary 0x8000 with
+  // TCMP_EN (REG1[10]) or at RES 2, 0x4000 at RES 3, else two's complement.
+  function [15:0] code_offset(input [1:0] res);
+    code_offset = REG1[10] ? 16'h8000 : (res == 2'd2) ? 16'h8000 : (res == 2'd3) ? 16'h4000 : 16'h0000;
+  endfunction
 
   generate
     if (NSENS > 255 || CLK_HZ % 1_000_000 != 0) begin : g_bad
@@ -149,6 +162,86 @@ module hall_top #(
   end
 
   wire [7:0] c_id = tid[cand*8 +: 8];
+  wire take_tok = !taking && |tr;
+
+  // ---- decoding: baseline-removed deltas of every token (DELTAS = 1)
+  reg  [7:0]  fb2[0:FB-1];
+  reg  [7:0]  fb2_rdata;
+  reg         d_have;             // the token being written has a delta
+  reg  [47:0] d_xyz;              // its dx, dy, dz
+  wire        b_valid;
+  wire [47:0] b_xyz;
+  generate
+    if (DELTAS != 0) begin : g_deltas
+      wire [7:0] b_id, b_flags;
+      wire [31:0] b_t;
+      wire [15:0] b_dropped;
+      wire b_ready;  // always 1: its output is taken every cycle
+      hall_baseline #(
+          .NS(NSENS), .CAPTURE_LOG2(4), .ID_BASE(0), .OFFSET_X(code_offset(REG2[6:5])),
+          .OFFSET_Y(code_offset(REG2[8:7])), .OFFSET_Z(code_offset(REG2[10:9]))
+      ) u_baseline (
+          .clk(clk), .rst(rst), .in_valid(take_tok), .in_ready(b_ready),
+          .in_id(c_id), .in_t(tt[cand*32 +: 32]), .in_x(txyz[cand*48+32 +: 16]),
+          .in_y(txyz[cand*48+16 +: 16]), .in_z(txyz[cand*48 +: 16]), .in_flags(tflags[cand*8 +: 8]),
+          .out_valid(b_valid), .out_ready(1'b1), .out_id(b_id), .out_t(b_t),
+          .out_dx(b_xyz[47:32]), .out_dy(b_xyz[31:16]), .out_dz(b_xyz[15:0]), .out_flags(b_flags),
+          .set_valid(1'b0), .set_sensor({SW{1'b0}}), .set_axis(2'd0), .set_value(16'd0),
+          .recapture(1'b0), .dropped(b_dropped));
+      wire unused_b = &{1'b0, b_id, b_flags, b_t, b_dropped, b_ready};
+    end else begin : g_no_deltas
+      assign b_valid = 1'b0;
+      assign b_xyz = 48'd0;
+    end
+  endgenerate
+  // fb2 is written one byte per cycle, one cycle behind fb (bytes 0..8 in
+  // write cycles 1..9, byte 9 in the cycle after), through a registered port.
+  reg         fb2_we, d_last;
+  reg [AW-1:0] fb2_waddr;
+  reg [7:0]   fb2_wdata;
+  always @(posedge clk) begin
+    if (fb2_we) fb2[fb2_waddr] <= fb2_wdata;
+    fb2_rdata <= fb2[fb_raddr];
+  end
+  always @(posedge clk) begin
+    if (rst) begin
+      d_have <= 1'b0;
+      d_xyz <= 48'd0;
+      d_last <= 1'b0;
+      fb2_we <= 1'b0;
+      fb2_waddr <= {AW{1'b0}};
+      fb2_wdata <= 8'd0;
+    end else begin
+      fb2_we <= 1'b0;
+      d_last <= 1'b0;
+      // Latency 1: the delta (if any) is out in the token's first write cycle.
+      if (taking && wbyte == 4'd0) begin
+        d_have <= b_valid;
+        d_xyz <= b_valid ? b_xyz : 48'd0;
+      end
+      if (DELTAS != 0 && ((taking && wbyte != 4'd0) || d_last)) begin
+        fb2_we <= 1'b1;
+        fb2_waddr <= slot_base + (d_last ? AW'(9) : AW'(wbyte) - AW'(1));
+        if (d_last) begin
+          fb2_wdata <= d_xyz[15:8];
+        end else begin
+          case (wbyte)  // id, flags (+ REPLY without a delta), t16, dx, dy, dz little endian
+            4'd1: fb2_wdata <= tok[79:72];
+            4'd2: fb2_wdata <= tok[71:64] | (d_have ? 8'h00 : 8'h20);
+            4'd3: fb2_wdata <= tok[55:48];
+            4'd4: fb2_wdata <= tok[63:56];
+            4'd5: fb2_wdata <= d_xyz[39:32];
+            4'd6: fb2_wdata <= d_xyz[47:40];
+            4'd7: fb2_wdata <= d_xyz[23:16];
+            4'd8: fb2_wdata <= d_xyz[31:24];
+            default: fb2_wdata <= d_xyz[7:0];
+          endcase
+        end
+        if (taking && wbyte == 4'd9) d_last <= 1'b1;
+      end
+    end
+  end
+
   always @(posedge clk) begin
     if (rst) begin
       taking <= 1'b0;
@@ -161,7 +254,7 @@ module hall_top #(
       fb_wdata <= 8'd0;
     end else begin
       fb_we <= 1'b0;
-      if (!taking && |tr) begin
+      if (take_tok) begin
         taking <= 1'b1;
         wbyte <= 4'd0;
         slot_base <= AW'(c_id * 10);
@@ -204,6 +297,7 @@ module hall_top #(
                    E_STATUS = 3'd5;
   reg [2:0]  estate;
   reg        e_status;  // the packet being sent is HALL_BUS_STATUS
+  reg        e_deltas;  // the packet being sent is HALL_DELTAS
   reg [AW-1:0] e_idx;
   reg [15:0] since_status;
   localparam integer SBW = $clog2(NB * 10 + 1);
@@ -216,6 +310,7 @@ module hall_top #(
       emitting <= 1'b0;
       estate <= E_IDLE;
       e_status <= 1'b0;
+      e_deltas <= 1'b0;
       e_idx <= {AW{1'b0}};
       fb_raddr <= {AW{1'b0}};
       hdr_valid <= 1'b0;
@@ -248,7 +343,7 @@ module hall_top #(
         E_READ: estate <= E_WAIT;  // the RAM's read takes a clock
         E_WAIT: begin
           p_valid <= 1'b1;
-          p_data <= fb_rdata;
+          p_data <= e_deltas ? fb2_rdata : fb_rdata;
           estate <= E_OFFER;
         end
         E_STATUS: begin
@@ -262,10 +357,18 @@ module hall_top #(
             e_idx <= e_idx + 1'b1;
             fb_raddr <= e_idx + 1'b1;
             if (e_idx == (e_status ? AW'(NB * 10 - 1) : AW'(FB - 1))) begin
-              if (!e_status) got <= {NSENS{1'b0}};
-              if (!e_status && STATUS_EVERY != 0 &&
+              if (!e_status && !e_deltas) got <= {NSENS{1'b0}};
+              if (!e_status && !e_deltas && DELTAS != 0) begin
+                e_deltas <= 1'b1;  // the frame's HALL_DELTAS follows its HALL_SAMPLES
+                hdr_valid <= 1'b1;
+                hdr_type <= T_DELTAS;
+                hdr_t <= t_us;
+                hdr_len <= 16'(FB);
+                estate <= E_HDR;
+              end else if (!e_status && STATUS_EVERY != 0 &&
                   since_status + 16'd1 >= 16'(STATUS_EVERY)) begin
                 since_status <= 16'd0;
+                e_deltas <= 1'b0;
                 e_status <= 1'b1;
                 hdr_valid <= 1'b1;
                 hdr_type <= T_BUS_STATUS;
@@ -274,6 +377,7 @@ module hall_top #(
                 estate <= E_HDR;
               end else begin
                 if (!e_status) since_status <= since_status + 16'd1;
+                e_deltas <= 1'b0;
                 emitting <= 1'b0;
                 estate <= E_IDLE;
               end

@@ -9,6 +9,9 @@ pkgs=(
   libyaml-cpp-dev libcli11-dev libfmt-dev
   libfftw3-dev libsndfile1-dev
   yosys nextpnr-ice40 fpga-icestorm jq
+  # virtual board and `eskin simulate` (docs/vboard.md): JSON status lines,
+  # Chart.js inlined into the report, GTKWave (and fst2vcd) for --trace
+  nlohmann-json3-dev libjs-chart.js gtkwave
 )
 missing=()
 for p in "${pkgs[@]}"; do

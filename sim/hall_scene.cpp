@@ -9,16 +9,18 @@ namespace eskin::sim {
 
 // ---------------------------------------------------------------- stimuli
 
-double Envelope::at(double t) const {
-  double u = t - t_start_s;
+double trapezoid(double t, double t0, double ramp, double hold, double release) {
+  double u = t - t0;
   if (u < 0) return 0;
-  if (u < ramp_s) return u / ramp_s;
-  u -= ramp_s;
-  if (u < hold_s) return 1;
-  u -= hold_s;
-  if (u < release_s) return 1 - u / release_s;
+  if (u < ramp) return u / ramp;
+  u -= ramp;
+  if (u < hold) return 1;
+  u -= hold;
+  if (u < release) return 1 - u / release;
   return 0;
 }
+
+double Envelope::at(double t) const { return trapezoid(t, t_start_s, ramp_s, hold_s, release_s); }
 
 double HallRoll::length_mm() const {
   double l = 0;

@@ -10,7 +10,11 @@
 
 namespace eskin::sim {
 
-// Trapezoid 0 -> 1 -> 0: ramp up over ramp_s, hold, ramp down over release_s.
+// Trapezoid 0 -> 1 -> 0 starting at t0: ramp up over `ramp`, hold, ramp
+// down over `release` (the DTMF presses use it too).
+double trapezoid(double t, double t0, double ramp, double hold, double release);
+
+// A trapezoid envelope of a Hall stimulus.
 struct Envelope {
   double t_start_s = 0, ramp_s = 0.05, hold_s = 0.2, release_s = 0.05;
   double end_s() const { return t_start_s + ramp_s + hold_s + release_s; }

@@ -16,16 +16,7 @@ namespace eskin::sim {
 
 // ---------------------------------------------------------------- stimuli
 
-double Press::envelope(double t) const {
-  double u = t - t_start_s;
-  if (u < 0) return 0;
-  if (u < ramp_s) return u / ramp_s;
-  u -= ramp_s;
-  if (u < hold_s) return 1;
-  u -= hold_s;
-  if (u < release_s) return 1 - u / release_s;
-  return 0;
-}
+double Press::envelope(double t) const { return trapezoid(t, t_start_s, ramp_s, hold_s, release_s); }
 
 double Slide::envelope(double t) const {
   double u = t - t_start_s;

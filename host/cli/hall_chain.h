@@ -56,6 +56,10 @@ std::vector<ForceCurve> calibrate_force_curves(const sim::HallWorld& w, uint64_t
 // Seed 000: the calibration scan and its Kriging table.
 golden::ContactLocator calibrate_locator(const sim::HallWorld& w, uint64_t seed);
 
+// Stimuli active at t (count), and whether all of them are at full force
+// (the frames scored against the truth are these steady ones).
+int active_stimuli(const sim::HallScene& s, double t, bool& steady);
+
 // Runs the scene's frames through the golden chain; prints figures, writes
 // per-frame outputs (NDJSON) to out_dir.
 int run_hall_golden(const sim::HallWorld& w, double duration_s, uint64_t seed, const std::string& out_dir);

@@ -18,20 +18,6 @@
 namespace eskin::cli {
 namespace {
 
-// Active stimuli at t, and whether all of them are at full force.
-int active(const sim::HallScene& s, double t, bool& steady) {
-  int n = 0;
-  steady = true;
-  auto one = [&](double e) {
-    if (e > 0) ++n, steady &= e >= 1.0;
-  };
-  for (const auto& p : s.presses) one(p.env.at(t));
-  for (const auto& r : s.rolls) one(r.envelope(t));
-  for (const auto& w : s.wrenches) one(w.env.at(t));
-  steady &= n > 0;
-  return n;
-}
-
 constexpr int kBaselineFrames = 20;  // 40 ms at OSR 0 / DIG_FILT 2, before any stimulus
 
 double norm3(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
@@ -56,6 +42,19 @@ std::string speed(const HallConfig& h) {
 }
 
 }  // namespace
+
+int active_stimuli(const sim::HallScene& s, double t, bool& steady) {
+  int n = 0;
+  steady = true;
+  auto one = [&](double e) {
+    if (e > 0) ++n, steady &= e >= 1.0;
+  };
+  for (const auto& p : s.presses) one(p.env.at(t));
+  for (const auto& r : s.rolls) one(r.envelope(t));
+  for (const auto& w : s.wrenches) one(w.env.at(t));
+  steady &= n > 0;
+  return n;
+}
 
 int run_hall_golden(const sim::HallWorld& w, double duration_s, uint64_t seed, const std::string& out_dir) {
   const HallConfig& h = w.config();
@@ -110,7 +109,7 @@ int run_hall_golden(const sim::HallWorld& w, double duration_s, uint64_t seed, c
     if (!base.push(golden::frame_ut(f, h.mlx), delta)) continue;
     ++frames;
     bool steady;
-    const int n_active = active(sc, t, steady);
+    const int n_active = active_stimuli(sc, t, steady);
     const sim::HallTruth truth = w.truth(t);
     std::string rec = fmt::format("{{\"t_s\":{:.6f},\"steady\":{}", t, steady);
     if (h.wants(HallDecode::Decouple)) {

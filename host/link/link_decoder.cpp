@@ -125,8 +125,11 @@ bool parse_payload(Packet& p, std::string* why) {
     case kCmdClearCounters:
       if (n != 0) return fail(why, "command: payload must be empty");
       return true;
-    default:
-      return fail(why, "unknown packet type");
+    default: {
+      bool known = false;
+      const bool ok = parse_hall_payload(p.type, b, p.hall, known, why);
+      return known ? ok : fail(why, "unknown packet type");
+    }
   }
 }
 

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "host/link/hall_packets.h"
+
 namespace eskin::link {
 
 // Packet types. FPGA -> host below 0x80, host -> FPGA commands from 0x80.
@@ -108,6 +110,7 @@ struct Packet {
   std::vector<HallBusStatus> hall_buses;       // kHallBusStatus
   uint8_t cmd_index = 0;                       // commands with an index
   uint32_t cmd_value = 0;                      // commands with a value (s32 as its bits)
+  HallPayload hall;                            // Hall decoding packets 0x12..0x16, 0x98..0x9C
 };
 
 struct DecoderStats {

@@ -8,7 +8,9 @@ set(hall_16s -GNB=4 -GNSB=4 -GADDR=112'h1e3868c1e3868c1e3868c1e3868c
   -GREG1=16'he380 -GREG2=16'h0008 -GCONV_CYC=29564 -GSTALE_CYC=36954)
 set(hall_mux8 -GNB=2 -GNSB=8 "-GADDR=112'h183060c183060c183060c183060c"
   "-GMUX_ADDR=112'he1c3870e1c3870e1c3870e1c3870" "-GMUX_CH=48'hfac688fac688")
-foreach(tag 16s mux8)
+# deltas: the 16s build with the decoding's baseline block (DELTAS=1).
+set(hall_deltas ${hall_16s} -GDELTAS=1)
+foreach(tag 16s mux8 deltas)
   verilate(${exe} SOURCES ${CMAKE_SOURCE_DIR}/rtl/hall_top.v
     TOP_MODULE hall_top PREFIX Vhall_top_${tag}
     VERILATOR_ARGS -y ${CMAKE_SOURCE_DIR}/rtl -Wno-fatal --x-assign unique --x-initial unique

@@ -23,8 +23,11 @@
 
 #include "Vhall_top.h"
 #include "Vhall_top_16s.h"
+#include "Vhall_top_deltas.h"
 #include "Vhall_top_mux8.h"
 #include "clocked_dut.h"
+#include "hls/hall_baseline.h"
+#include "host/link/hall_packets.h"
 #include "host/link/link_decoder.h"
 #include "i2c_pin_bench.h"
 #include "sim/hall_top_spec.h"
@@ -312,6 +315,51 @@ TEST(HallTop, Seed000SceneThroughTheFpgaEqualsTheDeviceModels) {
     for (const auto& h : f[i]->hall_samples) EXPECT_TRUE(h.has_data()) << i;
   for (auto& bus : b.buses)
     for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+}
+
+// The decoding's first block inside hall_top (DELTAS=1, the seed-000
+// build): every HALL_SAMPLES frame is followed by a HALL_DELTAS packet whose
+// slots equal hls::HallBaseline run on the frames' readings, bit for bit
+// (a slot without a delta: zeros and the REPLY flag).
+TEST(HallTop, DeltasFollowEveryFrameAndEqualTheHlsBaseline) {
+  const auto sc = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/hall_000_skin.yaml");
+  const auto spec = eskin::sim::hall_top_spec(sc.hall.config);
+  const eskin::sim::HallWorld world(sc.hall);
+  HallBoard<Vhall_top_deltas> b(world, sc.hall.config, spec);
+  b.run(24 * kConvCyc);
+  eskin::hls::HallBaseline<16, 4> k;
+  size_t frames = 0, deltas = 0;
+  for (size_t i = 0; i + 1 < b.packets.size(); ++i) {
+    const Packet& p = b.packets[i];
+    if (p.type != eskin::link::kHallSamples) continue;
+    const Packet& q = b.packets[i + 1];
+    ASSERT_EQ(q.type, eskin::link::kHallDeltas) << "packet " << i + 1;
+    ASSERT_EQ(q.hall.deltas.size(), p.hall_samples.size());
+    ++frames;
+    for (size_t s = 0; s < p.hall_samples.size(); ++s) {
+      const HallSample& h = p.hall_samples[s];
+      eskin::hls::HallSampleToken t;
+      t.id = h.id, t.flags = h.flags, t.x = h.x, t.y = h.y, t.z = h.z;
+      eskin::hls::HallDeltaToken want;
+      const bool has = k.push(t, want);
+      const auto& got = q.hall.deltas[s];
+      EXPECT_EQ(got.id, h.id);
+      EXPECT_EQ(got.t16, h.t16);
+      if (has) {
+        ++deltas;
+        EXPECT_EQ(got.flags, h.flags) << "frame " << frames << " sensor " << s;
+        EXPECT_EQ(got.dx, want.d[0]) << "frame " << frames << " sensor " << s;
+        EXPECT_EQ(got.dy, want.d[1]);
+        EXPECT_EQ(got.dz, want.d[2]);
+      } else {
+        EXPECT_EQ(got.flags, h.flags | 0x20);
+        EXPECT_EQ(got.dx, 0);
+        EXPECT_EQ(got.dz, 0);
+      }
+    }
+  }
+  EXPECT_GE(frames, 20u);
+  EXPECT_GE(deltas, 16u * 3);  // frames past the 16-reading capture carry deltas
 }
 
 }  // namespace

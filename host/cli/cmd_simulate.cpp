@@ -1,0 +1,416 @@
+// eskin simulate SCENE.yaml [--out DIR] [--trace F.fst]: the scene on the
+// SystemC virtual board (sim/vboard/), read over its serial port (a pty)
+// like a real board; the golden model on the same samples; both scored
+// against the scene's ground truth; one self-contained HTML report plus
+// the raw outputs (docs/vboard.md).
+#include <fcntl.h>
+#include <poll.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <thread>
+
+#include "cli/command.h"
+#include "cli/csv_fields.h"
+#include "host/golden/decode_score.h"
+#include "host/golden/golden_decoder.h"
+#include "host/golden/sdft_bank.h"
+#include "host/link/link_decoder.h"
+#include "host/link/link_encoder.h"
+#include "host/report/simulate_report.h"
+#include "sim/scene.h"
+#include "sim/vboard/fpga_params.h"
+#include "sim/vboard/vboard_process.h"
+#include "sim/world_model.h"
+
+namespace eskin::cli {
+namespace {
+
+using link::Packet;
+
+// The board's serial port as the host sees it: raw 8N1 at the board's
+// rate, packets decoded by host/link. The one seam to the host streaming
+// library (host/stream) once it lands.
+class BoardLink {
+ public:
+  BoardLink(const std::string& path, double baud) {
+    fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+    if (fd_ < 0) throw std::runtime_error("cannot open the board's serial port " + path);
+    termios t{};
+    tcgetattr(fd_, &t);
+    cfmakeraw(&t);
+    const speed_t s = baud == 3e6 ? B3000000 : baud == 1e6 ? B1000000 : B115200;
+    cfsetispeed(&t, s);
+    cfsetospeed(&t, s);
+    tcsetattr(fd_, TCSANOW, &t);
+  }
+  ~BoardLink() { ::close(fd_); }
+  void on_packet(std::function<void(const Packet&)> f) { dec_.on_packet(std::move(f)); }
+  void send(const std::vector<uint8_t>& b) {
+    if (::write(fd_, b.data(), b.size()) != ssize_t(b.size()))
+      throw std::runtime_error("cannot write to the board's serial port");
+  }
+  void pump(int timeout_ms) {
+    pollfd p{fd_, POLLIN, 0};
+    ::poll(&p, 1, timeout_ms);
+    uint8_t buf[8192];
+    for (ssize_t n; (n = ::read(fd_, buf, sizeof buf)) > 0;) dec_.feed(buf, size_t(n));
+  }
+  const link::DecoderStats& stats() const { return dec_.stats(); }
+
+ private:
+  int fd_ = -1;
+  link::LinkDecoder dec_;
+};
+
+// The virtual board executable for a build: the prebuilt one for the
+// default build.
+std::string board_executable(const vboard::FpgaBuild& b, const std::string& scene) {
+  if (b.key == "default") return ESKIN_VBOARD_DEFAULT;
+  throw ConfigError("skin", fmt::format("{} needs the FPGA build {} ({}x{}, window {}); only the "
+                                        "default build (scenes/neuroskin2.yaml) is prebuilt",
+                                        scene, b.key, b.plan.spec.rows, b.plan.spec.cols, b.plan.N));
+}
+
+struct Args {
+  std::string scene, out = "eskin-out", trace;
+};
+
+struct FpgaFrame {  // a packet with its arrival at the host
+  Packet p;
+  double arrival_us = -1;
+};
+
+class Progress {  // stderr: a bar on a terminal, else a line per quarter after 2 s
+ public:
+  explicit Progress(size_t total) : total_(total), tty_(isatty(2)) {}
+  void update(size_t done) {
+    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    const double f = std::min(1.0, double(done) / double(total_));
+    if (tty_) {
+      if (el - last_ < 0.1 && f < 1) return;
+      last_ = el;
+      const int w = 30, n = int(f * w);
+      fmt::print(stderr, "\rvirtual board [{}{}] {:3.0f}%  {:.1f} s", std::string(size_t(n), '#'),
+                 std::string(size_t(w - n), ' '), 100 * f, el);
+      if (f >= 1) fmt::print(stderr, "\n");
+    } else if (el > 2 && int(f * 4) > quarter_) {
+      quarter_ = int(f * 4);
+      fmt::print(stderr, "virtual board: {:.0f}% after {:.1f} s\n", 100 * f, el);
+    }
+  }
+
+ private:
+  size_t total_;
+  bool tty_;
+  double last_ = -1;
+  int quarter_ = 0;
+  std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+};
+
+struct GoldenRun {
+  std::vector<golden::Frame> frames;  // by sample index (empty before the window fills)
+  std::vector<std::vector<double>> spikes_ms;
+  golden::DecodeScore score;
+};
+
+GoldenRun run_golden(const sim::Scene& scene) {
+  GoldenRun g;
+  golden::GoldenOptions opt;
+  opt.taxels = true;
+  opt.spikes = scene.outputs.spikes;
+  golden::GoldenDecoder dec(scene.skin, scene.decoder, scene.neuron, opt);
+  sim::WorldModel world(scene), truth(scene);
+  golden::DecodeScorer scorer(scene.skin, scene.decoder,
+                              [&truth](size_t n, std::vector<double>& p) { truth.pressure_at(n, p); });
+  g.frames.resize(world.total_samples());
+  int code = 0;
+  for (size_t n = 0; world.next(code); ++n)
+    if (dec.push(code)) {
+      g.frames[n] = dec.frame();
+      scorer.add(dec.frame());
+    }
+  g.spikes_ms = dec.spike_times_ms();
+  g.score = scorer.score();
+  return g;
+}
+
+std::string ms(double v) { return fmt::format("{:.3f}", v); }
+
+int run_simulate(const Args& a) {
+  const sim::Scene scene = sim::load_scene(a.scene);  // a bad scene fails here, before anything runs
+  const vboard::FpgaBuild build = vboard::fpga_build_for(scene);
+  const std::string exe = board_executable(build, a.scene);
+  const SkinConfig& skin = scene.skin;
+  const double fs = skin.adc.rate_hz;
+  const int R = skin.rows, C = skin.cols, T = R * C, K = skin.carriers();
+  std::filesystem::create_directories(a.out);
+
+  std::vector<std::string> vargs{a.scene};
+  if (!a.trace.empty()) vargs.insert(vargs.end(), {"--trace", a.trace});
+  vboard::VboardProcess board(exe, vargs);
+  const size_t total = board.ready().at("scene_samples");
+  auto port_owner = std::make_unique<BoardLink>(board.pty(), build.baud());
+  BoardLink& port = *port_owner;
+  // Configure the board like a host program: the scene's outputs, plus the
+  // periodic status (its counters go into the report).
+  link::LinkEncoder enc;
+  port.send(enc.set_output_mask(uint8_t((scene.outputs.amplitudes ? 1 : 0) |
+                                        (scene.outputs.taxels ? 2 : 0) |
+                                        (scene.outputs.spikes ? 4 : 0) | 8)));
+  std::vector<FpgaFrame> rx;
+  port.on_packet([&](const Packet& p) { rx.push_back({p, -1}); });
+  GoldenRun gold;
+  std::thread golden_thread([&] { gold = run_golden(scene); });  // the other core
+  Progress bar(total);
+  for (;;) {
+    port.pump(50);
+    if (!rx.empty()) bar.update(rx.back().p.t);
+    if (board.poll_done() && port.stats().bytes >= board.done().at("bytes_to_host").get<uint64_t>())
+      break;
+  }
+  bar.update(total);
+  golden_thread.join();
+  const nlohmann::json done = board.done();
+  const link::DecoderStats ls = port.stats();
+  port_owner.reset();  // the board exits once its reader has closed the port
+  // Frame k on the wire is packet k when nothing was lost or corrupt.
+  const auto& ends = done.at("frame_end_ns");
+  const bool timed = ls.crc_errors + ls.framing_errors + ls.payload_errors == 0 &&
+                     ends.size() == rx.size();
+  if (timed)
+    for (size_t i = 0; i < rx.size(); ++i) rx[i].arrival_us = ends[i].get<double>() / 1000.0;
+
+  // ---- FPGA frames in physical units, scored like the golden model's.
+  sim::WorldModel truth_world(scene);
+  golden::DecodeScorer fpga_scorer(skin, scene.decoder, [&](size_t n, std::vector<double>& p) {
+    truth_world.pressure_at(n, p);
+  });
+  const double half_n = build.plan.N / 2.0;
+  report::SimulateReport rep;
+  rep.title = "eskin simulate: " + scene.name;
+  rep.scene_file = a.scene;
+  for (int i = 0; i < R; ++i)
+    for (int j = 0; j < C; ++j) rep.taxel_labels.push_back(fmt::format("r{}c{}", i, j));
+  const auto freqs = skin.carrier_freqs_hz();
+  for (int k = 0; k < K; ++k) {
+    rep.carrier_labels.push_back(fmt::format("{} {} Hz", k < R ? "row" : "col", freqs[size_t(k)]));
+    rep.fpga_amp.push_back({"FPGA " + rep.carrier_labels.back(), {}, {}});
+    rep.golden_amp.push_back({"golden " + rep.carrier_labels.back(), {}, {}});
+  }
+  rep.fpga_kpa.assign(size_t(T), {});
+  rep.golden_kpa.assign(size_t(T), {});
+  rep.truth_kpa.assign(size_t(T), {});
+  report::SpikeTrain fspk{"FPGA", {}, {}}, gspk{"golden", {}, {}};
+  auto amp_csv = fmt::output_file((std::filesystem::path(a.out) / "fpga_amplitudes.csv").string());
+  auto tax_csv = fmt::output_file((std::filesystem::path(a.out) / "fpga_taxels.csv").string());
+  auto nd = fmt::output_file((std::filesystem::path(a.out) / "fpga_packets.ndjson").string());
+  amp_csv.print("sample,t_ms,arrival_us");
+  for (double f : freqs) amp_csv.print(",amp_{}hz", f);
+  tax_csv.print("sample,t_ms,arrival_us");
+  for (const auto& l : rep.taxel_labels) tax_csv.print(",{}_kpa,{}_golden_kpa,{}_truth_kpa", l, l, l);
+  amp_csv.print("\n");
+  tax_csv.print("\n");
+  double amp_err = 0, kpa_err = 0, kpa_sq = 0;
+  size_t kpa_n = 0, status_n = 0;
+  link::StatusBlock last_status;
+  std::vector<double> truth;
+  for (const FpgaFrame& f : rx) {
+    const Packet& p = f.p;
+    const double t_ms = 1000.0 * p.t / fs;
+    const golden::Frame* g = p.t < gold.frames.size() && gold.frames[p.t].amp_lsb.size()
+                                 ? &gold.frames[p.t] : nullptr;
+    if (p.type == link::kAmplitudes && int(p.amplitudes.size()) == K) {
+      amp_csv.print("{},{:.4f},{:.2f}", p.t, t_ms, f.arrival_us);
+      std::string vals;
+      for (int k = 0; k < K; ++k) {
+        const double v = p.amplitudes[size_t(k)] / half_n;
+        amp_csv.print(",{:.6g}", v);
+        vals += fmt::format("{}{:.6g}", k ? "," : "", v);
+        rep.fpga_amp[size_t(k)].t_ms.push_back(t_ms);
+        rep.fpga_amp[size_t(k)].value.push_back(v);
+        if (g) {
+          rep.golden_amp[size_t(k)].t_ms.push_back(t_ms);
+          rep.golden_amp[size_t(k)].value.push_back(g->amp_lsb[k]);
+          amp_err = std::max(amp_err, std::fabs(v - g->amp_lsb[k]));
+        }
+      }
+      amp_csv.print("\n");
+      nd.print("{{\"type\":\"amplitudes\",\"sample\":{},\"t_ms\":{:.4f},\"arrival_us\":{:.2f},\"amp_lsb\":[{}]}}\n",
+               p.t, t_ms, f.arrival_us, vals);
+    } else if (p.type == link::kTaxelsDense && int(p.taxels.size()) == T) {
+      golden::Frame ff;
+      ff.sample = p.t;
+      ff.pressure.resize(R, C);
+      for (int i = 0; i < T; ++i)
+        ff.pressure(i / C, i % C) = skin.conductance.inverse(p.taxels[size_t(i)] / 32768.0);
+      ff.pressure_raw = ff.pressure;
+      fpga_scorer.add(ff);
+      truth_world.pressure_at(p.t, truth);
+      rep.frame_t_ms.push_back(t_ms);
+      tax_csv.print("{},{:.4f},{:.2f}", p.t, t_ms, f.arrival_us);
+      for (int i = 0; i < T; ++i) {
+        const double v = ff.pressure(i / C, i % C);
+        const double gv = g ? g->pressure(i / C, i % C) : 0;
+        rep.fpga_kpa[size_t(i)].push_back(v);
+        rep.golden_kpa[size_t(i)].push_back(gv);
+        rep.truth_kpa[size_t(i)].push_back(truth[size_t(i)]);
+        rep.kpa_max = std::max({rep.kpa_max, truth[size_t(i)], v});
+        tax_csv.print(",{:.6g},{:.6g},{:.6g}", v, gv, truth[size_t(i)]);
+        if (g) {
+          const double d = v - g->pressure_raw(i / C, i % C);
+          kpa_err = std::max(kpa_err, std::fabs(d));
+          kpa_sq += d * d;
+          ++kpa_n;
+        }
+      }
+      tax_csv.print("\n");
+      nd.print("{{\"type\":\"taxels\",\"sample\":{},\"t_ms\":{:.4f},\"arrival_us\":{:.2f},\"pressure_kpa\":[{}]}}\n",
+               p.t, t_ms, f.arrival_us, join(ff.pressure));
+    } else if (p.type == link::kSpikes) {
+      for (const auto& s : p.spikes) {
+        fspk.t_ms.push_back(1000.0 * (p.t + s.dt) / fs);
+        fspk.taxel.push_back(s.neuron);
+        nd.print("{{\"type\":\"spike\",\"t_ms\":{:.4f},\"taxel\":{},\"arrival_us\":{:.2f}}}\n",
+                 fspk.t_ms.back(), s.neuron, f.arrival_us);
+      }
+    } else if (p.type == link::kStatus) {
+      ++status_n;
+      last_status = p.status;
+    }
+  }
+  for (size_t t = 0; t < gold.spikes_ms.size(); ++t)
+    for (double ts : gold.spikes_ms[t]) {
+      gspk.t_ms.push_back(ts);
+      gspk.taxel.push_back(int(t));
+    }
+  rep.spikes = {fspk, gspk};
+  {
+    auto s_csv = fmt::output_file((std::filesystem::path(a.out) / "spikes.csv").string());
+    s_csv.print("model,t_ms,taxel,row,col\n");
+    for (const auto* tr : {&fspk, &gspk})
+      for (size_t i = 0; i < tr->t_ms.size(); ++i)
+        s_csv.print("{},{:.4f},{},{},{}\n", tr->label, tr->t_ms[i], tr->taxel[i], tr->taxel[i] / C,
+                    tr->taxel[i] % C);
+  }
+
+  // ---- latency: touch onset (truth) -> first frame with the taxel lit.
+  const double thr = scene.decoder.ghost_threshold;
+  auto lat_csv = fmt::output_file((std::filesystem::path(a.out) / "latency.csv").string());
+  lat_csv.print("taxel,onset_ms,fpga_us,golden_us\n");
+  std::vector<double> fpga_lat;
+  for (const sim::Press& pr : scene.presses) {
+    if (pr.at_position) continue;
+    const int idx = pr.row * C + pr.col;
+    const size_t onset = size_t(std::ceil(pr.t_start_s * fs));
+    report::PressLatency l{rep.taxel_labels[size_t(idx)], pr.t_start_s * 1000.0, -1, -1};
+    for (const FpgaFrame& f : rx)
+      if (f.p.type == link::kTaxelsDense && f.p.t >= onset && int(f.p.taxels.size()) == T &&
+          f.p.taxels[size_t(idx)] / 32768.0 > thr) {
+        if (timed) l.fpga_us = f.arrival_us - pr.t_start_s * 1e6;
+        break;
+      }
+    for (size_t n = onset; n < gold.frames.size(); ++n) {
+      const golden::Frame& g = gold.frames[n];
+      if (g.pressure.size() && skin.conductance.g(g.pressure(pr.row, pr.col)) > thr) {
+        l.golden_us = (double(n) + 1) / fs * 1e6 - pr.t_start_s * 1e6;
+        break;
+      }
+    }
+    if (l.fpga_us >= 0) fpga_lat.push_back(l.fpga_us);
+    lat_csv.print("{},{:.4f},{:.2f},{:.2f}\n", l.taxel, l.onset_ms, l.fpga_us, l.golden_us);
+    rep.latency.push_back(l);
+  }
+
+  // ---- error summary and run figures.
+  const golden::DecodeScore fs_ = fpga_scorer.score(), gs = gold.score;
+  rep.error_head = {"model", "frames scored", "worst taxel RMS error (kPa)", "worst max error (kPa)",
+                    "ghost taxel-frames", "missed taxel-frames", "spikes"};
+  rep.error_rows = {
+      {"FPGA (virtual board)", std::to_string(fs_.steady_frames), ms(fs_.worst_rms_error_kpa()),
+       ms(fs_.worst_max_error_kpa()), std::to_string(fs_.ghost_taxel_frames),
+       std::to_string(fs_.missed_taxel_frames), std::to_string(fspk.t_ms.size())},
+      {"golden", std::to_string(gs.steady_frames), ms(gs.worst_rms_error_kpa()),
+       ms(gs.worst_max_error_kpa()), std::to_string(gs.ghost_taxel_frames),
+       std::to_string(gs.missed_taxel_frames), std::to_string(gspk.t_ms.size())}};
+  const double sim_s = done.at("sim_s"), cpu_s = done.at("cpu_s"), wall_s = done.at("wall_s");
+  const double cyc = done.at("cycles");
+  std::sort(fpga_lat.begin(), fpga_lat.end());
+  const double lat_med = fpga_lat.empty() ? -1 : fpga_lat[fpga_lat.size() / 2];
+  rep.run_rows = {
+      {"FPGA build", build.key},
+      {"simulated time (s)", fmt::format("{:.4f}", sim_s)},
+      {"FPGA cycles", fmt::format("{:.0f}", cyc)},
+      {"speed: simulated s per CPU s (board process)", fmt::format("{:.3f}", sim_s / cpu_s)},
+      {"speed: simulated s per wall s", fmt::format("{:.3f}", sim_s / wall_s)},
+      {"speed: FPGA cycles per CPU s", fmt::format("{:.3g}", cyc / cpu_s)},
+      {"packets received", std::to_string(rx.size())},
+      {"link: bytes / CRC errors / framing errors / lost packets",
+       fmt::format("{} / {} / {} / {}", ls.bytes, ls.crc_errors, ls.framing_errors, ls.lost_packets)},
+      {"ADC timing violations", std::to_string(done.at("adc_violations").get<uint64_t>())},
+      {"FPGA status: ADC overruns / dropped frames / UART rx errors / commands accepted",
+       status_n ? fmt::format("{} / {} / {} / {}", last_status.adc_overruns, last_status.dropped_frames,
+                              last_status.uart_rx_errors, last_status.cmd_accepted)
+                : std::string("no status packet")},
+      {"FPGA vs golden: max carrier amplitude difference (LSB peak)", fmt::format("{:.3f}", amp_err)},
+      {"FPGA vs golden (no ghost correction): taxel max / RMS difference (kPa)",
+       fmt::format("{:.3f} / {:.3f}", kpa_err, kpa_n ? std::sqrt(kpa_sq / double(kpa_n)) : 0.0)},
+      {"latency onset -> first FPGA frame on the host, median (us)", fmt::format("{:.1f}", lat_med)}};
+  const DftVariant golden_variant = golden::resolve_variant(
+      scene.decoder.variant, skin.carrier_freqs_hz(), fs, scene.decoder);
+  rep.summary = fmt::format(
+      "{}x{} skin, {} carriers, {} samples at {} Hz; FPGA build {} at {:.0f} MHz, UART {:.0f} "
+      "baud (exact sliding DFT, no ghost filter); golden model: variant {}, ghost-corrected.",
+      R, C, K, total, fs, build.key, build.clk_hz() / 1e6, build.baud(), to_string(golden_variant));
+  const std::string html = (std::filesystem::path(a.out) / "report.html").string();
+  report::write_simulate_report(rep, html);
+  {
+    nlohmann::json sum = {{"scene", a.scene}, {"fpga_build", build.key}, {"sim_s", sim_s},
+                          {"cpu_s", cpu_s}, {"wall_s", wall_s}, {"cycles", cyc},
+                          {"packets", rx.size()}, {"link_errors", ls.crc_errors + ls.framing_errors + ls.payload_errors},
+                          {"fpga_worst_rms_kpa", fs_.worst_rms_error_kpa()},
+                          {"golden_worst_rms_kpa", gs.worst_rms_error_kpa()},
+                          {"fpga_vs_golden_max_amp_lsb", amp_err}, {"fpga_spikes", fspk.t_ms.size()},
+                          {"golden_spikes", gspk.t_ms.size()}, {"latency_median_us", lat_med}};
+    auto js = fmt::output_file((std::filesystem::path(a.out) / "summary.json").string());
+    js.print("{}\n", sum.dump(2));
+  }
+  const int status = board.wait();
+  fmt::print("scene {}: {}x{} skin, {:.3f} s simulated on the virtual board (FPGA build {}) in "
+             "{:.1f} s ({:.2f} simulated s per CPU s)\n",
+             scene.name, R, C, sim_s, build.key, wall_s, sim_s / cpu_s);
+  fmt::print("FPGA: {} packets, {} link errors; worst taxel RMS error {:.3f} kPa; {} spikes\n",
+             rx.size(), ls.crc_errors + ls.framing_errors + ls.payload_errors,
+             fs_.worst_rms_error_kpa(), fspk.t_ms.size());
+  fmt::print("golden: worst taxel RMS error {:.3f} kPa; {} spikes\n", gs.worst_rms_error_kpa(),
+             gspk.t_ms.size());
+  if (lat_med >= 0)
+    fmt::print("latency touch onset -> first FPGA frame on the host: median {:.0f} us over {} presses\n",
+               lat_med, fpga_lat.size());
+  fmt::print("report: {}\n", html);
+  return status == 0 ? 0 : 1;
+}
+
+std::function<int()> setup(CLI::App& app) {
+  auto a = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand(
+      "simulate", "Run a scene on the SystemC virtual board (Verilated FPGA, pty serial port), "
+                  "compare with the golden model and write an HTML report");
+  sub->add_option("scene", a->scene, "scene file (YAML, see docs/scenes.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--out", a->out, "output directory (created)")->capture_default_str();
+  sub->add_option("--trace", a->trace, "FST waveform of the FPGA (GTKWave; several times slower)");
+  return [a] { return run_simulate(*a); };
+}
+
+ESKIN_COMMAND("simulate", setup);
+
+}  // namespace
+}  // namespace eskin::cli

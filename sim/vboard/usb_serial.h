@@ -1,0 +1,103 @@
+// The board's USB-serial bridge (the FT2232H beside the iCE40 on the
+// iCEBreaker) as seen from the FPGA's UART pins. It runs at the baud rate
+// the host program set on its serial port, not at the FPGA's:
+//   FPGA -> host: a UART receiver samples uart_txd (8N1) in the middle of
+//     each bit at the host's rate; each byte goes to the host, with the
+//     time its stop bit was sampled.
+//   host -> FPGA: the host's bytes go out on uart_rxd as real 8N1 bits at
+//     the host's rate, back to back.
+// At equal rates every byte arrives intact; at different rates the bytes
+// come out wrong on both sides, as on real hardware (the board reports the
+// mismatch). Times are in ns; call sample_txd()/rxd_level() once per FPGA
+// clock with non-decreasing times.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+namespace eskin::vboard {
+
+class UsbSerial {
+ public:
+  // Rate the host configured; takes effect at the next start bit.
+  void set_baud(double baud) { bit_ns_ = baud > 0 ? 1e9 / baud : 0; }
+  bool configured() const { return bit_ns_ > 0; }
+
+  // uart_txd level after the FPGA's clock edge at time t.
+  void sample_txd(double t, bool level) {
+    if (!rx_busy_) {
+      if (level || bit_ns_ == 0) return;  // idle, or nobody listening
+      rx_busy_ = true;
+      rx_start_ = t;
+      rx_bit_ = 0;
+      rx_byte_ = 0;
+      rx_next_ = t + 0.5 * bit_ns_;
+      return;
+    }
+    if (t < rx_next_) return;
+    if (rx_bit_ == 0) {
+      if (level) rx_busy_ = false;  // a glitch, not a start bit
+    } else if (rx_bit_ <= 8) {
+      rx_byte_ |= uint8_t(int(level) << (rx_bit_ - 1));
+    } else {
+      rx_busy_ = false;
+      if (!level) ++framing_errors_;
+      to_host_.push_back(rx_byte_);
+      byte_times_.push_back(t);
+      ++bytes_to_host_;
+      return;
+    }
+    ++rx_bit_;
+    rx_next_ = rx_start_ + (rx_bit_ + 0.5) * bit_ns_;
+  }
+
+  // Level the bridge drives on uart_rxd at time t.
+  bool rxd_level(double t) {
+    if (!tx_busy_) {
+      if (to_fpga_.empty() || bit_ns_ == 0) return true;
+      tx_busy_ = true;
+      tx_start_ = t;
+      tx_byte_ = to_fpga_.front();
+      to_fpga_.pop_front();
+    }
+    const int bit = int((t - tx_start_) / bit_ns_);
+    if (bit == 0) return false;                   // start bit
+    if (bit <= 8) return (tx_byte_ >> (bit - 1)) & 1;
+    if (bit == 9) return true;                    // stop bit
+    tx_busy_ = false;
+    ++bytes_to_fpga_;
+    return rxd_level(t);                          // next byte back to back
+  }
+
+  void queue_to_fpga(const uint8_t* p, size_t n) { to_fpga_.insert(to_fpga_.end(), p, p + n); }
+  bool to_fpga_idle() const { return !tx_busy_ && to_fpga_.empty(); }
+
+  // Bytes received from the FPGA and not yet handed to the host, with the
+  // time (ns) each one's stop bit was sampled.
+  std::vector<uint8_t>& to_host() { return to_host_; }
+  std::vector<double>& byte_times() { return byte_times_; }
+
+  uint64_t bytes_to_host() const { return bytes_to_host_; }
+  uint64_t bytes_to_fpga() const { return bytes_to_fpga_; }
+  uint64_t framing_errors() const { return framing_errors_; }
+
+ private:
+  double bit_ns_ = 0;
+  // FPGA -> host receiver
+  bool rx_busy_ = false;
+  int rx_bit_ = 0;
+  uint8_t rx_byte_ = 0;
+  double rx_start_ = 0, rx_next_ = 0;
+  std::vector<uint8_t> to_host_;
+  std::vector<double> byte_times_;
+  // host -> FPGA transmitter
+  std::deque<uint8_t> to_fpga_;
+  bool tx_busy_ = false;
+  uint8_t tx_byte_ = 0;
+  double tx_start_ = 0;
+  uint64_t bytes_to_host_ = 0, bytes_to_fpga_ = 0, framing_errors_ = 0;
+};
+
+}  // namespace eskin::vboard

@@ -1,0 +1,152 @@
+#include "sim/vboard/virtual_board.h"
+
+#include <time.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace eskin::vboard {
+namespace {
+
+// Simulated time per batch of FPGA cycles, and between two visits of the
+// USB bridge to the pty. 100 us is 1200 cycles at 12 MHz: the SystemC
+// wait per batch costs < 1% of the batch; the host sees bytes in 100 us
+// chunks of simulated time (a real FT2232H sends USB packets every 125 us
+// at best).
+const sc_core::sc_time kBatch(100, sc_core::SC_US);
+const sc_core::sc_time kUsbPeriod(100, sc_core::SC_US);
+constexpr int kBaudCheckEvery = 10;  // USB visits between termios reads (1 ms)
+
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+}  // namespace
+
+VirtualBoard::VirtualBoard(sc_core::sc_module_name name, FpgaModel& fpga, PtyPort& pty,
+                           BoardConfig cfg)
+    : sc_core::sc_module(name),
+      fpga_(fpga),
+      pty_(pty),
+      cfg_(std::move(cfg)),
+      adc_(cfg_.codes),
+      cycle_ns_(1e9 / cfg_.clk_hz) {
+  SC_THREAD(fpga_thread);
+  SC_THREAD(usb_thread);
+}
+
+sc_core::sc_time VirtualBoard::time_of(uint64_t cycle) const {
+  return sc_core::sc_time(double(cycle) * cycle_ns_, sc_core::SC_NS);
+}
+
+// One FPGA clock per iteration, as tests/rtl/dtmf_top_board.h does it: the
+// ADC's SDATA and the bridge's RXD as they are just before the rising edge
+// at t, the edge, then the pins the FPGA drives after it.
+void VirtualBoard::run_cycles(uint64_t until) {
+  while (cycle_ < until && adc_.samples_taken() < cfg_.samples) {
+    const double t = double(cycle_ + 1) * cycle_ns_;
+    in_.adc_sdata = adc_.sdata(t);
+    in_.uart_rxd = usb_.rxd_level(t);
+    out_ = fpga_.cycle(in_, uint64_t(std::llround(t * 1000.0)));
+    ++cycle_;
+    adc_.drive(t, out_.adc_cs_n, out_.adc_sclk);
+    usb_.sample_txd(t, out_.uart_txd);
+  }
+}
+
+void VirtualBoard::fpga_thread() {
+  if (!started_) wait(reader_ready_);
+  if (!cfg_.trace.empty()) fpga_.open_trace(cfg_.trace);  // needs elaboration done
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = cpu_seconds();
+  const uint64_t batch = uint64_t(std::llround(kBatch.to_seconds() * cfg_.clk_hz));
+  while (adc_.samples_taken() < cfg_.samples && !stats_.reader_closed) {
+    run_cycles(cycle_ + batch);
+    wait(time_of(cycle_) - sc_core::sc_time_stamp());
+  }
+  stats_.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  stats_.cpu_s = cpu_seconds() - cpu0;
+  finished_ = true;
+}
+
+void VirtualBoard::follow_reader_baud() {
+  const double b = pty_.reader_baud();
+  if (b == stats_.reader_baud) return;
+  stats_.reader_baud = b;
+  usb_.set_baud(b);
+  if (b > 0 && b != cfg_.baud) {
+    ++stats_.baud_mismatches;
+    std::fprintf(stderr,
+                 "virtual board: the reader set its serial port to %.0f baud, the FPGA's UART "
+                 "runs at %.0f baud: bytes are garbled both ways until it matches\n",
+                 b, cfg_.baud);
+  }
+}
+
+// Bridge -> pty (blocking while a reader is connected and behind: the
+// simulation waits for the host instead of dropping its data), pty ->
+// bridge (non-blocking).
+void VirtualBoard::move_bytes() {
+  auto& out = usb_.to_host();
+  auto& when = usb_.byte_times();
+  while (sent_to_host_ < out.size()) {
+    const size_t w = pty_.write(out.data() + sent_to_host_, out.size() - sent_to_host_);
+    for (size_t i = sent_to_host_; i < sent_to_host_ + w; ++i)
+      if (out[i] == 0) stats_.frame_end_ns.push_back(when[i]);
+    sent_to_host_ += w;
+    if (w > 0) continue;
+    if (stats_.reader_baud == 0 || pty_.reader_closed()) {  // nobody reading: lost, as on a board
+      sent_to_host_ = out.size();
+      break;
+    }
+    pty_.wait_writable(100);
+  }
+  out.clear();
+  when.clear();
+  sent_to_host_ = 0;
+  uint8_t buf[256];
+  while (size_t n = pty_.read(buf, sizeof buf)) usb_.queue_to_fpga(buf, n);
+}
+
+void VirtualBoard::usb_thread() {
+  if (cfg_.wait_for_reader) {
+    const auto t0 = std::chrono::steady_clock::now();
+    while (pty_.reader_baud() == 0) {
+      if (std::chrono::steady_clock::now() - t0 >
+          std::chrono::duration<double>(cfg_.reader_timeout_s)) {
+        stats_.error = "no program opened " + pty_.slave_path() + " and set a baud rate within " +
+                       std::to_string(int(cfg_.reader_timeout_s)) + " s";
+        sc_core::sc_stop();
+        return;
+      }
+      usleep(2000);
+    }
+  }
+  follow_reader_baud();
+  started_ = true;
+  reader_ready_.notify(sc_core::SC_ZERO_TIME);
+  for (int visit = 1; !finished_; ++visit) {
+    wait(kUsbPeriod);
+    move_bytes();
+    if (visit % kBaudCheckEvery == 0) {
+      follow_reader_baud();
+      if (stats_.reader_baud > 0 && pty_.reader_closed()) stats_.reader_closed = true;
+    }
+  }
+  move_bytes();
+  stats_.cycles = cycle_;
+  stats_.sim_s = double(cycle_) / cfg_.clk_hz;
+  stats_.samples = adc_.samples_taken();
+  stats_.adc_violations = adc_.violation_count();
+  if (!adc_.violations().empty()) stats_.first_adc_violation = adc_.violations()[0];
+  stats_.bytes_to_host = usb_.bytes_to_host();
+  stats_.bytes_to_fpga = usb_.bytes_to_fpga();
+  stats_.usb_framing_errors = usb_.framing_errors();
+  sc_core::sc_stop();
+}
+
+}  // namespace eskin::vboard

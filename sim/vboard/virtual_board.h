@@ -1,0 +1,86 @@
+// The SystemC virtual board: the Verilated FPGA top clocked at its real
+// frequency, the AD7476A pin model on its SPI pins fed with the scene's ADC
+// codes, and the USB-serial bridge on its UART pins, exposed to the host as
+// a pseudo-terminal. Time is real: the FPGA clock, the ADC's SCLK edges
+// and the UART bits are placed in ns and checked in ns.
+//
+// Two SystemC threads share the time axis:
+//   fpga   clocks the model for one batch (kBatch of simulated time) in a
+//          plain loop, with the ADC and UART pins exchanged every cycle at
+//          their real times, then waits for the batch's time to pass;
+//   usb    every kUsbPeriod moves bytes between the bridge and the pty,
+//          follows the reader's baud rate and reports a mismatch.
+// Cycles are never SystemC events: one event per clock edge would cost
+// more than the model (docs/vboard.md).
+#pragma once
+
+#include <systemc>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/ad7476_model.h"
+#include "sim/vboard/fpga_model.h"
+#include "sim/vboard/pty_port.h"
+#include "sim/vboard/usb_serial.h"
+
+namespace eskin::vboard {
+
+struct BoardConfig {
+  double clk_hz = 12e6;          // the FPGA top's CLK_HZ
+  double baud = 3e6;             // the FPGA top's BAUD
+  std::vector<uint16_t> codes;   // 12-bit ADC codes, one per conversion
+  uint64_t samples = 0;          // stop once the ADC has taken this many
+  bool wait_for_reader = true;   // hold time at 0 until a reader sets a baud rate
+  std::string trace;             // FST waveform file ("": none), from the first cycle
+  double reader_timeout_s = 60;  // ... for at most this long (wall clock)
+};
+
+struct BoardStats {
+  uint64_t cycles = 0;
+  double sim_s = 0, wall_s = 0, cpu_s = 0;
+  uint64_t samples = 0;                 // ADC conversions started
+  uint64_t adc_violations = 0;
+  std::string first_adc_violation;
+  uint64_t bytes_to_host = 0, bytes_to_fpga = 0;
+  uint64_t usb_framing_errors = 0;      // stop bits the bridge read as 0
+  double reader_baud = 0;               // last rate the reader set
+  uint64_t baud_mismatches = 0;         // times the reader's rate differed from the FPGA's
+  bool reader_closed = false;           // the reader went away before the end
+  std::vector<double> frame_end_ns;     // time each 0x00 frame delimiter reached the host
+  std::string error;                    // why the run stopped early (empty: it did not)
+};
+
+SC_MODULE(VirtualBoard) {
+ public:
+  SC_HAS_PROCESS(VirtualBoard);
+  VirtualBoard(sc_core::sc_module_name name, FpgaModel& fpga, PtyPort& pty, BoardConfig cfg);
+  const BoardStats& stats() const { return stats_; }
+  bool finished() const { return finished_; }
+
+ private:
+  void fpga_thread();
+  void usb_thread();
+  void run_cycles(uint64_t until);
+  void move_bytes();
+  void follow_reader_baud();
+  sc_core::sc_time time_of(uint64_t cycle) const;
+
+  FpgaModel& fpga_;
+  PtyPort& pty_;
+  BoardConfig cfg_;
+  sim::Ad7476Model adc_;
+  UsbSerial usb_;
+  FpgaInputs in_;
+  FpgaOutputs out_;
+  uint64_t cycle_ = 0;
+  double cycle_ns_;
+  sc_core::sc_event reader_ready_;
+  bool started_ = false, finished_ = false;
+  size_t sent_to_host_ = 0;  // bytes of usb_.to_host() already in the pty
+  BoardStats stats_;
+};
+
+}  // namespace eskin::vboard
