@@ -77,7 +77,7 @@ struct CarrierDemixConfig {
 template <int K_MAX, int N, int ACC_W = 24, int OUT_W = 24, int TW = 10, int SW = 16,
           int CW = 16, int CF = 14>
 class CarrierDemix {
-  static_assert(K_MAX >= 1 && K_MAX <= 16, "K_MAX must be 1..16");
+  static_assert(K_MAX >= 1 && K_MAX <= 64, "K_MAX must be 1..64 (2K+1 <= 129 terms: sums < 2^(ACC_W + CW + 8))");
   static_assert(N >= 3, "window N must be >= 3 (2 K + 1 <= N is checked by the builder)");
   static_assert(ACC_W >= 2 && ACC_W <= 32, "ACC_W must be 2..32");
   static_assert(OUT_W >= 2 && OUT_W <= 32, "OUT_W must be 2..32");
@@ -104,6 +104,15 @@ class CarrierDemix {
   }
 
   int carriers() const { return cfg_.carriers; }
+  const Config& config() const { return cfg_; }
+  // One matrix entry (row-major, 0 .. (2K+1)^2 - 1) from the next frame on;
+  // phases and the rest unchanged (SET_DEMIX_COEF). False if out of range.
+  bool set_coef(int index, int32_t value) {
+    const int dim = 2 * cfg_.carriers + 1;
+    if (index < 0 || index >= dim * dim) return false;
+    cfg_.coef[index] = value;
+    return true;
+  }
   int32_t dc() const { return dc_; }
 
   // sin(2 pi idx / 2^TW) from the quarter table, idx mod 2^TW.

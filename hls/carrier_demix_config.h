@@ -29,13 +29,18 @@ struct CarrierDemixStatus {
 // bank's clear (frames on every sample from sample 0: 1 - N; frames every
 // STEP samples from the first full window: 0), then one frame every
 // `frame_step` samples.
-template <class Demix>
-CarrierDemixStatus make_carrier_demix_config(const std::vector<double>& freqs_hz, double fs_hz,
-                                             double sum_gain, typename Demix::Config& out,
-                                             int frame_step = 1,
-                                             int first_oldest = 1 - Demix::kN) {
-  constexpr int N = Demix::kN, SW = Demix::kSW, CW = Demix::kCW, CF = Demix::kCF,
-                KMAX = Demix::kKMax;
+// The tables of a demix with any sizes and formats (host side, vectors).
+struct CarrierDemixTables {
+  int carriers = 0;
+  std::vector<uint32_t> inc, phase0;  // K each
+  std::vector<int32_t> qsin;          // 2^(TW-2) + 1
+  std::vector<int32_t> coef;          // (2K+1)^2, row-major
+};
+
+inline CarrierDemixStatus carrier_demix_tables(const std::vector<double>& freqs_hz, double fs_hz,
+                                               double sum_gain, int N, int KMAX, int TW, int SW,
+                                               int CW, int CF, int frame_step, int first_oldest,
+                                               CarrierDemixTables& out) {
   CarrierDemixStatus st;
   const auto fail = [&](const std::string& m) { st.message = m; return st; };
   const int k = int(freqs_hz.size());
@@ -57,8 +62,10 @@ CarrierDemixStatus make_carrier_demix_config(const std::vector<double>& freqs_hz
   if (!(sum_gain > 0.5 && sum_gain <= 2))
     return fail("sum_gain: expected 0.5 < gain <= 2, got " + std::to_string(sum_gain));
 
-  typename Demix::Config cfg{};
+  CarrierDemixTables cfg;
   cfg.carriers = k;
+  cfg.inc.assign(size_t(k), 0);
+  cfg.phase0.assign(size_t(k), 0);
   const double two32 = std::ldexp(1.0, 32);
   std::vector<double> w(static_cast<size_t>(k), 0.0);
   for (int c = 0; c < k; ++c) {
@@ -67,13 +74,15 @@ CarrierDemixStatus make_carrier_demix_config(const std::vector<double>& freqs_hz
     cfg.phase0[c] = uint32_t(inc) * uint32_t(first_oldest);   // mod 2^32
     w[size_t(c)] = 2 * M_PI * double(inc) / two32;  // the frequency the phases realise
   }
-  const int qn = Demix::Config::QN;
+  const int qn = (1 << (TW - 2)) + 1;
+  cfg.qsin.assign(size_t(qn), 0);
   const double amp = std::ldexp(1.0, SW - 1) - 1;
   for (int i = 0; i < qn; ++i)
     cfg.qsin[i] = int32_t(std::lround(amp * std::sin(M_PI / 2 * i / (qn - 1))));
 
   // Gram matrix of the basis cos(w i), sin(w i) per carrier, then 1.
   const int dim = 2 * k + 1;
+  cfg.coef.assign(size_t(dim * dim), 0);
   std::vector<double> g(size_t(dim * dim), 0.0), basis(static_cast<size_t>(dim));
   for (int i = 0; i < N; ++i) {
     for (int c = 0; c < k; ++c) {
@@ -151,6 +160,26 @@ CarrierDemixStatus make_carrier_demix_config(const std::vector<double>& freqs_hz
   }
   out = cfg;
   st.ok = true;
+  return st;
+}
+
+
+template <class Demix>
+CarrierDemixStatus make_carrier_demix_config(const std::vector<double>& freqs_hz, double fs_hz,
+                                             double sum_gain, typename Demix::Config& out,
+                                             int frame_step = 1,
+                                             int first_oldest = 1 - Demix::kN) {
+  CarrierDemixTables t;
+  const CarrierDemixStatus st =
+      carrier_demix_tables(freqs_hz, fs_hz, sum_gain, Demix::kN, Demix::kKMax, Demix::kTW,
+                           Demix::kSW, Demix::kCW, Demix::kCF, frame_step, first_oldest, t);
+  if (!st.ok) return st;
+  typename Demix::Config cfg{};
+  cfg.carriers = t.carriers;
+  for (int k = 0; k < t.carriers; ++k) cfg.inc[k] = t.inc[size_t(k)], cfg.phase0[k] = t.phase0[size_t(k)];
+  for (size_t i = 0; i < t.qsin.size(); ++i) cfg.qsin[i] = t.qsin[i];
+  for (size_t i = 0; i < t.coef.size(); ++i) cfg.coef[i] = t.coef[i];
+  out = cfg;
   return st;
 }
 

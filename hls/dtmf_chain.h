@@ -1,47 +1,53 @@
 // dtmf_chain: the whole DTMF FPGA path as composed HLS kernels, down to the
-// host-link packet payloads. Bit-exact spec of rtl/dtmf_top.v (with
-// rtl/frame_packetizer.v): for the same ADC samples the top sends exactly
-// these packets (type, t, payload), in this order per type.
+// host-link packet payloads. Bit-exact spec of rtl/dtmf_top.v: for the same
+// ADC samples (and the same commands at the same samples) the top sends
+// exactly these packets (type, t, payload), in this order per type.
 //
-// Per ADC sample (12-bit unsigned code from the AD7476A, sample counter t):
-//   x = code - 2048 (signed, XW = 12 bits)                [12-bit codes]
-//   SdftBank<K, N, XW, CW, TW, ACC_W>: K tokens {k, re, im}
-//   every cfg.step-th sample (a "step"; the first sample is one):
-//     CarrierMagnitude<ACC_W, MAG_W, MAG_SHIFT>: K magnitudes (u16)
-//     TaxelReconstruct<R, C, MAG_W, TAX_W>: the frame's taxels, row-major
-//     IzhikevichLayer<R*C>: one update per taxel, input x = taxel value
-// A 10-bit scene code c10 enters as c10 << 2 (the AD7476A's 12 bits, left
-// aligned); with MAG_SHIFT = 2 at N = 32 the magnitudes are back in 10-bit
-// code units (window sum, gain G = 1 - 2^-(CW-1)).
+// Per ADC sample (12-bit code from the AD7476A, sample counter t):
+//   x = code - 2048 (signed, XW = 12 bits)
+//   sdft_bank: K carriers (+ a DC channel, inc 0, when demixing)
+// A frame is taken once the window is full (N samples since reset or since
+// the last carrier reload: partly filled windows never make frames) and then
+// every `step` samples. Per frame (hardware: the frame engine's microcode):
+//   carrier_demix   (if demix) joint LS of the K carriers + DC: no cross-talk
+//   carrier_magnitude  K magnitudes (u16, window-sum units of 12-bit codes
+//                      >> mag_shift)
+//   taxel_reconstruct  one root per line, g = root_i root_j recip (UQ1.15)
+//   ghost_filter    (if ghost) active sites; taxel = g at sites, else 0
+//   izhikevich_layer  layer 0: one RA receptor per taxel (input g, level or
+//                     rectified change), addressed by taxel index
+//   synapse_weights   3x3 kernel over layer 0's spikes -> layer 1 input
+//   izhikevich_layer  layer 1: one neuron per taxel
+//   spike_encoder     events of both layers per spike window
+// (neurons, synapses and spikes only when cfg.neurons.)
 //
-// Packets (layouts: host/link/link_decoder.h), steps counted from 0:
-//   amplitudes (0x01), step s with s % decim_amp == 0 and mask bit 0:
-//     t = the step's sample counter, payload K x mag u16 LE (k order).
-//   taxels dense (0x02), steps with s % decim_tax == 0, mask bit 1: rows u8,
-//     cols u8, then the taxel values u16 LE row-major (every taxel: activity
-//     threshold 0).
-//   spikes (0x04), mask bit 2: window w covers steps w*D .. w*D + D - 1
-//     (D = decim_tax); when it closes (after its last step) and holds at least
-//     one spike: t = the window's first step's t, payload n x {dt u16 =
-//     t_spike - t, layer u8 = 0, neuron u16}, in step then neuron order.
-//   The RTL also sends status packets (0x05) on request / with mask bit 3;
-//   their counters are not part of this spec.
-// Carrier table change (SET_CARRIER_INC): set_carriers() before the first
-// sample the new table applies to (sdft_bank state is cleared, as in RTL).
-// Equality with the RTL assumes the link keeps up (nothing dropped: the
-// status packet's dropped_frames stays 0) and that no ADC sample is lost
-// (adc_overruns 0); the system test checks both.
+// Packets (layouts: docs/protocol.md), frames counted from reset:
+//   0x01 AMPLITUDES     frame f with f % decim_amp == 0, mask bit 0: K x u16
+//   0x02 TAXELS_DENSE   f % decim_tax == 0, mask bit 1: rows, cols, T x u16 g
+//   0x03 TAXELS_SPARSE  f % decim_tax == 0, mask bit 4: {row, col, g u16}
+//                       for every taxel with g >= max(1, sparse_min)
+//   0x04 SPIKES         when a spike window (the decim_tax frames ending at
+//                       f % decim_tax == decim_tax - 1) closes with events,
+//                       mask bit 2: t = the window's first frame
+// All carry t = the ADC sample counter of the frame's newest sample. The
+// RTL also sends STATUS (0x05) packets; they are not part of this spec.
+// A decimation change restarts that stream's frame count at 0.
+// Equality with the RTL assumes the link keeps up (dropped_frames 0) and
+// no ADC sample or frame is lost (adc_overruns, frame_overruns 0); the
+// system test checks all three.
 //
-// Widths: everything fixed width; no heap, no float. Interface: configure
-// once (constructor), then push() one sample at a time; it returns the
-// number of packets completed by this sample (0..3) in `out`.
+// Widths: everything fixed width; no heap, no float.
 #pragma once
 
 #include <cstdint>
 
+#include "hls/carrier_demix.h"
 #include "hls/carrier_magnitude.h"
+#include "hls/ghost_filter.h"
 #include "hls/izhikevich_layer.h"
 #include "hls/sdft_bank.h"
+#include "hls/spike_encoder.h"
+#include "hls/synapse_weights.h"
 #include "hls/taxel_reconstruct.h"
 
 namespace eskin::hls {
@@ -49,42 +55,70 @@ namespace eskin::hls {
 enum DtmfPacketType : uint8_t {
   kDtmfAmplitudes = 0x01,
   kDtmfTaxelsDense = 0x02,
+  kDtmfTaxelsSparse = 0x03,
   kDtmfSpikes = 0x04,
   kDtmfStatus = 0x05,
 };
 
-// Output enable mask bits (the command SetOutputMask writes them).
+// Output enable mask bits (SET_OUTPUT_MASK writes them).
 enum DtmfMaskBit : uint8_t {
   kMaskAmplitudes = 1,
   kMaskTaxels = 2,
   kMaskSpikes = 4,
   kMaskStatus = 8,  // periodic status (RTL only)
+  kMaskSparse = 16,
 };
 
-template <int K>
+constexpr int dtmf_clog2(int v) {
+  int b = 0;
+  while ((1 << b) < v) ++b;
+  return b;
+}
+
+// Compile-time sizes of a chain: skin rows x cols, window N, ghost history
+// depth, spike events per packet.
+template <int R_, int C_, int N_, int L_MAX_ = 4, int MAX_SPIKES_ = 256>
+struct DtmfChainSizes {
+  static constexpr int R = R_, C = C_, N = N_, K = R_ + C_, T = R_ * C_;
+  static constexpr int L_MAX = L_MAX_, MAX_SPIKES = MAX_SPIKES_;
+  static constexpr int XW = 12;                        // code - 2048
+  static constexpr int ACC_W = XW + 1 + dtmf_clog2(N);  // exact window sums
+  static constexpr int DEMIX_W = 24;                   // demixed sums
+  static constexpr int MAG_SHIFT = dtmf_clog2(N) > 5 ? dtmf_clog2(N) - 5 : 0;
+};
+
+template <class S>
 struct DtmfChainConfig {
-  SdftBankConfig<K> sdft;        // carriers = K, phase increments
-  TaxelReconstructConfig taxel;  // rows, cols, mode, recip ...
-  IzhikevichConfig neuron;
-  int step = 1;                  // samples per processing step, >= 1
-  uint16_t decim_amp = 35;       // amplitude packets every decim_amp steps, >= 1
-  uint16_t decim_tax = 35;       // taxel packets and spike windows, >= 1
+  static constexpr int K = S::K;
+  SdftBankConfig<K + 1> sdft;    // K carriers (+ DC last when demixing)
+  bool demix = true;
+  CarrierDemixConfig<K> demix_cfg;
+  TaxelReconstructConfig taxel;
+  bool ghost = true;
+  GhostFilterConfig ghost_cfg;
+  bool neurons = true;
+  IzhikevichConfig neuron[2];    // layer 0 receptors, layer 1 weighted
+  SynapseWeightsConfig synapse;
+  int step = 35;                 // samples per frame, >= 1
+  uint16_t decim_amp = 1;        // frames per amplitude packet, >= 1
+  uint16_t decim_tax = 1;        // frames per taxel packet and spike window
+  uint16_t sparse_min = 0;       // TAXELS_SPARSE: g >= max(1, sparse_min)
   uint8_t mask = kMaskAmplitudes | kMaskTaxels | kMaskSpikes;
 };
 
-// Template defaults = dtmf_top's parameter defaults (ACC_W = 18 fits N <= 32;
-// in general ACC_W >= XW + 1 + ceil(log2 N), checked by SdftBank).
-template <int R, int C, int N, int XW = 12, int CW = 16, int TW = 10, int ACC_W = 18,
-          int MAG_W = 16, int MAG_SHIFT = 2, int TAX_W = 16, int MAX_SPIKES = 512>
+template <class S>
 class DtmfChain {
  public:
-  static constexpr int K = R + C;
-  static constexpr int T = R * C;
-  static_assert(MAG_W <= 16 && TAX_W <= 16, "packets carry u16 magnitudes and taxels");
-  static constexpr int kMaxPayload =
-      (5 * MAX_SPIKES > 2 + 2 * T) ? 5 * MAX_SPIKES : 2 + 2 * T;
+  static constexpr int R = S::R, C = S::C, N = S::N, K = S::K, T = S::T;
+  static constexpr int kMaxPayload = (5 * S::MAX_SPIKES > 4 * T + 2)
+                                         ? 5 * S::MAX_SPIKES
+                                         : (4 * T > 2 * K ? 4 * T + 2 : 2 * K + 2);
+  static constexpr int kMaxPackets = 4;
+  using Config = DtmfChainConfig<S>;
+  using Bank = SdftBank<K + 1, N, S::XW, 16, 10, S::ACC_W>;
+  using Demix = CarrierDemix<K, N, S::ACC_W, S::DEMIX_W>;
+  using Magnitude = CarrierMagnitude<S::DEMIX_W, 16, S::MAG_SHIFT>;
 
-  using Config = DtmfChainConfig<K>;
   struct Packet {
     uint8_t type = 0;
     uint32_t t = 0;
@@ -92,96 +126,147 @@ class DtmfChain {
     uint8_t payload[kMaxPayload] = {};
   };
 
-  explicit DtmfChain(const Config& cfg) : cfg_(cfg), neurons_(cfg.neuron) {
-    ok_ = sdft_.configure(cfg.sdft) && taxels_.configure(cfg.taxel) && cfg.step >= 1 &&
-          cfg.decim_amp >= 1 && cfg.decim_tax >= 1 && cfg.taxel.rows == R &&
-          cfg.taxel.cols == C;
+  explicit DtmfChain(const Config& cfg)
+      : cfg_(cfg), l0_(cfg.neuron[0]), l1_(cfg.neuron[1]) {
+    ok_ = cfg.step >= 1 && cfg.decim_amp >= 1 && cfg.decim_tax >= 1 &&
+          taxel_.configure(cfg.taxel) && cfg.taxel.rows == R && cfg.taxel.cols == C &&
+          ghost_.configure(cfg.ghost_cfg) && synapse_.configure(cfg.synapse) &&
+          cfg.sdft.carriers == (cfg.demix ? K + 1 : K) && bank_.configure(cfg.sdft) &&
+          (!cfg.demix || demix_.configure(cfg.demix_cfg));
   }
-  // New carrier table from the next sample on; false (unchanged) if invalid.
-  bool set_carriers(const SdftBankConfig<K>& c) {
-    if (c.carriers != K || !sdft_.configure(c)) return false;
-    cfg_.sdft = c;
+  bool ok() const { return ok_; }  // false: a configuration field was rejected
+  uint32_t frames() const { return frames_; }  // frames processed so far
+  uint32_t spikes_dropped() const { return enc_.dropped(); }
+
+  // ---- commands (applied before the next sample) ----
+  // New carrier table (and, when demixing, new demix tables): the window is
+  // cleared and refills before the next frame.
+  bool set_carriers(const SdftBankConfig<K + 1>& s, const CarrierDemixConfig<K>& d) {
+    if (s.carriers != cfg_.sdft.carriers || !bank_.configure(s)) return false;
+    if (cfg_.demix && !demix_.configure(d)) return false;
+    cfg_.sdft = s;
+    cfg_.demix_cfg = d;
+    filled_ = 0;
     return true;
   }
-  // False when a configuration field was rejected (then push() does nothing).
-  bool ok() const { return ok_; }
-  uint32_t spikes_dropped() const { return spikes_dropped_; }
+  void set_ghost_thresholds(uint16_t onset, uint16_t pair_tol, uint16_t release) {
+    ghost_.set_thresholds(onset, pair_tol, release);
+  }
+  void set_sparse_min(uint16_t v) { cfg_.sparse_min = v; }
+  void set_neuron(int layer, const IzhikevichConfig& c) {
+    (layer == 0 ? l0_ : l1_).set_config(c);
+  }
+  void set_weight(int id, int16_t w) { synapse_.set_weight(id, w); }
+  bool set_demix_coef(int index, int16_t value) { return demix_.set_coef(index, value); }
+  const CarrierDemixConfig<K>& demix_config() const { return demix_.config(); }
+  const SdftBankConfig<K + 1>& chain_sdft_config() const { return cfg_.sdft; }
+  const GhostFilterConfig& ghost_config() const { return ghost_.config(); }
+  const IzhikevichConfig& neuron_config(int layer) const {
+    return layer == 0 ? l0_.config() : l1_.config();
+  }
+  void set_mask(uint8_t m) { cfg_.mask = m; }
+  void set_decimation(int stream, uint16_t d) {  // 0 amplitudes, 1 taxels/spikes
+    if (stream == 0) cfg_.decim_amp = d, amp_cnt_ = 0;
+    if (stream == 1) cfg_.decim_tax = d, tax_cnt_ = 0;
+  }
 
-  // One 12-bit ADC code with its sample counter.
-  int push(uint16_t code, uint32_t t, Packet (&out)[3]) {
+  // One 12-bit ADC code with its sample counter; returns the packets made.
+  int push(uint16_t code, uint32_t t, Packet (&out)[kMaxPackets]) {
     if (!ok_) return 0;
-    SdftBankToken tok[K];
-    sdft_.push(int32_t(code & 0xFFFu) - 2048, tok);
-    const bool stepping = phase_ == 0;
-    phase_ = phase_ + 1 == cfg_.step ? 0 : phase_ + 1;
-    if (!stepping) return 0;
-
-    int n = 0;
-    const bool amp_sel = amp_cnt_ == 0;
-    const bool frame_sel = frame_cnt_ == 0;
-    amp_cnt_ = amp_cnt_ + 1u >= cfg_.decim_amp ? 0 : amp_cnt_ + 1u;
-    uint16_t mags[K];
-    for (int k = 0; k < K; ++k) {
-      CarrierMagnitudeIn in{tok[k].k, tok[k].re, tok[k].im, tok[k].last};
-      CarrierMagnitudeOut o;
-      mag_.push(in, o);
-      mags[k] = uint16_t(o.mag);
-      taxels_.push(MagToken{uint8_t(k), uint16_t(o.mag)});
-    }
-    if (amp_sel && (cfg_.mask & kMaskAmplitudes)) {
-      Packet& p = out[n++];
-      begin(p, kDtmfAmplitudes, t);
-      for (int k = 0; k < K; ++k) put16(p, mags[k]);
-    }
-    Packet* tax = nullptr;
-    if (frame_sel && (cfg_.mask & kMaskTaxels)) {
-      tax = &out[n++];
-      begin(*tax, kDtmfTaxelsDense, t);
-      tax->payload[tax->len++] = uint8_t(R);
-      tax->payload[tax->len++] = uint8_t(C);
-    }
-    if (!win_open_) {
-      win_open_ = true;
-      win_t_ = t;
-    }
-    TaxelToken tx;
-    while (taxels_.pop(tx)) {
-      if (tax) put16(*tax, uint16_t(tx.value));
-      IzhikevichOut o;
-      neurons_.push(IzhikevichIn{int32_t(tx.value), t}, o);
-      if (o.spike && (cfg_.mask & kMaskSpikes)) {
-        if (n_spikes_ < MAX_SPIKES) {
-          spikes_[n_spikes_++] = Spike{uint16_t(t - win_t_), o.neuron};
-        } else {
-          ++spikes_dropped_;
-        }
-      }
-    }
-    if (frame_cnt_ + 1u >= cfg_.decim_tax) {  // the window's last step
-      if (n_spikes_ > 0) {
-        Packet& p = out[n++];
-        begin(p, kDtmfSpikes, win_t_);
-        for (int i = 0; i < n_spikes_; ++i) {
-          put16(p, spikes_[i].dt);
-          p.payload[p.len++] = 0;  // layer 0: receptors
-          put16(p, spikes_[i].neuron);
-        }
-      }
-      n_spikes_ = 0;
-      win_open_ = false;
-      frame_cnt_ = 0;
+    typename Bank::Token tok[K + 1];
+    bank_.push(int32_t(code & 0xFFFu) - 2048, tok);
+    if (filled_ < N) {
+      if (++filled_ < N) return 0;
+      phase_ = 0;
     } else {
-      ++frame_cnt_;
+      phase_ = phase_ + 1 == cfg_.step ? 0 : phase_ + 1;
+      if (phase_ != 0) return 0;
+    }
+    return frame(tok, t, out);
+  }
+
+  // Of the last frame (for tests and scoring).
+  uint16_t magnitude(int k) const { return mag_[k]; }
+  uint16_t taxel(int i) const { return g_[i]; }
+  bool spiked(int layer, int i) const { return (layer == 0 ? s0_ : s1_)[i]; }
+  const GhostFilter<R, C, S::L_MAX>& ghost() const { return ghost_; }
+
+ private:
+  int frame(const typename Bank::Token* tok, uint32_t t, Packet (&out)[kMaxPackets]) {
+    ++frames_;
+    // Amplitudes.
+    typename Demix::Token dm[K];
+    if (cfg_.demix)
+      for (int k = 0; k <= K; ++k)
+        demix_.push(typename Demix::Token{uint8_t(k), tok[k].re, tok[k].im, k == K}, dm);
+    for (int k = 0; k < K; ++k) {
+      const int32_t re = cfg_.demix ? dm[k].re : tok[k].re;
+      const int32_t im = cfg_.demix ? dm[k].im : tok[k].im;
+      mag_[k] = uint16_t(Magnitude::magnitude(re, im));
+    }
+    // Taxels.
+    taxel_.lines(mag_);
+    if (cfg_.ghost) {
+      ghost_.frame(mag_);
+      ghost_.release([this](int i, int j) { return taxel_.value(i, j); });
+    }
+    for (int i = 0; i < R; ++i)
+      for (int j = 0; j < C; ++j)
+        g_[i * C + j] = (!cfg_.ghost || ghost_.site(i, j)) ? taxel_.value(i, j) : 0;
+    // Neurons and spikes.
+    const bool record = cfg_.neurons && (cfg_.mask & kMaskSpikes);
+    if (record) enc_.frame(t);
+    if (cfg_.neurons) {
+      for (int i = 0; i < T; ++i) s0_[i] = l0_.update(i, g_[i]);
+      for (int i = 0; i < T; ++i) s1_[i] = l1_.update(i, synapse_.input(s0_, i / C, i % C));
+      if (record) {
+        for (int i = 0; i < T; ++i)
+          if (s0_[i]) enc_.spike(0, uint16_t(i));
+        for (int i = 0; i < T; ++i)
+          if (s1_[i]) enc_.spike(1, uint16_t(i));
+      }
+    }
+    // Packets.
+    int n = 0;
+    const bool amp_sel = amp_cnt_ == 0, tax_sel = tax_cnt_ == 0;
+    const bool win_end = tax_cnt_ + 1u >= cfg_.decim_tax;
+    amp_cnt_ = amp_cnt_ + 1u >= cfg_.decim_amp ? 0 : amp_cnt_ + 1u;
+    tax_cnt_ = win_end ? 0 : tax_cnt_ + 1u;
+    if (amp_sel && (cfg_.mask & kMaskAmplitudes)) {
+      Packet& p = begin(out[n++], kDtmfAmplitudes, t);
+      for (int k = 0; k < K; ++k) put16(p, mag_[k]);
+    }
+    if (tax_sel && (cfg_.mask & kMaskTaxels)) {
+      Packet& p = begin(out[n++], kDtmfTaxelsDense, t);
+      p.payload[p.len++] = uint8_t(R);
+      p.payload[p.len++] = uint8_t(C);
+      for (int i = 0; i < T; ++i) put16(p, g_[i]);
+    }
+    if (tax_sel && (cfg_.mask & kMaskSparse)) {
+      Packet& p = begin(out[n++], kDtmfTaxelsSparse, t);
+      const uint16_t lo = cfg_.sparse_min > 1 ? cfg_.sparse_min : 1;
+      for (int i = 0; i < T; ++i) {
+        if (g_[i] < lo) continue;
+        p.payload[p.len++] = uint8_t(i / C);
+        p.payload[p.len++] = uint8_t(i % C);
+        put16(p, g_[i]);
+      }
+    }
+    if (win_end && record) {
+      uint32_t tw = 0;
+      const int ne = enc_.close(tw);
+      if (ne > 0) {
+        Packet& p = begin(out[n++], kDtmfSpikes, tw);
+        for (int b = 0; b < ne * kSpikeEventBytes; ++b) p.payload[p.len++] = enc_.events()[b];
+      }
     }
     return n;
   }
-
- private:
-  struct Spike { uint16_t dt, neuron; };
-  static void begin(Packet& p, uint8_t type, uint32_t t) {
+  static Packet& begin(Packet& p, uint8_t type, uint32_t t) {
     p.type = type;
     p.t = t;
     p.len = 0;
+    return p;
   }
   static void put16(Packet& p, uint16_t v) {
     p.payload[p.len++] = uint8_t(v & 0xFFu);
@@ -190,18 +275,20 @@ class DtmfChain {
 
   Config cfg_;
   bool ok_ = false;
-  SdftBank<K, N, XW, CW, TW, ACC_W> sdft_;
-  CarrierMagnitude<ACC_W, MAG_W, MAG_SHIFT> mag_;
-  TaxelReconstruct<R, C, MAG_W, TAX_W> taxels_;
-  IzhikevichLayer<T> neurons_;
-  int phase_ = 0;             // sample within the step
-  uint32_t amp_cnt_ = 0;      // step within the amplitude decimation
-  uint32_t frame_cnt_ = 0;    // step within the taxel decimation / spike window
-  bool win_open_ = false;
-  uint32_t win_t_ = 0;
-  Spike spikes_[MAX_SPIKES] = {};
-  int n_spikes_ = 0;
-  uint32_t spikes_dropped_ = 0;
+  Bank bank_;
+  Demix demix_;
+  TaxelReconstruct<R, C> taxel_;
+  GhostFilter<R, C, S::L_MAX> ghost_;
+  IzhikevichLayer<T> l0_, l1_;
+  SynapseWeights<R, C> synapse_;
+  SpikeEncoder<S::MAX_SPIKES> enc_;
+  uint32_t frames_ = 0;
+  int filled_ = 0;  // samples in the window since the last clear (<= N)
+  int phase_ = 0;   // sample within the step once the window is full
+  uint32_t amp_cnt_ = 0, tax_cnt_ = 0;
+  uint16_t mag_[K] = {};
+  uint16_t g_[T] = {};
+  bool s0_[T] = {}, s1_[T] = {};
 };
 
 }  // namespace eskin::hls

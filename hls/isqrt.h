@@ -3,7 +3,8 @@
 // rtl/ghost_filter.v, which run one step per clock cycle: the loop body below
 // is exactly one cycle there.
 //
-// isqrt<W>(x) = floor(sqrt(x)) for any x < 2^(2W), W <= 16.
+// isqrt<W>(x) = floor(sqrt(x)) for any x < 2^(2W), W <= 16; isqrt64(x) for
+// any 64-bit x.
 // Widths: radicand 2W bits, root W bits, partial remainder W + 2 bits.
 // No multiplier: only shifts, a (W+2)-bit compare and subtract per step.
 #pragma once
@@ -40,6 +41,22 @@ inline uint32_t isqrt(uint32_t x) {
   s.start(x);
   for (int i = 0; i < W; ++i) s.step();
   return s.root;
+}
+
+// floor(sqrt(x)) for any 64-bit x, the same method two radicand bits per
+// step (32 steps); for models of wider roots (hls/frame_engine.h).
+inline uint64_t isqrt64(uint64_t x) {
+  uint64_t rem = 0, root = 0;
+  for (int i = 31; i >= 0; --i) {
+    rem = (rem << 2) | ((x >> (2 * i)) & 3u);
+    const uint64_t trial = (root << 2) | 1u;
+    root <<= 1;
+    if (rem >= trial) {
+      rem -= trial;
+      root |= 1u;
+    }
+  }
+  return root;
 }
 
 }  // namespace eskin::hls

@@ -80,23 +80,17 @@
 // so u lags its nullcline by up to c4^-1 * 2^-(FU+1)): FU = 31 would remove
 // the state-rounding part, at the price of a wider U (3 products for c4 U).
 //
-// Interface (one token per neuron per step, in neuron order 0..N-1; the
-// neuron index is implicit, counted by the layer):
-//   in  {x, t}: t is the 32-bit sample counter of the step (timestamp).
-//   out {neuron, t, spike, last, v, U}: one token per input token; spike set
-//       when the neuron fired this step; last on neuron N-1; v, U the state
-//       after the update (monitoring). A spike event is {neuron, t}:
-//       spike_encoder keeps only the tokens with spike set.
-// Input mode: level (x is the taxel value or the synapse sum). The
-// rectified-change mode (NeuronInput::RectifiedChange, max(0, dx/dt)) is
-// left to the host/upstream: it needs each neuron's previous input (one more
-// N x 16 RAM and a subtractor), with 1/dt folded into the gain.
-// Timing of the RTL (asserted in tests/rtl/izhikevich_layer_test.cpp):
-//   after reset, N cycles of state initialisation (in_ready low);
-//   then per neuron: input handshake at cycle 0, out_valid at cycle
-//   LATENCY = 11; in_ready again the cycle after the output handshake, so
-//   with an always-ready output the initiation interval is II = 12 cycles
-//   per neuron update and N * 12 cycles per layer step.
+// Interface: update(n, x) advances neuron n by one step with input x; the
+// caller addresses every neuron by its index (the DTMF chain: taxel i's
+// receptor is neuron i of layer 1 and the weighted neuron i of layer 2), so
+// a missing or extra input can never shift another neuron's state.
+// Input modes: level (x drives the neuron) or rectified change
+// (cfg.input_change: the neuron sees max(0, x - x_prev), x_prev = this
+// neuron's previous input, 0 after reset; the builder folds 1/frame into
+// the gain), which responds to onsets and is silent while a press is held.
+// Hardware: the `izhikevich_layer` routine of the frame engine
+// (rtl/ucode/dtmf_chain.fe), state (v, U, x_prev) in DMEM, constants in
+// the engine's configuration words (SET_NEURON changes them at run time).
 #pragma once
 
 #include <cstdint>
@@ -121,18 +115,11 @@ struct IzhikevichConfig {
   int16_t gain = 0;      // J = rnd(xs * gain >> gain_shift) (<< -gain_shift if < 0)
   int8_t gain_shift = 0;
   uint8_t x_shift = 0;   // xs = sat16(rnd(x >> x_shift))
-};
-
-struct IzhikevichIn {
-  int32_t x = 0;   // this neuron's input for the step
-  uint32_t t = 0;  // sample counter (timestamp of the step)
+  bool input_change = false;  // x -> max(0, x - x_prev) (rectified change)
 };
 
 struct IzhikevichOut {
-  uint16_t neuron = 0;
-  uint32_t t = 0;
   bool spike = false;
-  bool last = false;
   int32_t v = 0;   // the neuron's state after the update (Q9.22), for
   int32_t U = 0;   // verification and monitoring (Q.FU)
 };
@@ -202,7 +189,7 @@ inline bool izhikevich_update(const IzhikevichConfig& c, int32_t& v, int32_t& U,
   return spike;
 }
 
-// N neurons, state in two arrays (BRAM in the RTL), updated in address order.
+// N neurons, state in arrays (DMEM in the frame engine), addressed by index.
 template <int N>
 class IzhikevichLayer {
   static_assert(N >= 1 && N <= 65536, "N must be 1..65536");
@@ -214,21 +201,23 @@ class IzhikevichLayer {
     for (int i = 0; i < N; ++i) {
       v_[i] = cfg_.v_init;
       U_[i] = cfg_.u_init;
+      x_prev_[i] = 0;
     }
-    next_ = 0;
   }
+  // New constants (SET_NEURON) take effect from the next update; state kept.
+  void set_config(const IzhikevichConfig& cfg) { cfg_ = cfg; }
 
-  // The next neuron's input for this step; always emits one output token.
-  bool push(const IzhikevichIn& in, IzhikevichOut& out) {
-    const int n = next_;
-    out.neuron = uint16_t(n);
-    out.t = in.t;
-    out.spike = izhikevich_update(cfg_, v_[n], U_[n], in.x);
-    out.last = n == N - 1;
-    out.v = v_[n];
-    out.U = U_[n];
-    next_ = out.last ? 0 : n + 1;
-    return true;
+  // Neuron n (0..N-1), one step with input x; true on a spike.
+  bool update(int n, int32_t x, IzhikevichOut* out = nullptr) {
+    int32_t drive = x;
+    if (cfg_.input_change) {
+      const int64_t d = int64_t(x) - x_prev_[n];
+      drive = d > 0 ? int32_t(d > INT32_MAX ? INT32_MAX : d) : 0;
+      x_prev_[n] = x;
+    }
+    const bool spike = izhikevich_update(cfg_, v_[n], U_[n], drive);
+    if (out) *out = IzhikevichOut{spike, v_[n], U_[n]};
+    return spike;
   }
 
   int32_t v(int i) const { return v_[i]; }   // Q9.22 mV
@@ -239,7 +228,7 @@ class IzhikevichLayer {
   IzhikevichConfig cfg_;
   int32_t v_[N];
   int32_t U_[N];
-  int next_ = 0;
+  int32_t x_prev_[N];
 };
 
 }  // namespace eskin::hls

@@ -1,48 +1,66 @@
-// spike_encoder: spike tokens -> address-event (AER) words for the host link.
-// Bit-exact executable spec of rtl/spike_encoder.v.
+// spike_encoder: spikes -> address events for the host link, event-driven:
+// only neurons that fired produce bytes. Bit-exact spec of the
+// `spike_encoder` routine of the frame engine (rtl/ucode/dtmf_chain.fe).
 //
-// Input: izhikevich_layer output tokens plus the layer id {layer, neuron, t,
-// spike}; tokens with spike = 0 are consumed and dropped, each spike becomes
-// one word. Word format (W = 32 + LAYER_W + ADDR_W bits, default 48):
-//   bits [W-1 : LAYER_W+ADDR_W]      t       sample counter, 32 bits
-//   bits [LAYER_W+ADDR_W-1 : ADDR_W] layer   LAYER_W bits (default 4)
-//   bits [ADDR_W-1 : 0]              neuron  ADDR_W bits (default 12)
-// held in the low W bits of a uint64_t (upper bits zero). Suggested byte
-// order on the link: most significant byte first (link_framer decides).
-// Widths: the RTL ports for layer and neuron are LAYER_W and ADDR_W bits
-// wide, so higher bits do not exist there; here they are masked off the
-// same way (callers keep neuron < 2^ADDR_W, layer < 2^LAYER_W).
-// No arithmetic, no rounding, no saturation.
-// Timing of the RTL: a register stage, one token per cycle (II = 1),
-// out_valid the cycle after the input handshake (LATENCY 1); in_ready =
-// !out_valid || out_ready.
+// A spike window covers D frames (D = the taxel decimation); each spike in
+// it becomes one 5-byte event {dt u16 LE, layer u8 (0 receptors, 1 the
+// weighted layer), neuron u16 LE} with dt =
+// t_spike - t_window (sample counters, mod 2^16) where t_window is the t of
+// the window's first frame. Events are kept in frame order, layer 0 before
+// layer 1, neurons in index order. At most MAX events per window: later
+// spikes of that window are dropped and counted (the host sees the count in
+// the status packet). No arithmetic beyond the subtraction.
 #pragma once
 
 #include <cstdint>
 
 namespace eskin::hls {
 
-struct SpikeEncoderIn {
-  uint8_t layer = 0;
-  uint16_t neuron = 0;
-  uint32_t t = 0;
-  bool spike = false;
-};
+constexpr int kSpikeEventBytes = 5;
 
-template <int LAYER_W = 4, int ADDR_W = 12>
-struct SpikeEncoder {
-  static_assert(LAYER_W >= 1 && LAYER_W <= 8, "LAYER_W must be 1..8");
-  static_assert(ADDR_W >= 1 && ADDR_W <= 16, "ADDR_W must be 1..16");
-  static constexpr int kWordBits = 32 + LAYER_W + ADDR_W;
+template <int MAX>
+class SpikeEncoder {
+  static_assert(MAX >= 1 && MAX <= 65536 / kSpikeEventBytes, "MAX events per packet");
 
-  // Returns true and sets word when the token carries a spike.
-  bool push(const SpikeEncoderIn& in, uint64_t& word) const {
-    if (!in.spike) return false;
-    const uint64_t layer = in.layer & ((1u << LAYER_W) - 1u);
-    const uint64_t neuron = in.neuron & ((1u << ADDR_W) - 1u);
-    word = (uint64_t(in.t) << (LAYER_W + ADDR_W)) | (layer << ADDR_W) | neuron;
-    return true;
+ public:
+  // Opens a window at the first frame after the previous one closed.
+  void frame(uint32_t t) {
+    if (!open_) {
+      open_ = true;
+      t0_ = t;
+      n_ = 0;
+    }
+    t_ = t;
   }
+  // One spike of `layer` (0 or 1) neuron `neuron` in the current frame.
+  void spike(uint8_t layer, uint16_t neuron) {
+    if (n_ >= MAX) {
+      ++dropped_;
+      return;
+    }
+    uint8_t* e = ev_ + kSpikeEventBytes * n_++;
+    const uint16_t dt = uint16_t(t_ - t0_);
+    e[0] = uint8_t(dt & 0xFFu);
+    e[1] = uint8_t(dt >> 8);
+    e[2] = layer;
+    e[3] = uint8_t(neuron & 0xFFu);
+    e[4] = uint8_t(neuron >> 8);
+  }
+  // Closes the window: its events (n x 5 bytes) and t.
+  int close(uint32_t& t_window) {
+    open_ = false;
+    t_window = t0_;
+    return n_;
+  }
+  const uint8_t* events() const { return ev_; }
+  uint32_t dropped() const { return dropped_; }
+
+ private:
+  bool open_ = false;
+  uint32_t t0_ = 0, t_ = 0;
+  int n_ = 0;
+  uint32_t dropped_ = 0;
+  uint8_t ev_[MAX * kSpikeEventBytes] = {};
 };
 
 }  // namespace eskin::hls

@@ -1,3 +1,4 @@
+`default_nettype none
 // adc_ad7476: SPI master for NCH AD7476A ADCs sharing CS and SCLK (the
 // Digilent Pmod AD1 has two), 12-bit sample stream out.
 //
@@ -43,7 +44,8 @@ module adc_ad7476 #(
     input  wire              m_ready,
     output reg  [12*NCH-1:0] m_data,
     output reg  [31:0]       m_t,
-    output reg  [15:0]       overruns
+    output reg  [15:0]       overruns,
+    input  wire              clear       // zero `overruns` (CLEAR_COUNTERS)
 );
   localparam integer PERIOD = (CLK_HZ + SAMPLE_HZ / 2) / SAMPLE_HZ;
   localparam integer PW = $clog2(PERIOD);
@@ -91,6 +93,7 @@ module adc_ad7476 #(
       m_t      <= 32'd0;
       overruns <= 16'd0;
     end else begin
+      if (clear) overruns <= 16'd0;
       if (m_valid && m_ready) m_valid <= 1'b0;
       pcnt <= (pcnt == P_LAST) ? {PW{1'b0}} : pcnt + 1'b1;
 
@@ -114,7 +117,7 @@ module adc_ad7476 #(
           shreg <= shifted;
           if (half == 5'd30) begin  // 16th falling edge: sample complete
             if (m_valid && !m_ready) begin
-              if (overruns != 16'hFFFF) overruns <= overruns + 16'd1;
+              if (overruns != 16'hFFFF && !clear) overruns <= overruns + 16'd1;
             end else begin
               m_valid <= 1'b1;
               m_data  <= codes;
@@ -132,3 +135,4 @@ module adc_ad7476 #(
     end
   end
 endmodule
+`default_nettype wire

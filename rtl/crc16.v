@@ -1,3 +1,4 @@
+`default_nettype none
 // crc16: one byte of CRC-16/CCITT-FALSE (polynomial 0x1021, MSB first, not
 // reflected), combinational: crc_out = CRC register after shifting in
 // `data` starting from `crc_in`. Start a frame with 16'hFFFF. Appending the
@@ -15,3 +16,4 @@ module crc16 (
       crc_out = crc_out[15] ? ({crc_out[14:0], 1'b0} ^ 16'h1021) : {crc_out[14:0], 1'b0};
   end
 endmodule
+`default_nettype wire

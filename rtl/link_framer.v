@@ -1,3 +1,4 @@
+`default_nettype none
 // link_framer: packet request in, COBS-framed host-link bytes out (to
 // uart_tx). Frame format: docs/protocol.md.
 //
@@ -6,9 +7,11 @@
 //   crc  = CRC-16/CCITT-FALSE over type..payload (rtl/crc16.v).
 //   seq  = 8-bit packet counter, +1 per packet (all types share it).
 //
-// Request: a header handshake (hdr_valid/hdr_ready with hdr_type, hdr_t,
-// hdr_len), then exactly hdr_len payload bytes on s_valid/s_ready/s_data
-// (none when hdr_len = 0). hdr_ready is high only between packets.
+// Input: one byte stream carrying whole packets, each as type, t (4 bytes
+// LE), len (2 bytes LE), then exactly len payload bytes (the frame engine
+// writes them so, through the output FIFO). The framer inserts seq after the
+// type and appends the CRC. s_ready is high while it collects the 7 header
+// bytes and while it takes payload bytes.
 //
 // Structure: an assembler emits the raw bytes (one per clock when the
 // encoder can take them) and an end-of-packet marker; the COBS encoder
@@ -24,11 +27,6 @@
 module link_framer (
     input  wire        clk,
     input  wire        rst,
-    input  wire        hdr_valid,
-    output wire        hdr_ready,
-    input  wire [7:0]  hdr_type,
-    input  wire [31:0] hdr_t,
-    input  wire [15:0] hdr_len,
     input  wire        s_valid,
     output wire        s_ready,
     input  wire [7:0]  s_data,
@@ -69,8 +67,7 @@ module link_framer (
                         (astate == A_CRC) ? (aidx[0] ? crc[7:0] : crc[15:8]) : hdr_byte;
   wire raw_take = raw_valid && enc_ready;
 
-  assign hdr_ready = (astate == A_IDLE);
-  assign s_ready = (astate == A_PAY) && enc_ready;
+  assign s_ready = (astate == A_IDLE) || ((astate == A_PAY) && enc_ready);
 
   crc16 u_crc (.crc_in(crc), .data(raw_byte), .crc_out(crc_next));
 
@@ -86,15 +83,24 @@ module link_framer (
       remaining <= 16'd0;
     end else begin
       case (astate)
-        A_IDLE:
-          if (hdr_valid) begin
-            typ       <= hdr_type;
-            tstamp    <= hdr_t;
-            len       <= hdr_len;
-            remaining <= hdr_len;
-            crc       <= 16'hFFFF;
-            aidx      <= 3'd0;
-            astate    <= A_HDR;
+        A_IDLE:  // collect type, t, len from the stream
+          if (s_valid) begin
+            case (aidx)
+              3'd0: typ <= s_data;
+              3'd1: tstamp[7:0] <= s_data;
+              3'd2: tstamp[15:8] <= s_data;
+              3'd3: tstamp[23:16] <= s_data;
+              3'd4: tstamp[31:24] <= s_data;
+              3'd5: len[7:0] <= s_data;
+              default: len[15:8] <= s_data;
+            endcase
+            aidx <= aidx + 3'd1;
+            if (aidx == 3'd6) begin
+              remaining <= {s_data, len[7:0]};
+              crc       <= 16'hFFFF;
+              aidx      <= 3'd0;
+              astate    <= A_HDR;
+            end
           end
         A_HDR:
           if (raw_take) begin
@@ -119,6 +125,7 @@ module link_framer (
         default:  // A_EOP
           if (raw_take) begin
             seq    <= seq + 8'd1;
+            aidx   <= 3'd0;
             astate <= A_IDLE;
           end
       endcase
@@ -219,3 +226,4 @@ module link_framer (
     end
   end
 endmodule
+`default_nettype wire

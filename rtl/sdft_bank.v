@@ -1,3 +1,4 @@
+`default_nettype none
 // sdft_bank: exact sliding DFT of up to K_MAX carriers over an N-sample
 // window. Bit-exact implementation of hls/sdft_bank.h (number formats,
 // rounding and the exactness argument are stated there; R rounds x*c to
@@ -315,3 +316,4 @@ module sdft_bank #(
     end
   end
 endmodule
+`default_nettype wire

@@ -1,3 +1,4 @@
+`default_nettype none
 // uart_rx: UART receiver, 8N1, LSB first, idle high.
 //
 // rx passes a two-flop synchroniser (it is asynchronous to clk). A falling
@@ -111,3 +112,4 @@ module uart_rx #(
     end
   end
 endmodule
+`default_nettype wire

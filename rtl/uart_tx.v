@@ -1,3 +1,4 @@
+`default_nettype none
 // uart_tx: UART transmitter, 8N1 (start bit 0, 8 data bits LSB first, stop
 // bit 1), idle high.
 //
@@ -60,3 +61,4 @@ module uart_tx #(
     end
   end
 endmodule
+`default_nettype wire

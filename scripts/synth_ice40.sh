@@ -38,7 +38,7 @@ done
 # Parameters are set before elaboration, so `hierarchy` derives the
 # submodules from the overridden values.
 yosys -q -l "$out/yosys.log" -p "read_verilog -sv $src; $chparam hierarchy -libdir $root/rtl -top $top; \
-  synth_ice40 -dsp -top $top -json $out/$top.json; tee -o $out/stat.txt stat" >/dev/null
+  synth_ice40 -dsp -spram -top $top -json $out/$top.json; tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+$1\s" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}'; }
 lc=$(cells SB_LUT4); dsp=$(cells SB_MAC16); bram=$(cells SB_RAM40_4K); spram=$(cells SB_SPRAM256KA)
 ff=$({ grep -E "^\s+SB_DFF" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}')

@@ -21,6 +21,13 @@ struct HallTopSpec {
   std::vector<int> slot;                    // scene sensor -> FPGA slot
   uint16_t reg0 = 0, reg1 = 0, reg2 = 0;
   long conv_cyc = 0, stale_cyc = 0;
+  // Decoding inside hall_top: hall_baseline and the command path whenever
+  // the scene decodes anything, ft_calibrate (on slots ft_id..ft_id+2) for
+  // `wrench`. hall_decouple and force_curve are not in hall_top (UP5K area,
+  // docs/hall.md): the host decodes those scenes from HALL_DELTAS; `locate`
+  // is host-side by design.
+  bool deltas = false, ft = false;
+  int ft_id = 0;
 
   // Packs one field per slot, slot 0 in the low bits, as a Verilog literal.
   static std::string packed(const std::vector<int>& v, int bits) {
@@ -49,6 +56,13 @@ struct HallTopSpec {
     p.push_back(r);
     p.push_back("-GCONV_CYC=" + std::to_string(conv_cyc));
     p.push_back("-GSTALE_CYC=" + std::to_string(stale_cyc));
+    return p;
+  }
+  // The decoding's overrides (none for a scene that decodes nothing).
+  std::vector<std::string> decode_params() const {
+    std::vector<std::string> p;
+    if (deltas) p.push_back("-GDELTAS=1");
+    if (ft) p.push_back("-GFT=1"), p.push_back("-GFT_ID=" + std::to_string(ft_id));
     return p;
   }
 };
@@ -87,6 +101,16 @@ inline HallTopSpec hall_top_spec(const HallConfig& h, double clk_hz = 12e6) {
   s.conv_cyc = long(std::ceil(mlx90393::conversion_us(c, mlx90393::kXYZ) * 1.2 * clk_hz / 1e6));
   s.stale_cyc =
       long(std::ceil(mlx90393::burst_period_us(c, mlx90393::kXYZ) * 1.5 * clk_hz / 1e6));
+  s.deltas = !h.decode.empty();
+  s.ft = h.wants(HallDecode::Wrench);
+  if (s.ft) {
+    // The wrench reads the scene's first three sensors: consecutive slots.
+    s.ft_id = s.slot.size() >= 3 ? s.slot[0] : -1;
+    for (int i = 0; i < 3; ++i)
+      if (s.ft_id < 0 || s.slot[size_t(i)] != s.ft_id + i)
+        throw ConfigError("hall.sensors", "the wrench's sensors 0, 1, 2 must be consecutive "
+                                          "on one bus for hall_top's ft_calibrate");
+  }
   return s;
 }
 

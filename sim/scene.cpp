@@ -210,13 +210,22 @@ NeuronConfig read_neuron(Reader& r, const YAML::Node& n, const SkinConfig& skin)
   c.dt_ms = 1000.0 / skin.adc.rate_hz;  // one ADC sample unless given
   if (!n.IsDefined()) return c;
   const std::string f = "neuron";
-  r.mapping(n, f, {"preset", "dt_ms", "input", "input_scale"});
-  if (n["preset"]) {
-    c.preset = r.text(n["preset"], f + ".preset");
+  r.mapping(n, f, {"preset", "dt_ms", "input", "input_scale", "layer2"});
+  const auto preset = [&r](const YAML::Node& p, const std::string& field) {
+    std::string v = r.text(p, field);
     const std::vector<std::string> presets = {"RS", "IB", "CH", "FS", "LTS", "TC", "RZ", "RA"};
-    if (std::find(presets.begin(), presets.end(), c.preset) == presets.end())
-      r.fail(n["preset"], f + ".preset",
-             "expected one of RS, IB, CH, FS, LTS, TC, RZ, RA, got '" + c.preset + "'");
+    if (std::find(presets.begin(), presets.end(), v) == presets.end())
+      r.fail(p, field, "expected one of RS, IB, CH, FS, LTS, TC, RZ, RA, got '" + v + "'");
+    return v;
+  };
+  if (n["preset"]) c.preset = preset(n["preset"], f + ".preset");
+  if (const YAML::Node l2 = n["layer2"]) {
+    const std::string g = f + ".layer2";
+    r.mapping(l2, g, {"preset", "centre", "surround"});
+    if (l2["preset"]) c.layer2.preset = preset(l2["preset"], g + ".preset");
+    if (l2["centre"]) c.layer2.centre = r.ranged(l2["centre"], g + ".centre", -100, 100, false);
+    if (l2["surround"])
+      c.layer2.surround = r.ranged(l2["surround"], g + ".surround", -100, 100, false);
   }
   if (n["dt_ms"]) c.dt_ms = r.ranged(n["dt_ms"], f + ".dt_ms", 0, 10, true);
   if (n["input"]) {

@@ -21,6 +21,17 @@ enum class NeuronInput {
   RectifiedChange  // max(0, d(taxel)/dt), per ms: responds to onsets
 };
 
+// The second (weighted) layer: one neuron per taxel, driven through a 3x3
+// synaptic kernel by the receptors around its taxel that spiked this step:
+// I = gain * (centre * s(i,j) + surround * sum of the 8 neighbours' s).
+// Centre-surround (centre > 0 > surround) makes it fire for a contact's
+// centre rather than its whole area.
+struct Layer2Config {
+  std::string preset = "RS";
+  double centre = 20.0;
+  double surround = -4.0;
+};
+
 struct NeuronConfig {
   std::string preset = "RA";  // RS IB CH FS LTS TC RZ (Izhikevich 2003) or RA
   double dt_ms = 1.0 / 35.0;  // integration step (one ADC sample at 35 kHz)
@@ -28,6 +39,7 @@ struct NeuronConfig {
   // Taxel value (calibrated, conductance fraction g in 0..1) -> input units
   // before the gain K: a firm press (g ~ 0.5) then drives I = K * 5.
   double input_scale = 10.0;
+  Layer2Config layer2;
 };
 
 }  // namespace eskin

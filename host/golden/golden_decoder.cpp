@@ -31,8 +31,12 @@ GoldenDecoder::GoldenDecoder(const SkinConfig& skin, const DecoderConfig& dec,
     neuron_substeps_ = std::max(1, int(std::lround(frame_period_ms_ / dt)));
     dt = frame_period_ms_ / neuron_substeps_;
     neurons_ = std::make_unique<IzhikevichLayer>(taxels, izhikevich_preset(neuron_cfg_.preset), dt);
+    layer2_ = std::make_unique<WeightedIzhikevichLayer>(
+        layer2_weights(skin_.rows, skin_.cols, neuron_cfg_.layer2),
+        izhikevich_preset(neuron_cfg_.layer2.preset), dt);
     neuron_input_.assign(size_t(taxels), 0.0);
     spike_times_.assign(size_t(taxels), {});
+    spike_times2_.assign(size_t(taxels), {});
     prev_taxel_g_ = Eigen::VectorXd::Zero(taxels);
   }
   frame_.amp_lsb = Eigen::VectorXd::Zero(skin_.carriers());
@@ -81,20 +85,40 @@ void GoldenDecoder::run_neurons() {
     neuron_input_[size_t(t)] = neuron_cfg_.input_scale * x;
   }
   prev_taxel_g_ = g;
-  std::vector<int> fired;
+  std::vector<int> fired, fired2;
+  frame_.spiked2.clear();
+  const auto record = [](std::vector<double>& times, std::vector<int>& frame_list, int t,
+                         double t_ms) {
+    times.push_back(t_ms);
+    if (std::find(frame_list.begin(), frame_list.end(), t) == frame_list.end())
+      frame_list.push_back(t);
+  };
   for (int s = 0; s < neuron_substeps_; ++s) {
     fired.clear();
+    fired2.clear();
     neurons_->step(neuron_input_.data(), fired);
-    for (int t : fired) {
-      // Sub-step s of this frame ends (substeps - 1 - s) steps before the
-      // frame's newest sample.
-      const double t_ms = 1000.0 * double(frame_.sample + 1) / skin_.adc.rate_hz -
-                          double(neuron_substeps_ - 1 - s) * frame_period_ms_ / neuron_substeps_;
-      spike_times_[size_t(t)].push_back(t_ms);
-      if (std::find(frame_.spiked.begin(), frame_.spiked.end(), t) == frame_.spiked.end())
-        frame_.spiked.push_back(t);
-    }
+    layer2_->step(fired, fired2);
+    // Sub-step s of this frame ends (substeps - 1 - s) steps before the
+    // frame's newest sample.
+    const double t_ms = 1000.0 * double(frame_.sample + 1) / skin_.adc.rate_hz -
+                        double(neuron_substeps_ - 1 - s) * frame_period_ms_ / neuron_substeps_;
+    for (int t : fired) record(spike_times_[size_t(t)], frame_.spiked, t, t_ms);
+    for (int t : fired2) record(spike_times2_[size_t(t)], frame_.spiked2, t, t_ms);
   }
+}
+
+Eigen::MatrixXd layer2_weights(int rows, int cols, const Layer2Config& l2) {
+  const int n = rows * cols;
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j)
+      for (int di = -1; di <= 1; ++di)
+        for (int dj = -1; dj <= 1; ++dj) {
+          const int r = i + di, c = j + dj;
+          if (r < 0 || r >= rows || c < 0 || c >= cols) continue;
+          w(i * cols + j, r * cols + c) = (di == 0 && dj == 0) ? l2.centre : l2.surround;
+        }
+  return w;
 }
 
 }  // namespace eskin::golden

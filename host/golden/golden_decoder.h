@@ -31,6 +31,7 @@ struct Frame {
   Eigen::MatrixXd pressure_raw; // calibrated pressure without ghost correction, kPa
   Eigen::MatrixXd pressure;     // calibrated, ghost-corrected pressure, kPa
   std::vector<int> spiked;      // taxels (row-major) whose neuron fired this frame
+  std::vector<int> spiked2;     // same for the second (weighted) layer
 };
 
 class GoldenDecoder {
@@ -42,6 +43,8 @@ class GoldenDecoder {
   const Frame& frame() const { return frame_; }
   // Spike times (ms since the first sample) per taxel, row-major.
   const std::vector<std::vector<double>>& spike_times_ms() const { return spike_times_; }
+  // The second layer's spike times, per taxel.
+  const std::vector<std::vector<double>>& spike_times2_ms() const { return spike_times2_; }
   double frame_period_ms() const { return frame_period_ms_; }
 
  private:
@@ -55,6 +58,7 @@ class GoldenDecoder {
   std::unique_ptr<SdftBank> bank_;
   std::unique_ptr<GhostFilter> ghost_;
   std::unique_ptr<IzhikevichLayer> neurons_;
+  std::unique_ptr<WeightedIzhikevichLayer> layer2_;
   int neuron_substeps_ = 1;
   double frame_period_ms_ = 0;
   double mid_code_ = 0;
@@ -62,7 +66,11 @@ class GoldenDecoder {
   Frame frame_;
   Eigen::VectorXd prev_taxel_g_;
   std::vector<double> neuron_input_;
-  std::vector<std::vector<double>> spike_times_;
+  std::vector<std::vector<double>> spike_times_, spike_times2_;
 };
+
+// The second layer's weights (taxels x taxels, row-major): the 3x3 kernel
+// of `l2` (centre on the diagonal, surround for the 8 grid neighbours).
+Eigen::MatrixXd layer2_weights(int rows, int cols, const Layer2Config& l2);
 
 }  // namespace eskin::golden

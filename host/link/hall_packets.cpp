@@ -47,8 +47,9 @@ bool parse_hall_payload(uint8_t type, const std::vector<uint8_t>& b, HallPayload
         h.forces.push_back({b[i], b[i + 1], b[i + 2], g32(&b[i + 3]), int32_t(g32(&b[i + 7]))});
       return true;
     case kHallDecodeStatus:
-      if (n != 8) return bad(why, "hall decode status: payload length must be 8");
-      h.status = {g16(&b[0]), g16(&b[2]), g16(&b[4]), g16(&b[6])};
+      if (n != 17) return bad(why, "hall decode status: payload length must be 17");
+      h.status = {g16(&b[0]), g16(&b[2]), g16(&b[4]), g16(&b[6]), g16(&b[8]), g16(&b[10]),
+                  g16(&b[12]), b[14], b[15], b[16]};
       return true;
     case kCmdHallLoadC:
       if (n != 6) return bad(why, "hall_load_c: payload length must be 6");
@@ -110,7 +111,10 @@ std::vector<uint8_t> hall_force_curve(LinkEncoder& e, uint32_t t, const std::vec
 
 std::vector<uint8_t> hall_decode_status(LinkEncoder& e, uint32_t t, const HallDecodeStatus& s) {
   std::vector<uint8_t> p;
-  for (uint16_t v : {s.baseline_dropped, s.ft_skipped, s.reserved0, s.reserved1}) p16(p, v);
+  for (uint16_t v : {s.baseline_dropped, s.ft_skipped, s.cmd_accepted, s.cmd_rejected,
+                     s.cmd_crc_errors, s.cmd_frame_errors, s.cmd_overflows})
+    p16(p, v);
+  p.push_back(s.last_reject_type), p.push_back(s.last_reject_reason), p.push_back(s.last_reject_seq);
   return e.frame(kHallDecodeStatus, t, p);
 }
 

@@ -41,8 +41,11 @@ struct ForceRecord {  // 11 bytes
   uint32_t t = 0;
   int32_t force_mn = 0;
 };
-struct HallDecodeStatus {  // 8 bytes, u16 each
-  uint16_t baseline_dropped = 0, ft_skipped = 0, reserved0 = 0, reserved1 = 0;
+struct HallDecodeStatus {  // 17 bytes: seven u16, then three u8
+  uint16_t baseline_dropped = 0, ft_skipped = 0;      // the decoding blocks' counters
+  uint16_t cmd_accepted = 0, cmd_rejected = 0;        // hall_cmd
+  uint16_t cmd_crc_errors = 0, cmd_frame_errors = 0, cmd_overflows = 0;  // cmd_decoder
+  uint8_t last_reject_type = 0, last_reject_reason = 0, last_reject_seq = 0;
 };
 struct HallCommand {
   uint8_t index = 0, sub = 0, which = 0;  // row/sensor/cell, col/axis/index, curve field

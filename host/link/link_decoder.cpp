@@ -72,7 +72,7 @@ bool parse_payload(Packet& p, std::string* why) {
         p.spikes.push_back({le16(&b[i]), b[i + 2], le16(&b[i + 3])});
       return true;
     case kStatus: {
-      if (n != kStatusBytes) return fail(why, "status: payload length must be 24");
+      if (n != kStatusBytes) return fail(why, "status: payload length must be 28");
       StatusBlock& s = p.status;
       s.cmd_crc_errors = le16(&b[0]);
       s.cmd_frame_errors = le16(&b[2]);
@@ -85,8 +85,10 @@ bool parse_payload(Packet& p, std::string* why) {
       s.dropped_frames = le16(&b[12]);
       s.adc_overruns = le16(&b[14]);
       s.uart_rx_errors = le16(&b[16]);
-      s.reserved = le16(&b[18]);
-      s.samples = le32(&b[20]);
+      s.frame_overruns = le16(&b[18]);
+      s.spikes_dropped = le16(&b[20]);
+      s.cmd_overflows = le16(&b[22]);
+      s.samples = le32(&b[24]);
       return true;
     }
     case kHallSamples:
@@ -108,6 +110,7 @@ bool parse_payload(Packet& p, std::string* why) {
       return true;
     case kCmdSetThreshold:
     case kCmdSetDecimation:
+    case kCmdSetWeight:
       if (n != 3) return fail(why, "command: payload length must be 3");
       p.cmd_index = b[0];
       p.cmd_value = le16(&b[1]);
@@ -116,6 +119,11 @@ bool parse_payload(Packet& p, std::string* why) {
       if (n != 5) return fail(why, "set_neuron: payload length must be 5");
       p.cmd_index = b[0];
       p.cmd_value = le32(&b[1]);
+      return true;
+    case kCmdSetDemixCoef:
+      if (n != 4) return fail(why, "set_demix_coef: payload length must be 4");
+      p.cmd_index = b[0];  // low byte of the index; the value keeps both
+      p.cmd_value = le16(&b[0]) | uint32_t(le16(&b[2])) << 16;
       return true;
     case kCmdSetOutputMask:
       if (n != 1) return fail(why, "set_output_mask: payload length must be 1");

@@ -30,7 +30,7 @@ enum PacketType : uint8_t {
   kTaxelsDense = 0x02,   // rows u8, cols u8, rows*cols x u16 row-major
   kTaxelsSparse = 0x03,  // n x {row u8, col u8, value u16}
   kSpikes = 0x04,        // n x {dt u16, layer u8, neuron u16}
-  kStatus = 0x05,        // fixed 24-byte counter block (StatusBlock)
+  kStatus = 0x05,        // fixed 28-byte counter block (StatusBlock)
   kHallSamples = 0x10,   // n x HallSample (10 bytes): one frame of Hall sensor readings
   kHallBusStatus = 0x20, // n x HallBusStatus (10 bytes): per-I2C-bus counters
   kCmdSetCarrierInc = 0x81,   // k u8, inc u32
@@ -40,6 +40,8 @@ enum PacketType : uint8_t {
   kCmdSetDecimation = 0x85,   // stream u8, value u16
   kCmdRequestStatus = 0x86,   // no payload
   kCmdClearCounters = 0x87,   // no payload
+  kCmdSetWeight = 0x88,       // id u8 (0..8), value s16
+  kCmdSetDemixCoef = 0x89,    // index u16, value s16
 };
 
 // Reason codes of a rejected command (StatusBlock::last_reject_reason).
@@ -49,12 +51,12 @@ enum RejectReason : uint8_t {
   kRejectBadLength = 2,    // payload length wrong for the command type
   kRejectBadIndex = 3,     // carrier / threshold / neuron / stream index
   kRejectBadValue = 4,     // value outside its documented range
-  kRejectReservedBits = 5, // output mask bits 4..7 must be 0
+  kRejectReservedBits = 5, // output mask bits 5..7 must be 0
 };
 
 constexpr size_t kHeaderBytes = 8;   // type, seq, t (4), len (2)
 constexpr size_t kCrcBytes = 2;
-constexpr size_t kStatusBytes = 24;  // StatusBlock on the wire
+constexpr size_t kStatusBytes = 28;  // StatusBlock on the wire
 
 // CRC-16/CCITT-FALSE, bitwise (the encoder has its own table-driven copy).
 uint16_t crc16_ccitt_false(const uint8_t* data, size_t n, uint16_t crc = 0xFFFF);
@@ -87,11 +89,13 @@ struct StatusBlock {
   uint8_t last_reject_reason = 0; // RejectReason
   uint8_t last_reject_seq = 0;    // its sequence number
   uint8_t output_mask = 0;        // current output enable mask
-  uint16_t dropped_frames = 0;    // output packets dropped (link busy)
+  uint16_t dropped_frames = 0;    // output packets dropped (no room in the output FIFO)
   uint16_t adc_overruns = 0;      // ADC samples lost to a stalled consumer
   uint16_t uart_rx_errors = 0;    // UART stop-bit / overrun errors
-  uint16_t reserved = 0;
-  uint32_t samples = 0;           // ADC sample counter at packet creation
+  uint16_t frame_overruns = 0;    // frames lost: the frame engine was still busy
+  uint16_t spikes_dropped = 0;    // spike events beyond a packet's capacity
+  uint16_t cmd_overflows = 0;     // command frames dropped: command FIFO full
+  uint32_t samples = 0;           // ADC samples taken when the packet was built (t + 1)
 };
 
 struct Packet {

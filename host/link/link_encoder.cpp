@@ -130,7 +130,9 @@ std::vector<uint8_t> LinkEncoder::status(uint32_t t, const StatusBlock& s) {
   put16(p, s.dropped_frames);
   put16(p, s.adc_overruns);
   put16(p, s.uart_rx_errors);
-  put16(p, s.reserved);
+  put16(p, s.frame_overruns);
+  put16(p, s.spikes_dropped);
+  put16(p, s.cmd_overflows);
   put32(p, s.samples);
   return frame(kStatus, t, p);
 }
@@ -165,5 +167,18 @@ std::vector<uint8_t> LinkEncoder::set_decimation(uint8_t stream, uint16_t value)
 
 std::vector<uint8_t> LinkEncoder::request_status() { return frame(kCmdRequestStatus, 0, {}); }
 std::vector<uint8_t> LinkEncoder::clear_counters() { return frame(kCmdClearCounters, 0, {}); }
+
+std::vector<uint8_t> LinkEncoder::set_weight(uint8_t id, int16_t value) {
+  std::vector<uint8_t> p{id};
+  put16(p, uint16_t(value));
+  return frame(kCmdSetWeight, 0, p);
+}
+
+std::vector<uint8_t> LinkEncoder::set_demix_coef(uint16_t index, int16_t value) {
+  std::vector<uint8_t> p;
+  put16(p, index);
+  put16(p, uint16_t(value));
+  return frame(kCmdSetDemixCoef, 0, p);
+}
 
 }  // namespace eskin::link

@@ -41,11 +41,14 @@ class LinkEncoder {
   // Configuration commands (host -> FPGA); timestamp 0.
   std::vector<uint8_t> set_carrier_inc(uint8_t k, uint32_t inc);
   std::vector<uint8_t> set_threshold(uint8_t id, uint16_t value);
+  // id = layer << 4 | parameter (docs/protocol.md §5).
   std::vector<uint8_t> set_neuron(uint8_t id, int32_t value);
   std::vector<uint8_t> set_output_mask(uint8_t mask);
   std::vector<uint8_t> set_decimation(uint8_t stream, uint16_t value);
   std::vector<uint8_t> request_status();
   std::vector<uint8_t> clear_counters();
+  std::vector<uint8_t> set_weight(uint8_t id, int16_t value);
+  std::vector<uint8_t> set_demix_coef(uint16_t index, int16_t value);
 
   uint8_t next_seq() const { return seq_; }
   void set_next_seq(uint8_t s) { seq_ = s; }

@@ -1,10 +1,18 @@
 #include "sim/vboard/fpga_params.h"
 
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <cstring>
 #include <stdexcept>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include "eskin/skin_config.h"
+#include "hls/dtmf_ucode.h"
 #include "sim/dtmf_top_spec.h"
 
 #ifndef ESKIN_SOURCE_DIR
@@ -14,12 +22,9 @@
 namespace eskin::vboard {
 namespace {
 
-std::vector<hls::VerilogParam> params_of(const sim::Scene& scene, hls::DtmfTopPlan* plan) {
+hls::DtmfTopPlan plan_of(const sim::Scene& scene) {
   try {
-    hls::DtmfTopPlan p = hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene));
-    auto params = hls::dtmf_top_params(p);
-    if (plan) *plan = std::move(p);
-    return params;
+    return hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, hls::kDtmfTopClkHz));
   } catch (const std::invalid_argument& e) {
     // "skin.rows/cols: expected ..." -> a ConfigError on that field.
     const std::string what = e.what();
@@ -29,11 +34,13 @@ std::vector<hls::VerilogParam> params_of(const sim::Scene& scene, hls::DtmfTopPl
   }
 }
 
-bool same(const std::vector<hls::VerilogParam>& a, const std::vector<hls::VerilogParam>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (a[i].name != b[i].name || a[i].value != b[i].value) return false;
-  return true;
+// The integer parameters (everything but the files) as "name=value;".
+std::string integer_params(const hls::DtmfTopPlan& plan) {
+  std::string s;
+  const auto image = hls::dtmf_engine_image(plan);
+  for (const auto& p : hls::dtmf_top_params(plan, image, "", ""))
+    if (p.name != "UCODE_HEX" && p.name != "KROM_HEX") s += p.name + "=" + p.value + ";";
+  return s;
 }
 
 }  // namespace
@@ -44,22 +51,41 @@ std::vector<std::string> FpgaBuild::verilator_args() const {
   return a;
 }
 
-FpgaBuild fpga_build_for(const sim::Scene& scene) {
+FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir) {
   FpgaBuild b;
-  b.params = params_of(scene, &b.plan);
-  static const auto defaults =
-      params_of(sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml"), nullptr);
-  if (same(b.params, defaults)) {
+  b.plan = plan_of(scene);
+  const std::string mine = integer_params(b.plan);
+  static const std::string defaults =
+      integer_params(plan_of(sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml")));
+  if (mine == defaults) {
     b.key = "default";
-    return b;
+  } else {
+    uint64_t h = 1469598103934665603ull;  // FNV-1a
+    for (char c : mine) h = (h ^ uint8_t(c)) * 1099511628211ull;
+    char buf[20];
+    std::snprintf(buf, sizeof buf, "p%016llx", (unsigned long long)h);
+    b.key = buf;
   }
-  uint64_t h = 1469598103934665603ull;  // FNV-1a over "name=value;"
-  for (const auto& p : b.params)
-    for (char c : p.name + "=" + p.value + ";") h = (h ^ uint8_t(c)) * 1099511628211ull;
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "p%016llx", (unsigned long long)h);
-  b.key = buf;
+  if (dir.empty()) {
+    b.params = hls::dtmf_top_params(b.plan, hls::dtmf_engine_image(b.plan), "", "");
+  } else {
+    std::filesystem::create_directories(dir);
+    b.params = hls::write_dtmf_top_build(b.plan, std::filesystem::absolute(dir).string(), b.key);
+  }
   return b;
+}
+
+BuildLock::BuildLock(const std::string& dir, const std::string& key) {
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + key + ".lock";
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
+  while (::flock(fd_, LOCK_EX) != 0)
+    if (errno != EINTR) throw std::runtime_error(path + ": cannot lock: " + std::strerror(errno));
+}
+
+BuildLock::~BuildLock() {
+  if (fd_ >= 0) ::close(fd_);  // closing releases the flock
 }
 
 }  // namespace eskin::vboard

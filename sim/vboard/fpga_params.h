@@ -1,9 +1,12 @@
-// Which build of the FPGA top (rtl/dtmf_top.v) a scene needs: its Verilog
-// parameters, taken from the project's one derivation
+// Which build of the FPGA top (rtl/dtmf_top.v) a scene needs: its plan and
+// Verilog parameters from the project's one derivation
 // (hls/dtmf_top_config.h via sim/dtmf_top_spec.h), and a key naming the
-// build. The virtual board's build cache is keyed by it; the prebuilt
-// eskin-vboard is the top's Verilog defaults, which are the default
-// scene's derivation (tests/hls/dtmf_top_config_test.cpp), key "default".
+// build. The key covers the integer parameters (sizes, clock, rates) only:
+// the scene's microcode and constants are files the model reads when it is
+// constructed (UCODE_HEX, KROM_HEX), written by fpga_build_for() into the
+// build's directory, so one Verilated model serves every scene of its
+// sizes. The prebuilt eskin-vboard is the default scene's build, key
+// "default".
 #pragma once
 
 #include <string>
@@ -17,7 +20,7 @@ namespace eskin::vboard {
 struct FpgaBuild {
   hls::DtmfTopPlan plan;
   std::vector<hls::VerilogParam> params;  // every parameter, as -G overrides
-  std::string key;                        // "default" or "p" + hash of params
+  std::string key;                        // "default" or "p" + hash of the integer params
 
   double clk_hz() const { return double(plan.spec.clk_hz); }
   double baud() const { return double(plan.spec.baud); }
@@ -26,7 +29,23 @@ struct FpgaBuild {
 };
 
 // The build for `scene`; throws ConfigError naming the field when the top
-// cannot be built for it.
-FpgaBuild fpga_build_for(const sim::Scene& scene);
+// cannot be built for it. With a `dir`, its microcode and constants are
+// written there (KEY.ucode.hex, KEY.krom.hex, each replaced atomically) and
+// `params` name them; without, only the plan and key are derived.
+FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir = "");
+
+// An exclusive lock on one build's files (DIR/KEY.lock, flock): boards of
+// the same build running different scenes hold it from writing their files
+// until their model has read them, so none reads another's constants.
+class BuildLock {
+ public:
+  BuildLock(const std::string& dir, const std::string& key);
+  ~BuildLock();
+  BuildLock(const BuildLock&) = delete;
+  BuildLock& operator=(const BuildLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
 
 }  // namespace eskin::vboard

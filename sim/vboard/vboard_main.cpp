@@ -28,6 +28,9 @@
 #ifndef VBOARD_PARAMS_KEY
 #error "VBOARD_PARAMS_KEY: the FPGA parameter set this board is built for"
 #endif
+#ifndef VBOARD_BUILD_DIR
+#error "VBOARD_BUILD_DIR: where the model reads KEY.ucode.hex and KEY.krom.hex"
+#endif
 
 namespace {
 
@@ -127,7 +130,14 @@ int run(const Args& a) {
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);
+  // The model reads the scene's microcode and constants (UCODE_HEX,
+  // KROM_HEX: fixed paths in VBOARD_BUILD_DIR) when it is constructed;
+  // another board of this build may be about to write its own there.
+  std::unique_ptr<eskin::vboard::BuildLock> lock =
+      std::make_unique<eskin::vboard::BuildLock>(VBOARD_BUILD_DIR, VBOARD_PARAMS_KEY);
+  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR);
   VerilatedFpga fpga;
+  lock.reset();
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz())));
   eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
 

@@ -31,7 +31,7 @@ TEST(HallLink, DataPacketsRoundTrip) {
   wr.flags = 0x20;
   add(hall_wrench6(e, 13, wr));
   add(hall_force_curve(e, 14, {{0, 0, 0, 99, 60}, {8, 2, 0x01, 100, 15500}}));
-  add(hall_decode_status(e, 15, {1, 2, 0, 0}));
+  add(hall_decode_status(e, 15, {1, 2, 3, 4, 5, 6, 7, 0x9B, 1, 200}));
   LinkDecoder d;
   // Fed in 5-byte pieces: any split of the stream decodes the same.
   std::vector<Packet> got;
@@ -57,6 +57,10 @@ TEST(HallLink, DataPacketsRoundTrip) {
   EXPECT_EQ(got[3].hall.forces[1].force_mn, 15500);
   EXPECT_EQ(got[3].hall.forces[1].range, 2);
   EXPECT_EQ(got[4].hall.status.ft_skipped, 2);
+  EXPECT_EQ(got[4].hall.status.cmd_rejected, 4);
+  EXPECT_EQ(got[4].hall.status.cmd_overflows, 7);
+  EXPECT_EQ(got[4].hall.status.last_reject_type, 0x9B);
+  EXPECT_EQ(got[4].hall.status.last_reject_seq, 200);
   EXPECT_EQ(got[4].t, 15u);
 }
 

@@ -53,23 +53,32 @@ template class eskin::hls::GoertzelBlockBank<6, 32>;
 
 #if __has_include("hls/spike_encoder.h")
 #include "hls/spike_encoder.h"
-template struct eskin::hls::SpikeEncoder<>;
+template class eskin::hls::SpikeEncoder<256>;
 #endif
 
 #if __has_include("hls/synapse_weights.h")
 #include "hls/synapse_weights.h"
-template class eskin::hls::SynapseWeights<9, 4>;
+template class eskin::hls::SynapseWeights<3, 3>;
 #endif
 
 #if __has_include("hls/dtmf_chain.h")
 #include "hls/dtmf_chain.h"
-template class eskin::hls::DtmfChain<3, 3, 32>;
+template class eskin::hls::DtmfChain<eskin::hls::DtmfChainSizes<3, 3, 32>>;
 #endif
 
 #if __has_include("hls/carrier_demix.h")
 #include "hls/carrier_demix.h"
 template class eskin::hls::CarrierDemix<6, 32>;
 template struct eskin::hls::CarrierDemixConfig<6>;
+#endif
+
+#if __has_include("hls/frame_engine.h")
+#include "hls/frame_engine.h"
+template class eskin::hls::FrameEngine<>;
+template uint32_t eskin::hls::FrameEngine<>::step<eskin::hls::FrameEngineNullIo>(
+    eskin::hls::FrameEngineNullIo&, uint64_t);
+template uint64_t eskin::hls::FrameEngine<>::run<eskin::hls::FrameEngineNullIo>(
+    eskin::hls::FrameEngineNullIo&, uint64_t);
 #endif
 
 #if __has_include("hls/hall_baseline.h")

@@ -1,72 +1,67 @@
-// hls/spike_encoder.h: address-event words round-trip. The test decodes each
-// word itself from the documented format (bit fields written out here, not
-// taken from the kernel), for the default and a non-default width pair.
+// hls/spike_encoder.h: spike windows -> 5-byte link events. The test decodes
+// the bytes itself from the documented layout (dt u16 LE, layer u8, neuron
+// u16 LE; docs/protocol.md SPIKES), not through the kernel.
 #include "hls/spike_encoder.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <random>
+#include <tuple>
+#include <vector>
 
 namespace {
 
-using eskin::hls::SpikeEncoderIn;
+using Ev = std::tuple<unsigned, unsigned, unsigned>;  // dt, layer, neuron
 
-struct Decoded {
-  uint32_t t;
-  unsigned layer, neuron;
-};
-
-// Documented layout: [t:32][layer:LW][neuron:AW], LSB-aligned in 64 bits.
-Decoded decode(uint64_t w, int lw, int aw) {
-  Decoded d;
-  d.neuron = unsigned(w % (uint64_t(1) << aw));
-  d.layer = unsigned((w / (uint64_t(1) << aw)) % (uint64_t(1) << lw));
-  d.t = uint32_t(w / (uint64_t(1) << (aw + lw)));
-  return d;
+std::vector<Ev> decode(const uint8_t* b, int n) {
+  std::vector<Ev> e;
+  for (int i = 0; i < n; ++i, b += 5)
+    e.emplace_back(b[0] | b[1] << 8, b[2], b[3] | b[4] << 8);
+  return e;
 }
 
-template <int LW, int AW>
-void round_trip(uint64_t seed) {
-  eskin::hls::SpikeEncoder<LW, AW> enc;
-  std::mt19937_64 rng(seed);
-  int words = 0;
-  for (int k = 0; k < 100000; ++k) {
-    SpikeEncoderIn in;
-    in.layer = uint8_t(rng() % (1u << LW));
-    in.neuron = uint16_t(rng() % (1u << AW));
-    in.t = k < 4 ? uint32_t(k < 2 ? 0 : 0xffffffffu) : uint32_t(rng());
-    in.spike = k < 4 || (rng() & 1);
-    uint64_t w = ~uint64_t(0);
-    const bool got = enc.push(in, w);
-    ASSERT_EQ(got, in.spike);
-    if (!got) continue;
-    ++words;
-    ASSERT_LT(w, uint64_t(1) << (32 + LW + AW));  // nothing above the word
-    const Decoded d = decode(w, LW, AW);
-    EXPECT_EQ(d.t, in.t);
-    EXPECT_EQ(d.layer, in.layer);
-    EXPECT_EQ(d.neuron, in.neuron);
+// Bound: every spike of a window, in order, with dt = t_frame - t_window
+// (mod 2^16) and its layer and neuron; windows restart at the next frame.
+TEST(SpikeEncoderHls, WindowsCarryEverySpikeWithItsOffset) {
+  eskin::hls::SpikeEncoder<64> enc;
+  std::mt19937 rng(5);
+  uint32_t t = 0xFFFFFF00u;  // the sample counter wraps inside a window
+  for (int w = 0; w < 50; ++w) {
+    std::vector<Ev> want;
+    const uint32_t t0 = t;
+    for (int f = 0; f < 5; ++f, t += 35) {
+      enc.frame(t);
+      for (int s = 0; s < int(rng() % 4); ++s) {
+        const unsigned layer = rng() % 2, neuron = rng() % 1024;
+        enc.spike(uint8_t(layer), uint16_t(neuron));
+        want.emplace_back((t - t0) & 0xFFFF, layer, neuron);
+      }
+    }
+    uint32_t tw = 0;
+    const int n = enc.close(tw);
+    EXPECT_EQ(tw, t0);
+    ASSERT_EQ(size_t(n), want.size());
+    EXPECT_EQ(decode(enc.events(), n), want);
   }
-  EXPECT_GT(words, 40000);
+  EXPECT_EQ(enc.dropped(), 0u);
 }
 
-// Bound: exact round trip of every field (pure bit packing, no arithmetic),
-// including t = 0 and t = 2^32 - 1 and the largest layer/neuron values.
-TEST(SpikeEncoderHls, WordsRoundTrip) {
-  round_trip<4, 12>(1);
-  round_trip<2, 8>(2);
-  round_trip<8, 16>(3);
-}
-
-// Bound: the documented default layout, one literal word checked by hand:
-// t = 0x12345678, layer 3, neuron 0xabc -> 0x12345678_3abc.
-TEST(SpikeEncoderHls, DefaultLayoutLiteral) {
-  eskin::hls::SpikeEncoder<> enc;
-  uint64_t w = 0;
-  ASSERT_TRUE(enc.push(SpikeEncoderIn{3, 0xabc, 0x12345678u, true}, w));
-  EXPECT_EQ(w, 0x123456783abcull);
-  EXPECT_EQ(enc.kWordBits, 48);
+// Bound: at most MAX events per window; each spike beyond is dropped and
+// counted, the first MAX are kept intact.
+TEST(SpikeEncoderHls, OverflowingAWindowDropsAndCounts) {
+  eskin::hls::SpikeEncoder<4> enc;
+  enc.frame(100);
+  for (int i = 0; i < 7; ++i) enc.spike(0, uint16_t(i));
+  uint32_t tw = 0;
+  ASSERT_EQ(enc.close(tw), 4);
+  EXPECT_EQ(enc.dropped(), 3u);
+  EXPECT_EQ(decode(enc.events(), 4),
+            (std::vector<Ev>{{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 0, 3}}));
+  enc.frame(200);  // a new window starts empty
+  enc.spike(1, 9);
+  ASSERT_EQ(enc.close(tw), 1);
+  EXPECT_EQ(tw, 200u);
 }
 
 }  // namespace

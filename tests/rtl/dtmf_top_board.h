@@ -1,7 +1,7 @@
-// Test bench for rtl/dtmf_top.v (used by tests/rtl/dtmf_top_test.cpp): the
-// Verilated top driven by the AD7476A pin model, its UART line decoded bit
-// by bit into host-link packets, commands sent bit by bit, and the
-// pipeline handshakes read from the top's p_* probe wires.
+// Test bench for rtl/dtmf_top.v (tests/rtl/dtmf_top_test.cpp, latency
+// benchmarks): the Verilated top driven by the AD7476A pin model, its UART
+// line decoded bit by bit into host-link packets, commands sent bit by bit,
+// and the pipeline's events read from the top's p_* probe wires.
 #pragma once
 
 #include <cstdint>
@@ -16,9 +16,6 @@
 namespace dtmf_bench {
 
 using eskin::link::Packet;
-constexpr double kClkHz = 12e6;
-constexpr int kCpb = 4;          // uart_tx clocks per bit: 12 MHz / 3 Mbaud
-constexpr int kPeriod = 343;     // adc_ad7476 clocks per sample: round(12e6 / 35e3)
 
 // A packet as the host received it, with the cycle of its first start bit.
 struct Received {
@@ -41,13 +38,22 @@ inline std::string str(const Key& k) {
   return s + "]";
 }
 
-// Verilated top (model M) + AD7476A model + UART line codec; tick() is one
-// clock. The probes are dtmf_top's p_* wires (verilator public_flat_rd).
+// Cycles of the pipeline's events for one frame (keyed by its sample t).
+struct Events {
+  uint64_t adc = 0;         // the sample entered sdft_bank
+  uint64_t sd_last = 0;     // its last DFT token
+  uint64_t frame = 0;       // frame_capture handed it to the engine
+  uint64_t done = 0;        // the engine released it
+  uint64_t first_out = 0;   // the engine's first output byte after `frame`
+};
+
+// Verilated top (model M) + AD7476A model + UART line codec at clk_hz with
+// `cpb` clocks per UART bit; tick() is one clock.
 template <class M>
 class Board {
  public:
-  explicit Board(std::vector<uint16_t> codes12)
-      : m_(std::make_unique<M>()), adc_(std::move(codes12)) {
+  Board(std::vector<uint16_t> codes12, double clk_hz, int cpb)
+      : m_(std::make_unique<M>()), adc_(std::move(codes12)), clk_hz_(clk_hz), cpb_(cpb) {
     decoder_.on_packet([this](const Packet& p) { rx_.push_back({p, frame_start_}); });
     m_->clk = 0;
     m_->rst_n = 1;
@@ -57,7 +63,7 @@ class Board {
   }
 
   void tick() {
-    const double t_ns = double(cycle_ + 1) * 1e9 / kClkHz;
+    const double t_ns = double(cycle_ + 1) * 1e9 / clk_hz_;
     m_->adc_sdata = adc_.sdata(t_ns);
     m_->uart_rxd = rx_level();
     m_->clk = 1;
@@ -77,8 +83,11 @@ class Board {
   void run_until_sample(size_t n) {
     while (adc_.samples_taken() < n) tick();
   }
+  void run_cycles(uint64_t n) {
+    for (uint64_t i = 0; i < n; ++i) tick();
+  }
 
-  // Bytes to send to the FPGA's uart_rx (8N1, kCpb clocks per bit).
+  // Bytes to send to the FPGA's uart_rx (8N1, cpb clocks per bit).
   void send(const std::vector<uint8_t>& bytes) {
     for (uint8_t b : bytes) {
       tx_bits_.push_back(0);
@@ -86,6 +95,7 @@ class Board {
       tx_bits_.push_back(1);
     }
   }
+  bool sending() const { return tx_pos_ < tx_bits_.size() * size_t(cpb_); }
 
   auto& root() { return *m_->rootp; }
   const eskin::sim::Ad7476Model& adc() const { return adc_; }
@@ -96,26 +106,20 @@ class Board {
   // Cycle of the 16th SCLK falling edge of conversion t.
   uint64_t sample_edge(uint32_t t) const { return sample_edge_.at(t); }
 
-  // Cycles (as counted by tick()) in which a pipeline handshake happened,
-  // keyed by the sample counter t of the frame.
-  struct Events {
-    uint64_t adc = 0, sd_first = 0, sd_last = 0, mg_first = 0, mg_last = 0, tx_first = 0,
-             tx_last = 0, nr_first = 0, nr_last = 0;
-    std::map<uint8_t, uint64_t> hdr;  // packet type -> link_framer header handshake
-  };
   std::map<uint32_t, Events> events;
-  bool tag_error = false;
-  uint64_t mask_change_cycle = 0;  // last change of cmd_decoder.out_mask
-  std::vector<uint64_t> carrier_loads;  // cycles of the last carrier write to sdft_bank
+  std::vector<uint64_t> carrier_loads;  // cycles of a carrier table's last write (window cleared)
+  std::vector<uint32_t> carrier_load_samples;  // the first sample into the cleared window
+  uint16_t out_overflows = 0;           // bytes the engine wrote into a full output FIFO
+  uint32_t frames_done = 0;             // frames the engine finished
 
  private:
   int rx_level() {
-    if (tx_pos_ >= tx_bits_.size() * kCpb) return 1;
-    return tx_bits_[tx_pos_++ / kCpb];
+    if (!sending()) return 1;
+    return tx_bits_[tx_pos_++ / size_t(cpb_)];
   }
 
   // 8N1 receiver that knows the exact bit period: a start bit first seen at
-  // cycle s, bit j is sampled at s + kCpb j + kCpb/2 (the middle).
+  // cycle s, bit j is sampled at s + cpb j + cpb/2 (the middle).
   void uart_sample(int level) {
     if (!busy_) {
       if (level == 0) {
@@ -126,8 +130,8 @@ class Board {
       return;
     }
     const uint64_t off = cycle_ - start_;
-    if (off % kCpb != kCpb / 2) return;
-    const uint64_t j = off / kCpb;
+    if (off % uint64_t(cpb_) != uint64_t(cpb_ / 2)) return;
+    const uint64_t j = off / uint64_t(cpb_);
     if (j >= 1 && j <= 8) byte_ |= uint8_t(level << (j - 1));
     if (j == 9) {
       busy_ = false;
@@ -143,46 +147,54 @@ class Board {
 
   void probe() {
     auto& r = *m_->rootp;
-    if (r.dtmf_top__DOT__tag_error) tag_error = true;
-    if (r.dtmf_top__DOT__p_mask != last_mask_) {
-      last_mask_ = r.dtmf_top__DOT__p_mask;
-      mask_change_cycle = cycle_;
+    if (r.dtmf_top__DOT__p_cfg_done) {
+      carrier_loads.push_back(cycle_);
+      carrier_load_samples.push_back(seen_sample_ ? cur_t_ + 1 : 0);
     }
-    if (r.dtmf_top__DOT__p_cfg_done) carrier_loads.push_back(cycle_);
-    if (r.dtmf_top__DOT__p_adc_fire) events[r.dtmf_top__DOT__p_adc_t].adc = cycle_;
-    const auto mark = [this](bool last, uint64_t& first, uint64_t& lst) {
-      if (first == 0) first = cycle_;
-      if (last) lst = cycle_;
-    };
-    if (r.dtmf_top__DOT__p_sd_fire) {
-      Events& e = events[r.dtmf_top__DOT__p_sd_t];
-      mark(r.dtmf_top__DOT__p_sd_last, e.sd_first, e.sd_last);
+    if (r.dtmf_top__DOT__p_adc_fire) {
+      cur_t_ = r.dtmf_top__DOT__p_adc_t;
+      seen_sample_ = true;
+      events[cur_t_].adc = cycle_;
     }
-    if (r.dtmf_top__DOT__p_mg_fire) {
-      Events& e = events[r.dtmf_top__DOT__p_mg_t];
-      mark(r.dtmf_top__DOT__p_mg_last, e.mg_first, e.mg_last);
+    if (r.dtmf_top__DOT__p_sd_fire && r.dtmf_top__DOT__p_sd_last) {
+      auto it = events.find(cur_t_);
+      if (it != events.end()) it->second.sd_last = cycle_;
     }
-    if (r.dtmf_top__DOT__p_tx_fire) {
-      Events& e = events[r.dtmf_top__DOT__p_tx_t];
-      mark(r.dtmf_top__DOT__p_tx_last, e.tx_first, e.tx_last);
+    const bool frame = r.dtmf_top__DOT__p_frame_fire;
+    if (frame && !prev_frame_) {
+      frame_t_ = r.dtmf_top__DOT__p_frame_t;
+      events[frame_t_].frame = cycle_;
+      want_out_ = true;
     }
-    if (r.dtmf_top__DOT__p_nr_fire) {
-      Events& e = events[r.dtmf_top__DOT__p_nr_t];
-      mark(r.dtmf_top__DOT__p_nr_last, e.nr_first, e.nr_last);
+    prev_frame_ = frame;
+    if (r.dtmf_top__DOT__p_out_fire && want_out_) {
+      events[frame_t_].first_out = cycle_;
+      want_out_ = false;
     }
-    if (r.dtmf_top__DOT__p_hdr_fire)
-      events[r.dtmf_top__DOT__p_hdr_t].hdr[r.dtmf_top__DOT__p_hdr_type] = cycle_;
+    if (r.dtmf_top__DOT__p_frame_done) {
+      events[frame_t_].done = cycle_;
+      ++frames_done;
+    }
+    out_overflows = r.dtmf_top__DOT__p_out_overflows;
+    // Samples the harness keeps no events for: drop what is not a frame.
+    if (events.size() > 4096) {
+      for (auto it = events.begin(); it != events.end() && events.size() > 2048;)
+        it = it->second.frame ? std::next(it) : events.erase(it);
+    }
   }
 
   std::unique_ptr<M> m_;
   eskin::sim::Ad7476Model adc_;
+  double clk_hz_;
+  int cpb_;
   eskin::link::LinkDecoder decoder_;
   std::vector<Received> rx_;
   uint64_t cycle_ = 0;
   bool prev_sclk_ = true;
   int falls_ = 0;
   std::vector<uint64_t> sample_edge_;
-  int last_mask_ = -1;
+  uint32_t cur_t_ = 0, frame_t_ = 0;
+  bool prev_frame_ = false, want_out_ = false, seen_sample_ = false;
   // UART receive (FPGA -> host)
   bool busy_ = false, in_frame_ = false;
   uint64_t start_ = 0, frame_start_ = 0;

@@ -1,22 +1,24 @@
-# Second build of dtmf_top: a 16x16 skin (32 carriers planned on odd DFT bins
-# 1..63 of a 128-sample window at 35 kHz: inc = bin << 25), neurons and
-# taxels every STEP = 16 samples (dt = 16/35 ms: the taxel stage needs
-# 256 x 18 cycles per step, see docs/fpga.md), packets every 8 steps, a
-# 32-token frame buffer between the DFT and the magnitudes (32 x 26 cycles
-# of magnitudes would otherwise hold the DFT for more than a sample).
-# Neuron constants: hls::make_izhikevich_config(RA, 16/35 ms, 10/32768, 1);
-# TAX_RECIP = round(2^27 / (64 * full carrier 155.15 LSB)). The system test
-# derives both from the scene and compares packets, so a wrong value here
-# fails it.
-verilate(${exe} SOURCES ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v
-  TOP_MODULE dtmf_top PREFIX Vdtmf_top_s16
-  VERILATOR_ARGS -y ${CMAKE_SOURCE_DIR}/rtl -Wno-fatal --x-assign unique --x-initial unique -O3
-    -GR=16 -GC=16 -GN=128 -GACC_W=20 -GSTEP=16 -GTOKEN_FIFO=32 -GDECIM_AMP=16'd8 -GDECIM_TAX=16'd8 -GTAX_RECIP=13517
-    -GCARRIER_INC=1024'h7e0000007a00000076000000720000006e0000006a00000066000000620000005e0000005a00000056000000520000004e0000004a00000046000000420000003e0000003a00000036000000320000002e0000002a00000026000000220000001e0000001a00000016000000120000000e0000000a0000000600000002000000
-    -GU_FRAC=23 -GC_CONST=-30222956 -GS2=12 -GS3=9 -GS4=21 -GGAIN_SHIFT=1)
-# Third build: the default 3x3 top with CARRIER_CMD = 1 (SET_CARRIER_INC
-# reloads the DFT carriers; too big for the UP5K next to everything else).
-verilate(${exe} SOURCES ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v
-  TOP_MODULE dtmf_top PREFIX Vdtmf_top_cc
-  VERILATOR_ARGS -y ${CMAKE_SOURCE_DIR}/rtl -Wno-fatal --x-assign unique --x-initial unique -O3
-    -GCARRIER_CMD=1)
+# Builds of dtmf_top for tests/rtl/dtmf_top_test.cpp. The integer
+# parameters are those hls/dtmf_top_config.h derives for the scene and clock
+# (the test checks every one against the plan, so a stale value here fails
+# it); the microcode and constants are written by the test itself into
+# ${dtmf_dir} from the plan (hls/dtmf_ucode.h) before the model is built.
+#  default: scenes/neuroskin2.yaml at 18 MHz (the iCE40 UP5K build: 12 MHz
+#           oscillator x 3/2 by the PLL);
+#  s10:     scenes/staggered10x10.yaml at 96 MHz (100 taxels, two neuron
+#           layers each: the engine needs ~80 000 clocks per 1 ms frame).
+set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
+set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
+set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
+  -GSTEP=70 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=8)
+set(eskin_default_args ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/neuroskin2.krom.hex\")
+eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10}
+  -GUCODE_HEX=\"${dtmf_dir}/staggered10x10.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/staggered10x10.krom.hex\")
+string(JOIN " " dtmf_default_str ${dtmf_default})
+string(JOIN " " dtmf_s10_str ${dtmf_s10})
+target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
+  DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=${ESKIN_DTMF_TOP_CLK_HZ}
+  DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000)
+target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode)

@@ -1,22 +1,21 @@
-# hall_top builds of the figure (docs/hall_fpga.md):
+# hall_top builds of the figure (docs/hall_fpga.md), besides the default one:
 #  16s: scenes/hall_000_skin.yaml as sim/hall_top_spec.h generates it (the
 #       test checks): 16 sensors on 4 buses of 4 (0x0C..0x0F per bus, no mux).
 #  mux8: 16 sensors on 2 buses of 8, all 0x0C behind TCA9548A channels 0..7:
 #        too many per bus to keep up with 2053 us conversions.
+#  deltas: the 16s build with the decoding the seed-000 scene asks for
+#          (hall_baseline and the command path: DELTAS=1).
+#  002: scenes/hall_002_magtac.yaml as generated (the test checks): 1 bus of
+#       3 sensors, hall_baseline, ft_calibrate and the command path.
 set(hall_16s -GNB=4 -GNSB=4 -GADDR=112'h1e3868c1e3868c1e3868c1e3868c
   -GMUX_ADDR=112'h0000000000000000000000000000 -GMUX_CH=48'h000000000000 -GREG0=16'h007c
   -GREG1=16'he380 -GREG2=16'h0008 -GCONV_CYC=29564 -GSTALE_CYC=36954)
 set(hall_mux8 -GNB=2 -GNSB=8 "-GADDR=112'h183060c183060c183060c183060c"
   "-GMUX_ADDR=112'he1c3870e1c3870e1c3870e1c3870" "-GMUX_CH=48'hfac688fac688")
-# deltas: the 16s build with the decoding's baseline block (DELTAS=1).
 set(hall_deltas ${hall_16s} -GDELTAS=1)
-foreach(tag 16s mux8 deltas)
-  verilate(${exe} SOURCES ${CMAKE_SOURCE_DIR}/rtl/hall_top.v
-    TOP_MODULE hall_top PREFIX Vhall_top_${tag}
-    VERILATOR_ARGS -y ${CMAKE_SOURCE_DIR}/rtl -Wno-fatal --x-assign unique --x-initial unique
-      -O3 ${hall_${tag}})
-  add_test(NAME lint.hall_top.${tag}
-    COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module hall_top
-      ${hall_${tag}} ${CMAKE_SOURCE_DIR}/rtl/hall_top.v)
-  set_tests_properties(lint.hall_top.${tag} PROPERTIES LABELS lint)
+set(hall_002 -GNB=1 -GNSB=3 -GADDR=21'h03868c -GMUX_ADDR=21'h000000 -GMUX_CH=9'h000
+  -GREG0=16'h000c -GREG1=16'he380 -GREG2=16'h0008 -GCONV_CYC=29564 -GSTALE_CYC=36954 -GDELTAS=1
+  -GFT=1 -GFT_ID=0)
+foreach(tag 16s mux8 deltas 002)
+  eskin_verilate(${exe} Vhall_top_${tag} ${CMAKE_SOURCE_DIR}/rtl/hall_top.v hall_top ${hall_${tag}})
 endforeach()

@@ -1,6 +1,9 @@
 // rtl/link_framer.v against the host side (host/link/link_encoder and
 // link_decoder, an independent implementation of CRC-16 and COBS).
 //
+// Input: one byte stream, each packet as type, t, len, payload (the frame
+// engine's output FIFO); the framer adds seq, CRC and COBS.
+//
 // Bounds and why:
 //  * Byte-exact: the framer's output equals link_encoder's
 //    COBS(raw_frame(type, seq, t, payload)) + 0x00 for every packet, since
@@ -86,39 +89,32 @@ std::vector<uint8_t> expected_stream(const std::vector<Pkt>& pk) {
   return s;
 }
 
-// Drives header + payload of each packet with random gaps. Returns true while
-// there is something left to offer; sets the model's inputs for this cycle.
+// The framer's input stream: every packet as type, t (LE), len (LE), then
+// the payload (what the frame engine writes to the output FIFO), offered
+// with random gaps. Sets the model's inputs for this cycle.
 struct Source {
-  const std::vector<Pkt>& pk;
+  std::vector<uint8_t> bytes;
   std::mt19937_64 rng;
   double p_valid;
-  size_t pi = 0, bi = 0;
-  bool in_payload = false;
-  bool hv = false, sv = false;
-  Source(const std::vector<Pkt>& p, uint64_t seed, double pv) : pk(p), rng(seed), p_valid(pv) {}
-  template <class M> void offer(M& m) {
-    std::bernoulli_distribution go(p_valid);
-    hv = sv = false;
-    if (pi < pk.size()) {
-      if (!in_payload) hv = go(rng);
-      else sv = go(rng);
-    }
-    m.hdr_valid = hv;
-    m.s_valid = sv;
-    if (pi < pk.size()) {
-      m.hdr_type = pk[pi].type;
-      m.hdr_t = pk[pi].t;
-      m.hdr_len = uint16_t(pk[pi].payload.size());
-      m.s_data = (in_payload && bi < pk[pi].payload.size()) ? pk[pi].payload[bi] : 0xEE;
+  size_t i = 0;
+  bool sv = false;
+  Source(const std::vector<Pkt>& pk, uint64_t seed, double pv) : rng(seed), p_valid(pv) {
+    for (const Pkt& p : pk) {
+      const size_t n = p.payload.size();
+      const uint8_t hdr[7] = {p.type, uint8_t(p.t), uint8_t(p.t >> 8), uint8_t(p.t >> 16),
+                              uint8_t(p.t >> 24), uint8_t(n), uint8_t(n >> 8)};
+      bytes.insert(bytes.end(), hdr, hdr + 7);
+      bytes.insert(bytes.end(), p.payload.begin(), p.payload.end());
     }
   }
-  template <class M> void after(bool hdr_ready, bool s_ready) {
-    if (hv && hdr_ready) {
-      in_payload = true; bi = 0;
-    } else if (sv && s_ready) {
-      ++bi;
-    }
-    if (in_payload && bi == pk[pi].payload.size()) { in_payload = false; ++pi; }
+  template <class M> void offer(M& m) {
+    std::bernoulli_distribution go(p_valid);
+    sv = i < bytes.size() && go(rng);
+    m.s_valid = sv;
+    m.s_data = sv ? bytes[i] : 0xEE;
+  }
+  void after(bool s_ready) {
+    if (sv && s_ready) ++i;
   }
 };
 
@@ -146,7 +142,7 @@ void run_direct(double p_valid, double p_ready, uint64_t seed) {
   Source src(pk, seed + 1, p_valid);
   std::mt19937_64 rng(seed + 2);
   std::bernoulli_distribution ready(p_ready);
-  m->clk = 0; m->rst = 1; m->hdr_valid = 0; m->s_valid = 0; m->m_ready = 0;
+  m->clk = 0; m->rst = 1; m->s_valid = 0; m->m_ready = 0;
   for (int i = 0; i < 3; ++i) { m->clk = 1; m->eval(); m->clk = 0; m->eval(); }
   m->rst = 0;
   const auto want = expected_stream(pk);
@@ -158,7 +154,7 @@ void run_direct(double p_valid, double p_ready, uint64_t seed) {
     const bool rdy = ready(rng);
     m->m_ready = rdy;
     m->eval();
-    const bool hr = m->hdr_ready, sr = m->s_ready;
+    const bool sr = m->s_ready;
     if (stalled) {
       ASSERT_TRUE(m->m_valid) << "valid dropped while stalled";
       ASSERT_EQ(m->m_data, held) << "data changed while stalled";
@@ -167,7 +163,7 @@ void run_direct(double p_valid, double p_ready, uint64_t seed) {
     stalled = m->m_valid && !rdy;
     held = m->m_data;
     m->clk = 1; m->eval(); m->clk = 0; m->eval();
-    src.after<Vlink_framer>(hr, sr);
+    src.after(sr);
   }
   ASSERT_EQ(out.size(), want.size());
   EXPECT_TRUE(out == want) << "framer bytes differ from link_encoder";
@@ -184,7 +180,7 @@ TEST(LinkFramer, ThroughUartTxOnTheLine) {
   const auto pk = make_packets(60, 30);
   auto m = std::make_unique<Vlink_framer_uart_tb>();
   Source src(pk, 31, 1.0);
-  m->clk = 0; m->rst = 1; m->hdr_valid = 0; m->s_valid = 0;
+  m->clk = 0; m->rst = 1; m->s_valid = 0;
   for (int i = 0; i < 3; ++i) { m->clk = 1; m->eval(); m->clk = 0; m->eval(); }
   m->rst = 0;
   const auto want = expected_stream(pk);
@@ -194,9 +190,9 @@ TEST(LinkFramer, ThroughUartTxOnTheLine) {
   for (uint64_t cyc = 0; cyc < uint64_t(12 * cpb) * (want.size() + 50); ++cyc) {
     src.offer(*m);
     m->eval();
-    const bool hr = m->hdr_ready, sr = m->s_ready;
+    const bool sr = m->s_ready;
     m->clk = 1; m->eval(); m->clk = 0; m->eval();
-    src.after<Vlink_framer_uart_tb>(hr, sr);
+    src.after(sr);
     line.push_back(m->tx);
   }
   std::vector<uint8_t> out;

@@ -1,5 +1,3 @@
 # Second parameter set of uart_rx: 48 MHz / 115200 baud, CPB = 417.
-verilate(${exe} SOURCES ${CMAKE_SOURCE_DIR}/rtl/uart_rx.v
-  TOP_MODULE uart_rx PREFIX Vuart_rx_slow
-  VERILATOR_ARGS -Wno-fatal --x-assign unique --x-initial unique -O3
-    -GCLK_HZ=48000000 -GBAUD=115200)
+eskin_verilate(${exe} Vuart_rx_slow ${CMAKE_SOURCE_DIR}/rtl/uart_rx.v uart_rx
+  -GCLK_HZ=48000000 -GBAUD=115200)

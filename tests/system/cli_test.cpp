@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_run.h"
 #include "sim/scene.h"
 #include "sim/wav_io.h"
 #include "sim/world_model.h"
@@ -22,23 +23,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int status;
-  std::string out;  // stdout and stderr together
-};
-
-Result sh(const std::string& args) {
-  const std::string cmd = std::string(ESKIN_BIN) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  Result r{-1, ""};
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+using Result = CliResult;
+Result sh(const std::string& args) { return run_eskin(args); }
 
 fs::path tmpdir() {
   fs::path d = fs::temp_directory_path() /

@@ -91,9 +91,10 @@ std::string short_scene(double duration_s, const std::string& name) {
 }
 
 // The default scene's HLS chain, configured from the same derivation as
-// the board's FPGA build (hls/dtmf_top_config.h); mask 7 (no periodic
-// status: the chain has none).
-using Chain3 = eskin::hls::DtmfChain<3, 3, 32, 12, 16, 10, 18>;
+// the board's FPGA build (hls/dtmf_top_config.h), default mask (no
+// periodic status: the chain has none).
+using Sizes3 = eskin::hls::DtmfChainSizes<3, 3, 32>;
+using Chain3 = eskin::hls::DtmfChain<Sizes3>;
 struct Key {
   uint8_t type;
   uint32_t t;
@@ -102,19 +103,19 @@ struct Key {
 };
 
 std::vector<Key> chain_packets(const eskin::sim::Scene& sc, size_t n) {
-  auto c = eskin::hls::chain_config<Chain3>(eskin::vboard::fpga_build_for(sc).plan);
-  c.mask = 7;
-  auto chain = std::make_unique<Chain3>(c);
+  const auto build = eskin::vboard::fpga_build_for(sc);
+  auto chain = std::make_unique<Chain3>(eskin::hls::chain_config<Sizes3>(build.plan));
   EXPECT_TRUE(chain->ok());
   eskin::sim::WorldModel world(sc);
   std::vector<int> codes = world.all_codes();
   std::vector<Key> out;
-  auto pk = std::make_unique<Chain3::Packet[]>(3);
-  Chain3::Packet(&p3)[3] = *reinterpret_cast<Chain3::Packet(*)[3]>(pk.get());
+  auto pk = std::make_unique<Chain3::Packet[]>(Chain3::kMaxPackets);
+  Chain3::Packet(&pn)[Chain3::kMaxPackets] =
+      *reinterpret_cast<Chain3::Packet(*)[Chain3::kMaxPackets]>(pk.get());
   for (size_t i = 0; i < n && i < codes.size(); ++i) {
-    const int np = chain->push(uint16_t(codes[i] << 2), uint32_t(i), p3);
+    const int np = chain->push(uint16_t(codes[i] << build.adc_shift()), uint32_t(i), pn);
     for (int j = 0; j < np; ++j)
-      out.push_back({p3[j].type, p3[j].t, {p3[j].payload, p3[j].payload + p3[j].len}});
+      out.push_back({pn[j].type, pn[j].t, {pn[j].payload, pn[j].payload + pn[j].len}});
   }
   return out;
 }

@@ -1,0 +1,82 @@
+// frame_engine_asm: assembler and disassembler for the frame_engine
+// microcode (docs/frame_engine.md, "Assembler"). Host-side tool code, like
+// the *_config.h builders: it allocates and throws; the kernel it serves is
+// hls/frame_engine.h, whose encoding helpers (eskin::hls::fe) it uses.
+//
+// Source: one statement per line, `;` starts a comment.
+//   label:                     (may precede a statement on the same line)
+//   .equ NAME, expr            .org expr (IMEM address)   .word expr[, expr...]
+//   ld.h [V + x1]   add k[C]   ld io[PORT]   lt.h15 a   add p   ld 5   shl 12
+//   st [V + x2]     out io[PORT]   j.lt label   djnz x2, loop   call f   ret
+//   wait 0x1   sqrt   sqrtr   ldx x1, 3   addx x1, -1   tax x3   txa x3   nop
+// Aliases of the first ISA draft: ldi/addi (ld/add of an immediate), lpac,
+// apac, spac (ld/add/sub p), lta.F (lt.F a), shlm/shrm/rndm (shl/shr/rnd of
+// a memory operand).
+// Expressions: integers (decimal, 0x hex, 0b binary), symbols, `.` (this
+// address), unary - ~, binary * + - << >> & |, parentheses (C precedence).
+// Every error names FILE:LINE and what was expected, e.g.
+//   "dtmf.fe:42: field: expected one of .w .wu .l .lu .h .l15 .h15 .b, got .x"
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace eskin::hls::fe_asm {
+
+// Mnemonics by code (the assembler's and the disassembler's one table).
+namespace names {
+inline constexpr const char* kFieldNames[8] = {"w", "wu", "l", "lu", "h", "l15", "h15", "b"};
+inline constexpr const char* kCondNames[8] = {"", "eq", "lt", "le", "nv", "ne", "ge", "gt"};
+inline constexpr const char* kDataNames[16] = {"ld", "add", "sub", "min", "max", "and", "or", "xor",
+                                    "lt", "mpy", "shl", "shr", "rnd", "st", "out", nullptr};
+inline constexpr const char* kCtlNames[11] = {"j",    "djnz", "call", "ret", "wait", "sqrt",
+                                   "sqrtr", "ldx", "addx", "tax", "txa"};
+inline constexpr const char* kFieldList = "one of .w .wu .l .lu .h .l15 .h15 .b";
+}  // namespace names
+
+// An assembly error; what() is "FILE:LINE: message".
+class AsmError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Options {
+  std::map<std::string, int64_t> symbols;  // predefined, e.g. the top's IO ports
+  uint32_t imem_words = 4096;              // 2^IW: addresses and jump targets must fit
+};
+
+struct ListingLine {
+  int line = 0;           // source line (1-based)
+  bool has_word = false;  // the line emitted `word` at `addr`
+  uint32_t addr = 0;
+  uint32_t word = 0;
+  std::string text;       // the source line
+};
+
+struct Program {
+  std::vector<uint32_t> words;  // IMEM image, address 0 .. highest address written
+  std::map<std::string, int64_t> symbols;  // labels, .equ and predefined symbols
+  std::vector<ListingLine> listing;  // one entry per source line (and per extra .word)
+};
+
+Program assemble(const std::string& source, const std::string& file, const Options& opt = {});
+// Reads `path` and assembles it (AsmError if it cannot be read).
+Program assemble_file(const std::string& path, const Options& opt = {});
+
+// Listing: address, word, line number and source per line, then the symbols.
+std::string listing_text(const Program& prog);
+// $readmemh image: one 8-digit hex word per line from address 0.
+std::string readmemh_text(const std::vector<uint32_t>& words);
+// Parses a $readmemh image (hex words separated by white space, `//`
+// comments; no @address); errors name FILE:LINE.
+std::vector<uint32_t> parse_readmemh(const std::string& text, const std::string& file);
+
+// One instruction word as assembler text that assembles back to the same
+// word; a word the assembler cannot produce (bits the hardware ignores set,
+// out-of-range operands) prints as `.word 0x...` with its meaning after `;`.
+std::string disassemble(uint32_t word);
+
+}  // namespace eskin::hls::fe_asm

@@ -1,0 +1,139 @@
+`default_nettype none
+// frame_capture: picks the frames out of sdft_bank's per-sample token stream
+// and hands them to the frame engine in a double-buffered block RAM.
+//
+// Frames (hls/dtmf_chain.h): once the DFT window is full (N samples since
+// reset or since the last carrier reload, `clr`) and then every STEP samples:
+// with `filled` counting samples since the clear (saturating at N),
+//   filled < N:  filled + 1; the sample is a frame when that reaches N (phase 0)
+//   filled == N: phase = (phase + 1) mod STEP; a frame when phase == 0.
+// The decision is taken at the sample's handshake into sdft_bank
+// (smp_fire, with its counter smp_t); that sample's KS tokens follow.
+//
+// Buffer: 2 banks x 2 KS words (re at 2k, im at 2k + 1, sign-extended to
+// 32 bits). Tokens of a frame go to the bank the engine is not reading.
+// When the frame's last token is written: if the engine has released its
+// bank (no frame pending), the banks swap and `pending` rises with
+// frame_t = the sample's t; else the frame is lost and `overruns` counts it
+// (16-bit, saturating; cleared by `clear`). The engine reads rd_data one
+// clock after rd_addr (registered), and releases with `done`.
+// Each token is written in two clocks (re, then im): tok_ready is low in the
+// second; sdft_bank emits at most one token per 6 clocks.
+module frame_capture #(
+    parameter integer KS = 7,      // tokens per sample (carriers + DC channel)
+    parameter integer W = 18,      // signed token width (sdft_bank ACC_W)
+    parameter integer N = 32,      // DFT window
+    parameter integer STEP = 35    // samples per frame
+) (
+    input  wire         clk,
+    input  wire         rst,
+    input  wire         clr,        // the DFT window was cleared (carrier reload)
+    input  wire         smp_fire,   // a sample entered sdft_bank
+    input  wire [31:0]  smp_t,
+    input  wire         tok_valid,
+    output wire         tok_ready,
+    input  wire         tok_last,
+    input  wire [W-1:0] tok_re,
+    input  wire [W-1:0] tok_im,
+    input  wire [7:0]   rd_addr,    // 2k (re) or 2k + 1 (im) of the engine's bank
+    output reg  [31:0]  rd_data,
+    output reg          pending,
+    output reg  [31:0]  frame_t,
+    input  wire         done,
+    input  wire         clear,      // zero `overruns`
+    output reg  [15:0]  overruns
+);
+  localparam integer AW = $clog2(2 * KS) + 1;  // bank bit + word address
+  localparam integer FW = $clog2(N + 1);
+  localparam integer PW = (STEP > 1) ? $clog2(STEP) : 1;
+  localparam integer STEP_M1_I = STEP - 1;
+  localparam [FW-1:0] N_F = N[FW-1:0];
+  localparam [PW-1:0] STEP_M1 = STEP_M1_I[PW-1:0];
+  localparam [AW-2:0] TWO = 2;
+  generate
+    if (KS < 1 || 2 * KS > 256 || W < 2 || W > 32 || N < 2 || STEP < 1) begin : g_bad_params
+      frame_capture_illegal_parameters u_stop ();  // no such module: stops elaboration
+    end
+  endgenerate
+
+  // ---- frame decision per sample ----
+  reg [FW-1:0] filled;
+  reg [PW-1:0] phase;
+  reg          cur_frame;   // the sample whose tokens arrive now is a frame
+  reg [31:0]   cur_t;
+  always @(posedge clk) begin
+    if (rst || clr) begin
+      filled <= {FW{1'b0}};
+      phase <= {PW{1'b0}};
+      if (rst) begin
+        cur_frame <= 1'b0;
+        cur_t <= 32'd0;
+      end
+    end else if (smp_fire) begin
+      cur_t <= smp_t;
+      if (filled != N_F) begin
+        filled <= filled + 1'b1;
+        phase <= {PW{1'b0}};
+        cur_frame <= (filled + 1'b1 == N_F);
+      end else begin
+        phase <= (phase == STEP_M1) ? {PW{1'b0}} : phase + 1'b1;
+        cur_frame <= (phase == STEP_M1);
+      end
+    end
+  end
+
+  // ---- buffer ----
+  reg [31:0] mem [0:(1 << AW) - 1];
+  reg        eb;             // bank the engine reads
+  reg [AW-2:0] widx;         // 2k of the next token
+  reg        im_pend, im_last;
+  reg [31:0] im_word;
+  assign tok_ready = !im_pend;
+  wire tok_fire = tok_valid && !im_pend;
+  wire [31:0] re_word = {{(32 - W){tok_re[W-1]}}, tok_re};
+  wire we = cur_frame && (tok_fire || im_pend);
+  wire [AW-1:0] waddr = {!eb, tok_fire ? widx : widx + 1'b1};
+  /* verilator lint_off UNUSEDSIGNAL */
+  wire [7:0] ra = rd_addr;  // low AW-1 bits used (2 KS <= 256 words)
+  /* verilator lint_on UNUSEDSIGNAL */
+  wire [31:0] wdata = tok_fire ? re_word : im_word;
+
+  always @(posedge clk) begin
+    if (we) mem[waddr] <= wdata;
+    rd_data <= mem[{eb, ra[AW-2:0]}];
+  end
+
+  always @(posedge clk) begin
+    if (rst) begin
+      eb <= 1'b0;
+      widx <= {(AW - 1){1'b0}};
+      im_pend <= 1'b0;
+      im_last <= 1'b0;
+      im_word <= 32'd0;
+      pending <= 1'b0;
+      frame_t <= 32'd0;
+      overruns <= 16'd0;
+    end else begin
+      if (clear) overruns <= 16'd0;
+      if (done) pending <= 1'b0;
+      if (tok_fire) begin
+        im_pend <= 1'b1;
+        im_last <= tok_last;
+        im_word <= {{(32 - W){tok_im[W-1]}}, tok_im};
+      end else if (im_pend) begin
+        im_pend <= 1'b0;
+        widx <= im_last ? {(AW - 1){1'b0}} : widx + TWO;
+        if (im_last && cur_frame) begin
+          if (!pending || done) begin
+            eb <= !eb;
+            pending <= 1'b1;
+            frame_t <= cur_t;
+          end else if (overruns != 16'hFFFF && !clear) begin
+            overruns <= overruns + 16'd1;
+          end
+        end
+      end
+    end
+  end
+endmodule
+`default_nettype wire

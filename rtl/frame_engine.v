@@ -1,0 +1,411 @@
+// frame_engine: the microcoded arithmetic unit behind the DTMF top
+// (docs/frame_engine.md: ISA, encoding, timing). Clock-exact executable spec:
+// hls/frame_engine.h; the two are compared instruction by instruction in
+// tests/rtl/frame_engine_test.cpp.
+//
+// Organisation (area first: one 48-bit adder, one logic unit, a 1-bit/clock
+// shifter and a 2-clock/digit square root, all writing A):
+//   cycle A  IR (the IMEM read port's output register) is decoded; ea =
+//            addr + X[x] addresses DMEM, KROM and the IO bus (io_re); jumps,
+//            calls, returns and X writes take effect at the end of A, and
+//            the decoded controls of cycle B are registered (u_*).
+//   cycle B  the operand bus y = m ^ sub (m: a field of DMEM/KROM/IO/A[31:0],
+//            the immediate, P, ea, the shifted A or the root) meets A in the
+//            adder (A + y + cin) and the logic unit (~y, A & y, A | y,
+//            A ^ y); A, T, P, DMEM (st) and IO (out) are written at the end
+//            of B, and the next instruction is fetched. shl/shr/rnd,
+//            sqrt/sqrtr and wait stay in B for more clocks (docs: timing).
+// Memories: IMEM 2^IW x 32 ROM ($readmemh UCODE_HEX), KROM 2^KW x 32 ROM
+// (KROM_INIT, word k at [32k +: 32]), DMEM 2^DW x 32 single-port RAM, not
+// initialised: EBR for DW <= 9, SPRAM for DW >= 10 (ram_style "huge": two
+// SB_SPRAM256KA, four for DW = 15; no -spram option needed).
+`default_nettype none
+
+module frame_engine #(
+    parameter integer IW = 9,          // IMEM address bits (4..12)
+    parameter integer DW = 8,          // DMEM address bits (4..15)
+    parameter integer KW = 8,          // KROM address bits (1..12)
+    parameter integer IMEM_WORDS = 1 << IW,  // IMEM depth (<= 2^IW; the program must fit)
+    parameter UCODE_HEX = "",          // IMEM contents ("": none)
+    parameter KROM_HEX = "",           // KROM contents as a $readmemh file, else KROM_INIT
+    parameter [32*(1<<KW)-1:0] KROM_INIT = 0
+) (
+    input  wire        clk,
+    input  wire        rst,            // synchronous, active high
+    output wire [15:0] io_raddr,       // cycle A of an IO read (with io_re)
+    output wire        io_re,          // cycle A of an IO read
+    output wire [15:0] io_waddr,       // cycle B of `out` (with io_we), registered
+    input  wire [31:0] io_rdata,       // used in the first clock of B
+    output wire        io_we,          // cycle B of `out`
+    output wire [31:0] io_wdata,
+    input  wire [15:0] events          // `wait` ends when (events & mask) != 0
+);
+  generate
+    if (IW < 4 || IW > 12) begin : g_bad_iw
+      frame_engine_parameter_IW_must_be_4_to_12 stop();
+    end
+    if (DW < 4 || DW > 15) begin : g_bad_dw
+      frame_engine_parameter_DW_must_be_4_to_15 stop();
+    end
+    if (KW < 1 || KW > 12) begin : g_bad_kw
+      frame_engine_parameter_KW_must_be_1_to_12 stop();
+    end
+    if (IMEM_WORDS < 16 || IMEM_WORDS > (1 << IW)) begin : g_bad_imem
+      frame_engine_parameter_IMEM_WORDS_must_be_16_to_2_pow_IW stop();
+    end
+  endgenerate
+
+  // ---- encoding (docs/frame_engine.md) ------------------------------------
+  localparam [1:0] C_MEM = 2'd0, C_IMM = 2'd1, C_P = 2'd2, C_CTL = 2'd3;
+  localparam [3:0] F_LD = 4'd0, F_ADD = 4'd1, F_SUB = 4'd2, F_MIN = 4'd3, F_MAX = 4'd4,
+                   F_XOR = 4'd7, F_LT = 4'd8, F_MPY = 4'd9, F_SHL = 4'd10,
+                   F_RND = 4'd12, F_ST = 4'd13, F_OUT = 4'd14;
+  localparam [3:0] K_J = 4'd0, K_DJNZ = 4'd1, K_CALL = 4'd2, K_RET = 4'd3, K_WAIT = 4'd4,
+                   K_SQRT = 4'd5, K_SQRTR = 4'd6, K_LDX = 4'd7, K_ADDX = 4'd8,
+                   K_TAX = 4'd9, K_TXA = 4'd10;
+  localparam [5:0] SQ_STEPS = 6'd50;   // 25 root digits, two clocks each
+
+  // ---- architectural state ---------------------------------------------------
+  reg  [31:0]  ir;
+  reg  [IW-1:0] pc;
+  reg  [47:0]  acc;                    // A
+  reg  [15:0]  t;
+  reg  [31:0]  p;
+  reg  [15:0]  x1, x2, x3;
+  reg  [IW-1:0] stk0, stk1;            // return stack: stk0 on top
+
+  // ---- sequencing state --------------------------------------------------------
+  reg          ph;                     // 0: cycle A, 1: cycle B
+  reg  [5:0]   cnt;                    // shift / sqrt steps left
+  reg          rbit;                   // last bit shifted out (rnd)
+  reg  [25:0]  rem;                    // sqrt partial remainder
+  reg  [24:0]  root;                   // root digits so far (of 4 A)
+  reg          sqneg;                  // sqrt of a negative A: result 0
+  // Controls of the current B clock, registered (decoded from IR at the end
+  // of A, advanced at the end of each B clock of a multi-clock instruction).
+  reg u_sel_i, u_sel_x, u_sel_q, u_step;  // operand m source (besides the field)
+  // Field of the word w (all 0 unless the operand is a memory/P word): where
+  // fv's bits come from (see the field table in the operand section).
+  reg u_f_lo, u_f_mid, u_f_15, u_f_hi, u_f_h, u_f_h15, u_e15, u_e31, u_e31t;
+  reg u_sub;                           // y = ~m, cin = 1
+  reg [1:0] u_lop;                     // logic unit: ~y, A & y, A | y, A ^ y
+  reg u_use_s;                         // A takes s (else lg)
+  reg u_we, u_min, u_max;              // A written: always, if A >= m, if A < m
+  reg u_cin_r, u_cin_q;                // cin = rbit (rnd), = root[0] (sqrtr)
+  reg u_lt, u_mpy, u_st, u_out;
+  reg u_put;                           // min/max second clock: A = m unless keep_r
+  reg u_left;                          // shift direction (shl, sqrt)
+  reg u_latch;                         // this clock loads the shift count from y
+  reg u_shift, u_rnd, u_sq, u_wait;    // the instruction in B
+
+  wire [1:0]  cls = ir[31:30];
+  wire [3:0]  fn = ir[29:26];
+  wire [1:0]  space = ir[25:24];
+  wire [1:0]  xs = ir[23:22];
+  wire [2:0]  fld = ir[21:19];         // operand field; jump condition
+  wire [15:0] addr = ir[15:0];
+  wire        ctl = cls == C_CTL;
+  wire        memop = cls == C_MEM;
+
+  // ---- effective address --------------------------------------------------
+  // X[xs] is added whatever the class, so the adder starts from IR's bits
+  // (cycle A's long path: IMEM bank mux -> X mux -> adder -> memory
+  // address); ldx, which ignores the index, takes the plain field instead
+  // (xval below).
+  reg  [15:0] xv;
+  always @* begin
+    case (xs)
+      2'd1: xv = x1;
+      2'd2: xv = x2;
+      2'd3: xv = x3;
+      default: xv = 16'd0;
+    endcase
+  end
+  wire [15:0] ea = addr + xv;
+
+  // Cycle B works from registered copies of IR and ea (taken at the end of
+  // A): B's long path (operand select -> 48-bit adder -> A) then starts at
+  // flip-flops instead of at the IMEM block RAM's output and its bank mux.
+  reg  [1:0]  cls_b;
+  reg  [25:0] irb;                     // IR[25:0] (IR[29:26], the function, is decoded in A)
+  reg  [15:0] eab;
+  always @(posedge clk) if (!ph) {cls_b, irb, eab} <= {ir[31:30], ir[25:0], ea};
+  wire [1:0] space_b = irb[25:24];
+  reg  [15:0] xv_b;                    // X of the instruction in B (txa)
+  always @* begin
+    case (irb[23:22])
+      2'd1: xv_b = x1;
+      2'd2: xv_b = x2;
+      2'd3: xv_b = x3;
+      default: xv_b = 16'd0;
+    endcase
+  end
+
+  // ---- memories -----------------------------------------------------------
+  reg [31:0] imem [0:IMEM_WORDS-1];
+  reg [31:0] krom [0:(1<<KW)-1];
+  // Yosys: SPRAM from 1K words on (the UP5K's EBRs are scarce), else EBR.
+  /* verilator lint_off UNUSEDPARAM */
+  localparam DMEM_STYLE = DW >= 10 ? "huge" : "block";
+  /* verilator lint_on UNUSEDPARAM */
+  (* ram_style = DMEM_STYLE *) reg [31:0] dmem [0:(1<<DW)-1];
+  reg [31:0] kq, dq;
+  integer k;
+  initial begin
+    if (UCODE_HEX != "") $readmemh(UCODE_HEX, imem);
+    if (KROM_HEX != "") $readmemh(KROM_HEX, krom);
+    else for (k = 0; k < (1 << KW); k = k + 1) krom[k] = KROM_INIT[32*k +: 32];
+  end
+
+  // One address for both ports so the SPRAM (single-ported) can hold it:
+  // B writes at its registered ea, A reads at the decoded one.
+  wire [DW-1:0] dmem_a = ph ? eab[DW-1:0] : ea[DW-1:0];
+  always @(posedge clk) begin
+    if (ph && u_st) dmem[dmem_a] <= acc[31:0];
+    else if (!ph) dq <= dmem[dmem_a];
+  end
+  always @(posedge clk) if (!ph) kq <= krom[ea[KW-1:0]];
+
+  assign io_raddr = ea;
+  assign io_waddr = eab;
+  assign io_re = !ph && memop && space == 2'd2 && fn <= F_RND;
+  assign io_we = ph && u_out;
+  assign io_wdata = acc[31:0];
+
+  // ---- operand ----------------------------------------------------------------
+  // The word w: P for the P class, else the space's word.
+  reg [31:0] w;
+  always @* begin
+    if (cls_b == C_P) w = p;
+    else begin
+      case (space_b)
+        2'd0: w = dq;
+        2'd1: w = kq;
+        2'd2: w = io_rdata;
+        default: w = acc[31:0];
+      endcase
+    end
+  end
+  // The field fv of w (.w sext(w), .wu zext(w), .l sext(w[15:0]), .lu
+  // zext(w[15:0]), .h sext(w[31:16]), .l15 zext(w[14:0]), .h15 sext(w[31:15]),
+  // .b zext(w[7:0])), as an AND-OR of w's bits under the decoded selects.
+  wire ext_mid = (u_e15 & w[15]) | (u_e31 & w[31]);
+  wire ext_top = (u_e15 & w[15]) | (u_e31t & w[31]);
+  wire [47:0] fv = {{16{ext_top}},
+                    ({16{u_f_hi}} & w[31:16]) | {16{ext_mid}},
+                    (u_f_15 & w[15]) | (u_f_h & w[31]) | (u_f_h15 & w[30]),
+                    ({7{u_f_mid}} & w[14:8]) | ({7{u_f_h}} & w[30:24]) | ({7{u_f_h15}} & w[29:23]),
+                    ({8{u_f_lo}} & w[7:0]) | ({8{u_f_h}} & w[23:16]) | ({8{u_f_h15}} & w[22:15])};
+  wire [47:0] sha = u_left ? {acc[46:0], 1'b0} : {acc[47], acc[47:1]};
+  wire [47:0] m = fv | ({48{u_sel_i}} & {{22{irb[25]}}, irb[25:0]}) |
+                  ({48{u_sel_x}} & {32'd0, xv_b}) | ({48{u_step}} & sha) |
+                  ({48{u_sel_q}} & {24'd0, root[24:1]});
+
+  // ---- ALU: s = A + y + cin, lg = ~y / A & y / A | y / A ^ y ----------------
+  // u_sub = 1 also where A takes m through the logic unit (lg = ~y = m).
+  wire [47:0] y = m ^ {48{u_sub}};
+  wire cin = u_sub | (u_cin_r & rbit) | (u_cin_q & root[0]);
+  wire [48:0] s = {acc[47], acc} + {y[47], y} + {48'd0, cin};
+  wire a_lt_m = s[48];                 // sign of the exact 49-bit A - m
+  reg [47:0] lg;
+  always @* begin
+    case (u_lop)
+      2'd1: lg = acc & y;
+      2'd2: lg = acc | y;
+      2'd3: lg = acc ^ y;
+      default: lg = ~y;
+    endcase
+  end
+  // min/max take two B clocks: the first registers the comparison (the
+  // adder's carry out, B's latest signal), the second writes m (lg = ~y = m)
+  // or leaves A, so A's clock enable starts at a flip-flop.
+  // m is kept too: an IO word is only valid in B's first clock.
+  reg keep_r;                          // min/max: A stays (registered compare)
+  reg [47:0] m_r;                      // min/max: m of the first clock
+  always @(posedge clk)
+    if (u_min || u_max) begin
+      keep_r <= (u_min && a_lt_m) || (u_max && !a_lt_m);
+      m_r <= m;
+    end
+  wire acc_we = ph && (u_we || (u_put && !keep_r));
+  wire [47:0] acc_d = u_use_s ? s[47:0] : u_put ? m_r : lg;
+
+  // ---- square root of 4 A: one root digit per two clocks -------------------
+  // cnt = 50..1: A shifts left and its top bit enters rem (two zero bits
+  // follow A's 48); at odd cnt the trial rem - (4 root + 1) decides the next
+  // digit. 25 digits give root = floor(sqrt(4 A)) = floor(2 sqrt(A)), so
+  // sqrt = root >> 1 and sqrtr = (root + 1) >> 1, added to A (then 0) in the
+  // final clock.
+  wire [26:0] rsh = {rem, acc[47]};
+  wire [27:0] dif = {1'b0, rsh} - {1'b0, root, 2'b01};
+  wire dig = !dif[27] && !sqneg;
+  wire unused_dif = dif[26];           // 0 whenever dig = 1: rem <= 2 root < 2^26
+
+  // ---- control flow -----------------------------------------------------------
+  wire zf = acc == 48'd0;
+  reg ctaken;
+  always @* begin
+    case (fld[1:0])
+      2'd0: ctaken = 1'b1;
+      2'd1: ctaken = zf;
+      2'd2: ctaken = acc[47];
+      default: ctaken = acc[47] | zf;
+    endcase
+  end
+  wire [15:0] xdec = xv - 16'd1;
+  wire [IW-1:0] pc1 = pc + 1'b1;
+  wire [IW-1:0] target = addr[IW-1:0];
+
+  // Next PC and X, at the end of cycle A.
+  wire call_op = ctl && fn == K_CALL;
+  wire ret_op = ctl && fn == K_RET;
+  wire jump = (ctl && fn == K_J && (ctaken ^ fld[2])) || (ctl && fn == K_DJNZ && xdec != 16'd0) ||
+              call_op;
+  wire [IW-1:0] pc_next = jump ? target : ret_op ? stk0 : pc1;
+  wire x_we = ctl && (fn == K_DJNZ || fn == K_LDX || fn == K_ADDX || fn == K_TAX);
+  wire [15:0] xval = fn == K_DJNZ ? xdec : fn == K_TAX ? acc[15:0] : fn == K_LDX ? addr : ea;
+  // Return stack: call pushes (the older entry falls off), ret pops (the
+  // bottom entry stays).
+  always @(posedge clk) begin
+    if (rst) begin
+      stk0 <= {IW{1'b0}};
+      stk1 <= {IW{1'b0}};
+    end else if (!ph && (call_op || ret_op)) begin
+      stk0 <= call_op ? pc1 : stk1;
+      if (call_op) stk1 <= stk0;
+    end
+  end
+
+  // ---- end of the current B clock ---------------------------------------------
+  wire last_step = cnt == 6'd1;
+  reg done;
+  always @* begin
+    if (u_latch) done = y[5:0] == 6'd0;
+    else if (u_step) done = u_shift && !u_rnd && last_step;
+    else if (u_wait) done = |(events & irb[15:0]);
+    else done = !(u_min || u_max);
+  end
+
+  // T and P. P has no reset of its own, so that it stays the SB_MAC16's
+  // output register: reset clears T, and a second reset clock writes
+  // P = 0 * y = 0 (reset must last at least two clocks).
+  always @(posedge clk) begin
+    if (rst) t <= 16'd0;
+    else if (ph && u_lt) t <= y[15:0];
+  end
+  always @(posedge clk) begin
+    if (rst || (ph && u_mpy)) p <= $signed({{16{t[15]}}, t}) * $signed({{16{y[15]}}, y[15:0]});
+  end
+
+  // Fetch: the IMEM read port's register is IR; IMEM[0] is read during reset.
+  always @(posedge clk) if (rst || (ph && done)) ir <= imem[rst ? {IW{1'b0}} : pc];
+
+  // Decoded controls of B's first clock.
+  wire alu_op = !ctl && fn <= F_XOR;
+  wire shift_op = !ctl && (fn == F_SHL || fn == 4'd11 || fn == F_RND);
+  wire imm_steps = shift_op && cls == C_IMM && ir[5:0] != 6'd0;
+  wire sq_op = ctl && (fn == K_SQRT || fn == K_SQRTR);
+  wire txa_op = ctl && fn == K_TXA;
+  wire reads_m = !ctl && fn <= F_RND && !imm_steps;
+  wire sel_w = reads_m && cls != C_IMM;  // the operand is a field of w
+
+  // Square root registers: cleared at the end of cycle A of sqrt/sqrtr.
+  wire sq_clear = rst || (!ph && sq_op);
+  always @(posedge clk) begin
+    if (sq_clear) begin
+      rem <= 26'd0;
+      root <= 25'd0;
+    end else if (ph && u_sq && u_step) begin
+      rem <= (cnt[0] && dig) ? dif[25:0] : rsh[25:0];
+      if (cnt[0]) root <= {root[23:0], dig};
+    end
+  end
+  always @(posedge clk) if (!ph) sqneg <= acc[47];
+
+  always @(posedge clk) begin
+    if (rst) begin
+      ph <= 1'b0; pc <= {IW{1'b0}}; acc <= 48'd0;
+      x1 <= 16'd0; x2 <= 16'd0; x3 <= 16'd0;
+      cnt <= 6'd0; rbit <= 1'b0;
+      {u_sel_i, u_sel_x, u_sel_q, u_step} <= 4'd0;
+      {u_f_lo, u_f_mid, u_f_15, u_f_hi, u_f_h, u_f_h15, u_e15, u_e31, u_e31t} <= 9'd0;
+      {u_sub, u_lop, u_use_s, u_we, u_min, u_max, u_cin_r, u_cin_q} <= 9'd0;
+      {u_lt, u_mpy, u_st, u_out, u_left, u_latch, u_shift, u_rnd, u_sq, u_wait} <= 10'd0;
+      u_put <= 1'b0;
+    end else if (!ph) begin
+      // ---- end of cycle A: control flow, X, the controls of B
+      ph <= 1'b1;
+      pc <= pc_next;
+      if (x_we && xs == 2'd1) x1 <= xval;
+      if (x_we && xs == 2'd2) x2 <= xval;
+      if (x_we && xs == 2'd3) x3 <= xval;
+      rbit <= 1'b0;
+      cnt <= sq_op ? SQ_STEPS : ir[5:0];
+      u_f_lo <= sel_w && fld != 3'd4 && fld != 3'd6;
+      u_f_mid <= sel_w && fld != 3'd4 && fld != 3'd6 && fld != 3'd7;
+      u_f_15 <= sel_w && fld <= 3'd3;
+      u_f_hi <= sel_w && fld <= 3'd1;
+      u_f_h <= sel_w && fld == 3'd4;
+      u_f_h15 <= sel_w && fld == 3'd6;
+      u_e15 <= sel_w && fld == 3'd2;
+      u_e31 <= sel_w && (fld == 3'd4 || fld == 3'd6);
+      u_e31t <= sel_w && (fld == 3'd0 || fld == 3'd4 || fld == 3'd6);
+      u_sel_i <= reads_m && cls == C_IMM;
+      u_sel_x <= txa_op;
+      u_sel_q <= 1'b0;
+      u_step <= imm_steps || sq_op;
+      u_sub <= (alu_op && (fn == F_LD || fn == F_SUB || fn == F_MIN || fn == F_MAX)) ||
+               imm_steps || sq_op || txa_op;
+      u_lop <= (alu_op && fn[2]) ? fn[1:0] : 2'd0;
+      u_use_s <= alu_op && (fn == F_ADD || fn == F_SUB);
+      u_we <= (alu_op && fn != F_MIN && fn != F_MAX) || imm_steps || sq_op || txa_op;
+      u_min <= alu_op && fn == F_MIN;
+      u_max <= alu_op && fn == F_MAX;
+      u_put <= 1'b0;
+      u_cin_r <= 1'b0;
+      u_cin_q <= 1'b0;
+      u_lt <= !ctl && fn == F_LT;
+      u_mpy <= !ctl && fn == F_MPY;
+      u_st <= memop && fn == F_ST;
+      u_out <= memop && fn == F_OUT;
+      u_left <= (!ctl && fn == F_SHL) || sq_op;
+      u_latch <= shift_op && cls != C_IMM;
+      u_shift <= shift_op;
+      u_rnd <= !ctl && fn == F_RND;
+      u_sq <= sq_op;
+      u_wait <= ctl && fn == K_WAIT;
+    end else begin
+      // ---- end of a clock of cycle B
+      if (done) ph <= 1'b0;
+      if (acc_we) acc <= acc_d;
+      if (u_min || u_max) begin          // compared: the write follows
+        u_min <= 1'b0;
+        u_max <= 1'b0;
+        u_put <= 1'b1;
+      end
+      if (u_step) begin
+        cnt <= cnt - 6'd1;
+        rbit <= acc[0];
+      end
+      // Controls of the next B clock of a multi-clock instruction.
+      if (u_latch) begin                 // count loaded: steps follow
+        cnt <= y[5:0];
+        u_sel_i <= 1'b0;
+        {u_f_lo, u_f_mid, u_f_15, u_f_hi, u_f_h, u_f_h15, u_e15, u_e31, u_e31t} <= 9'd0;
+        u_latch <= 1'b0;
+        u_step <= 1'b1;
+        u_sub <= 1'b1;
+        u_we <= 1'b1;
+      end
+      if (u_step && last_step && (u_rnd || u_sq)) begin  // final clock: A + y + cin
+        u_step <= 1'b0;
+        u_sub <= 1'b0;
+        u_use_s <= 1'b1;
+        u_sel_q <= u_sq;
+        u_cin_r <= u_rnd;
+        u_cin_q <= u_sq && fn == K_SQRTR;
+      end
+    end
+  end
+endmodule
+`default_nettype wire

@@ -1,0 +1,189 @@
+// A clocked model of rtl/dtmf_top.v around the frame engine's
+// instruction-set model (hls/frame_engine.h): the microcode
+// rtl/ucode/dtmf_chain.fe, assembled for a plan, runs against the top's IO
+// ports as the RTL wires them — sdft_bank (hls/sdft_bank.h) and the frame
+// capture at sample resolution, an output FIFO that the link drains, the
+// command FIFO, the counters. Used by the microcode tests to compare with
+// hls/dtmf_chain.h quickly; the Verilated top is compared in tests/rtl.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hls/dtmf_chain.h"
+#include "hls/dtmf_engine_config.h"
+#include "hls/frame_engine.h"
+#include "hls/dtmf_ucode.h"
+
+namespace dtmf_model {
+
+struct EngineCfg {
+  static constexpr int IW = 11, DW = 15, KW = 12;
+};
+
+
+struct Packet {
+  uint8_t type = 0;
+  uint32_t t = 0;
+  std::vector<uint8_t> payload;
+  bool operator==(const Packet& o) const {
+    return type == o.type && t == o.t && payload == o.payload;
+  }
+};
+
+template <class S>
+class TopModel {
+ public:
+  static constexpr int KS_MAX = S::K + 1;
+  using Bank = eskin::hls::SdftBank<KS_MAX, S::N, 12, 16, 10, S::ACC_W>;
+
+  TopModel(const eskin::hls::DtmfTopPlan& plan, long clk_per_sample)
+      : plan_(plan), im_(eskin::hls::dtmf_engine_image(plan)), period_(clk_per_sample) {
+    const auto words = eskin::hls::dtmf_ucode_words(im_);
+    eng_ = std::make_unique<eskin::hls::FrameEngine<EngineCfg>>();
+    eng_->load_program(words.data(), uint32_t(words.size()));
+    eng_->load_krom(im_.krom.data(), uint32_t(im_.krom.size()));
+    eng_->reset();
+    cfg_inc_.assign(size_t(plan.ks), 0);
+    io_.inc = &cfg_inc_;
+    // Boot until the first carrier table reaches the DFT (the ADC starts then).
+    eng_->run(io_, 2000000, [this](const auto&) { return io_.adc_on; });
+  }
+
+  // One ADC sample (12-bit code); the engine runs one sample period.
+  void sample(uint16_t code) {
+    typename Bank::Token tok[KS_MAX];
+    io_.bank.push(int32_t(code & 0xFFFu) - 2048, tok);
+    io_.adc_t = t_++;
+    if (capture_frame()) {
+      if (io_.pending) {
+        ++io_.frame_overruns;
+      } else {
+        for (int k = 0; k < plan_.ks; ++k) io_.frame[2 * k] = tok[k].re, io_.frame[2 * k + 1] = tok[k].im;
+        io_.pending = true;
+        io_.frame_t = io_.adc_t;
+        io_.frame_start = eng_->clocks();
+      }
+    }
+    if (!profile_) {
+      eng_->run(io_, uint64_t(period_));
+      return;
+    }
+    const uint64_t end = eng_->clocks() + uint64_t(period_);
+    while (eng_->clocks() < end) {
+      const uint32_t pc = eng_->pc();
+      const bool waiting = eng_->in_wait();
+      const uint32_t clk = eng_->step(io_, end);
+      (*profile_)[waiting ? ~0u : pc] += clk;
+    }
+  }
+  // Clocks spent per instruction address (~0u: waiting), from now on.
+  void profile(std::map<uint32_t, uint64_t>* p) { profile_ = p; }
+  // A command frame's bytes as cmd_decoder queues them (type, seq, len, payload).
+  void command(const std::vector<uint8_t>& bytes) {
+    io_.cmd.insert(io_.cmd.end(), bytes.begin(), bytes.end());
+  }
+  // The engine's output bytes parsed as packets (type, t, len, payload).
+  std::vector<Packet> packets() const {
+    std::vector<Packet> v;
+    const auto& b = io_.out;
+    for (size_t i = 0; i + 7 <= b.size();) {
+      Packet p;
+      p.type = b[i];
+      p.t = uint32_t(b[i + 1]) | uint32_t(b[i + 2]) << 8 | uint32_t(b[i + 3]) << 16 |
+            uint32_t(b[i + 4]) << 24;
+      const size_t n = size_t(b[i + 5]) | size_t(b[i + 6]) << 8;
+      if (i + 7 + n > b.size()) break;
+      p.payload.assign(b.begin() + long(i + 7), b.begin() + long(i + 7 + n));
+      v.push_back(std::move(p));
+      i += 7 + n;
+    }
+    return v;
+  }
+  uint64_t max_frame_clocks() const { return io_.max_frame; }
+  uint32_t frame_overruns() const { return io_.frame_overruns; }
+  size_t sdft_loads() const { return io_.sdft_loads; }
+  const eskin::hls::EngineImage& image() const { return im_; }
+  eskin::hls::FrameEngine<EngineCfg>& engine() { return *eng_; }
+
+ private:
+  // hls/dtmf_chain.h's frame rule (rtl/frame_capture.v).
+  bool capture_frame() {
+    if (io_.refill) filled_ = 0, io_.refill = false;
+    if (filled_ < S::N) {
+      if (++filled_ < S::N) return false;
+      phase_ = 0;
+      return true;
+    }
+    phase_ = phase_ + 1 == plan_.step ? 0 : phase_ + 1;
+    return phase_ == 0;
+  }
+
+  struct Io {
+    Bank bank;
+    bool adc_on = false, pending = false, refill = false;
+    int32_t frame[2 * KS_MAX] = {};
+    uint32_t frame_t = 0, adc_t = 0, frame_overruns = 0;
+    uint64_t frame_start = 0, max_frame = 0;
+    std::vector<uint8_t> out;
+    std::deque<uint8_t> cmd;
+    int cfg_k = 0;
+    bool cfg_last = false;
+    std::vector<uint32_t>* inc = nullptr;
+    int ks = 0;
+    size_t sdft_loads = 0;
+    uint32_t io_read(uint16_t a, uint64_t) {
+      if (a < 0x200) return uint32_t(a < 2 * KS_MAX ? frame[a] : 0);
+      switch (a) {
+        case eskin::hls::kIoFrameT: return frame_t;
+        case eskin::hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);
+        case eskin::hls::kIoCmd: return cmd.empty() ? 0u : cmd.front();
+        case eskin::hls::kIoOutFree: return 512;  // the link keeps up
+        case eskin::hls::kIoAdcT: return adc_t;
+        case eskin::hls::kIoFrameOvr: return frame_overruns;
+        default: return 0;  // other counters, a DFT write never pending
+      }
+    }
+    void io_write(uint16_t a, uint32_t d, uint64_t clock) {
+      switch (a) {
+        case eskin::hls::kIoOutByte: out.push_back(uint8_t(d)); break;
+        case eskin::hls::kIoFrameDone:
+          pending = false;
+          max_frame = std::max<uint64_t>(max_frame, clock - frame_start);
+          break;
+        case eskin::hls::kIoCmdPop: if (!cmd.empty()) cmd.pop_front(); break;
+        case eskin::hls::kIoSdftK: cfg_k = int(d & 0xFF), cfg_last = (d >> 8) & 1; break;
+        case eskin::hls::kIoSdftInc:
+          (*inc)[size_t(cfg_k)] = d;
+          if (cfg_last) {
+            eskin::hls::SdftBankConfig<KS_MAX> c;
+            c.carriers = cfg_k + 1;
+            for (int k = 0; k <= cfg_k; ++k) c.inc[k] = (*inc)[size_t(k)];
+            bank.configure(c);
+            adc_on = true;
+            refill = true;
+            ++sdft_loads;
+          }
+          break;
+        default: break;
+      }
+    }
+    uint16_t events(uint64_t) const { return uint16_t((pending ? 1 : 0) | (cmd.empty() ? 0 : 2)); }
+  };
+
+  eskin::hls::DtmfTopPlan plan_;
+  eskin::hls::EngineImage im_;
+  long period_;
+  std::unique_ptr<eskin::hls::FrameEngine<EngineCfg>> eng_;
+  std::vector<uint32_t> cfg_inc_;
+  Io io_;
+  int filled_ = 0, phase_ = 0;
+  uint32_t t_ = 0;
+  std::map<uint32_t, uint64_t>* profile_ = nullptr;
+};
+
+}  // namespace dtmf_model

@@ -1,0 +1,124 @@
+// `eskin ucode asm|run` as a user runs them: real processes and files. The
+// expected words are packed by hand from docs/frame_engine.md's encoding
+// table; the expected register values are worked out here from the program.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "cli_run.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Result = CliResult;
+Result sh(const std::string& args) { return run_eskin(args); }
+
+fs::path dir() {
+  const fs::path d = fs::temp_directory_path() / ("eskin_ucode_test_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+std::string read(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// Sum of KROM words 1..COUNT, stored, sent to io[PORT], then halt.
+const char* const kSumProgram =
+    "        ldx  x1, COUNT\n"
+    "        ld   0\n"
+    "loop:   add  k[x1]\n"
+    "        djnz x1, loop\n"
+    "        st   [3]\n"
+    "        out  io[PORT]\n"
+    "halt:   j    halt\n";
+
+TEST(Ucode, AsmWritesTheImageAndListing) {
+  const fs::path d = dir();
+  write(d / "sum.fe", kSumProgram);
+  const Result r = sh("ucode asm " + (d / "sum.fe").string() + " -D COUNT=3 -D PORT=0x20 --list " +
+                      (d / "sum.lst").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  // ldx x1,3 | ld 0 | add k[0 + x1] | djnz x1,2 | st [3] | out io[0x20] | j 6
+  EXPECT_EQ(read(d / "sum.hex"),
+            "dc400003\n40000000\n05400000\nc4400002\n34000003\n3a000020\nc0000006\n");
+  const std::string lst = read(d / "sum.lst");
+  EXPECT_NE(lst.find("0002  05400000      3  loop:   add  k[x1]"), std::string::npos) << lst;
+  EXPECT_NE(lst.find("  halt "), std::string::npos) << lst;
+  EXPECT_NE(r.out.find("7 words"), std::string::npos) << r.out;
+}
+
+TEST(Ucode, RunTracesAndHaltsWithTheSum) {
+  const fs::path d = dir();
+  write(d / "sum.fe", kSumProgram);
+  write(d / "k.hex", "00000000\n0000000a\n00000014\n0000001e\n");  // 0, 10, 20, 30
+  const Result r = sh("ucode run " + (d / "sum.fe").string() + " -D COUNT=3 -D PORT=32 --krom " +
+                      (d / "k.hex").string() + " --trace");
+  ASSERT_EQ(r.status, 0) << r.out;
+  // 1 + 1 + 3 * 2 + 1 + 1 instructions before the halting jump, 2 clocks each;
+  // the jump to itself is the 11th.
+  EXPECT_NE(r.out.find("io[0x0020] <= 0x0000003c (60) at clock 19"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("halted at 6: jump to itself; 11 instructions, 22 clocks; A=60"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("djnz x1, 2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("[3]<=0x0000003c"), std::string::npos) << r.out;
+}
+
+TEST(Ucode, RunStopsAtAWaitUnlessItsEventsAreRaised) {
+  const fs::path d = dir();
+  write(d / "w.fe", "        wait 0x4\n        ld 7\nhalt:   j halt\n");
+  Result r = sh("ucode run " + (d / "w.fe").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("stopped at 0: wait 0x4, and --events is 0x0; 0 instructions"), std::string::npos)
+      << r.out;
+  r = sh("ucode run " + (d / "w.fe").string() + " --events 6");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("halted at 2: jump to itself; 3 instructions, 6 clocks; A=7"), std::string::npos)
+      << r.out;
+}
+
+TEST(Ucode, BadInputFailsNamingFileLineAndWhatWasExpected) {
+  const fs::path d = dir();
+  write(d / "bad.fe", "        nop\n        ld.x [1]\n");
+  Result r = sh("ucode asm " + (d / "bad.fe").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("bad.fe:2: ld: field: expected one of .w .wu .l .lu .h .l15 .h15 .b, got .x"),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(d / "bad.hex"));
+  write(d / "undef.fe", "        ld [NOPE]\n");
+  r = sh("ucode run " + (d / "undef.fe").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("undef.fe:1: ld: address: undefined symbol 'NOPE'"), std::string::npos) << r.out;
+  r = sh("ucode asm " + (d / "undef.fe").string() + " -D NOPE");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("-D: expected NAME=VALUE, got 'NOPE'"), std::string::npos) << r.out;
+  r = sh("ucode asm " + (d / "undef.fe").string() + " -D NOPE=1+");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("expected a value"), std::string::npos) << r.out;
+  r = sh("ucode asm " + (d / "missing.fe").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("missing.fe: cannot read the file"), std::string::npos) << r.out;
+  write(d / "k.hex", "0000000z\n");
+  write(d / "ok.fe", "halt: j halt\n");
+  r = sh("ucode run " + (d / "ok.fe").string() + " --krom " + (d / "k.hex").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("k.hex:1: expected a hex word of at most 8 digits, got '0000000z'"), std::string::npos)
+      << r.out;
+  r = sh("ucode asm " + (d / "ok.fe").string() + " --iw 13");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--iw: expected 4..12, got 13"), std::string::npos) << r.out;
+  fs::remove_all(d);
+}
+
+}  // namespace
