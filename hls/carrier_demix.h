@@ -1,6 +1,7 @@
 // carrier_demix: joint least-squares cross-talk cancellation between K
 // off-bin carriers (+ DC) of an N-sample rectangular window, on the window
-// sums of sdft_bank. Bit-exact executable spec of rtl/carrier_demix.v.
+// sums of sdft_bank. Bit-exact executable spec of the `carrier_demix`
+// routine of the frame engine (rtl/ucode/dtmf_chain.fe).
 // Cost study and derivation: docs/carrier_demix.md.
 //
 // Why a constant matrix: referred to the OLDEST sample s of the window, the
@@ -44,12 +45,11 @@
 //                  + CW), 2K+1 <= 33 of them: < 2^(ACC_W + CW + 6) <= 2^62),
 //                  then saturated to signed OUT_W bits.
 //
-// Hardware (rtl/carrier_demix.v): one multiplier time-multiplexed: per frame
-// 4 products per input token (rotation) + 2K (2K+1) (matrix rows streamed;
-// the DC row is not computed there) = 184 for K = 6; II = 225 cycles per
-// frame and latency 35 cycles from the last input to the first output for
-// K = 6 (formulas in the RTL header), under the 342 cycles per sample at
-// 12 MHz, 35 kHz.
+// Hardware (the frame engine's `carrier_demix` routine): per frame 4
+// products per input token (the rotation to the oldest sample) + 2K (2K+1)
+// for the matrix rows (the DC row is not computed) = 184 multiplies for
+// K = 6 on the engine's SB_MAC16, the matrix in its KROM (DMEM after a
+// SET_DEMIX_COEF).
 #pragma once
 
 #include <cstdint>

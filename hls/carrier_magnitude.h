@@ -1,5 +1,6 @@
 // carrier_magnitude: complex window sum {k, re, im} -> magnitude {k, mag}.
-// Bit-exact executable spec of rtl/carrier_magnitude.v.
+// Bit-exact executable spec of the `carrier_magnitude` routine of the frame
+// engine (rtl/ucode/dtmf_chain.fe) in rtl/dtmf_top.v.
 //
 // Number formats
 //   in.re, in.im : signed ACC_W-bit integers (two's complement, ACC_W <= 32),
@@ -25,12 +26,10 @@
 //   (floor(2x) + 1) >> 1 = floor(x + 1/2). Only NB = MAG_W + 1 root bits are
 //   needed: Q >= 4^NB means root >= 2^NB, i.e. x >= 2^MAG_W: saturate.
 //
-// Hardware (rtl/carrier_magnitude.v): P is accumulated from six products of
-//   ceil(ACC_W/2)-bit halves of |re| and |im| on one unsigned multiplier
-//   (one SB_MAC16), then NB restoring steps; initiation interval
-//   II = NB + 9 cycles (26 for MAG_W = 16), latency NB + 8 cycles from the
-//   input handshake to out_valid (see the RTL header). k and last pass
-//   through unchanged.
+// Hardware (the frame engine, docs/frame_engine.md): P from 16-bit halves
+//   of re and im on the engine's 16x16 multiplier (the SB_MAC16) into its
+//   48-bit accumulator, the root by its `sqrtr` instruction (one root digit
+//   per two clocks). k and last pass through unchanged.
 #pragma once
 
 #include <cstdint>

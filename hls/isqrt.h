@@ -1,7 +1,7 @@
 // Integer square root, one result bit per step (restoring, digit by digit).
-// Bit-exact spec of the SQRT state of rtl/taxel_reconstruct.v and
-// rtl/ghost_filter.v, which run one step per clock cycle: the loop body below
-// is exactly one cycle there.
+// The HLS kernels' root (taxel_reconstruct, ghost_filter); the frame engine
+// (rtl/frame_engine.v) computes the same digits with its `sqrt` instruction,
+// one digit per two clocks.
 //
 // isqrt<W>(x) = floor(sqrt(x)) for any x < 2^(2W), W <= 16; isqrt64(x) for
 // any 64-bit x.

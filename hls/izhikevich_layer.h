@@ -1,6 +1,7 @@
 // izhikevich_layer: a layer of Izhikevich neurons in fixed point, one neuron
 // update per input token, neurons time-multiplexed in address order.
-// Bit-exact executable spec of rtl/izhikevich_layer.v. Used for the receptor
+// Bit-exact executable spec of the `izhikevich_layer` routine of the frame
+// engine (rtl/ucode/dtmf_chain.fe, below). Used for the receptor
 // layer (input = taxel value) and for the second layer (input = the weighted
 // spike sum from synapse_weights): "spiking layers" are instances of this.
 //

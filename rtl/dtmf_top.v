@@ -12,12 +12,13 @@
 //   host --> uart_rx -> cmd_decoder (COBS, CRC, length) -> frame_engine
 //
 // Everything after the DFT runs once per frame on the frame engine, whose
-// state and constants live in block RAM (DMEM: SPRAM on the UP5K with
-// `synth_ice40 -spram`); every command is applied by its microcode at run
+// state and constants live in block RAM (DMEM: SPRAM on the UP5K, by its
+// ram_style attribute); every command is applied by its microcode at run
 // time. The bit-exact spec of the packets is hls/dtmf_chain.h; every
 // parameter below is generated from a scene by hls/dtmf_top_config.h
 // (dtmf_top_params); the defaults are the default scene's
-// (scenes/neuroskin2.yaml) on an iCE40 UP5K at 12 MHz.
+// (scenes/neuroskin2.yaml) on an iCE40 UP5K at 18 MHz (the board wrapper's
+// PLL: 12 MHz x 3/2).
 //
 // Sample format: the AD7476A gives 12-bit codes, x = code - 2048 (12 bits
 // signed). Timestamps: every frame carries t, the ADC sample counter of its
@@ -37,7 +38,7 @@ module dtmf_top #(
     parameter integer DW = 10,          // engine data words 2^DW
     parameter integer KW = 9,           // engine constant words 2^KW
     // The scene's microcode and constants ($readmemh files written by
-    // hls/dtmf_engine_config.h's builder, e.g. through `eskin bitstream`).
+    // hls/dtmf_ucode.h's write_dtmf_top_build, e.g. through `eskin bitstream`).
     parameter UCODE_HEX = "",
     parameter KROM_HEX = ""
 ) (

@@ -116,11 +116,20 @@ class Progress {  // stderr: a bar on a terminal, else a line per quarter after 
 
 struct GoldenRun {
   std::vector<golden::Frame> frames;  // by sample index (empty before the window fills)
-  std::vector<std::vector<double>> spikes_ms;
+  // Spikes of the receptors and the second layer, neurons stepped like the
+  // FPGA's (once per frame); and the receptors' count at the scene's own
+  // neuron step (neuron.dt_ms, one sample by default).
+  std::vector<std::vector<double>> spikes_ms, spikes2_ms;
+  size_t scene_step_spikes = 0, scene_step_spikes2 = 0;
   golden::DecodeScore score;
 };
 
-GoldenRun run_golden(const sim::Scene& scene) {
+// The golden model on the scene as written: frames at the scene's hop
+// (every sample by default), neurons at its neuron.dt_ms. The FPGA steps
+// its neurons once per frame (every `fpga_step` samples), a coarser Euler
+// step that fires differently near threshold; a second run framed and
+// stepped like it gives the spikes the FPGA's are compared with.
+GoldenRun run_golden(const sim::Scene& scene, int fpga_step) {
   GoldenRun g;
   golden::GoldenOptions opt;
   opt.taxels = true;
@@ -136,8 +145,22 @@ GoldenRun run_golden(const sim::Scene& scene) {
       g.frames[n] = dec.frame();
       scorer.add(dec.frame());
     }
-  g.spikes_ms = dec.spike_times_ms();
   g.score = scorer.score();
+  if (scene.outputs.spikes) {
+    for (const auto& v : dec.spike_times_ms()) g.scene_step_spikes += v.size();
+    for (const auto& v : dec.spike_times2_ms()) g.scene_step_spikes2 += v.size();
+    DecoderConfig d = scene.decoder;
+    d.hop = fpga_step;
+    NeuronConfig n = scene.neuron;
+    n.dt_ms = 1000.0 * fpga_step / scene.skin.adc.rate_hz;
+    golden::GoldenOptions so;
+    so.taxels = so.spikes = true;
+    golden::GoldenDecoder sd(scene.skin, d, n, so);
+    sim::WorldModel w(scene);
+    for (int c = 0; w.next(c);) sd.push(c);
+    g.spikes_ms = sd.spike_times_ms();
+    g.spikes2_ms = sd.spike_times2_ms();
+  }
   return g;
 }
 
@@ -167,7 +190,7 @@ int run_simulate(const Args& a) {
   std::vector<FpgaFrame> rx;
   port.on_packet([&](const Packet& p) { rx.push_back({p, -1}); });
   GoldenRun gold;
-  std::thread golden_thread([&] { gold = run_golden(scene); });  // the other core
+  std::thread golden_thread([&] { gold = run_golden(scene, build.plan.step); });  // the other core
   Progress bar(total);
   for (;;) {
     port.pump(50);
@@ -192,7 +215,10 @@ int run_simulate(const Args& a) {
   golden::DecodeScorer fpga_scorer(skin, scene.decoder, [&](size_t n, std::vector<double>& p) {
     truth_world.pressure_at(n, p);
   });
-  const double half_n = build.plan.N / 2.0;
+  // Amplitude packets: window sums of 12-bit codes >> mag_shift; in the
+  // scene's ADC LSB (peak), like golden's amp_lsb.
+  const double amp_scale =
+      std::ldexp(1.0, build.plan.mag_shift - build.adc_shift()) / (build.plan.N / 2.0);
   report::SimulateReport rep;
   rep.title = "eskin simulate: " + scene.name;
   rep.scene_file = a.scene;
@@ -218,7 +244,7 @@ int run_simulate(const Args& a) {
   amp_csv.print("\n");
   tax_csv.print("\n");
   double amp_err = 0, kpa_err = 0, kpa_sq = 0;
-  size_t kpa_n = 0, status_n = 0;
+  size_t kpa_n = 0, status_n = 0, fspk2 = 0;
   link::StatusBlock last_status;
   std::vector<double> truth;
   for (const FpgaFrame& f : rx) {
@@ -230,7 +256,7 @@ int run_simulate(const Args& a) {
       amp_csv.print("{},{:.4f},{:.2f}", p.t, t_ms, f.arrival_us);
       std::string vals;
       for (int k = 0; k < K; ++k) {
-        const double v = p.amplitudes[size_t(k)] / half_n;
+        const double v = p.amplitudes[size_t(k)] * amp_scale;
         amp_csv.print(",{:.6g}", v);
         vals += fmt::format("{}{:.6g}", k ? "," : "", v);
         rep.fpga_amp[size_t(k)].t_ms.push_back(t_ms);
@@ -264,7 +290,7 @@ int run_simulate(const Args& a) {
         rep.kpa_max = std::max({rep.kpa_max, truth[size_t(i)], v});
         tax_csv.print(",{:.6g},{:.6g},{:.6g}", v, gv, truth[size_t(i)]);
         if (g) {
-          const double d = v - g->pressure_raw(i / C, i % C);
+          const double d = v - gv;  // both ghost-corrected
           kpa_err = std::max(kpa_err, std::fabs(d));
           kpa_sq += d * d;
           ++kpa_n;
@@ -275,10 +301,15 @@ int run_simulate(const Args& a) {
                p.t, t_ms, f.arrival_us, join(ff.pressure));
     } else if (p.type == link::kSpikes) {
       for (const auto& s : p.spikes) {
-        fspk.t_ms.push_back(1000.0 * (p.t + s.dt) / fs);
+        const double ts = 1000.0 * (p.t + s.dt) / fs;
+        nd.print("{{\"type\":\"spike\",\"t_ms\":{:.4f},\"layer\":{},\"taxel\":{},\"arrival_us\":{:.2f}}}\n",
+                 ts, s.layer, s.neuron, f.arrival_us);
+        if (s.layer != 0) {  // the raster shows the receptors; layer 1 is counted
+          ++fspk2;
+          continue;
+        }
+        fspk.t_ms.push_back(ts);
         fspk.taxel.push_back(s.neuron);
-        nd.print("{{\"type\":\"spike\",\"t_ms\":{:.4f},\"taxel\":{},\"arrival_us\":{:.2f}}}\n",
-                 fspk.t_ms.back(), s.neuron, f.arrival_us);
       }
     } else if (p.type == link::kStatus) {
       ++status_n;
@@ -290,6 +321,8 @@ int run_simulate(const Args& a) {
       gspk.t_ms.push_back(ts);
       gspk.taxel.push_back(int(t));
     }
+  size_t gspk2 = 0;
+  for (const auto& v : gold.spikes2_ms) gspk2 += v.size();
   rep.spikes = {fspk, gspk};
   {
     auto s_csv = fmt::output_file((std::filesystem::path(a.out) / "spikes.csv").string());
@@ -331,14 +364,16 @@ int run_simulate(const Args& a) {
   // ---- error summary and run figures.
   const golden::DecodeScore fs_ = fpga_scorer.score(), gs = gold.score;
   rep.error_head = {"model", "frames scored", "worst taxel RMS error (kPa)", "worst max error (kPa)",
-                    "ghost taxel-frames", "missed taxel-frames", "spikes"};
+                    "ghost taxel-frames", "missed taxel-frames", "spikes: receptors / layer 2"};
   rep.error_rows = {
       {"FPGA (virtual board)", std::to_string(fs_.steady_frames), ms(fs_.worst_rms_error_kpa()),
        ms(fs_.worst_max_error_kpa()), std::to_string(fs_.ghost_taxel_frames),
-       std::to_string(fs_.missed_taxel_frames), std::to_string(fspk.t_ms.size())},
+       std::to_string(fs_.missed_taxel_frames), fmt::format("{} / {}", fspk.t_ms.size(), fspk2)},
       {"golden", std::to_string(gs.steady_frames), ms(gs.worst_rms_error_kpa()),
        ms(gs.worst_max_error_kpa()), std::to_string(gs.ghost_taxel_frames),
-       std::to_string(gs.missed_taxel_frames), std::to_string(gspk.t_ms.size())}};
+       std::to_string(gs.missed_taxel_frames),
+       fmt::format("{} / {} ({} / {} at the scene's neuron step)", gspk.t_ms.size(), gspk2,
+                   gold.scene_step_spikes, gold.scene_step_spikes2)}};
   const double sim_s = done.at("sim_s"), cpu_s = done.at("cpu_s"), wall_s = done.at("wall_s");
   const double cyc = done.at("cycles");
   std::sort(fpga_lat.begin(), fpga_lat.end());
@@ -354,20 +389,26 @@ int run_simulate(const Args& a) {
       {"link: bytes / CRC errors / framing errors / lost packets",
        fmt::format("{} / {} / {} / {}", ls.bytes, ls.crc_errors, ls.framing_errors, ls.lost_packets)},
       {"ADC timing violations", std::to_string(done.at("adc_violations").get<uint64_t>())},
-      {"FPGA status: ADC overruns / dropped frames / UART rx errors / commands accepted",
-       status_n ? fmt::format("{} / {} / {} / {}", last_status.adc_overruns, last_status.dropped_frames,
-                              last_status.uart_rx_errors, last_status.cmd_accepted)
+      {"FPGA status: ADC overruns / frame overruns / dropped packets / spikes dropped / UART rx "
+       "errors / commands accepted",
+       status_n ? fmt::format("{} / {} / {} / {} / {} / {}", last_status.adc_overruns,
+                              last_status.frame_overruns, last_status.dropped_frames,
+                              last_status.spikes_dropped, last_status.uart_rx_errors,
+                              last_status.cmd_accepted)
                 : std::string("no status packet")},
       {"FPGA vs golden: max carrier amplitude difference (LSB peak)", fmt::format("{:.3f}", amp_err)},
-      {"FPGA vs golden (no ghost correction): taxel max / RMS difference (kPa)",
+      {"FPGA vs golden (both ghost-corrected): taxel max / RMS difference (kPa)",
        fmt::format("{:.3f} / {:.3f}", kpa_err, kpa_n ? std::sqrt(kpa_sq / double(kpa_n)) : 0.0)},
       {"latency onset -> first FPGA frame on the host, median (us)", fmt::format("{:.1f}", lat_med)}};
   const DftVariant golden_variant = golden::resolve_variant(
       scene.decoder.variant, skin.carrier_freqs_hz(), fs, scene.decoder);
   rep.summary = fmt::format(
       "{}x{} skin, {} carriers, {} samples at {} Hz; FPGA build {} at {:.0f} MHz, UART {:.0f} "
-      "baud (exact sliding DFT, no ghost filter); golden model: variant {}, ghost-corrected.",
-      R, C, K, total, fs, build.key, build.clk_hz() / 1e6, build.baud(), to_string(golden_variant));
+      "baud (exact sliding DFT{}, ghost filter, frames and neuron steps every {} samples); golden "
+      "model: variant {}, ghost-corrected, neurons stepped every {} samples like the FPGA.",
+      R, C, K, total, fs, build.key, build.clk_hz() / 1e6, build.baud(),
+      build.plan.spec.demix ? " + least-squares demixing" : "", build.plan.step,
+      to_string(golden_variant), build.plan.step);
   const std::string html = (std::filesystem::path(a.out) / "report.html").string();
   report::write_simulate_report(rep, html);
   {
@@ -377,7 +418,11 @@ int run_simulate(const Args& a) {
                           {"fpga_worst_rms_kpa", fs_.worst_rms_error_kpa()},
                           {"golden_worst_rms_kpa", gs.worst_rms_error_kpa()},
                           {"fpga_vs_golden_max_amp_lsb", amp_err}, {"fpga_spikes", fspk.t_ms.size()},
-                          {"golden_spikes", gspk.t_ms.size()}, {"latency_median_us", lat_med}};
+                          {"golden_spikes", gspk.t_ms.size()}, {"fpga_spikes_layer2", fspk2},
+                          {"golden_spikes_layer2", gspk2},
+                          {"golden_spikes_scene_step", gold.scene_step_spikes},
+                          {"golden_spikes_layer2_scene_step", gold.scene_step_spikes2},
+                          {"latency_median_us", lat_med}};
     auto js = fmt::output_file((std::filesystem::path(a.out) / "summary.json").string());
     js.print("{}\n", sum.dump(2));
   }
@@ -385,11 +430,14 @@ int run_simulate(const Args& a) {
   fmt::print("scene {}: {}x{} skin, {:.3f} s simulated on the virtual board (FPGA build {}) in "
              "{:.1f} s ({:.2f} simulated s per CPU s)\n",
              scene.name, R, C, sim_s, build.key, wall_s, sim_s / cpu_s);
-  fmt::print("FPGA: {} packets, {} link errors; worst taxel RMS error {:.3f} kPa; {} spikes\n",
+  fmt::print("FPGA: {} packets, {} link errors; worst taxel RMS error {:.3f} kPa; spikes {} "
+             "receptor, {} layer 2\n",
              rx.size(), ls.crc_errors + ls.framing_errors + ls.payload_errors,
-             fs_.worst_rms_error_kpa(), fspk.t_ms.size());
-  fmt::print("golden: worst taxel RMS error {:.3f} kPa; {} spikes\n", gs.worst_rms_error_kpa(),
-             gspk.t_ms.size());
+             fs_.worst_rms_error_kpa(), fspk.t_ms.size(), fspk2);
+  fmt::print("golden: worst taxel RMS error {:.3f} kPa; spikes {} receptor, {} layer 2 with "
+             "the FPGA's neuron step ({} / {} at the scene's)\n",
+             gs.worst_rms_error_kpa(), gspk.t_ms.size(), gspk2, gold.scene_step_spikes,
+             gold.scene_step_spikes2);
   if (lat_med >= 0)
     fmt::print("latency touch onset -> first FPGA frame on the host: median {:.0f} us over {} presses\n",
                lat_med, fpga_lat.size());

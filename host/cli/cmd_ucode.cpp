@@ -10,8 +10,16 @@
 //     every clock (default 0). It stops at a jump to itself (the halt idiom),
 //     at a wait no event can end, or after N clocks; --trace prints every
 //     instruction.
+//   eskin ucode build SCENE.yaml [--out DIR] [--clk-mhz F]
+//     the DTMF top's build for a scene (hls/dtmf_top_config.h's plan at
+//     the given clock, default the UP5K's): writes DIR/NAME.ucode.hex and
+//     DIR/NAME.krom.hex (NAME = the scene's file stem; rtl/ucode/dtmf_chain.fe
+//     assembled with the scene's constants) and prints every Verilog
+//     parameter of rtl/dtmf_top.v as NAME=VALUE, one per line, for a
+//     synthesis script (scripts/fit_check.sh).
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <memory>
@@ -23,6 +31,11 @@
 #include "eskin/skin_config.h"
 #include "hls/frame_engine.h"
 #include "hls/frame_engine_asm.h"
+#include "hls/dtmf_ucode.h"
+#include "sim/dtmf_top_spec.h"
+#include "sim/scene.h"
+
+#include <filesystem>
 
 namespace {
 
@@ -38,6 +51,7 @@ using Engine = eskin::hls::FrameEngine<RunConfig>;
 
 struct UcodeArgs {
   std::string file, out, list, krom;
+  double clk_mhz = eskin::hls::kDtmfTopClkHz / 1e6;
   std::vector<std::string> defines;
   int iw = 12;
   bool trace = false;
@@ -147,6 +161,23 @@ int run_run(const UcodeArgs& a) {
   return 0;
 }
 
+int run_build(const UcodeArgs& a) {
+  const eskin::sim::Scene scene = eskin::sim::load_scene(a.file);  // names the bad field
+  const long clk = std::lround(a.clk_mhz * 1e6);
+  eskin::hls::DtmfTopPlan plan;
+  try {
+    plan = eskin::hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(scene, clk));
+  } catch (const std::invalid_argument& e) {
+    throw eskin::ConfigError(a.file, e.what());
+  }
+  const std::string dir = std::filesystem::absolute(a.out.empty() ? "." : a.out).string();
+  std::filesystem::create_directories(dir);
+  const std::string name = std::filesystem::path(a.file).stem().string();
+  for (const auto& p : eskin::hls::write_dtmf_top_build(plan, dir, name))
+    fmt::print("{}={}\n", p.name, p.value);
+  return 0;
+}
+
 std::function<int()> setup_ucode(CLI::App& app) {
   auto args = std::make_shared<UcodeArgs>();
   CLI::App* sub = app.add_subcommand("ucode", "frame_engine microcode: assemble, run on the model");
@@ -167,8 +198,13 @@ std::function<int()> setup_ucode(CLI::App& app) {
   rn->add_option("--krom", args->krom, "KROM contents ($readmemh image)");
   rn->add_option("--events", args->events, "Events raised in every clock (a 16-bit mask)")
       ->capture_default_str();
-  return [args, as] {
+  CLI::App* bd = sub->add_subcommand("build", "Write the DTMF top's microcode and constants for a scene");
+  bd->add_option("scene", args->file, "Scene (.yaml)")->required();
+  bd->add_option("--out", args->out, "Directory for NAME.ucode.hex and NAME.krom.hex (default .)");
+  bd->add_option("--clk-mhz", args->clk_mhz, "FPGA clock the plan is made for")->capture_default_str();
+  return [args, as, bd] {
     try {
+      if (bd->parsed()) return run_build(*args);
       return as->parsed() ? run_asm(*args) : run_run(*args);
     } catch (const fa::AsmError& e) {
       throw eskin::ConfigError("microcode", e.what());

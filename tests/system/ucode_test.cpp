@@ -1,4 +1,4 @@
-// `eskin ucode asm|run` as a user runs them: real processes and files. The
+// `eskin ucode asm|run|build` as a user runs them: real processes and files. The
 // expected words are packed by hand from docs/frame_engine.md's encoding
 // table; the expected register values are worked out here from the program.
 #include <gtest/gtest.h>
@@ -119,6 +119,43 @@ TEST(Ucode, BadInputFailsNamingFileLineAndWhatWasExpected) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("--iw: expected 4..12, got 13"), std::string::npos) << r.out;
   fs::remove_all(d);
+}
+
+// `eskin ucode build`: the DTMF top's build of a scene. The expected
+// parameters follow from the scene and docs/fpga.md, not from the code:
+// neuroskin2 has 3 + 3 carriers off bin centres (demixing adds the DC
+// channel: KS = 7), 35 kHz sampling and 1 ms frames (STEP = 35), and the
+// UP5K's clock is 12 MHz x 3/2.
+TEST(Ucode, BuildWritesTheScenesImagesAndPrintsTheTopsParameters) {
+  const fs::path d = dir() / "build";
+  const std::string scene = ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml";
+  Result r = sh("ucode build " + scene + " --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* kv : {"CLK_HZ=18000000\n", "KS=7\n", "N=32\n", "STEP=35\n", "SAMPLE_HZ=35000\n"})
+    EXPECT_NE(r.out.find(kv), std::string::npos) << kv << " in\n" << r.out;
+  const fs::path ucode = d / "neuroskin2.ucode.hex", krom = d / "neuroskin2.krom.hex";
+  EXPECT_NE(r.out.find("UCODE_HEX=\"" + ucode.string() + "\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("KROM_HEX=\"" + krom.string() + "\""), std::string::npos) << r.out;
+  // Both images are $readmemh files of 32-bit words, one per line.
+  for (const fs::path& f : {ucode, krom}) {
+    std::istringstream in(read(f));
+    std::string line;
+    int words = 0;
+    while (std::getline(in, line)) {
+      ASSERT_EQ(line.size(), 8u) << f << ":" << words + 1;
+      ASSERT_EQ(line.find_first_not_of("0123456789abcdef"), std::string::npos) << f << ":" << words + 1;
+      ++words;
+    }
+    EXPECT_GT(words, 100) << f;
+  }
+  r = sh("ucode build " + scene + " --out " + d.string() + " --clk-mhz 96");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("CLK_HZ=96000000\n"), std::string::npos) << r.out;
+  write(d / "bad.yaml", "skin: {rows: x}\n");
+  r = sh("ucode build " + (d / "bad.yaml").string() + " --out " + d.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("bad.yaml:"), std::string::npos) << r.out;
+  fs::remove_all(d.parent_path());
 }
 
 }  // namespace
