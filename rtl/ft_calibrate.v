@@ -70,7 +70,7 @@ module ft_calibrate #(
 
   assign in_ready = (state == S_IDLE);
   wire take = in_valid && in_ready;
-  wire [8:0] rel = {1'b0, in_id} - 9'(ID_BASE);
+  wire [8:0] rel = {1'b0, in_id} - ID_BASE[8:0];
   wire mine = !rel[8] && rel[7:0] < 8'd3;
   wire [1:0] s = rel[1:0];
   wire [3:0] b3 = {1'b0, s, 1'b0} + {2'b00, s};  // 3 s: the sensor's first input
@@ -82,7 +82,7 @@ module ft_calibrate #(
 
   // The product of the entry read last cycle and its input.
   wire signed [47:0] prod = c_q * db[col_q];
-  wire signed [51:0] acc_next = ((col_q == 4'd0) ? 52'sd0 : acc) + 52'(prod);
+  wire signed [51:0] acc_next = ((col_q == 4'd0) ? 52'sd0 : acc) + {{4{prod[47]}}, prod};
   wire signed [51:0] rounded = (acc_next + (52'sd1 <<< (C_FRAC - 1))) >>> C_FRAC;
   wire [31:0] w = (rounded > 52'sd2147483647) ? 32'h7FFFFFFF :
                   (rounded < -52'sd2147483648) ? 32'h80000000 : rounded[31:0];

@@ -58,7 +58,7 @@ module hall_baseline #(
   endgenerate
 
   localparam integer CW = CAPTURE_LOG2 + 1;
-  localparam [CW-1:0] FULL = CW'(1) << CAPTURE_LOG2;
+  localparam [CW-1:0] FULL = {1'b1, {CAPTURE_LOG2{1'b0}}};
 
   reg signed [31:0] sum_x [0:NS-1], sum_y [0:NS-1], sum_z [0:NS-1];
   reg signed [15:0] base_x [0:NS-1], base_y [0:NS-1], base_z [0:NS-1];
@@ -68,8 +68,8 @@ module hall_baseline #(
   assign in_ready = !out_valid || out_ready;
   wire take = in_valid && in_ready;
 
-  wire [8:0] rel = {1'b0, in_id} - 9'(ID_BASE);
-  wire in_range = !rel[8] && (rel[7:0] < 8'(NS));
+  wire [8:0] rel = {1'b0, in_id} - ID_BASE[8:0];
+  wire in_range = !rel[8] && ({1'b0, rel[7:0]} < NS[8:0]);
   wire [SW-1:0] s = rel[SW-1:0];
   wire no_data = (in_flags & 8'h78) != 8'd0;
   wire use_tok = in_range && !no_data;
@@ -101,9 +101,9 @@ module hall_baseline #(
     end
   endfunction
 
-  wire signed [31:0] nsx = sum_x[s] + 32'(v0);
-  wire signed [31:0] nsy = sum_y[s] + 32'(v1);
-  wire signed [31:0] nsz = sum_z[s] + 32'(v2);
+  wire signed [31:0] nsx = sum_x[s] + {{15{v0[16]}}, v0};
+  wire signed [31:0] nsy = sum_y[s] + {{15{v1[16]}}, v1};
+  wire signed [31:0] nsz = sum_z[s] + {{15{v2[16]}}, v2};
 
   // A set_sensor that names no sensor is ignored.
   wire set_ok;
@@ -111,7 +111,7 @@ module hall_baseline #(
     if (NS == (1 << SW)) begin : g_set_all
       assign set_ok = 1'b1;
     end else begin : g_set_some
-      assign set_ok = {1'b0, set_sensor} < (SW+1)'(NS);
+      assign set_ok = {1'b0, set_sensor} < NS[SW:0];
     end
   endgenerate
 
@@ -169,9 +169,9 @@ module hall_baseline #(
           out_id <= in_id;
           out_t <= in_t;
           out_flags <= in_flags;
-          out_dx <= sat16(18'(v0) - 18'(base_x[s]));
-          out_dy <= sat16(18'(v1) - 18'(base_y[s]));
-          out_dz <= sat16(18'(v2) - 18'(base_z[s]));
+          out_dx <= sat16({v0[16], v0} - {{2{base_x[s][15]}}, base_x[s]});
+          out_dy <= sat16({v1[16], v1} - {{2{base_y[s][15]}}, base_y[s]});
+          out_dz <= sat16({v2[16], v2} - {{2{base_z[s][15]}}, base_z[s]});
         end
       end
     end

@@ -71,7 +71,7 @@ module hall_cmd #(
   wire is_r = HAS_BASELINE != 0 && typ == T_RECAPTURE;
   wire [15:0] want_len = is_c ? 16'd6 : is_b ? 16'd4 : 16'd0;
   wire idx_ok = is_c ? (pay[0] < 8'd6 && pay[1] < 8'd9) :
-                is_b ? ({1'b0, pay[0]} < 9'(NS) && pay[1] < 8'd3) : 1'b1;
+                is_b ? ({1'b0, pay[0]} < NS[8:0] && pay[1] < 8'd3) : 1'b1;
   wire [7:0] reason = !(is_c || is_b || is_r) ? 8'd1 : (len != want_len) ? 8'd2 :
                       !idx_ok ? 8'd3 : 8'd0;
 
