@@ -28,8 +28,8 @@
 // takes commands on uart_rxd (uart_rx -> cmd_decoder -> hall_cmd:
 // HALL_SET_BASELINE, HALL_RECAPTURE, and HALL_LOAD_C with FT = 1) and sends
 // a HALL_DECODE_STATUS packet (type 0x16: the decoding's and the commands'
-// counters) with every HALL_BUS_STATUS and after the next frame following a
-// rejected command. Without DELTAS there is nothing to command: uart_rxd
+// counters) with every HALL_BUS_STATUS and, after a rejected command, at
+// the end of the frame packets being sent (or of the next frame's). Without DELTAS there is nothing to command: uart_rxd
 // is not used.
 // FT = 1 (needs DELTAS) adds ft_calibrate on sensors FT_ID .. FT_ID+2 (seed
 // 002): W = C dB with C loaded by HALL_LOAD_C; each frame that completes a

@@ -371,6 +371,97 @@ TEST(HallTop, DeltasFollowEveryFrameAndEqualTheHlsBaseline) {
   EXPECT_GE(deltas, 16u * 3);  // frames past the 16-reading capture carry deltas
 }
 
+// Commands through the top (the seed-000 build with its decoding): once the
+// baseline is captured, HALL_SET_BASELINE (sensor 5, z, 1000 LSB) and later
+// HALL_RECAPTURE come in over the UART, each sent when a frame's
+// HALL_SAMPLES has been decoded: the buses read the next round about 1 ms
+// later and a command frame takes 50 us, so each takes effect between two
+// frames. Checks:
+//  * every HALL_DELTAS equals hls::HallBaseline given the same commands
+//    between the same frames, bit for bit;
+//  * independently of the kernel: after the set, sensor 5's dz is its raw
+//    z code (two's complement at these registers) minus 1000; after the
+//    recapture every sensor has exactly 16 frames without a delta (the
+//    capture, CAPTURE_LOG2 4) and then deltas again;
+//  * a HALL_LOAD_C (this build has no ft_calibrate) is rejected as an
+//    unknown type (reason 1) and answered at the end of the frame packets
+//    being sent by a HALL_DECODE_STATUS counting 2 accepted, 1 rejected.
+TEST(HallTop, BaselineCommandsOverTheUartTakeEffectBetweenFrames) {
+  const auto sc = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/hall_000_skin.yaml");
+  const auto spec = eskin::sim::hall_top_spec(sc.hall.config);
+  const eskin::sim::HallWorld world(sc.hall);
+  HallBoard<Vhall_top_deltas> b(world, sc.hall.config, spec);
+  eskin::link::LinkEncoder e;
+  auto frames_seen = [&] {
+    size_t n = 0;
+    for (const auto& p : b.packets) n += p.type == eskin::link::kHallSamples;
+    return n;
+  };
+  auto send_after_frame = [&](size_t f, const std::vector<uint8_t>& cmd) {
+    while (frames_seen() < f) b.run(500);
+    b.line.send(cmd);
+  };
+  constexpr size_t kSet = 20, kRecap = 24, kBad = 44, kEnd = 47;
+  send_after_frame(kSet, eskin::link::hall_set_baseline(e, 5, 2, 1000));
+  send_after_frame(kRecap, eskin::link::hall_recapture(e));
+  const uint8_t bad_seq = e.next_seq();
+  send_after_frame(kBad, eskin::link::hall_load_c(e, 0, 0, 1));
+  while (frames_seen() < kEnd) b.run(500);
+  b.run(kConvCyc / 2);  // the last frame's HALL_DELTAS
+
+  eskin::hls::HallBaseline<16, 4> k;
+  size_t frame = 0, statuses = 0;
+  std::array<int, 16> no_delta_after_recap{};
+  for (size_t i = 0; i + 1 < b.packets.size(); ++i) {
+    const Packet& p = b.packets[i];
+    if (p.type == eskin::link::kHallDecodeStatus) {
+      ++statuses;
+      // Rejected while frame kBad's HALL_DELTAS was on the line: answered
+      // at the end of that frame's packets.
+      EXPECT_EQ(frame, kBad);
+      EXPECT_EQ(b.packets[i - 1].type, eskin::link::kHallDeltas);
+      EXPECT_EQ(p.hall.status.cmd_accepted, 2);
+      EXPECT_EQ(p.hall.status.cmd_rejected, 1);
+      EXPECT_EQ(p.hall.status.last_reject_type, eskin::link::kCmdHallLoadC);
+      EXPECT_EQ(p.hall.status.last_reject_reason, 1);
+      EXPECT_EQ(p.hall.status.last_reject_seq, bad_seq);
+    }
+    if (p.type != eskin::link::kHallSamples) continue;
+    if (frame == kSet) k.set(5, 2, 1000);
+    if (frame == kRecap) k.recapture();
+    ++frame;
+    const Packet& q = b.packets[i + 1];
+    ASSERT_EQ(q.type, eskin::link::kHallDeltas) << "packet " << i + 1;
+    for (size_t s = 0; s < p.hall_samples.size(); ++s) {
+      const HallSample& h = p.hall_samples[s];
+      eskin::hls::HallSampleToken t;
+      t.id = h.id, t.flags = h.flags, t.x = h.x, t.y = h.y, t.z = h.z;
+      eskin::hls::HallDeltaToken want;
+      const bool has = k.push(t, want);
+      const auto& got = q.hall.deltas[s];
+      ASSERT_EQ(bool(got.flags & 0x20), !has) << "frame " << frame << " sensor " << s;
+      if (has) {
+        ASSERT_EQ(got.dx, want.d[0]) << "frame " << frame << " sensor " << s;
+        ASSERT_EQ(got.dy, want.d[1]) << "frame " << frame << " sensor " << s;
+        ASSERT_EQ(got.dz, want.d[2]) << "frame " << frame << " sensor " << s;
+      }
+      if (s == 5 && frame > kSet && frame <= kRecap) {
+        EXPECT_TRUE(has) << "frame " << frame;
+        EXPECT_EQ(got.dz, int16_t(h.z) - 1000) << "frame " << frame;
+      }
+      if (frame > kRecap && !has) {
+        EXPECT_TRUE(h.has_data()) << "frame " << frame << " sensor " << s;
+        ++no_delta_after_recap[s];
+      }
+    }
+  }
+  EXPECT_EQ(frame, kEnd);
+  EXPECT_EQ(statuses, 1u);
+  for (int s = 0; s < 16; ++s) EXPECT_EQ(no_delta_after_recap[size_t(s)], 16) << "sensor " << s;
+  for (auto& bus : b.buses)
+    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+}
+
 // A scene's field seen from `t0` on (the bench starts at time 0).
 struct ShiftedField : eskin::sim::HallFieldSource {
   const eskin::sim::HallFieldSource& src;
@@ -384,8 +475,8 @@ struct ShiftedField : eskin::sim::HallFieldSource {
 // Seed 002 (MagTac) through the FPGA: the hall_top build generated for the
 // scene (1 bus of 3 sensors, hall_baseline, ft_calibrate, command path).
 // The 6x9 C, fitted by the golden chain (eskin calibrate), is loaded by 54
-// HALL_LOAD_C commands over the UART; a rejected command is answered by a
-// HALL_DECODE_STATUS after the next frame. Checks:
+// HALL_LOAD_C commands over the UART, then a bad one (row 6), which is
+// answered by a HALL_DECODE_STATUS. Checks:
 //  * every WRENCH6 equals hls::FtCalibrate (C loaded the same) run on the
 //    HALL_DELTAS records of its frame, bit for bit, and follows them;
 //  * HALL_DECODE_STATUS counts 54 accepted and 1 rejected command, with the
