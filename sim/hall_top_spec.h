@@ -24,8 +24,8 @@ struct HallTopSpec {
   // Decoding inside hall_top: hall_baseline and the command path whenever
   // the scene decodes anything, ft_calibrate (on slots ft_id..ft_id+2) for
   // `wrench`. hall_decouple and force_curve are not in hall_top (UP5K area,
-  // docs/hall.md): the host decodes those scenes from HALL_DELTAS; `locate`
-  // is host-side by design.
+  // docs/hall.md): those scenes are decoded on the host; `locate` is
+  // host-side by design.
   bool deltas = false, ft = false;
   int ft_id = 0;
 
