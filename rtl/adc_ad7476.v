@@ -48,6 +48,18 @@ module adc_ad7476 #(
     input  wire              clear       // zero `overruns` (CLEAR_COUNTERS)
 );
   localparam integer PERIOD = (CLK_HZ + SAMPLE_HZ / 2) / SAMPLE_HZ;
+  // The AD7476A's limits (header): f_SCLK = CLK_HZ / (2 H) <= 20 MHz,
+  // t2 = H clocks >= 10 ns, tQUIET = (PERIOD - 31 H) clocks >= 86 ns and
+  // tACQ = (PERIOD - 28 H) clocks >= 250 ns (ceil(CLK_HZ * t) clocks; kHz
+  // keeps the products in 32 bits).
+  localparam integer CLK_KHZ = CLK_HZ / 1000;
+  generate
+    if (NCH < 1 || SCLK_DIV < 1 || SAMPLE_HZ < 1 || CLK_HZ > 40_000_000 * SCLK_DIV ||
+        SCLK_DIV * 100_000 < CLK_KHZ || (PERIOD - 31 * SCLK_DIV) * 1_000_000 < CLK_KHZ * 86 ||
+        (PERIOD - 28 * SCLK_DIV) * 1_000_000 < CLK_KHZ * 250) begin : g_bad_params
+      adc_ad7476_illegal_parameters u_stop ();  // no such module: stops elaboration
+    end
+  endgenerate
   localparam integer PW = $clog2(PERIOD);
   localparam integer HW = (SCLK_DIV > 1) ? $clog2(SCLK_DIV) : 1;
   localparam [PW-1:0] P_LAST = PERIOD[PW-1:0] - 1'b1;

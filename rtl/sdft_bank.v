@@ -67,6 +67,16 @@ module sdft_bank #(
     output reg  [ACC_W-1:0] out_im,     // signed window sum
     output reg              out_last
 );
+  // The width rules of hls/sdft_bank.h's static_asserts: no window sum can
+  // overflow (N * 2^(XW-1+FB) < 2^(ACC_W-1)), k fits K_W bits.
+  generate
+    if (K_MAX < 1 || K_MAX > 256 || K_MAX > (1 << K_W) || N < 2 || N > 65536 || XW < 2 || XW > 24 ||
+        CW < 3 || CW > 24 || TW < 3 || TW > 14 || ACC_W > 32 || FB < 0 || FB > CW - 2 ||
+        ACC_W - XW - FB < 1 || N >= (1 << (ACC_W - XW - FB))) begin : g_bad_params
+      sdft_bank_illegal_parameters u_stop ();  // no such module: stops elaboration
+    end
+  endgenerate
+
   localparam integer KB = (K_MAX > 1) ? $clog2(K_MAX) : 1;  // carrier address
   localparam integer KD = 1 << KB;                          // RAM depth
   localparam integer NB = (N > 1) ? $clog2(N) : 1;          // window address

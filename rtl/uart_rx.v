@@ -29,6 +29,15 @@ module uart_rx #(
     output reg        overrun
 );
   localparam integer CPB = (CLK_HZ + BAUD / 2) / BAUD;
+  // At least 2 clocks per bit (HALF >= 1), and the rounded bit period within
+  // 3 % of the baud rate: the stop bit is sampled 9.5 bits after the start
+  // edge, so 3 % drifts 0.29 bit and leaves 0.2 bit for sampling jitter.
+  generate
+    if (BAUD < 1 || CPB < 2 || 100 * (CLK_HZ > CPB * BAUD ? CLK_HZ - CPB * BAUD : CPB * BAUD - CLK_HZ) >
+        3 * CPB * BAUD) begin : g_bad_params
+      uart_rx_illegal_parameters u_stop ();  // no such module: stops elaboration
+    end
+  endgenerate
   localparam integer HALF = CPB / 2;
   localparam integer CW = (CPB > 2) ? $clog2(CPB) : 1;
   localparam [CW-1:0] CNT_LAST = CPB[CW-1:0] - 1'b1;
