@@ -30,3 +30,26 @@ add_test(NAME synth.hall_top_002
   COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ice40.sh hall_top ${hall_002_synth}
     --out ${CMAKE_BINARY_DIR}/synth/hall_top_002)
 set_tests_properties(synth.hall_top_002 PROPERTIES LABELS synth TIMEOUT 600)
+# Every Hall module stops an illegal parameter set at elaboration, naming
+# the rule it broke (one set per module; module|parameters|the stop's name).
+set(hall_illegal_sets
+  "hall_top|-GFT=1|hall_top_FT_needs_DELTAS"                       # F/T without the baseline
+  "hall_cmd|-GHAS_FT=1 -GHAS_BASELINE=0|hall_cmd_HAS_FT_needs_HAS_BASELINE"
+  "hall_baseline|-GNS=65|illegal_parameter_NS_must_be_1_to_64"
+  "ft_calibrate|-GC_FRAC=31|illegal_parameter_C_FRAC_must_be_1_to_30"
+  "force_curve|-GNB=2|illegal_parameter_NB_must_be_3_to_32"
+  "hall_decouple|-GID=256|illegal_parameter_ID_must_be_0_to_255"
+  "i2c_master|-GSCL_HZ=1000000|i2c_master_SCL_HZ_above_400kHz_is_not_supported"
+  "mlx90393_sequencer|-GNS=65|mlx90393_sequencer_NS_must_be_1_to_64")
+foreach(set ${hall_illegal_sets})
+  string(REPLACE "|" ";" parts "${set}")
+  list(GET parts 0 mod)
+  list(GET parts 1 params)
+  list(GET parts 2 stop)
+  separate_arguments(params)
+  add_test(NAME lint.${mod}_rejects_illegal_parameters
+    COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module ${mod} ${params}
+      ${CMAKE_SOURCE_DIR}/rtl/${mod}.v)
+  set_tests_properties(lint.${mod}_rejects_illegal_parameters PROPERTIES LABELS lint
+    PASS_REGULAR_EXPRESSION "${stop}")
+endforeach()
