@@ -1,5 +1,7 @@
 #include "sim/scene.h"
 
+#include "sim/scene_reader.h"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -14,16 +16,7 @@ namespace eskin::sim {
 
 // ---------------------------------------------------------------- stimuli
 
-double Press::envelope(double t) const {
-  double u = t - t_start_s;
-  if (u < 0) return 0;
-  if (u < ramp_s) return u / ramp_s;
-  u -= ramp_s;
-  if (u < hold_s) return 1;
-  u -= hold_s;
-  if (u < release_s) return 1 - u / release_s;
-  return 0;
-}
+double Press::envelope(double t) const { return trapezoid(t, t_start_s, ramp_s, hold_s, release_s); }
 
 double Slide::envelope(double t) const {
   double u = t - t_start_s;
@@ -81,198 +74,7 @@ SceneError::SceneError(std::string file, int line, int col, std::string field,
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> d(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) d[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diag = d[0];
-    d[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      size_t up = d[j];
-      d[j] = std::min({d[j] + 1, d[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return d[b.size()];
-}
-
-// Reads typed values out of YAML nodes, remembering where each field was so
-// that errors found later (eskin::validate) still point at a line.
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& field,
-                         const std::string& what) const {
-    int line = 0, col = 0;
-    if (at.IsDefined()) {
-      YAML::Mark m = at.Mark();
-      if (!m.is_null()) line = m.line + 1, col = m.column + 1;
-    }
-    if (line == 0) {
-      // Fall back to the closest enclosing field we saw.
-      auto [l, c] = where(field);
-      line = l, col = c;
-    }
-    throw SceneError(file_, line, col, field, what);
-  }
-
-  // The location of `field` or of its closest recorded parent.
-  std::pair<int, int> where(std::string field) const {
-    while (true) {
-      auto it = marks_.find(field);
-      if (it != marks_.end()) return it->second;
-      size_t cut = field.find_last_of(".[");
-      if (cut == std::string::npos || cut == 0) return {0, 0};
-      field.resize(cut);
-    }
-  }
-
-  void note(const YAML::Node& n, const std::string& field) {
-    YAML::Mark m = n.Mark();
-    if (!m.is_null()) marks_[field] = {m.line + 1, m.column + 1};
-  }
-
-  static std::string got(const YAML::Node& n) {
-    if (!n.IsDefined() || n.IsNull()) return "nothing";
-    if (n.IsSequence()) return "a list";
-    if (n.IsMap()) return "a mapping";
-    return "'" + n.Scalar() + "'";
-  }
-
-  // A mapping whose keys are all in `allowed` (typos are caught here).
-  void mapping(const YAML::Node& n, const std::string& field,
-               const std::vector<std::string>& allowed) {
-    if (!n.IsMap()) fail(n, field, "expected a mapping, got " + got(n));
-    note(n, field);
-    std::vector<std::string> seen;
-    for (const auto& kv : n) {
-      std::string key = kv.first.IsScalar() ? kv.first.Scalar() : "?";
-      std::string path = field.empty() ? key : field + "." + key;
-      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-        std::string list, best;
-        size_t best_d = 3;
-        for (const auto& a : allowed) {
-          list += (list.empty() ? "" : ", ") + a;
-          size_t d = edit_distance(key, a);
-          if (d < best_d) best_d = d, best = a;
-        }
-        fail(kv.first, path,
-             "expected one of " + list + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
-                 ", got unknown key '" + key + "'");
-      }
-      if (std::find(seen.begin(), seen.end(), key) != seen.end())
-        fail(kv.first, path, "expected each key once, got a second '" + key + "'");
-      seen.push_back(key);
-      note(kv.second, path);
-    }
-  }
-
-  double number(const YAML::Node& n, const std::string& field) {
-    double v = 0;
-    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v) || !std::isfinite(v))
-      fail(n, field, "expected a number, got " + got(n));
-    return v;
-  }
-
-  long long integer(const YAML::Node& n, const std::string& field) {
-    long long v = 0;
-    if (!n.IsScalar() || !YAML::convert<long long>::decode(n, v))
-      fail(n, field, "expected an integer, got " + got(n));
-    return v;
-  }
-
-  bool boolean(const YAML::Node& n, const std::string& field) {
-    bool v = false;
-    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v))
-      fail(n, field, "expected true or false, got " + got(n));
-    return v;
-  }
-
-  std::string text(const YAML::Node& n, const std::string& field) {
-    if (!n.IsScalar()) fail(n, field, "expected text, got " + got(n));
-    return n.Scalar();
-  }
-
-  // A number in [lo, hi] (inclusive unless open_lo / open_hi).
-  double ranged(const YAML::Node& n, const std::string& field, double lo, double hi,
-                bool open_lo = false, const std::string& range = "") {
-    double v = number(n, field);
-    bool ok = (open_lo ? v > lo : v >= lo) && v <= hi;
-    if (!ok) {
-      std::string r = range;
-      if (r.empty())
-        r = std::isinf(hi) ? (open_lo ? "> " : ">= ") + num(lo)
-                           : (open_lo ? "(" : "[") + num(lo) + ", " + num(hi) + "]";
-      fail(n, field, "expected " + r + ", got " + num(v));
-    }
-    return v;
-  }
-
-  int int_ranged(const YAML::Node& n, const std::string& field, long long lo, long long hi) {
-    long long v = integer(n, field);
-    if (v < lo || v > hi)
-      fail(n, field, "expected an integer in " + std::to_string(lo) + ".." + std::to_string(hi) +
-                         ", got " + std::to_string(v));
-    return int(v);
-  }
-
-  std::vector<double> numbers(const YAML::Node& n, const std::string& field) {
-    if (!n.IsSequence()) fail(n, field, "expected a list of numbers, got " + got(n));
-    std::vector<double> v;
-    for (size_t i = 0; i < n.size(); ++i) {
-      std::string f = field + "[" + std::to_string(i) + "]";
-      note(n[i], f);
-      v.push_back(number(n[i], f));
-    }
-    return v;
-  }
-
-  // A two-element list [a, b].
-  std::pair<YAML::Node, YAML::Node> pair(const YAML::Node& n, const std::string& field,
-                                         const std::string& shape) {
-    if (!n.IsSequence() || n.size() != 2) fail(n, field, "expected " + shape + ", got " + got(n));
-    return {n[0], n[1]};
-  }
-
-  // Converts a ConfigError from eskin::validate into a located SceneError.
-  [[noreturn]] void rethrow(const ConfigError& e) const {
-    std::string what = e.what();
-    const std::string head = e.field() + ": ";
-    if (what.compare(0, head.size(), head) == 0) what = what.substr(head.size());
-    auto [line, col] = where(e.field());
-    throw SceneError(file_, line, col, e.field(), what);
-  }
-
-  const std::string& file() const { return file_; }
-
- private:
-  std::string file_;
-  std::map<std::string, std::pair<int, int>> marks_;
-};
-
-YAML::Node parse_yaml(const std::string& text, const std::string& file) {
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw SceneError(file, e.mark.line + 1, e.mark.column + 1, "(syntax)",
-                     "expected valid YAML, got: " + e.msg);
-  }
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path, 0, 0, "(file)", std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using namespace scene_detail;
 
 // ---------------------------------------------------------------- sections
 
@@ -581,9 +383,10 @@ Scene parse_scene(const std::string& text, const std::string& file) {
   const YAML::Node root = parse_yaml(text, file);
   if (!root.IsMap()) r.fail(root, "(scene)", "expected a mapping of scene fields, got " + r.got(root));
   r.mapping(root, "", {"name", "seed", "duration_s", "skin", "decoder", "neuron", "stimuli",
-                       "outputs"});
-  for (const char* k : {"duration_s", "skin"})
-    if (!root[k]) r.fail(root, k, "expected a value (required), got nothing");
+                       "outputs", "hall"});
+  if (!root["duration_s"]) r.fail(root, "duration_s", "expected a value (required), got nothing");
+  if (!root["skin"] && !root["hall"])
+    r.fail(root, "skin", "expected a skin: (DTMF) or hall: (magnetic) section, got neither");
 
   Scene sc;
   sc.file = file;
@@ -593,6 +396,16 @@ Scene parse_scene(const std::string& text, const std::string& file) {
         !YAML::convert<uint64_t>::decode(s, sc.seed))
       r.fail(s, "seed", "expected an integer >= 0, got " + r.got(s));
   }
+  sc.has_skin = bool(root["skin"]);
+  if (!sc.has_skin) {
+    // A Hall-only scene: the DTMF-only sections have nothing to act on.
+    for (const char* k : {"decoder", "neuron", "stimuli", "outputs"})
+      if (root[k]) r.fail(root[k], k, std::string("expected ") + k + " only with a skin: section, got it without one");
+    sc.duration_s = r.ranged(root["duration_s"], "duration_s", 0, 1e6, true);
+    sc.has_hall = true;
+    sc.hall = read_hall(r, root["hall"], sc.duration_s);
+    return sc;
+  }
   sc.decoder = read_decoder(r, root["decoder"]);
   sc.skin = read_skin(r, root["skin"], sc.decoder);
   validate_all(r, sc.skin, &sc.decoder);
@@ -601,6 +414,10 @@ Scene parse_scene(const std::string& text, const std::string& file) {
                            "(0, " + num(1e9 / sc.skin.adc.rate_hz) + "] s (at most 1e9 samples)");
   if (root["stimuli"] && !root["stimuli"].IsNull()) read_stimuli(r, root["stimuli"], sc);
   sc.outputs = read_outputs(r, root["outputs"]);
+  if (root["hall"]) {
+    sc.has_hall = true;
+    sc.hall = read_hall(r, root["hall"], sc.duration_s);
+  }
   return sc;
 }
 

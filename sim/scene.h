@@ -1,5 +1,6 @@
-// A scene: one DTMF skin, its decoder and neuron settings, the stimuli over
-// time and the outputs wanted. Loaded from YAML (format: docs/scenes.md) and
+// A scene: a DTMF skin with its decoder and neuron settings, and/or a
+// magnetic (Hall) skin (sim/hall_scene.h); the stimuli over time and the
+// outputs wanted. Loaded from YAML (format: docs/scenes.md) and
 // fully validated before anything runs: every error names the file, the
 // line and column, the field path and what was expected.
 #pragma once
@@ -11,6 +12,7 @@
 
 #include "eskin/neuron_config.h"
 #include "eskin/skin_config.h"
+#include "sim/hall_scene.h"
 
 namespace eskin::sim {
 
@@ -55,12 +57,15 @@ struct Scene {
   std::string name;
   uint64_t seed = 1;
   double duration_s = 0;
+  bool has_skin = true;   // false: a Hall-only scene (no skin: section)
   SkinConfig skin;        // carriers always resolved (also for `carriers: auto`)
   DecoderConfig decoder;
   NeuronConfig neuron;
   std::vector<Press> presses;
   std::vector<Slide> slides;
   Outputs outputs;
+  bool has_hall = false;  // a hall: section (magnetic skin) was given
+  HallScene hall;
 };
 
 // what(): "FILE:LINE:COL: FIELD: expected ..., got ...". line/col are 1-based

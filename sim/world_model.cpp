@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace eskin::sim {
 namespace {
@@ -34,6 +35,8 @@ std::vector<int> cells_near_segment(double x0, double y0, double x1, double y1, 
 
 WorldModel::WorldModel(const Scene& scene)
     : scene_(scene), noise_rng_(scene.seed ^ 0x9E3779B97F4A7C15ULL), noise_(0.0, 1.0) {
+  if (!scene_.has_skin)
+    throw std::invalid_argument(scene_.file + ": the DTMF world model needs a skin: section (this scene has only hall:)");
   const SkinConfig& skin = scene_.skin;
   const int rows = skin.rows, cols = skin.cols;
   total_ = size_t(std::llround(scene_.duration_s * skin.adc.rate_hz));

@@ -10,10 +10,12 @@
 
 #include "cli/command.h"
 #include "cli/csv_fields.h"
+#include "cli/hall_chain.h"
 #include "host/golden/decode_score.h"
 #include "host/golden/golden_decoder.h"
 #include "host/golden/izhikevich_layer.h"
 #include "host/golden/sdft_bank.h"
+#include "sim/hall_world.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
 
@@ -26,10 +28,18 @@ struct GoldenArgs {
   std::string variant;
   int hop = 0;
   bool no_ghost = false;
+  int hall_osr = -1, hall_dig_filt = -1;
 };
 
 int run_golden(const GoldenArgs& a) {
   sim::Scene scene = sim::load_scene(a.scene);
+  if (scene.has_hall) {
+    fmt::print("scene {} ({}): magnetic skin\n", scene.name, a.scene);
+    apply_speed(scene.hall.config, a.hall_osr, a.hall_dig_filt);
+    const sim::HallWorld hall(scene.hall);
+    run_hall_golden(hall, scene.duration_s, scene.seed, a.out);
+    if (!scene.has_skin) return 0;
+  }
   if (!a.variant.empty()) scene.decoder.variant = dft_variant_from_string(a.variant);
   if (a.hop > 0) scene.decoder.hop = a.hop;
   validate(scene.decoder, scene.skin);
@@ -138,6 +148,11 @@ std::function<int()> setup(CLI::App& app) {
                   "recursive|damped|exact (what the FPGA did before demixing)|ls");
   sub->add_option("--hop", args->hop, "override decoder.hop (frames every HOP samples)");
   sub->add_flag("--no-ghost", args->no_ghost, "report taxels without ghost correction");
+  sub->add_option("--hall-osr", args->hall_osr, "Hall scenes: override the MLX90393 OSR (0..3)")
+      ->check(CLI::Range(0, 3));
+  sub->add_option("--hall-dig-filt", args->hall_dig_filt,
+                  "Hall scenes: override the MLX90393 DIG_FILT (0..7)")
+      ->check(CLI::Range(0, 7));
   return [args] { return run_golden(*args); };
 }
 

@@ -91,6 +91,18 @@ bool parse_payload(Packet& p, std::string* why) {
       s.samples = le32(&b[24]);
       return true;
     }
+    case kHallSamples:
+      if (n % 10) return fail(why, "hall samples: payload length must be a multiple of 10");
+      for (size_t i = 0; i < n; i += 10)
+        p.hall_samples.push_back(
+            {b[i], b[i + 1], le16(&b[i + 2]), le16(&b[i + 4]), le16(&b[i + 6]), le16(&b[i + 8])});
+      return true;
+    case kHallBusStatus:
+      if (n % 10) return fail(why, "hall bus status: payload length must be a multiple of 10");
+      for (size_t i = 0; i < n; i += 10)
+        p.hall_buses.push_back({le16(&b[i]), le16(&b[i + 2]), le16(&b[i + 4]), le16(&b[i + 6]),
+                                le16(&b[i + 8])});
+      return true;
     case kCmdSetCarrierInc:
       if (n != 5) return fail(why, "set_carrier_inc: payload length must be 5");
       p.cmd_index = b[0];
@@ -121,8 +133,11 @@ bool parse_payload(Packet& p, std::string* why) {
     case kCmdClearCounters:
       if (n != 0) return fail(why, "command: payload must be empty");
       return true;
-    default:
-      return fail(why, "unknown packet type");
+    default: {
+      bool known = false;
+      const bool ok = parse_hall_payload(p.type, b, p.hall, known, why);
+      return known ? ok : fail(why, "unknown packet type");
+    }
   }
 }
 

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "host/link/hall_packets.h"
+
 namespace eskin::link {
 
 // Packet types. FPGA -> host below 0x80, host -> FPGA commands from 0x80.
@@ -29,6 +31,8 @@ enum PacketType : uint8_t {
   kTaxelsSparse = 0x03,  // n x {row u8, col u8, value u16}
   kSpikes = 0x04,        // n x {dt u16, layer u8, neuron u16}
   kStatus = 0x05,        // fixed 28-byte counter block (StatusBlock)
+  kHallSamples = 0x10,   // n x HallSample (10 bytes): one frame of Hall sensor readings
+  kHallBusStatus = 0x20, // n x HallBusStatus (10 bytes): per-I2C-bus counters
   kCmdSetCarrierInc = 0x81,   // k u8, inc u32
   kCmdSetThreshold = 0x82,    // id u8, value u16
   kCmdSetNeuron = 0x83,       // id u8, value s32
@@ -59,6 +63,21 @@ uint16_t crc16_ccitt_false(const uint8_t* data, size_t n, uint16_t crc = 0xFFFF)
 
 struct SparseTaxel { uint8_t row = 0, col = 0; uint16_t value = 0; };
 struct SpikeEvent { uint16_t dt = 0; uint8_t layer = 0; uint16_t neuron = 0; };
+// One MLX90393 reading in a HALL_SAMPLES frame (rtl/hall_top.v). x, y, z
+// are the device's codes (format per RES/TCMP: common/eskin/mlx90393_config.h);
+// t16 is the low 16 bits of the µs time the reading arrived.
+struct HallSample {
+  enum Flag : uint8_t { kSatX = 1, kSatY = 2, kSatZ = 4, kMissing = 8, kError = 16,
+                        kReply = 32, kBus = 64, kRecovered = 128 };
+  static constexpr uint8_t kNoData = kMissing | kError | kReply | kBus;
+  uint8_t id = 0, flags = 0;
+  uint16_t t16 = 0, x = 0, y = 0, z = 0;
+  bool has_data() const { return (flags & kNoData) == 0; }
+};
+// Counters of one I2C bus (mlx90393_sequencer), saturating at 0xFFFF.
+struct HallBusStatus {
+  uint16_t nacks = 0, status_errors = 0, reply_errors = 0, recoveries = 0, bus_errors = 0;
+};
 
 // Status packet payload, all fields little endian on the wire in this order.
 struct StatusBlock {
@@ -91,8 +110,11 @@ struct Packet {
   std::vector<SparseTaxel> sparse;             // kTaxelsSparse
   std::vector<SpikeEvent> spikes;              // kSpikes
   StatusBlock status;                          // kStatus
+  std::vector<HallSample> hall_samples;        // kHallSamples
+  std::vector<HallBusStatus> hall_buses;       // kHallBusStatus
   uint8_t cmd_index = 0;                       // commands with an index
   uint32_t cmd_value = 0;                      // commands with a value (s32 as its bits)
+  HallPayload hall;                            // Hall decoding packets 0x12..0x16, 0x98..0x9C
 };
 
 struct DecoderStats {

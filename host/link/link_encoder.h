@@ -2,7 +2,8 @@
 // commands for the FPGA and, for tests, data packets as the FPGA sends them.
 // Independent of the RTL (rtl/link_framer.v) and of the decoder's CRC and
 // COBS code (table-driven CRC, its own COBS encoder), so a round trip checks
-// two implementations against each other.
+// two implementations against each other. Hall packets and commands
+// (0x11..0x16, 0x98..0x9C): host/link/hall_packets.h.
 #pragma once
 
 #include <cstdint>

@@ -291,3 +291,38 @@ TEST(LinkDecoder, CallbackReceivesPackets) {
   EXPECT_EQ(n, 7);
   EXPECT_EQ(dec.pending(), 0u);
 }
+
+// HALL_SAMPLES (0x10) and HALL_BUS_STATUS (0x20), byte layouts of
+// docs/protocol.md section 8 written out by hand.
+TEST(LinkDecoder, HallPackets) {
+  LinkEncoder enc;
+  LinkDecoder dec;
+  // Two readings: id 3 with X saturated, id 4 missing (no data).
+  const std::vector<uint8_t> samples = {3, 0x01, 0x34, 0x12, 0xFF, 0x7F, 0x02, 0x01, 0x00, 0x80,
+                                        4, 0x08, 0,    0,    0,    0,    0,    0,    0,    0};
+  const std::vector<uint8_t> buses = {1, 0, 2, 0, 3, 0, 4, 0, 0xFF, 0xFF};
+  dec.feed(enc.frame(kHallSamples, 777, samples));
+  dec.feed(enc.frame(kHallBusStatus, 778, buses));
+  dec.feed(enc.frame(kHallSamples, 779, {1, 2, 3}));  // not a multiple of 10
+  Packet p;
+  ASSERT_TRUE(dec.pop(p));
+  ASSERT_EQ(p.hall_samples.size(), 2u);
+  const HallSample& a = p.hall_samples[0];
+  EXPECT_EQ(a.id, 3);
+  EXPECT_EQ(a.t16, 0x1234);
+  EXPECT_EQ(a.x, 0x7FFF);
+  EXPECT_EQ(a.y, 0x0102);
+  EXPECT_EQ(a.z, 0x8000);
+  EXPECT_TRUE(a.has_data());
+  EXPECT_EQ(a.flags & HallSample::kSatX, HallSample::kSatX);
+  EXPECT_FALSE(p.hall_samples[1].has_data());
+  ASSERT_TRUE(dec.pop(p));
+  ASSERT_EQ(p.hall_buses.size(), 1u);
+  EXPECT_EQ(p.hall_buses[0].nacks, 1);
+  EXPECT_EQ(p.hall_buses[0].status_errors, 2);
+  EXPECT_EQ(p.hall_buses[0].reply_errors, 3);
+  EXPECT_EQ(p.hall_buses[0].recoveries, 4);
+  EXPECT_EQ(p.hall_buses[0].bus_errors, 0xFFFF);
+  EXPECT_FALSE(dec.pop(p));
+  EXPECT_EQ(dec.stats().payload_errors, 1u);
+}

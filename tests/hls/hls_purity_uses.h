@@ -80,3 +80,23 @@ template uint32_t eskin::hls::FrameEngine<>::step<eskin::hls::FrameEngineNullIo>
 template uint64_t eskin::hls::FrameEngine<>::run<eskin::hls::FrameEngineNullIo>(
     eskin::hls::FrameEngineNullIo&, uint64_t);
 #endif
+
+#if __has_include("hls/hall_baseline.h")
+#include "hls/hall_baseline.h"
+template class eskin::hls::HallBaseline<16, 4>;
+#endif
+
+#if __has_include("hls/ft_calibrate.h")
+#include "hls/ft_calibrate.h"
+template class eskin::hls::FtCalibrate<16>;
+#endif
+
+#if __has_include("hls/force_curve.h")
+#include "hls/force_curve.h"
+template class eskin::hls::ForceCurve<9, 13, 3>;
+#endif
+
+#if __has_include("hls/hall_decouple.h")
+#include "hls/hall_decouple.h"
+template class eskin::hls::HallDecouple<0>;
+#endif

@@ -3,8 +3,11 @@
 // was expected; good input must produce the documented outputs.
 #include <gtest/gtest.h>
 #include <sndfile.h>
+#include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -214,4 +217,60 @@ TEST(Cli, DecodeFpgaEngineIsTheEnginesPackets) {
   EXPECT_NE(hop.out.find("--hop"), std::string::npos) << hop.out;
 }
 
+// ---- Hall scenes (docs/hall.md)
+
+TEST(Cli, GoldenRunsAHallSceneAndScoresIt) {
+  const fs::path d = tmpdir();
+  const Result r = sh("golden " ESKIN_SOURCE_DIR "/scenes/hall_003_metamaterial.yaml --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("9 sensors on 1 bus(es)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("range 3 (4.8..16.2 N)"), std::string::npos) << r.out;
+  // One NDJSON line per frame after the baseline: 4 s at 487 Hz is 1948 frames.
+  EXPECT_GT(count_lines(d / "hall.ndjson"), 1800u);
+  // An illegal speed setting is refused, naming it.
+  const Result bad = sh("golden " ESKIN_SOURCE_DIR "/scenes/hall_003_metamaterial.yaml --hall-osr 0 --hall-dig-filt 1 --out " + d.string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.out.find("dig_filt"), std::string::npos) << bad.out;
+}
+
+TEST(Cli, CalibrateFitsTheSameMatrixFromRecordedPresses) {
+  const fs::path d = tmpdir();
+  const std::string scene = ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml";
+  const Result sim = sh("calibrate " + scene + " --presses 40 --write-presses " + (d / "p.csv").string() +
+                        " --out " + (d / "sim.yaml").string());
+  ASSERT_EQ(sim.status, 0) << sim.out;
+  const Result rec = sh("calibrate " + scene + " --from " + (d / "p.csv").string() + " --out " + (d / "rec.yaml").string());
+  ASSERT_EQ(rec.status, 0) << rec.out;
+  EXPECT_NE(rec.out.find("from 40 recorded presses"), std::string::npos) << rec.out;
+  // The recording carries fields and wrenches to 1e-6 (uT, N, N*mm), about
+  // 1e-9 of their size; the fit (condition number well under 1e4 here)
+  // moves by far less than 1e-4 of the largest entry: bound 1e-4.
+  const YAML::Node a = YAML::LoadFile((d / "sim.yaml").string())["wrench_matrix"];
+  const YAML::Node b = YAML::LoadFile((d / "rec.yaml").string())["wrench_matrix"];
+  ASSERT_EQ(a.size(), 54u);
+  ASSERT_EQ(b.size(), 54u);
+  double big = 0;
+  for (size_t i = 0; i < 54; ++i) big = std::max(big, std::fabs(a[i].as<double>()));
+  for (size_t i = 0; i < 54; ++i) EXPECT_NEAR(a[i].as<double>(), b[i].as<double>(), 1e-4 * big) << i;
+  EXPECT_EQ(count_lines(d / "p.csv"), 41u);
+  // A malformed recording names its file and line.
+  std::ofstream(d / "bad.csv") << "b1x,b1y\n1,2,3\n";
+  const Result bad = sh("calibrate " + scene + " --from " + (d / "bad.csv").string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.out.find("bad.csv:2: expected 15 numbers"), std::string::npos) << bad.out;
+}
+
+TEST(Cli, LocateWritesContactsOfTheSeed000Scene) {
+  const fs::path d = tmpdir();
+  const Result r = sh("locate " ESKIN_SOURCE_DIR "/scenes/hall_000_skin.yaml --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("table: 500x500 entries at 0.44 mm"), std::string::npos) << r.out;
+  EXPECT_GT(count_lines(d / "contacts.csv"), 2000u);
+  // Seed 000 has nothing for calibrate (its table is built by locate).
+  const Result none = sh("calibrate " ESKIN_SOURCE_DIR "/scenes/hall_000_skin.yaml");
+  EXPECT_NE(none.status, 0);
+  EXPECT_NE(none.out.find("use eskin locate"), std::string::npos) << none.out;
+}
+
 }  // namespace
+

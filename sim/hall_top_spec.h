@@ -1,0 +1,117 @@
+// rtl/hall_top.v's parameters for a Hall scene: buses, sensors per bus,
+// addresses, TCA9548A channels, MLX90393 register words and the waits the
+// sequencer needs (computed from the datasheet timing formula), as
+// Verilator/Yosys -G overrides. Sensor s of the FPGA is sensor k of bus b at
+// s = b * NSB + k; `slot` maps the scene's sensor index to it.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "eskin/hall_config.h"
+#include "eskin/mlx90393_config.h"
+
+namespace eskin::sim {
+
+struct HallTopSpec {
+  int nb = 0, nsb = 0;
+  std::vector<int> addr, mux_addr, mux_ch;  // per FPGA sensor slot
+  std::vector<int> slot;                    // scene sensor -> FPGA slot
+  uint16_t reg0 = 0, reg1 = 0, reg2 = 0;
+  long conv_cyc = 0, stale_cyc = 0;
+  // Decoding inside hall_top: hall_baseline and the command path whenever
+  // the scene decodes anything, ft_calibrate (on slots ft_id..ft_id+2) for
+  // `wrench`. hall_decouple and force_curve are not in hall_top (UP5K area,
+  // docs/hall.md): those scenes are decoded on the host; `locate` is
+  // host-side by design.
+  bool deltas = false, ft = false;
+  int ft_id = 0;
+
+  // Packs one field per slot, slot 0 in the low bits, as a Verilog literal.
+  static std::string packed(const std::vector<int>& v, int bits) {
+    const int n = int(v.size()) * bits;
+    std::string hex((n + 3) / 4, '0');
+    for (int i = 0; i < n; ++i) {
+      const int bit = (v[i / bits] >> (i % bits)) & 1;
+      if (!bit) continue;
+      char& c = hex[hex.size() - 1 - i / 4];
+      const int d = (c <= '9' ? c - '0' : c - 'a' + 10) | (1 << (i % 4));
+      c = char(d < 10 ? '0' + d : 'a' + d - 10);
+    }
+    return std::to_string(n) + "'h" + hex;
+  }
+  std::vector<std::string> verilog_params() const {
+    char r[64];
+    std::vector<std::string> p = {"-GNB=" + std::to_string(nb), "-GNSB=" + std::to_string(nsb),
+                                  "-GADDR=" + packed(addr, 7),
+                                  "-GMUX_ADDR=" + packed(mux_addr, 7),
+                                  "-GMUX_CH=" + packed(mux_ch, 3)};
+    std::snprintf(r, sizeof r, "-GREG0=16'h%04x", reg0);
+    p.push_back(r);
+    std::snprintf(r, sizeof r, "-GREG1=16'h%04x", reg1);
+    p.push_back(r);
+    std::snprintf(r, sizeof r, "-GREG2=16'h%04x", reg2);
+    p.push_back(r);
+    p.push_back("-GCONV_CYC=" + std::to_string(conv_cyc));
+    p.push_back("-GSTALE_CYC=" + std::to_string(stale_cyc));
+    return p;
+  }
+  // The decoding's overrides (none for a scene that decodes nothing).
+  std::vector<std::string> decode_params() const {
+    std::vector<std::string> p;
+    if (deltas) p.push_back("-GDELTAS=1");
+    if (ft) p.push_back("-GFT=1"), p.push_back("-GFT_ID=" + std::to_string(ft_id));
+    return p;
+  }
+};
+
+// Throws ConfigError (naming the field) when the scene's buses cannot be
+// built: hall_top gives every bus the same number of sensors.
+inline HallTopSpec hall_top_spec(const HallConfig& h, double clk_hz = 12e6) {
+  HallTopSpec s;
+  s.nb = h.bus_count();
+  std::vector<std::vector<int>> on_bus(s.nb);
+  for (size_t i = 0; i < h.sensors.size(); ++i) on_bus[h.sensors[i].bus].push_back(int(i));
+  s.nsb = s.nb ? int(on_bus[0].size()) : 0;
+  for (int b = 0; b < s.nb; ++b)
+    if (int(on_bus[b].size()) != s.nsb)
+      throw ConfigError("hall.sensors", "bus " + std::to_string(b) + " has " +
+                                            std::to_string(on_bus[b].size()) +
+                                            " sensors, bus 0 has " + std::to_string(s.nsb) +
+                                            ": hall_top needs the same number on every bus");
+  s.slot.assign(h.sensors.size(), 0);
+  for (int b = 0; b < s.nb; ++b)
+    for (int k = 0; k < s.nsb; ++k) {
+      const HallSensor& hs = h.sensors[on_bus[b][k]];
+      s.slot[on_bus[b][k]] = b * s.nsb + k;
+      s.addr.push_back(hs.i2c_address);
+      s.mux_addr.push_back(hs.mux_address < 0 ? 0 : hs.mux_address);
+      s.mux_ch.push_back(hs.mux_address < 0 ? 0 : hs.mux_channel);
+    }
+  mlx90393::Config c = h.mlx;
+  c.trig_int_sel = true;  // INT pin = DRDY
+  c.comm_mode = 3;        // I2C only
+  s.reg0 = c.reg0();
+  s.reg1 = c.reg1();
+  s.reg2 = c.reg2();
+  // Single mode waits the conversion with 20 % for the oscillator's spread;
+  // burst mode reads a sensor anyway 1.5 periods into a round.
+  s.conv_cyc = long(std::ceil(mlx90393::conversion_us(c, mlx90393::kXYZ) * 1.2 * clk_hz / 1e6));
+  s.stale_cyc =
+      long(std::ceil(mlx90393::burst_period_us(c, mlx90393::kXYZ) * 1.5 * clk_hz / 1e6));
+  s.deltas = !h.decode.empty();
+  s.ft = h.wants(HallDecode::Wrench);
+  if (s.ft) {
+    // The wrench reads the scene's first three sensors: consecutive slots.
+    s.ft_id = s.slot.size() >= 3 ? s.slot[0] : -1;
+    for (int i = 0; i < 3; ++i)
+      if (s.ft_id < 0 || s.slot[size_t(i)] != s.ft_id + i)
+        throw ConfigError("hall.sensors", "the wrench's sensors 0, 1, 2 must be consecutive "
+                                          "on one bus for hall_top's ft_calibrate");
+  }
+  return s;
+}
+
+}  // namespace eskin::sim
