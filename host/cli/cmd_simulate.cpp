@@ -19,6 +19,8 @@
 #include "host/golden/decode_score.h"
 #include "host/golden/golden_decoder.h"
 #include "host/golden/sdft_bank.h"
+#include "host/fpga/board.h"
+#include "host/fpga/flow.h"
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
 #include "host/report/simulate_report.h"
@@ -33,6 +35,30 @@ namespace eskin::cli {
 namespace {
 
 using link::Packet;
+
+// The scene's FPGA build on the virtual board, which models the
+// iCEBreaker: the default scene's build at 18 MHz, any other at the
+// slowest clock of the board's PLL at which the core keeps up with the
+// scene's frames, as `eskin bitstream` chooses it (host/fpga/flow.h: the
+// frame engine's measured load on the scene's samples).
+vboard::FpgaBuild board_build(const sim::Scene& scene) {
+  vboard::FpgaBuild b = vboard::fpga_build_for(scene);  // names a bad field
+  if (b.key == "default") return b;
+  fpga::CoreClock cc;
+  try {
+    cc = fpga::choose_core_clock(fpga::find_board("icebreaker"), scene, fpga::LoadPolicy::Scene);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError("skin", e.what());
+  }
+  if (!cc.budget.ok()) {
+    std::string why;
+    for (const auto& p : cc.budget.problems) why += (why.empty() ? "" : "; ") + p;
+    throw ConfigError("skin", fmt::format("no clock of the iCEBreaker's PLL keeps the FPGA top up "
+                                          "with this scene (it needs at least {:.1f} MHz): {}",
+                                          double(cc.core_min_hz) / 1e6, why));
+  }
+  return vboard::fpga_build_for(scene, "", cc.plan.spec.clk_hz, cc.plan.spec.baud);
+}
 
 struct Args {
   std::string scene, out = "eskin-out", trace;
@@ -124,7 +150,7 @@ std::string ms(double v) { return fmt::format("{:.3f}", v); }
 
 int run_simulate(const Args& a) {
   const sim::Scene scene = sim::load_scene(a.scene);  // a bad scene fails here, before anything runs
-  const vboard::FpgaBuild build = vboard::fpga_build_for(scene);
+  const vboard::FpgaBuild build = board_build(scene);
   const std::string exe = vboard::board_executable(
       build, [](const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); });
   const SkinConfig& skin = scene.skin;

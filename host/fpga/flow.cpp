@@ -118,37 +118,49 @@ std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text) {
   return out;
 }
 
+CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
+                            long clk_hz) {
+  CoreClock c;
+  c.plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene));
+  // The scene's samples as the top takes them: 12-bit codes minus 2048.
+  std::vector<int32_t> x;
+  sim::WorldModel world(scene);
+  for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
+  c.load = measure_engine_load(c.plan, x);
+  c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
+                             ? c.load.stress_total() : c.load.scene_clocks);
+  c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
+  auto budget_at = [&](const Clocking& k) {
+    c.plan.spec.clk_hz = k.clk_hz;
+    c.plan.spec.baud = k.baud;
+    return hls::dtmf_top_clock_budget(c.plan, k.clk_hz, c.engine_clocks);
+  };
+  c.clocking = choose_clock(b, 0, clk_hz);  // the asked-for or the board's default
+  if (clk_hz == 0)
+    for (const auto& k : board_clocks(b))
+      if (k.clk_hz >= std::max(c.core_min_hz, b.default_clk_hz) && budget_at(k).ok()) {
+        c.clocking = k;
+        break;
+      }
+  c.budget = budget_at(c.clocking);
+  return c;
+}
+
 FlowReport run_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt) {
   FlowReport r;
   r.board = b.name;
   r.device = b.device;
   r.scene = scene.name;
   r.logic_resource = b.logic_resource;
-  r.spec = sim::dtmf_top_spec(scene);
-  hls::DtmfTopPlan plan = hls::make_dtmf_top_plan(r.spec);
+  CoreClock cc = choose_core_clock(b, scene, opt.load, opt.clk_hz);
+  hls::DtmfTopPlan& plan = cc.plan;
+  const Clocking& clk = cc.clocking;
   r.step = plan.step;
-  // The scene's samples as the top takes them: 12-bit codes minus 2048.
-  std::vector<int32_t> x;
-  sim::WorldModel world(scene);
-  for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
-  r.load = measure_engine_load(plan, x);
+  r.load = cc.load;
   r.policy = opt.load;
-  r.engine_clocks = long(opt.load == LoadPolicy::Stress || r.load.scene_frames == 0
-                             ? r.load.stress_total() : r.load.scene_clocks);
-  r.core_min_hz = hls::dtmf_top_min_clock_hz(plan, r.engine_clocks);
-  auto budget_at = [&](const Clocking& c) {
-    plan.spec.clk_hz = c.clk_hz;
-    plan.spec.baud = c.baud;
-    return hls::dtmf_top_clock_budget(plan, c.clk_hz, r.engine_clocks);
-  };
-  Clocking clk = choose_clock(b, 0, opt.clk_hz);  // the asked-for or the board's default
-  if (opt.clk_hz == 0)
-    for (const auto& c : board_clocks(b))
-      if (c.clk_hz >= std::max(r.core_min_hz, b.default_clk_hz) && budget_at(c).ok()) {
-        clk = c;
-        break;
-      }
-  r.budget = budget_at(clk);
+  r.engine_clocks = cc.engine_clocks;
+  r.core_min_hz = cc.core_min_hz;
+  r.budget = cc.budget;
   r.spec = plan.spec;
   const hls::DtmfTopSpec& spec = r.spec;
   if (!r.budget.ok()) {

@@ -63,6 +63,23 @@ struct FlowReport {
   const Resource* resource(const std::string& name) const;
 };
 
+// The core's clock for a scene on board `b`: the plan, the engine's load
+// (engine_load.h) under `policy`, and the slowest of the board's clocks
+// (not below its default) at which every budget holds, or exactly
+// `clk_hz` when > 0. `budget.ok()` is false when no clock keeps up (the
+// board's default or the asked-for clock is returned with the problems).
+// The plan's spec carries the chosen clock and baud rate.
+struct CoreClock {
+  hls::DtmfTopPlan plan;
+  EngineLoad load;
+  long engine_clocks = 0;  // what the policy makes the clock carry
+  long core_min_hz = 0;    // no slower clock keeps up (a lower bound)
+  Clocking clocking;
+  hls::DtmfTopClockBudget budget;
+};
+CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
+                            long clk_hz = 0);
+
 // Builds `spec` (its clk_hz and baud are chosen here) on board `b`: the
 // plan, the engine's load (engine_load.h), the clock, the microcode and
 // constant files and the core wrapper in OUT, then the tools. Never throws

@@ -22,9 +22,11 @@
 namespace eskin::vboard {
 namespace {
 
-hls::DtmfTopPlan plan_of(const sim::Scene& scene, long clk_hz) {
+hls::DtmfTopPlan plan_of(const sim::Scene& scene, long clk_hz, long baud = 3000000) {
   try {
-    return hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, clk_hz));
+    hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene, clk_hz);
+    spec.baud = baud;
+    return hls::make_dtmf_top_plan(spec);
   } catch (const std::invalid_argument& e) {
     // "skin.rows/cols: expected ..." -> a ConfigError on that field.
     const std::string what = e.what();
@@ -51,9 +53,10 @@ std::vector<std::string> FpgaBuild::verilator_args() const {
   return a;
 }
 
-FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir, long clk_hz) {
+FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir, long clk_hz,
+                         long baud) {
   FpgaBuild b;
-  b.plan = plan_of(scene, clk_hz);
+  b.plan = plan_of(scene, clk_hz, baud);
   const std::string mine = integer_params(b.plan);
   static const std::string defaults = integer_params(
       plan_of(sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml"), hls::kDtmfTopClkHz));

@@ -28,13 +28,14 @@ struct FpgaBuild {
   std::vector<std::string> verilator_args() const;           // -Gname=value ...
 };
 
-// The build for `scene` at FPGA clock `clk_hz` (default: the UP5K's);
+// The build for `scene` at FPGA clock `clk_hz` and UART rate `baud`
+// (default: the UP5K's 18 MHz, 3 Mbaud);
 // throws ConfigError naming the field when the top cannot be built for it.
 // With a `dir`, its microcode and constants are written there
 // (KEY.ucode.hex, KEY.krom.hex, each replaced atomically) and `params` name
 // them; without, only the plan and key are derived.
 FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir = "",
-                         long clk_hz = hls::kDtmfTopClkHz);
+                         long clk_hz = hls::kDtmfTopClkHz, long baud = 3000000);
 
 // An exclusive lock on one build's files (DIR/KEY.lock, flock): boards of
 // the same build running different scenes hold it from writing their files

@@ -61,7 +61,7 @@ std::string board_executable(const FpgaBuild& b,
   const bool listed = read_text(list).find("(" + target + " ") != std::string::npos;
   if (!listed) {
     std::string line = "eskin_vboard_target(" + target + " " + b.key + " " +
-                       std::to_string(b.plan.spec.clk_hz);
+                       std::to_string(b.plan.spec.clk_hz) + " " + std::to_string(b.plan.spec.baud);
     for (const auto& p : b.params)
       if (p.name != "UCODE_HEX" && p.name != "KROM_HEX") line += " -G" + p.name + "=" + p.value;
     std::ofstream f(list, std::ios::app);

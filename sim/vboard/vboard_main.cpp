@@ -28,8 +28,8 @@
 #ifndef VBOARD_PARAMS_KEY
 #error "VBOARD_PARAMS_KEY: the FPGA parameter set this board is built for"
 #endif
-#ifndef VBOARD_CLK_HZ
-#error "VBOARD_CLK_HZ: the FPGA clock of this board's build"
+#if !defined(VBOARD_CLK_HZ) || !defined(VBOARD_BAUD)
+#error "VBOARD_CLK_HZ, VBOARD_BAUD: the FPGA clock and UART rate of this board's build"
 #endif
 #ifndef VBOARD_BUILD_DIR
 #error "VBOARD_BUILD_DIR: where the model reads KEY.ucode.hex and KEY.krom.hex"
@@ -110,7 +110,7 @@ struct Args {
 
 int run(const Args& a) {
   const eskin::sim::Scene scene = eskin::sim::load_scene(a.scene);
-  const eskin::vboard::FpgaBuild params = eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ);
+  const eskin::vboard::FpgaBuild params = eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ, VBOARD_BAUD);
   if (params.key != VBOARD_PARAMS_KEY)
     throw std::runtime_error(fmt::format(
         "{}: this scene needs the FPGA build '{}', this virtual board is '{}' (run the scene "
@@ -138,7 +138,7 @@ int run(const Args& a) {
   // another board of this build may be about to write its own there.
   std::unique_ptr<eskin::vboard::BuildLock> lock =
       std::make_unique<eskin::vboard::BuildLock>(VBOARD_BUILD_DIR, VBOARD_PARAMS_KEY);
-  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR, VBOARD_CLK_HZ);
+  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR, VBOARD_CLK_HZ, VBOARD_BAUD);
   VerilatedFpga fpga;
   lock.reset();
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz())));
