@@ -26,7 +26,8 @@
 // delta (baseline still capturing, or a reading without data) has x, y, z 0
 // and flag bit 5 (REPLY: not trusted) set. With DELTAS = 1 the top also
 // takes commands on uart_rxd (uart_rx -> cmd_decoder -> hall_cmd:
-// HALL_SET_BASELINE, HALL_RECAPTURE, and HALL_LOAD_C with FT = 1) and sends
+// HALL_SET_BASELINE, HALL_RECAPTURE; HALL_LOAD_C with FT = 1,
+// HALL_SET_DECOUPLE with DECOUPLE = 1, HALL_LOAD_CURVE with CURVE = 1) and sends
 // a HALL_DECODE_STATUS packet (type 0x16: the decoding's and the commands'
 // counters) with every HALL_BUS_STATUS and, after a rejected command, at
 // the end of the frame packets being sent (or of the next frame's). Without DELTAS there is nothing to command: uart_rxd
