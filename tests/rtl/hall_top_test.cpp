@@ -482,6 +482,16 @@ TEST(HallTop, BaselineCommandsOverTheUartTakeEffectBetweenFrames) {
     for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
 }
 
+// A HALL_DECODE_STATUS after `accepted` good commands and one bad one.
+void expect_one_rejected(const eskin::link::HallDecodeStatus& st, int accepted, int type,
+                         int reason, uint8_t seq) {
+  EXPECT_EQ(st.cmd_accepted, accepted);
+  EXPECT_EQ(st.cmd_rejected, 1);
+  EXPECT_EQ(st.last_reject_type, type);
+  EXPECT_EQ(st.last_reject_reason, reason);
+  EXPECT_EQ(st.last_reject_seq, seq);
+}
+
 // A scene's field seen from `t0` on (the bench starts at time 0).
 struct ShiftedField : eskin::sim::HallFieldSource {
   const eskin::sim::HallFieldSource& src;
@@ -545,11 +555,7 @@ TEST(HallTop, Seed002WrenchWithCommandLoadedC) {
     const Packet& p = b.packets[i];
     if (p.type == eskin::link::kHallDecodeStatus) {
       ++statuses;
-      EXPECT_EQ(p.hall.status.cmd_accepted, 54);
-      EXPECT_EQ(p.hall.status.cmd_rejected, 1);
-      EXPECT_EQ(p.hall.status.last_reject_type, eskin::link::kCmdHallLoadC);
-      EXPECT_EQ(p.hall.status.last_reject_reason, 3);
-      EXPECT_EQ(p.hall.status.last_reject_seq, bad_seq);
+      expect_one_rejected(p.hall.status, 54, eskin::link::kCmdHallLoadC, 3, bad_seq);
       EXPECT_EQ(p.hall.status.cmd_crc_errors + p.hall.status.cmd_frame_errors, 0);
       EXPECT_EQ(p.hall.status.ft_skipped, 0);
     }
@@ -669,11 +675,7 @@ TEST(HallTop, Seed001DecouplingWithCommandSetCompensation) {
     const Packet& p = b.packets[i];
     if (p.type == eskin::link::kHallDecodeStatus) {
       ++statuses;
-      EXPECT_EQ(p.hall.status.cmd_accepted, 4);
-      EXPECT_EQ(p.hall.status.cmd_rejected, 1);
-      EXPECT_EQ(p.hall.status.last_reject_type, eskin::link::kCmdHallSetDecouple);
-      EXPECT_EQ(p.hall.status.last_reject_reason, 2);
-      EXPECT_EQ(p.hall.status.last_reject_seq, bad_seq);
+      expect_one_rejected(p.hall.status, 4, eskin::link::kCmdHallSetDecouple, 2, bad_seq);
     }
     if (p.type != eskin::link::kHallDeltas) continue;
     ASSERT_EQ(p.hall.deltas.size(), 1u);
@@ -772,11 +774,7 @@ TEST(HallTop, Seed003ForceCurvesWithCommandLoadedTables) {
     const Packet& p = b.packets[i];
     if (p.type == eskin::link::kHallDecodeStatus) {
       ++statuses;
-      EXPECT_EQ(p.hall.status.cmd_accepted, kNc * kNb * 3);
-      EXPECT_EQ(p.hall.status.cmd_rejected, 1);
-      EXPECT_EQ(p.hall.status.last_reject_type, eskin::link::kCmdHallLoadCurve);
-      EXPECT_EQ(p.hall.status.last_reject_reason, 3);
-      EXPECT_EQ(p.hall.status.last_reject_seq, bad_seq);
+      expect_one_rejected(p.hall.status, kNc * kNb * 3, eskin::link::kCmdHallLoadCurve, 3, bad_seq);
     }
     if (p.type != eskin::link::kHallDeltas) continue;
     ASSERT_TRUE(i + 1 < b.packets.size() && b.packets[i + 1].type == eskin::link::kHallForceCurve)
