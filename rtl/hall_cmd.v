@@ -6,7 +6,12 @@
 //   0x98 HALL_LOAD_C        row u8, col u8, value s32  -> ft_calibrate's C RAM
 //   0x99 HALL_SET_BASELINE  sensor u8, axis u8, value s16 -> hall_baseline
 //   0x9A HALL_RECAPTURE     (none)                      -> hall_baseline
-// A type whose block the build lacks (HAS_FT / HAS_BASELINE 0), or any other
+//   0x9B HALL_LOAD_CURVE    cell u8, index u8, which u8, value s32
+//                                                       -> force_curve's curve RAMs
+//   0x9C HALL_SET_DECOUPLE  k1 s16, c1 s32, k2 s16, c2 s32 -> held here for
+//                           hall_decouple (reset: k 1.0, c 0, the HLS defaults)
+// A type whose block the build lacks (HAS_FT / HAS_BASELINE / HAS_CURVE /
+// HAS_DECOUPLE 0), or any other
 // type, is rejected as unknown: no command is accepted and ignored.
 // Checks, in order: type (reason 1), payload length (2), index range (3).
 // A rejected command changes nothing; it counts in `rejected`, records its
@@ -20,7 +25,12 @@ module hall_cmd #(
     parameter integer NS = 16,           // hall_baseline sensors (set_sensor < NS)
     parameter integer HAS_BASELINE = 1,
     parameter integer HAS_FT = 0,
-    parameter integer SW = (NS > 1) ? $clog2(NS) : 1
+    parameter integer HAS_CURVE = 0,
+    parameter integer HAS_DECOUPLE = 0,
+    parameter integer NC = 1,            // force_curve cells (cell < NC)
+    parameter integer NBP = 13,          // force_curve breakpoints (index < NBP)
+    parameter integer SW = (NS > 1) ? $clog2(NS) : 1,
+    parameter integer CW = (NC > 1) ? $clog2(NC) : 1
 ) (
     input  wire          clk,
     input  wire          rst,
@@ -38,6 +48,17 @@ module hall_cmd #(
     output reg  [1:0]    set_axis,
     output reg  [15:0]   set_value,
     output reg           recapture,
+    // force_curve curve RAMs
+    output reg           t_valid,
+    output reg  [CW-1:0] t_cell,
+    output reg  [4:0]    t_index,
+    output reg  [1:0]    t_which,
+    output reg  [31:0]   t_value,
+    // hall_decouple compensation (held)
+    output reg  [15:0]   dc_k1,
+    output reg  [31:0]   dc_c1,
+    output reg  [15:0]   dc_k2,
+    output reg  [31:0]   dc_c2,
     // report
     output reg  [15:0]   accepted,
     output reg  [15:0]   rejected,
@@ -53,15 +74,22 @@ module hall_cmd #(
     if (HAS_FT != 0 && HAS_BASELINE == 0) begin : g_bad_ft
       hall_cmd_HAS_FT_needs_HAS_BASELINE u_bad ();
     end
+    if ((HAS_CURVE != 0 || HAS_DECOUPLE != 0) && HAS_BASELINE == 0) begin : g_bad_dec
+      hall_cmd_HAS_CURVE_and_HAS_DECOUPLE_need_HAS_BASELINE u_bad ();
+    end
+    if (NC < 1 || NC > 64 || NC > (1 << CW) || NBP < 3 || NBP > 32) begin : g_bad_nc
+      hall_cmd_NC_must_be_1_to_64_and_fit_CW_and_NBP_3_to_32 u_bad ();
+    end
   endgenerate
 
-  localparam [7:0] T_LOAD_C = 8'h98, T_SET_BASELINE = 8'h99, T_RECAPTURE = 8'h9A;
+  localparam [7:0] T_LOAD_C = 8'h98, T_SET_BASELINE = 8'h99, T_RECAPTURE = 8'h9A,
+                   T_LOAD_CURVE = 8'h9B, T_SET_DECOUPLE = 8'h9C;
   localparam [1:0] S_HDR = 2'd0, S_PAY = 2'd1, S_EXEC = 2'd2;
   reg [1:0]  state;
   reg [1:0]  hidx;        // header byte: 0 type, 1 seq, 2 len lo, 3 len hi
   reg [7:0]  typ, seq;
   reg [15:0] len, got;    // payload length, payload bytes taken
-  reg [7:0]  pay [0:5];   // the first 6 payload bytes (the longest command)
+  reg [7:0]  pay [0:11];  // the first 12 payload bytes (the longest command)
 
   assign pop = avail && (state != S_EXEC);
 
@@ -69,10 +97,14 @@ module hall_cmd #(
   wire is_c = HAS_FT != 0 && typ == T_LOAD_C;
   wire is_b = HAS_BASELINE != 0 && typ == T_SET_BASELINE;
   wire is_r = HAS_BASELINE != 0 && typ == T_RECAPTURE;
-  wire [15:0] want_len = is_c ? 16'd6 : is_b ? 16'd4 : 16'd0;
+  wire is_l = HAS_CURVE != 0 && typ == T_LOAD_CURVE;
+  wire is_d = HAS_DECOUPLE != 0 && typ == T_SET_DECOUPLE;
+  wire [15:0] want_len = is_c ? 16'd6 : is_b ? 16'd4 : is_l ? 16'd7 : is_d ? 16'd12 : 16'd0;
   wire idx_ok = is_c ? (pay[0] < 8'd6 && pay[1] < 8'd9) :
-                is_b ? ({1'b0, pay[0]} < NS[8:0] && pay[1] < 8'd3) : 1'b1;
-  wire [7:0] reason = !(is_c || is_b || is_r) ? 8'd1 : (len != want_len) ? 8'd2 :
+                is_b ? ({1'b0, pay[0]} < NS[8:0] && pay[1] < 8'd3) :
+                is_l ? ({1'b0, pay[0]} < NC[8:0] && {1'b0, pay[1]} < NBP[8:0] && pay[2] < 8'd3) :
+                1'b1;
+  wire [7:0] reason = !(is_c || is_b || is_r || is_l || is_d) ? 8'd1 : (len != want_len) ? 8'd2 :
                       !idx_ok ? 8'd3 : 8'd0;
 
   function automatic [15:0] sat_inc(input [15:0] x);
@@ -88,7 +120,16 @@ module hall_cmd #(
       seq <= 8'd0;
       len <= 16'd0;
       got <= 16'd0;
-      for (k = 0; k < 6; k = k + 1) pay[k] <= 8'd0;
+      for (k = 0; k < 12; k = k + 1) pay[k] <= 8'd0;
+      t_valid <= 1'b0;
+      t_cell <= {CW{1'b0}};
+      t_index <= 5'd0;
+      t_which <= 2'd0;
+      t_value <= 32'd0;
+      dc_k1 <= 16'h4000;
+      dc_c1 <= 32'd0;
+      dc_k2 <= 16'h4000;
+      dc_c2 <= 32'd0;
       c_valid <= 1'b0;
       c_row <= 3'd0;
       c_col <= 4'd0;
@@ -108,6 +149,7 @@ module hall_cmd #(
       c_valid <= 1'b0;
       set_valid <= 1'b0;
       recapture <= 1'b0;
+      t_valid <= 1'b0;
       reject <= 1'b0;
       case (state)
         S_HDR:
@@ -126,7 +168,7 @@ module hall_cmd #(
           end
         S_PAY:
           if (pop) begin
-            if (got < 16'd6) pay[got[2:0]] <= head;
+            if (got < 16'd12) pay[got[3:0]] <= head;
             got <= got + 16'd1;
             if (got + 16'd1 == len) state <= S_EXEC;
           end
@@ -148,6 +190,17 @@ module hall_cmd #(
             set_axis <= pay[1][1:0];
             set_value <= {pay[3], pay[2]};
             recapture <= is_r;
+            t_valid <= is_l;
+            t_cell <= pay[0][CW-1:0];
+            t_index <= pay[1][4:0];
+            t_which <= pay[2][1:0];
+            t_value <= {pay[6], pay[5], pay[4], pay[3]};
+            if (is_d) begin
+              dc_k1 <= {pay[1], pay[0]};
+              dc_c1 <= {pay[5], pay[4], pay[3], pay[2]};
+              dc_k2 <= {pay[7], pay[6]};
+              dc_c2 <= {pay[11], pay[10], pay[9], pay[8]};
+            end
           end
           hidx <= 2'd0;
           state <= S_HDR;

@@ -26,7 +26,8 @@
 // delta (baseline still capturing, or a reading without data) has x, y, z 0
 // and flag bit 5 (REPLY: not trusted) set. With DELTAS = 1 the top also
 // takes commands on uart_rxd (uart_rx -> cmd_decoder -> hall_cmd:
-// HALL_SET_BASELINE, HALL_RECAPTURE, and HALL_LOAD_C with FT = 1) and sends
+// HALL_SET_BASELINE, HALL_RECAPTURE; HALL_LOAD_C with FT = 1,
+// HALL_SET_DECOUPLE with DECOUPLE = 1, HALL_LOAD_CURVE with CURVE = 1) and sends
 // a HALL_DECODE_STATUS packet (type 0x16: the decoding's and the commands'
 // counters) with every HALL_BUS_STATUS and, after a rejected command, at
 // the end of the frame packets being sent (or of the next frame's). Without DELTAS there is nothing to command: uart_rxd
@@ -35,8 +36,21 @@
 // 002): W = C dB with C loaded by HALL_LOAD_C; each frame that completes a
 // wrench is followed (after its HALL_DELTAS) by a WRENCH6 packet (type
 // 0x14) whose t is the µs time of the token that completed it.
-// Packet order after a frame: HALL_SAMPLES, HALL_DELTAS, WRENCH6,
-// HALL_BUS_STATUS, HALL_DECODE_STATUS (each only when due).
+// DECOUPLE = 1 (needs DELTAS) adds hall_decouple on sensor DEC_ID (seed
+// 001, gains DEC_GAIN_X/Y/Z UQ16.16 uT/LSB): Rx, Ry, Sz of each of its
+// deltas, with k1, c1, k2, c2 set by HALL_SET_DECOUPLE; each frame with a
+// result is followed by a DECOUPLE3 packet (type 0x13) whose t is the
+// token's µs time.
+// CURVE = 1 (needs DELTAS) adds force_curve on sensors CURVE_ID ..
+// CURVE_ID+NC-1 (seed 003: one cell each, CURVE_NB breakpoints loaded by
+// HALL_LOAD_CURVE, gains CURVE_GAIN_X/Y/Z UQ4.12, range ends LOCK_MN); each
+// frame is followed by a FORCE_CURVE packet (type 0x15) of NC records, a
+// cell without a result in this frame with force 0, t 0 and flag bit 5.
+// force_curve and hall_decouple take one token at a time: the intake waits
+// while either is busy (45 and at most about 250 clocks; tokens come one per
+// I2C reading, about 3000 clocks).
+// Packet order after a frame: HALL_SAMPLES, HALL_DELTAS, DECOUPLE3, WRENCH6,
+// FORCE_CURVE, HALL_BUS_STATUS, HALL_DECODE_STATUS (each only when due).
 // ft_calibrate is idle whenever a token reaches it: it computes for 56
 // clocks after sensor FT_ID+2's token, and the next token of sensors
 // FT_ID..FT_ID+2 comes in the next round, after this frame's packets.
@@ -58,7 +72,21 @@ module hall_top #(
     parameter integer STATUS_EVERY = 64,
     parameter integer DELTAS = 0,
     parameter integer FT = 0,
-    parameter integer FT_ID = 0
+    parameter integer FT_ID = 0,
+    parameter integer DECOUPLE = 0,
+    parameter integer DEC_ID = 0,
+    parameter [31:0] DEC_GAIN_X = 32'd9830,
+    parameter [31:0] DEC_GAIN_Y = 32'd9830,
+    parameter [31:0] DEC_GAIN_Z = 32'd15860,
+    parameter integer CURVE = 0,
+    parameter integer CURVE_ID = 0,
+    parameter integer NC = 1,
+    parameter integer CURVE_NB = 13,
+    parameter integer CURVE_NR = 3,
+    parameter [15:0] CURVE_GAIN_X = 16'd1540,
+    parameter [15:0] CURVE_GAIN_Y = 16'd1540,
+    parameter [15:0] CURVE_GAIN_Z = 16'd2478,
+    parameter [CURVE_NR*32-1:0] LOCK_MN = {32'sd16200, 32'sd4800, 32'sd900}
 ) (
     input  wire              clk,
     input  wire              rst,
@@ -72,13 +100,15 @@ module hall_top #(
 );
   localparam integer NSENS = NB * NSB;
   localparam integer FB = NSENS * 10;  // frame payload bytes
-  localparam integer PMAX = (FB > 25) ? FB : 25;  // longest payload (WRENCH6 25 bytes)
+  localparam integer PMAX0 = (FB > 25) ? FB : 25;  // longest payload (WRENCH6 25 bytes)
+  localparam integer PMAX = (PMAX0 > NC * 11) ? PMAX0 : NC * 11;  // or FORCE_CURVE's
+  localparam integer CW = (NC > 1) ? $clog2(NC) : 1;  // cell index bits
   localparam integer AW = $clog2(PMAX + 1);
   localparam integer BW = (NB > 1) ? $clog2(NB) : 1;
   localparam integer SW = (NSENS > 1) ? $clog2(NSENS) : 1;  // slot index bits
   localparam integer US_DIV = CLK_HZ / 1_000_000;
   localparam [7:0] T_SAMPLES = 8'h10, T_BUS_STATUS = 8'h20, T_DELTAS = 8'h12, T_WRENCH = 8'h14,
-                   T_DECODE_STATUS = 8'h16;
+                   T_DECODE_STATUS = 8'h16, T_DECOUPLE = 8'h13, T_CURVE = 8'h15;
   localparam integer DEC_BYTES = 17;  // HALL_DECODE_STATUS payload
   // Code format per axis (mlx90393_config.h): offset binary 0x8000 with
   // TCMP_EN (REG1[10]) or at RES 2, 0x4000 at RES 3, else two's complement.
@@ -92,6 +122,15 @@ module hall_top #(
     end
     if (FT != 0 && (DELTAS == 0 || FT_ID < 0 || FT_ID + 3 > NSENS)) begin : g_bad_ft
       hall_top_FT_needs_DELTAS_and_sensors_FT_ID_to_FT_ID_plus_2 bad ();
+    end
+    if (DECOUPLE != 0 && (DELTAS == 0 || DEC_ID < 0 || DEC_ID >= NSENS)) begin : g_bad_dc
+      hall_top_DECOUPLE_needs_DELTAS_and_DEC_ID_below_NB_times_NSB bad ();
+    end
+    if (CURVE != 0 && (DELTAS == 0 || CURVE_ID < 0 || NC < 1 || CURVE_ID + NC > NSENS)) begin : g_bad_fc
+      hall_top_CURVE_needs_DELTAS_and_sensors_CURVE_ID_to_CURVE_ID_plus_NC_minus_1 bad ();
+    end
+    if (CURVE == 0 && NC != 1) begin : g_bad_nc
+      hall_top_NC_is_for_CURVE_builds_only bad ();
     end
   endgenerate
 
@@ -147,7 +186,7 @@ module hall_top #(
   endgenerate
 
   // ---- frame buffer (one RAM, byte wide)
-  reg [7:0] fb[0:FB-1];
+  reg [7:0] fb[0:(1 << AW) - 1];  // FB bytes used; the full address range keeps the index width exact
   reg        fb_we;
   reg [AW-1:0] fb_waddr, fb_raddr;
   reg [7:0]  fb_wdata, fb_rdata;
@@ -182,7 +221,7 @@ module hall_top #(
   end
   always @(*) begin
     tr = {NB{1'b0}};
-    if (!emitting && !taking && cand_ok) tr[cand] = 1'b1;
+    if (!emitting && !taking && cand_ok && dc_idle && fc_idle) tr[cand] = 1'b1;
   end
 
   wire [7:0] c_id = tid[cand*8 +: 8];
@@ -190,7 +229,7 @@ module hall_top #(
 
   // ---- decoding: baseline-removed deltas of every token (DELTAS = 1), the
   // command path, and the wrench (FT = 1)
-  reg  [7:0]  fb2[0:FB-1];
+  reg  [7:0]  fb2[0:(1 << AW) - 1];
   reg  [7:0]  fb2_rdata;
   reg         d_have;             // the token being written has a delta
   reg  [47:0] d_xyz;              // its dx, dy, dz
@@ -201,6 +240,12 @@ module hall_top #(
   wire        ft_idle, ft_valid;      // ft_calibrate: in_ready, out_valid
   wire [31:0] ft_t;
   wire [199:0] ft_w;                  // WRENCH6 payload: w0..w5 s32, flags
+  wire        dc_idle, dc_valid;      // hall_decouple: in_ready, out_valid
+  wire [31:0] dc_t;
+  wire [111:0] dc_w;                  // DECOUPLE3 payload: rx, ry, sz s32, valid, flags
+  wire        fc_idle, fc_valid;      // force_curve: in_ready, out_valid
+  wire [87:0] fc_rec;                 // one FORCE_CURVE record
+  wire [CW-1:0] fc_cell;
   generate
     if (DELTAS != 0) begin : g_deltas
       wire [7:0] b_id, b_flags;
@@ -216,6 +261,12 @@ module hall_top #(
       wire [2:0] c_r;
       wire [3:0] c_c;
       wire [31:0] c_d;
+      wire t_v;
+      wire [CW-1:0] t_c;
+      wire [4:0] t_i;
+      wire [1:0] t_w;
+      wire [31:0] t_d, k_c1, k_c2;
+      wire [15:0] k_k1, k_k2;
       hall_baseline #(
           .NS(NSENS), .CAPTURE_LOG2(4), .ID_BASE(0), .OFFSET_X(code_offset(REG2[6:5])),
           .OFFSET_Y(code_offset(REG2[8:7])), .OFFSET_Z(code_offset(REG2[10:9]))
@@ -238,12 +289,56 @@ module hall_top #(
           .clk(clk), .rst(rst), .s_valid(r_valid), .s_ready(r_ready), .s_data(r_data),
           .rx_error(r_ferr | r_ovr), .avail(q_avail), .head(q_head), .pop(q_pop),
           .clear(1'b0), .crc_errors(crc_err), .frame_errors(frm_err), .overflows(ovf));
-      hall_cmd #(.NS(NSENS), .HAS_BASELINE(1), .HAS_FT(FT), .SW(SW)) u_cmd (
+      hall_cmd #(.NS(NSENS), .HAS_BASELINE(1), .HAS_FT(FT), .HAS_CURVE(CURVE),
+                 .HAS_DECOUPLE(DECOUPLE), .NC(NC), .NBP(CURVE_NB), .SW(SW), .CW(CW)) u_cmd (
           .clk(clk), .rst(rst), .avail(q_avail), .head(q_head), .pop(q_pop),
           .c_valid(c_v), .c_row(c_r), .c_col(c_c), .c_value(c_d),
           .set_valid(set_v), .set_sensor(set_s), .set_axis(set_a), .set_value(set_d),
           .recapture(recap), .accepted(acc), .rejected(rej), .last_type(l_type),
-          .last_reason(l_reason), .last_seq(l_seq), .reject(cmd_reject));
+          .last_reason(l_reason), .last_seq(l_seq), .reject(cmd_reject),
+          .t_valid(t_v), .t_cell(t_c), .t_index(t_i), .t_which(t_w), .t_value(t_d),
+          .dc_k1(k_k1), .dc_c1(k_c1), .dc_k2(k_k2), .dc_c2(k_c2));
+
+      if (DECOUPLE != 0) begin : g_dc
+        wire [31:0] rx, ry, sz;
+        wire ok;
+        wire [7:0] fl;
+        hall_decouple #(.ID(DEC_ID), .GAIN_X(DEC_GAIN_X), .GAIN_Y(DEC_GAIN_Y),
+                        .GAIN_Z(DEC_GAIN_Z)) u_dc (
+            .clk(clk), .rst(rst), .in_valid(b_valid), .in_ready(dc_idle), .in_id(b_id),
+            .in_t(b_t), .in_dx(b_xyz[47:32]), .in_dy(b_xyz[31:16]), .in_dz(b_xyz[15:0]),
+            .in_flags(b_flags), .cfg_k1(k_k1), .cfg_c1(k_c1), .cfg_k2(k_k2), .cfg_c2(k_c2),
+            .out_valid(dc_valid), .out_ready(1'b1), .out_t(dc_t), .out_rx(rx), .out_ry(ry),
+            .out_sz(sz), .out_ok(ok), .out_flags(fl));
+        assign dc_w = {fl, 7'd0, ok, sz, ry, rx};
+      end else begin : g_no_dc
+        assign dc_idle = 1'b1;
+        assign dc_valid = 1'b0;
+        assign dc_t = 32'd0;
+        assign dc_w = 112'd0;
+        wire unused_dc = &{1'b0, k_k1, k_c1, k_k2, k_c2};
+      end
+
+      if (CURVE != 0) begin : g_fc
+        wire [7:0] o_cell, o_range, fl;
+        wire [31:0] t, f;
+        force_curve #(.NC(NC), .NB(CURVE_NB), .NR(CURVE_NR), .ID_BASE(CURVE_ID),
+                      .GAIN_X(CURVE_GAIN_X), .GAIN_Y(CURVE_GAIN_Y), .GAIN_Z(CURVE_GAIN_Z),
+                      .LOCK_MN(LOCK_MN), .CW(CW)) u_fc (
+            .clk(clk), .rst(rst), .in_valid(b_valid), .in_ready(fc_idle), .in_id(b_id),
+            .in_t(b_t), .in_dx(b_xyz[47:32]), .in_dy(b_xyz[31:16]), .in_dz(b_xyz[15:0]),
+            .in_flags(b_flags), .out_valid(fc_valid), .out_ready(1'b1), .out_cell(o_cell),
+            .out_t(t), .out_force_mn(f), .out_range(o_range), .out_flags(fl),
+            .t_valid(t_v), .t_cell(t_c), .t_index(t_i), .t_which(t_w), .t_value(t_d));
+        assign fc_rec = {f, t, fl, o_range, o_cell};
+        assign fc_cell = o_cell[CW-1:0];
+      end else begin : g_no_fc
+        assign fc_idle = 1'b1;
+        assign fc_valid = 1'b0;
+        assign fc_rec = 88'd0;
+        assign fc_cell = {CW{1'b0}};
+        wire unused_fc = &{1'b0, t_v, t_c, t_i, t_w, t_d};
+      end
 
       if (FT != 0) begin : g_ft
         wire [31:0] w0, w1, w2, w3, w4, w5;
@@ -262,7 +357,10 @@ module hall_top #(
         assign ft_t = 32'd0;
         assign ft_w = 200'd0;
         assign ft_skipped = 16'd0;
-        wire unused_ft = &{1'b0, b_id, b_t, b_flags, c_v, c_r, c_c, c_d};
+        wire unused_ft = &{1'b0, c_v, c_r, c_c, c_d};
+        if (DECOUPLE == 0 && CURVE == 0) begin : g_no_use
+          wire unused_b_tok = &{1'b0, b_id, b_t, b_flags};
+        end
       end
       assign dec_status = {l_seq, l_reason, l_type, ovf, frm_err, crc_err, rej, acc, ft_skipped,
                            b_dropped};
@@ -276,6 +374,14 @@ module hall_top #(
       assign ft_valid = 1'b0;
       assign ft_t = 32'd0;
       assign ft_w = 200'd0;
+      assign dc_idle = 1'b1;
+      assign dc_valid = 1'b0;
+      assign dc_t = 32'd0;
+      assign dc_w = 112'd0;
+      assign fc_idle = 1'b1;
+      assign fc_valid = 1'b0;
+      assign fc_rec = 88'd0;
+      assign fc_cell = {CW{1'b0}};
       wire unused_rx = &{1'b0, uart_rxd};
     end
   endgenerate
@@ -379,7 +485,8 @@ module hall_top #(
   wire [7:0]  l_data, l_seq;
 
   // Packet kinds, in the order they follow a frame.
-  localparam [2:0] K_SAMPLES = 3'd0, K_DELTAS = 3'd1, K_WRENCH = 3'd2, K_BUS = 3'd3, K_DEC = 3'd4;
+  localparam [2:0] K_SAMPLES = 3'd0, K_DELTAS = 3'd1, K_DECOUPLE = 3'd2, K_WRENCH = 3'd3,
+                   K_CURVE = 3'd4, K_BUS = 3'd5, K_DEC = 3'd6;
   localparam [2:0] E_IDLE = 3'd0, E_HDR = 3'd1, E_READ = 3'd2, E_WAIT = 3'd3, E_OFFER = 3'd4,
                    E_VEC = 3'd5, E_HOFFER = 3'd6, E_NEXT = 3'd7;
   reg [2:0]  estate;
@@ -392,32 +499,50 @@ module hall_top #(
   reg        w_have;   // a wrench not sent yet
   reg [31:0] w_t;
   reg [199:0] w_vec;
+  reg        dc_have;  // a DECOUPLE3 not sent yet
+  reg [31:0] dc_tq;
+  reg [111:0] dc_vec;
+  reg [NC-1:0] fc_have;     // cells with a result in this frame
+  reg [87:0] fc_recs [0:NC-1];
   wire [NSENS-1:0] all = {NSENS{1'b1}};
   wire frame_done = (got == all) && !taking;
 
   // Register-sourced payloads, padded to one width: byte i at [8i +: 8].
   localparam integer VB0 = (NB * 10 > 25) ? NB * 10 : 25;
-  localparam integer VB = (VB0 > DEC_BYTES) ? VB0 : DEC_BYTES;
+  localparam integer VB1 = (VB0 > DEC_BYTES) ? VB0 : DEC_BYTES;
+  localparam integer VB = (VB1 > NC * 11) ? VB1 : NC * 11;
   localparam integer VW = $clog2(VB);
   wire [VB*8-1:0] v_wrench = (VB*8)'(w_vec);
   wire [VB*8-1:0] v_bus = (VB*8)'(counters);
   wire [VB*8-1:0] v_dec = (VB*8)'(dec_status);
-  wire [VB*8-1:0] v_sel = (e_kind == K_WRENCH) ? v_wrench : (e_kind == K_BUS) ? v_bus : v_dec;
+  wire [VB*8-1:0] v_decouple = (VB*8)'(dc_vec);
+  wire [NC*88-1:0] curve_pay;  // NC records; a cell without a result: force 0, t 0, REPLY
+  genvar c;
+  generate
+    for (c = 0; c < NC; c = c + 1) begin : g_rec
+      assign curve_pay[c*88 +: 88] = fc_have[c] ? fc_recs[c] : {64'd0, 8'h20, 8'd0, 8'(c)};
+    end
+  endgenerate
+  wire [VB*8-1:0] v_curve = (VB*8)'(curve_pay);
+  wire [VB*8-1:0] v_sel = (e_kind == K_WRENCH) ? v_wrench : (e_kind == K_BUS) ? v_bus :
+                          (e_kind == K_DECOUPLE) ? v_decouple : (e_kind == K_CURVE) ? v_curve :
+                          v_dec;
   wire [VW-1:0] v_idx = e_idx[VW-1:0];
 
   // What follows packet e_kind (in E_NEXT): the first kind after it that is
   // due; n_wait while the wrench of this frame is still being computed.
-  wire after_deltas = (e_kind == K_SAMPLES) || (e_kind == K_DELTAS);
-  wire n_wait = (FT != 0) && (e_kind == K_DELTAS) && !ft_idle;
+  wire n_wait = (e_kind == K_DELTAS) && !(ft_idle && dc_idle && fc_idle);
   reg        n_none;
   reg [2:0]  n_kind;
   always @(*) begin
     n_none = 1'b0;
     n_kind = K_DEC;
-    if (e_kind == K_SAMPLES && DELTAS != 0) n_kind = K_DELTAS;
-    else if (after_deltas && w_have) n_kind = K_WRENCH;
-    else if (e_kind != K_BUS && e_kind != K_DEC && per_now) n_kind = K_BUS;
-    else if (e_kind != K_DEC && DELTAS != 0 && (per_now || rej_pend)) n_kind = K_DEC;
+    if (e_kind < K_DELTAS && DELTAS != 0) n_kind = K_DELTAS;
+    else if (e_kind < K_DECOUPLE && dc_have) n_kind = K_DECOUPLE;
+    else if (e_kind < K_WRENCH && w_have) n_kind = K_WRENCH;
+    else if (e_kind < K_CURVE && CURVE != 0) n_kind = K_CURVE;
+    else if (e_kind < K_BUS && per_now) n_kind = K_BUS;
+    else if (e_kind < K_DEC && DELTAS != 0 && (per_now || rej_pend)) n_kind = K_DEC;
     else n_none = 1'b1;
   end
   wire per_due = STATUS_EVERY != 0 && since_status + 16'd1 >= 16'(STATUS_EVERY);
@@ -426,9 +551,11 @@ module hall_top #(
   wire [2:0] s_kind = start_frame ? K_SAMPLES : n_kind;
   wire [15:0] s_len = (s_kind == K_SAMPLES || s_kind == K_DELTAS) ? 16'(FB) :
                       (s_kind == K_WRENCH) ? 16'd25 : (s_kind == K_BUS) ? 16'(NB * 10) :
+                      (s_kind == K_DECOUPLE) ? 16'd14 : (s_kind == K_CURVE) ? 16'(NC * 11) :
                       16'(DEC_BYTES);
   wire [7:0] s_type = (s_kind == K_SAMPLES) ? T_SAMPLES : (s_kind == K_DELTAS) ? T_DELTAS :
                       (s_kind == K_WRENCH) ? T_WRENCH : (s_kind == K_BUS) ? T_BUS_STATUS :
+                      (s_kind == K_DECOUPLE) ? T_DECOUPLE : (s_kind == K_CURVE) ? T_CURVE :
                       T_DECODE_STATUS;
   wire e_from_ram = (e_kind == K_SAMPLES) || (e_kind == K_DELTAS);
 
@@ -452,7 +579,16 @@ module hall_top #(
       w_have <= 1'b0;
       w_t <= 32'd0;
       w_vec <= 200'd0;
+      dc_have <= 1'b0;
+      dc_tq <= 32'd0;
+      dc_vec <= 112'd0;
+      fc_have <= {NC{1'b0}};
     end else begin
+      if (dc_valid) begin
+        dc_vec <= dc_w;
+        dc_tq <= dc_t;
+      end
+      if (fc_valid) fc_have[fc_cell] <= 1'b1;
       if (taking && wbyte == 4'd9) got[tok[72 +: SW]] <= 1'b1;
       if (ft_valid) begin
         w_vec <= ft_w;
@@ -466,7 +602,7 @@ module hall_top #(
       if (start_frame || start_next) begin
         e_kind <= s_kind;
         hdr_type <= s_type;
-        hdr_t <= (s_kind == K_WRENCH) ? w_t : t_us;
+        hdr_t <= (s_kind == K_WRENCH) ? w_t : (s_kind == K_DECOUPLE) ? dc_tq : t_us;
         hdr_len <= s_len;
         h_idx <= 3'd0;
         estate <= E_HDR;
@@ -474,11 +610,13 @@ module hall_top #(
       // A flag set and cleared in one clock stays set: its packet goes later.
       w_have <= ft_valid || (w_have && !(start_next && s_kind == K_WRENCH));
       rej_pend <= cmd_reject || (rej_pend && !(start_next && s_kind == K_DEC));
+      dc_have <= dc_valid || (dc_have && !(start_next && s_kind == K_DECOUPLE));
       case (estate)
         E_IDLE: ;
         E_NEXT:
           if (!n_wait && n_none) begin
             emitting <= 1'b0;
+            fc_have <= {NC{1'b0}};  // every result of this frame has been sent
             estate <= E_IDLE;
           end
         E_HDR: begin
@@ -532,6 +670,9 @@ module hall_top #(
       endcase
     end
   end
+
+  always @(posedge clk)
+    if (fc_valid) fc_recs[fc_cell] <= fc_rec;
 
   link_framer u_framer (
       .clk(clk), .rst(rst), .s_valid(p_valid), .s_ready(p_ready), .s_data(p_data),

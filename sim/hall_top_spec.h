@@ -23,11 +23,17 @@ struct HallTopSpec {
   long conv_cyc = 0, stale_cyc = 0;
   // Decoding inside hall_top: hall_baseline and the command path whenever
   // the scene decodes anything, ft_calibrate (on slots ft_id..ft_id+2) for
-  // `wrench`. hall_decouple and force_curve are not in hall_top (UP5K area,
-  // docs/hall.md): those scenes are decoded on the host; `locate` is
+  // `wrench`, hall_decouple (on slot dec_id) for `decouple`, force_curve (one
+  // cell per slot curve_id..curve_id+nc-1) for `force_curve`; `locate` is
   // host-side by design.
-  bool deltas = false, ft = false;
-  int ft_id = 0;
+  bool deltas = false, ft = false, decouple = false, curve = false;
+  int ft_id = 0, dec_id = 0, curve_id = 0, nc = 1, curve_nb = 0;
+  uint32_t dec_gain[3] = {0, 0, 0};    // UQ16.16 uT/LSB (hls/hall_decouple.h)
+  uint32_t curve_gain[3] = {0, 0, 0};  // UQ4.12 uT/LSB (hls/force_curve.h)
+  std::vector<int> lock_mn;            // the cells' range ends, mN
+  // Breakpoints per range of the force curves eskin's calibration fits
+  // (host/cli/hall_chain.h calibrate_force_curves' default): NB = 4 NR + 1.
+  static constexpr int kCurvePerRange = 4;
 
   // Packs one field per slot, slot 0 in the low bits, as a Verilog literal.
   static std::string packed(const std::vector<int>& v, int bits) {
@@ -63,6 +69,24 @@ struct HallTopSpec {
     std::vector<std::string> p;
     if (deltas) p.push_back("-GDELTAS=1");
     if (ft) p.push_back("-GFT=1"), p.push_back("-GFT_ID=" + std::to_string(ft_id));
+    if (decouple) {
+      p.push_back("-GDECOUPLE=1"), p.push_back("-GDEC_ID=" + std::to_string(dec_id));
+      for (int a = 0; a < 3; ++a)
+        p.push_back(std::string("-GDEC_GAIN_") + "XYZ"[a] + "=32'd" + std::to_string(dec_gain[a]));
+    }
+    if (curve) {
+      p.push_back("-GCURVE=1"), p.push_back("-GCURVE_ID=" + std::to_string(curve_id));
+      p.push_back("-GNC=" + std::to_string(nc));
+      p.push_back("-GCURVE_NB=" + std::to_string(curve_nb));
+      p.push_back("-GCURVE_NR=" + std::to_string(lock_mn.size()));
+      for (int a = 0; a < 3; ++a)
+        p.push_back(std::string("-GCURVE_GAIN_") + "XYZ"[a] + "=16'd" + std::to_string(curve_gain[a]));
+      std::vector<int> rev(lock_mn.rbegin(), lock_mn.rend());  // range 0 in the low bits
+      std::string hex;
+      char w[16];
+      for (int v : rev) std::snprintf(w, sizeof w, "%08x", unsigned(v)), hex += w;
+      p.push_back("-GLOCK_MN=" + std::to_string(32 * lock_mn.size()) + "'h" + hex);
+    }
     return p;
   }
 };
@@ -110,6 +134,41 @@ inline HallTopSpec hall_top_spec(const HallConfig& h, double clk_hz = 12e6) {
       if (s.ft_id < 0 || s.slot[size_t(i)] != s.ft_id + i)
         throw ConfigError("hall.sensors", "the wrench's sensors 0, 1, 2 must be consecutive "
                                           "on one bus for hall_top's ft_calibrate");
+  }
+  s.decouple = h.wants(HallDecode::Decouple);
+  if (s.decouple) {
+    // The decoupling reads the scene's first sensor (the split cell's).
+    if (s.slot.empty()) throw ConfigError("hall.sensors", "decouple needs a sensor");
+    s.dec_id = s.slot[0];
+    for (int a = 0; a < 3; ++a)
+      s.dec_gain[a] = uint32_t(std::lround(mlx90393::sensitivity_uT(h.mlx, a) * 65536));
+  }
+  s.curve = h.wants(HallDecode::ForceCurve);
+  if (s.curve) {
+    // One curve per stack cell, read by the scene's sensors 0 .. nc-1.
+    std::vector<const HallCell*> stacks;
+    for (const auto& c : h.cells)
+      if (c.kind == CellKind::Stack) stacks.push_back(&c);
+    s.nc = int(stacks.size());
+    if (s.nc < 1 || s.nc > int(s.slot.size()))
+      throw ConfigError("hall.cells", "force_curve needs 1 to " + std::to_string(s.slot.size()) +
+                                          " stack cells (one sensor each), got " +
+                                          std::to_string(s.nc));
+    s.curve_id = s.slot[0];
+    for (int i = 0; i < s.nc; ++i)
+      if (s.slot[size_t(i)] != s.curve_id + i)
+        throw ConfigError("hall.sensors", "the force curves' sensors 0 .. " +
+                                              std::to_string(s.nc - 1) +
+                                              " must be consecutive slots for hall_top's force_curve");
+    const auto lock = stacks[0]->stack_lock_forces_n();
+    for (const HallCell* c : stacks)
+      if (c->stack_lock_forces_n() != lock)
+        throw ConfigError("hall.cells", "hall_top's force_curve needs the same range ends in every "
+                                        "stack cell (cell " + c->name + " differs)");
+    for (double f : lock) s.lock_mn.push_back(int(std::lround(f * 1000)));
+    s.curve_nb = int(lock.size()) * HallTopSpec::kCurvePerRange + 1;
+    for (int a = 0; a < 3; ++a)
+      s.curve_gain[a] = uint32_t(std::lround(mlx90393::sensitivity_uT(h.mlx, a) * 4096));
   }
   return s;
 }

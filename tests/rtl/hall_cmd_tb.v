@@ -44,7 +44,15 @@ module hall_cmd_tb #(
       .set_valid(set_valid), .set_sensor(set_sensor), .set_axis(set_axis),
       .set_value(set_value), .recapture(recapture), .accepted(accepted),
       .rejected(rejected), .last_type(last_type), .last_reason(last_reason),
-      .last_seq(last_seq), .reject(reject));
-  wire unused = &{1'b0, frame_errors, overflows};
+      .last_seq(last_seq), .reject(reject), .t_valid(t_v), .t_cell(t_c), .t_index(t_i),
+      .t_which(t_w), .t_value(t_d), .dc_k1(k1), .dc_c1(c1), .dc_k2(k2), .dc_c2(c2));
+  // The curve and decoupling ports (not in this build: HAS_CURVE, HAS_DECOUPLE 0).
+  wire t_v;
+  wire [0:0] t_c;
+  wire [4:0] t_i;
+  wire [1:0] t_w;
+  wire [31:0] t_d, c1, c2;
+  wire [15:0] k1, k2;
+  wire unused = &{1'b0, frame_errors, overflows, t_v, t_c, t_i, t_w, t_d, c1, c2, k1, k2};
 endmodule
 `default_nettype wire
