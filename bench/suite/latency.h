@@ -45,6 +45,10 @@ struct LatencyConfig {
   // Measured by the CI test (tests/system/bench_latency_test.cpp); the
   // others only by the full `eskin bench latency` (simulation time).
   bool ci = true;
+  // TAXELS_SPARSE instead of TAXELS_DENSE: a dense packet of 16x16 taxels
+  // (526 bytes) never fits dtmf_top's 512-byte output FIFO, which takes a
+  // packet whole or drops it.
+  bool sparse_taxels = false;
 };
 // The reference builds (the table to extend when a new top exists).
 const std::vector<LatencyConfig>& latency_configs();
