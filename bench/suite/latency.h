@@ -46,7 +46,7 @@ struct LatencyConfig {
   // others only by the full `eskin bench latency` (simulation time).
   bool ci = true;
   // TAXELS_SPARSE instead of TAXELS_DENSE: a dense packet of 16x16 taxels
-  // (526 bytes) never fits dtmf_top's 512-byte output FIFO, which takes a
+  // (12 + 2 x 256 = 524 bytes) never fits dtmf_top's 512-byte output FIFO, which takes a
   // packet whole or drops it.
   bool sparse_taxels = false;
 };
