@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <initializer_list>
 #include <fstream>
 #include <map>
 #include <numeric>
@@ -22,7 +23,10 @@
 #include "bench/suite/timing.h"
 #include "hls/dtmf_ucode.h"
 #include "host/engine/engine_setup.h"
+#include "host/fpga/engine_load.h"
+#include "host/fpga/scale_table.h"
 #include "sim/dtmf_top_spec.h"
+#include "sim/hall_top_spec.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
 
@@ -31,17 +35,34 @@ namespace fs = std::filesystem;
 namespace eskin::bench {
 
 const std::vector<LatencyConfig>& latency_configs() {
+  using Top = LatencyConfig::Top;
   static const std::vector<LatencyConfig> c = {
       // The UP5K build (iCEBreaker: 12 MHz x 3/2 by the PLL).
       {"3x3", "scenes/neuroskin2.yaml", hls::kDtmfTopClkHz},
       // 100 taxels, two neuron layers each: as tests/rtl/dtmf_top_test.cmake
       // builds it (the engine needs ~80 000 clocks per 1 ms frame).
       {"10x10", "scenes/staggered10x10.yaml", 96000000},
+      // The bitstream flow's 16x16 skin at 35 kS/s (docs/bitstream.md), with
+      // sparse taxels (LatencyConfig::sparse_taxels: the dense packet never
+      // fits the output FIFO). Its engine load (host/fpga/engine_load.h:
+      // stress frame plus the longest command, 227 564 clocks; 214 347 with
+      // dense taxels) needs 227.56 MHz (hls::dtmf_top_min_clock_hz); 228 MHz
+      // is the first whole MHz at which hls::dtmf_top_clock_budget keeps up
+      // (checked by measure_latency). No board here reaches it; Verilator
+      // runs any clock.
+      {"16x16", "scenes/neuroskin2.yaml", 228000000, Top::Dtmf, 16, false, true},
+      // The seed-000 Hall skin (16 MLX90393 on 4 buses) in hall_top as
+      // sim/hall_top_spec.h generates it, from the 12 MHz oscillator.
+      {"hall000", "scenes/hall_000_skin.yaml", 12000000, Top::Hall},
   };
   return c;
 }
 
 namespace {
+
+// Frames the Hall harness runs: 0 and 1 are the configuration round and
+// the first conversion, 2 .. 7 are measured.
+constexpr int kHallFrames = 8;
 
 std::string slurp(const fs::path& p) { return eskin::bench::read_text(p.string()); }
 
@@ -66,34 +87,36 @@ void run_logged(const std::string& cmd, const fs::path& log_file) {
   }
 }
 
+// One Verilator build of a harness around a top.
+struct HarnessBuild {
+  std::string top;                  // module, rtl/<top>.v
+  std::string harness;              // bench/latency/<harness>.cpp
+  std::vector<std::string> g_args;  // "-GNAME=VALUE"
+  std::vector<std::string> deps;    // further files it depends on, relative to the source tree
+  std::vector<fs::path> data;       // files the model reads ($readmemh)
+  std::string ldflags;
+};
+
 // The harness for one parameter set: cached under cache_dir/<hash>.
-fs::path harness_for(const std::vector<hls::VerilogParam>& params, const fs::path& cache_dir,
-                     double& build_seconds) {
-  // The microcode and constants the model reads at construction.
-  std::vector<fs::path> hex;
-  for (const auto& q : params)
-    if (q.name == "UCODE_HEX" || q.name == "KROM_HEX") hex.push_back(q.value.substr(1, q.value.size() - 2));
+fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& build_seconds) {
   const fs::path src = ESKIN_SOURCE_DIR;
-  const fs::path harness = src / "bench/latency/latency_harness.cpp";
+  const fs::path harness = src / "bench/latency" / (hb.harness + ".cpp");
   uint64_t h = fnv1a(slurp(harness));
   std::vector<fs::path> deps;
   for (const auto& e : fs::directory_iterator(src / "rtl"))
     if (e.path().extension() == ".v") deps.push_back(e.path());
   std::sort(deps.begin(), deps.end());
-  for (const char* f : {"tests/rtl/dtmf_top_board.h", "sim/ad7476_model.h", "host/link/link_decoder.h",
-                        "host/link/link_encoder.h"})
-    deps.push_back(src / f);
-  deps.push_back(ESKIN_LINK_LIB);
-  deps.push_back(ESKIN_COMMON_LIB);
+  for (const auto& f : hb.deps) deps.push_back(src / f);
+  for (const char* lib : {ESKIN_LINK_LIB, ESKIN_COMMON_LIB, ESKIN_SIM_LIB}) deps.push_back(lib);
   for (const auto& d : deps) h = fnv1a(d.filename().string() + slurp(d), h);
-  for (const auto& d : hex) h = fnv1a(slurp(d), h);
+  for (const auto& d : hb.data) h = fnv1a(slurp(d), h);
   std::string args;
-  for (const auto& a : hls::verilator_g_args(params)) {
+  for (const auto& a : hb.g_args) {
     h = fnv1a(a, h);
     args += " " + quote(a);
   }
   const fs::path dir = cache_dir / fmt::format("{:016x}", h);
-  const fs::path exe = dir / "obj" / "latency_harness";
+  const fs::path exe = dir / "obj" / hb.harness;
   build_seconds = 0;
   if (fs::exists(exe)) return exe;
   // Built aside and renamed into place: concurrent runs never see half a build.
@@ -104,11 +127,12 @@ fs::path harness_for(const std::vector<hls::VerilogParam>& params, const fs::pat
   const std::string cmd =
       "OBJCACHE=$(command -v ccache || true) verilator --cc --exe --build -j 2 -O3 -Wno-fatal "
       "--x-assign unique --x-initial unique -y " + quote((src / "rtl").string()) +
-      " --top-module dtmf_top" + args + " " + quote((src / "rtl/dtmf_top.v").string()) + " " +
-      quote(harness.string()) + " -CFLAGS " +
-      quote("-std=c++17 -O2 -I" + src.string() + " -I" + (src / "tests/rtl").string()) +
-      " -LDFLAGS " + quote(std::string(ESKIN_LINK_LIB) + " " + ESKIN_COMMON_LIB) + " --Mdir " +
-      quote((tmp / "obj").string()) + " -o latency_harness";
+      " --top-module " + hb.top + args + " " + quote((src / "rtl" / (hb.top + ".v")).string()) +
+      " " + quote(harness.string()) + " -CFLAGS " +
+      quote("-std=c++17 -O2 -I" + src.string() + " -I" + (src / "tests/rtl").string() +
+            " -I" + (src / "common").string()) +
+      " -LDFLAGS " + quote(hb.ldflags) + " --Mdir " + quote((tmp / "obj").string()) + " -o " +
+      hb.harness;
   run_logged(cmd, tmp / "build.log");
   build_seconds = wall_seconds() - t0;
   std::error_code ec;
@@ -117,14 +141,87 @@ fs::path harness_for(const std::vector<hls::VerilogParam>& params, const fs::pat
   return exe;
 }
 
+// Runs a harness, output into `out`; its "name value" lines: counters (by
+// name) into `counters`, the rest into stages, then end_to_end. Lines
+// starting with '#' are notes, passed on to `log`.
+void run_harness(const std::string& cmd, const fs::path& out, const std::set<std::string>& counter_names,
+                 LatencyRun& run, std::map<std::string, int64_t>& counters, std::ostream& log) {
+  run_logged(cmd, out);
+  std::istringstream lines(slurp(out));
+  fs::remove(out);
+  std::string line, name;
+  int64_t v;
+  while (std::getline(lines, line)) {
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      log << "  " << line.substr(1) << "\n";
+      continue;
+    }
+    std::istringstream l(line);
+    if (!(l >> name >> v))
+      throw std::runtime_error(fmt::format("latency {}: harness line '{}' is not 'name cycles'",
+                                           run.config.name, line));
+    if (counter_names.count(name)) counters[name] = v;
+    else run.stages.push_back({name, v});
+  }
+  int64_t end = 0;
+  for (const auto& s : run.stages) end = std::max(end, s.cycles);
+  run.stages.push_back({"end_to_end", end});
+}
+
+void require_zero(const LatencyConfig& c, std::map<std::string, int64_t>& counters,
+                  std::initializer_list<const char*> names, const char* what) {
+  for (const char* k : names)
+    if (counters[k] != 0)
+      throw std::runtime_error(fmt::format("latency {}: the build loses data ({} = {}): {}",
+                                           c.name, k, counters[k], what));
+}
+
+// The Hall top: the harness runs the scene's sensors and reports the
+// slowest of its steady-state frames.
+LatencyRun measure_hall_latency(const LatencyConfig& c, const fs::path& cache_dir,
+                                std::ostream& log) {
+  LatencyRun run;
+  run.config = c;
+  const std::string scene_path = std::string(ESKIN_SOURCE_DIR) + "/" + c.scene;
+  const sim::Scene scene = sim::load_scene(scene_path);
+  if (!scene.has_hall) throw std::runtime_error(c.scene + ": no hall section for the Hall top");
+  const sim::HallTopSpec spec = sim::hall_top_spec(scene.hall.config, double(c.clk_hz));
+  HarnessBuild hb;
+  hb.top = "hall_top";
+  hb.harness = "hall_latency_harness";
+  hb.g_args = spec.verilog_params();
+  for (const auto& p : spec.decode_params()) hb.g_args.push_back(p);
+  hb.g_args.push_back("-GCLK_HZ=" + std::to_string(c.clk_hz));
+  hb.deps = {"tests/rtl/hall_top_board.h", "tests/rtl/clocked_dut.h", "tests/rtl/i2c_pin_bench.h",
+             "tests/rtl/uart_line.h"};
+  hb.ldflags = std::string(ESKIN_SIM_LIB) + " " + ESKIN_LINK_LIB + " " + ESKIN_COMMON_LIB +
+               " -lyaml-cpp -lsndfile";
+  log << fmt::format("latency {}: {} (hall_top: {} buses of {} sensors{}) at {} MHz\n", c.name,
+                     c.scene, spec.nb, spec.nsb, spec.deltas ? ", hall_baseline" : "",
+                     c.clk_hz / 1e6);
+  const fs::path exe = harness_for(hb, cache_dir, run.build_seconds);
+  if (run.build_seconds > 0) log << fmt::format("  built {} in {:.0f} s\n", exe.string(), run.build_seconds);
+  const fs::path out = exe.parent_path().parent_path() / fmt::format("{}.{}.out", c.name, ::getpid());
+  std::map<std::string, int64_t> counters;
+  run_harness(fmt::format("{} {} {}", quote(exe.string()), quote(scene_path), kHallFrames), out,
+              {"missing_readings", "i2c_violations", "link_errors"}, run, counters, log);
+  require_zero(c, counters, {"missing_readings", "i2c_violations", "link_errors"},
+               "a measured frame lacks a reading, or the bus or the link breaks its rules");
+  return run;
+}
+
 }  // namespace
 
 LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
                            std::ostream& log) {
+  if (c.top == LatencyConfig::Top::Hall) return measure_hall_latency(c, cache_dir, log);
   LatencyRun run;
   run.config = c;
-  const sim::Scene scene = sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/" + c.scene);
+  sim::Scene scene = sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/" + c.scene);
+  if (c.scale_n > 0) scene = fpga::scale_scene(scene, c.scale_n, 35000.0);
   run.plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, c.clk_hz));
+  if (c.sparse_taxels) run.plan.mask = uint8_t((run.plan.mask & ~hls::kMaskTaxels) | hls::kMaskSparse);
   const auto& p = run.plan;
   // The first frame that sends every stream (frame count a multiple of
   // both decimations) after two windows: DFT settled, the link idle
@@ -142,8 +239,17 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
                      c.scene, p.K, p.T, p.N, p.step, p.decim_amp, p.decim_tax, c.clk_hz / 1e6);
   const fs::path hex_dir = fs::path(cache_dir) / "ucode";
   fs::create_directories(hex_dir);
+  HarnessBuild hb;
+  hb.top = "dtmf_top";
+  hb.harness = "latency_harness";
   const auto params = hls::write_dtmf_top_build(p, fs::absolute(hex_dir).string(), c.name);
-  const fs::path exe = harness_for(params, cache_dir, run.build_seconds);
+  hb.g_args = hls::verilator_g_args(params);
+  for (const auto& q : params)  // the microcode and constants the model reads
+    if (q.name == "UCODE_HEX" || q.name == "KROM_HEX") hb.data.push_back(q.value.substr(1, q.value.size() - 2));
+  hb.deps = {"tests/rtl/dtmf_top_board.h", "sim/ad7476_model.h", "host/link/link_decoder.h",
+             "host/link/link_encoder.h"};
+  hb.ldflags = std::string(ESKIN_LINK_LIB) + " " + ESKIN_COMMON_LIB;
+  const fs::path exe = harness_for(hb, cache_dir, run.build_seconds);
   if (run.build_seconds > 0) log << fmt::format("  built {} in {:.0f} s\n", exe.string(), run.build_seconds);
   const std::string stem = fmt::format("{}.{}", c.name, ::getpid());  // concurrent runs
   const fs::path codes_file = exe.parent_path().parent_path() / (stem + ".u16");
@@ -153,34 +259,37 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
   }
   const fs::path out = exe.parent_path().parent_path() / (stem + ".out");
   const long cpb = std::lround(double(c.clk_hz) / double(p.spec.baud));
-  run_logged(fmt::format("{} {} {} {} {} {}", quote(exe.string()), quote(codes_file.string()),
-                         run.sample, run_to, c.clk_hz, cpb), out);
-  std::istringstream lines(slurp(out));
-  fs::remove(codes_file);
-  fs::remove(out);
-  std::string name;
-  int64_t v;
   std::map<std::string, int64_t> counters;
-  const std::set<std::string> counter_names = {
-      "engine_clocks", "engine_first_byte_clocks", "packets",     "adc_overruns",
-      "frame_overruns", "dropped_frames",          "out_overflows", "link_errors"};
-  while (lines >> name >> v) {
-    if (counter_names.count(name)) counters[name] = v;
-    else run.stages.push_back({name, v});
-  }
-  int64_t end = 0;
-  for (const auto& s : run.stages) end = std::max(end, s.cycles);
-  run.stages.push_back({"end_to_end", end});
-  for (const char* k : {"adc_overruns", "frame_overruns", "dropped_frames", "out_overflows", "link_errors"})
-    if (counters[k] != 0)
-      throw std::runtime_error(fmt::format("latency {}: the build loses data ({} = {}): the "
-                                           "engine or the link does not keep up", c.name, k,
-                                           counters[k]));
+  run_harness(fmt::format("{} {} {} {} {} {}", quote(exe.string()), quote(codes_file.string()),
+                          run.sample, run_to, c.clk_hz, cpb), out,
+              {"engine_clocks", "engine_first_byte_clocks", "packets", "adc_overruns",
+               "frame_overruns", "dropped_frames", "out_overflows", "link_errors"},
+              run, counters, log);
+  fs::remove(codes_file);
+  require_zero(c, counters,
+               {"adc_overruns", "frame_overruns", "dropped_frames", "out_overflows", "link_errors"},
+               "the engine or the link does not keep up");
   if (counters["packets"] < 1)
     throw std::runtime_error(fmt::format("latency {}: no packet of frame {} on the wire", c.name,
                                          run.sample));
   run.engine_clocks = counters["engine_clocks"];
   run.engine_first_byte = counters["engine_first_byte_clocks"];
+  // The stated clock keeps up with this frame (the bitstream flow's budget).
+  const auto budget = hls::dtmf_top_clock_budget(p, c.clk_hz, long(run.engine_clocks));
+  if (!budget.ok())
+    throw std::runtime_error(fmt::format("latency {}: {} MHz does not keep up: {}", c.name,
+                                         c.clk_hz / 1e6, budget.problems.front()));
+  if (c.scale_n > 0) {
+    // The flow's n x n skin: the clock must keep up with the engine's
+    // stress load too (host/fpga/engine_load.h, as the bitstream flow sizes it).
+    const long load = long(fpga::measure_engine_load(p, {}).stress_total());
+    const auto b = hls::dtmf_top_clock_budget(p, c.clk_hz, load);
+    log << fmt::format("  engine stress load {} clocks a frame of {}; min clock {} Hz\n", load,
+                       b.frame_clocks, hls::dtmf_top_min_clock_hz(p, load));
+    if (!b.ok())
+      throw std::runtime_error(fmt::format("latency {}: {} MHz does not keep up: {}", c.name,
+                                           c.clk_hz / 1e6, b.problems.front()));
+  }
   // The same frame in the frame engine's instruction-set model.
   EngineCycleModel model(p, std::lround(p.spec.sample_hz > 0 ? c.clk_hz / p.spec.sample_hz : 1));
   for (size_t i = 0; i <= run.sample; ++i) model.sample(codes[i]);
@@ -210,11 +319,25 @@ std::vector<std::pair<std::string, StageLatency>> read_latency_baseline(const st
 }
 
 void write_latency_baseline(const std::string& path, const std::vector<LatencyRun>& runs) {
+  // Builds not measured in this run keep their rows (`--ci` or `--config`
+  // updates only what it ran); rows of builds no longer in the table go.
+  std::vector<std::pair<std::string, StageLatency>> old;
+  if (fs::exists(path)) old = read_latency_baseline(path);
+  std::ostringstream rows;
+  for (const auto& c : latency_configs()) {
+    bool measured = false;
+    for (const auto& r : runs)
+      if (r.config.name == c.name) {
+        measured = true;
+        for (const auto& s : r.stages) rows << c.name << "," << s.stage << "," << s.cycles << "\n";
+      }
+    if (!measured)
+      for (const auto& [name, s] : old)
+        if (name == c.name) rows << name << "," << s.stage << "," << s.cycles << "\n";
+  }
   std::ofstream f(path);
   f << "# Cycle latencies of the reference builds (eskin bench latency); changed only by\n"
-       "# `eskin bench latency --update-baseline`.\nconfig,stage,cycles\n";
-  for (const auto& r : runs)
-    for (const auto& s : r.stages) f << r.config.name << "," << s.stage << "," << s.cycles << "\n";
+       "# `eskin bench latency --update-baseline`.\nconfig,stage,cycles\n" << rows.str();
   if (!f) throw std::runtime_error(path + ": write failed");
 }
 
@@ -248,7 +371,8 @@ std::vector<std::string> compare_latency(
 }
 
 std::string format_latency(const std::vector<LatencyRun>& runs) {
-  std::string s = "Latency in cycles from the 16th SCLK falling edge of the frame's newest sample\n";
+  std::string s = "Latency in cycles from the 16th SCLK falling edge of the frame's newest sample\n"
+                  "(the Hall top: from the DRDY of the reading that completes the frame)\n";
   s += fmt::format("{:<26}", "stage");
   for (const auto& r : runs) s += fmt::format(" {:>10}", r.config.name);
   s += "\n";
@@ -266,17 +390,25 @@ std::string format_latency(const std::vector<LatencyRun>& runs) {
     for (const auto& r : runs) s += fmt::format(" {:>10}", cycles(r, stage));
     s += "\n";
   }
-  s += "\nEnd to end at the build clock (the ADC and UART dividers are derived from CLK_HZ, so\n"
+  s += "\nEnd to end at the build clock (the ADC, I2C and UART dividers are derived from CLK_HZ, so\n"
        "the cycles hold at that clock only):\n";
-  for (const auto& r : runs)
+  for (const auto& r : runs) {
+    const double us = double(cycles(r, "end_to_end")) / (r.config.clk_hz / 1e6);
+    if (r.config.top == LatencyConfig::Top::Hall) {
+      s += fmt::format("  {}: {} cycles = {:.2f} us at {:g} MHz from the DRDY of the reading that "
+                       "completes a frame to its last byte ({:.2f} us to its first)\n",
+                       r.config.name, cycles(r, "end_to_end"), us, r.config.clk_hz / 1e6,
+                       double(cycles(r, "uart.first_start_bit")) / (r.config.clk_hz / 1e6));
+      continue;
+    }
     s += fmt::format("  {}: {} cycles = {:.2f} us at {:g} MHz; one ADC sample period {:.1f} us at "
                      "{:.0f} S/s; the thesis's 1 ms window; this build's window N/fs = {:.3f} ms, "
                      "a frame every {} samples ({:.3f} ms)\n",
-                     r.config.name, cycles(r, "end_to_end"),
-                     double(cycles(r, "end_to_end")) / (r.config.clk_hz / 1e6), r.config.clk_hz / 1e6,
+                     r.config.name, cycles(r, "end_to_end"), us, r.config.clk_hz / 1e6,
                      1e6 / r.plan.spec.sample_hz, r.plan.spec.sample_hz,
                      1e3 * r.plan.N / r.plan.spec.sample_hz, r.plan.step,
                      1e3 * r.plan.step / r.plan.spec.sample_hz);
+  }
   return s;
 }
 

@@ -16,6 +16,11 @@
 // the first start bit of its packets on the UART, the stop bit of their
 // last byte (end to end). The engine's part is checked against the frame
 // engine's instruction-set model (bench/suite/engine_model.h).
+//
+// The Hall top (rtl/hall_top.v as sim/hall_top_spec.h generates it for a
+// Hall scene; bench/latency/hall_latency_harness.cpp on the bench of
+// tests/rtl/hall_top_board.h): from the DRDY of the reading that completes
+// a frame to the frame's first and last byte on the UART.
 #pragma once
 
 #include <cstdint>
@@ -27,11 +32,23 @@
 
 namespace eskin::bench {
 
-// One reference build: a scene and the FPGA clock it is planned for.
+// One reference build: a scene, the top built for it and its clock.
 struct LatencyConfig {
-  std::string name;   // "3x3", "10x10"
+  enum class Top { Dtmf, Hall };
+  std::string name;   // "3x3", "10x10", "16x16", "hall000"
   std::string scene;  // path, relative to the source tree
   long clk_hz = hls::kDtmfTopClkHz;
+  Top top = Top::Dtmf;
+  // > 0: not the scene itself but fpga::scale_scene(scene, scale_n, 35 kS/s),
+  // the bitstream flow's n x n skin (host/fpga/scale_table.h).
+  int scale_n = 0;
+  // Measured by the CI test (tests/system/bench_latency_test.cpp); the
+  // others only by the full `eskin bench latency` (simulation time).
+  bool ci = true;
+  // TAXELS_SPARSE instead of TAXELS_DENSE: a dense packet of 16x16 taxels
+  // (12 + 2 x 256 = 524 bytes) never fits dtmf_top's 512-byte output FIFO, which takes a
+  // packet whole or drops it.
+  bool sparse_taxels = false;
 };
 // The reference builds (the table to extend when a new top exists).
 const std::vector<LatencyConfig>& latency_configs();
@@ -43,7 +60,7 @@ struct StageLatency {
 
 struct LatencyRun {
   LatencyConfig config;
-  hls::DtmfTopPlan plan;
+  hls::DtmfTopPlan plan;  // the DTMF builds' plan (empty for the Hall top)
   uint32_t sample = 0;  // the measured frame's sample
   std::vector<StageLatency> stages;
   int64_t engine_clocks = 0, engine_first_byte = 0;  // Verilator: from frame_capture

@@ -30,7 +30,7 @@
 #include "Vhall_top_deltas.h"
 #include "Vhall_top_mux8.h"
 #include "cli/hall_chain.h"
-#include "clocked_dut.h"
+#include "hall_top_board.h"
 #include "hls/ft_calibrate.h"
 #include "hls/ft_calibrate_config.h"
 #include "hls/force_curve.h"
@@ -41,26 +41,18 @@
 #include "host/link/hall_packets.h"
 #include "host/link/link_encoder.h"
 #include "host/link/link_decoder.h"
-#include "i2c_pin_bench.h"
 #include "sim/hall_top_spec.h"
 #include "sim/hall_world.h"
-#include "sim/mlx90393_model.h"
 #include "sim/scene.h"
-#include "sim/tca9548a_model.h"
-#include "uart_line.h"
 
 namespace {
 
 using eskin::link::HallSample;
-using eskin::link::LinkDecoder;
 using eskin::link::Packet;
-using eskin::sim::Mlx90393Model;
-using eskin::sim::Mlx90393Options;
-using eskin::sim::Tca9548aModel;
+using hall_bench::HallBoard;
+using hall_bench::kClkNs;
+using hall_bench::kConvCyc;
 
-constexpr double kClkNs = 1e9 / 12e6;
-constexpr uint64_t kConvCyc = 24636;  // 2053 us
-constexpr int kCpb = 4;               // 12 MHz / 3 Mbaud
 // DRDY of the frame-completing reading to the frame's first UART start bit,
 // 16 sensors on 4 buses: mostly the RM read itself (START, 10 bytes of 9
 // bits at 34 clocks = 3060, repeated START, STOP and tBUF: about 3150
@@ -69,170 +61,35 @@ constexpr int kCpb = 4;               // 12 MHz / 3 Mbaud
 // (2 clocks each) and COBS's look-ahead to the first zero byte of the raw frame, and the UART start.
 constexpr uint64_t kLatency16s = 3281;  // 273.4 us
 
-struct RampField : eskin::sim::HallFieldSource {
-  std::array<double, 3> field_uT(int sensor, double t_s) const override {
-    return {5.0 * sensor + 2000.0 * t_s, -30.0 + 2.0 * sensor, 80.0 - sensor};
-  }
-};
-
+// Each sensor's data readings across the frames equal its model's
+// deliveries in order (the last one may still be in flight).
 template <class V>
-struct HallBoard {
-  ClockedDut<V> d;
-  RampField ramp;
-  const eskin::sim::HallFieldSource* field = &ramp;
-  std::vector<std::unique_ptr<I2cPinBus>> buses;
-  std::vector<std::unique_ptr<Tca9548aModel>> muxes;
-  std::vector<std::unique_ptr<Mlx90393Model>> dev;
-  LinkDecoder dec;
-  UartLine line{kCpb};
-  std::vector<Packet> packets;
-  std::vector<uint64_t> first_byte_cycle;  // start bit of each packet's first byte
-  std::vector<uint64_t> packet_cycle;      // cycle each packet was decoded
-
-  // A scene's sensors (their own field source, noise and addresses) in the
-  // FPGA slots of its hall_top spec.
-  HallBoard(const eskin::sim::HallFieldSource& src, const eskin::HallConfig& h,
-            const eskin::sim::HallTopSpec& spec)
-      : field(&src) {
-    for (int b = 0; b < spec.nb; ++b) buses.push_back(std::make_unique<I2cPinBus>());
-    dev.resize(h.sensors.size());
-    for (size_t i = 0; i < h.sensors.size(); ++i) {
-      const auto& hs = h.sensors[i];
-      Mlx90393Options o;
-      o.base_address = uint8_t(hs.i2c_address);
-      o.config = h.mlx;
-      o.noise_rms_uT = {h.noise_rms_ut[0], h.noise_rms_ut[1], h.noise_rms_ut[2]};
-      o.seed = 1000 + i;
-      dev[spec.slot[i]] = std::make_unique<Mlx90393Model>(buses[hs.bus]->bus, *field, int(i), o,
-                                                          segment(hs.bus, hs.mux_address, hs.mux_channel));
+void expect_frames_equal_devices(const HallBoard<V>& b) {
+  for (size_t s = 0; s < b.dev.size(); ++s) {
+    std::vector<HallSample> got;
+    for (const Packet* f : b.frames()) {
+      ASSERT_EQ(f->hall_samples.size(), b.dev.size());
+      const HallSample& h = f->hall_samples[s];
+      EXPECT_EQ(h.id, s);
+      if (h.has_data()) got.push_back(h);
     }
-    start();
-  }
-  // The bus segment of a sensor: 0 directly on the bus, else its TCA9548A
-  // channel's (one mux model per bus and address, 0x70 + A2 A1 A0).
-  int segment(int bus, int mux_address, int ch) {
-    if (mux_address < 0) return 0;
-    const std::pair<int, int> key{bus, mux_address};
-    if (!mux_of.count(key)) {
-      const int a = mux_address - 0x70;
-      muxes.push_back(std::make_unique<Tca9548aModel>(buses[size_t(bus)]->bus, (a >> 2) & 1,
-                                                      (a >> 1) & 1, a & 1));
-      mux_of[key] = muxes.back().get();
-    }
-    return mux_of[key]->channel_segment(ch);
-  }
-  std::map<std::pair<int, int>, Tca9548aModel*> mux_of;
-  // nb buses of nsb sensors: direct at 0x0C + k, or all 0x0C behind mux channel k.
-  HallBoard(int nb, int nsb, bool mux) {
-    for (int b = 0; b < nb; ++b) {
-      buses.push_back(std::make_unique<I2cPinBus>());
-      if (mux) muxes.push_back(std::make_unique<Tca9548aModel>(buses[b]->bus, 0, 0, 0));
-      for (int k = 0; k < nsb; ++k) {
-        Mlx90393Options o;
-        if (!mux) {
-          o.a1 = (k >> 1) & 1;
-          o.a0 = k & 1;
-        }
-        const int seg = mux ? muxes[b]->channel_segment(k) : 0;
-        dev.push_back(std::make_unique<Mlx90393Model>(buses[b]->bus, *field, b * nsb + k, o, seg));
-      }
-    }
-    start();
-  }
-  void start() {
-    dec.on_packet([this](const Packet& p) {
-      packets.push_back(p);
-      packet_cycle.push_back(d.cycle);
-    });
-    d.m.rst = 1;
-    d.m.uart_rxd = 1;
-    d.m.scl_i = 0;
-    step();
-    step();
-    d.m.rst = 0;
-  }
-  void step() {
-    const double t = double(d.cycle) * kClkNs;
-    uint64_t scl = 0, sda = 0, drdy = 0;
-    for (size_t b = 0; b < buses.size(); ++b) {
-      bool c, a;
-      buses[b]->before(t, c, a);
-      scl |= uint64_t(c) << b;
-      sda |= uint64_t(a) << b;
-    }
-    for (size_t s = 0; s < dev.size(); ++s) drdy |= uint64_t(dev[s]->drdy()) << s;
-    d.m.scl_i = scl;
-    d.m.sda_i = sda;
-    d.m.drdy = drdy;
-    d.m.uart_rxd = uint8_t(line.tx_level());
-    d.tick();
-    for (size_t b = 0; b < buses.size(); ++b)
-      buses[b]->after(t, (d.m.scl_oe >> b) & 1, (d.m.sda_oe >> b) & 1);
-    uart(d.m.uart_txd);
-  }
-  void run(uint64_t n) {
-    for (uint64_t i = 0; i < n; ++i) step();
-  }
-  std::vector<const Packet*> frames() const {
-    std::vector<const Packet*> r;
-    for (const auto& p : packets)
-      if (p.type == eskin::link::kHallSamples) r.push_back(&p);
-    return r;
-  }
-  // Each sensor's data readings across the frames equal its model's
-  // deliveries in order (the last one may still be in flight).
-  void expect_frames_equal_devices() const {
-    for (size_t s = 0; s < dev.size(); ++s) {
-      std::vector<HallSample> got;
-      for (const Packet* f : frames()) {
-        ASSERT_EQ(f->hall_samples.size(), dev.size());
-        const HallSample& h = f->hall_samples[s];
-        EXPECT_EQ(h.id, s);
-        if (h.has_data()) got.push_back(h);
-      }
-      const auto& want = dev[s]->delivered();
-      ASSERT_TRUE(got.size() == want.size() || got.size() + 1 == want.size())
-          << "sensor " << s << ": " << got.size() << " vs " << want.size();
-      for (size_t i = 0; i < got.size(); ++i) {
-        EXPECT_EQ(got[i].x, want[i].x) << s << "/" << i;
-        EXPECT_EQ(got[i].y, want[i].y) << s << "/" << i;
-        EXPECT_EQ(got[i].z, want[i].z) << s << "/" << i;
-      }
+    const auto& want = b.dev[s]->delivered();
+    ASSERT_TRUE(got.size() == want.size() || got.size() + 1 == want.size())
+        << "sensor " << s << ": " << got.size() << " vs " << want.size();
+    for (size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ(got[i].x, want[i].x) << s << "/" << i;
+      EXPECT_EQ(got[i].y, want[i].y) << s << "/" << i;
+      EXPECT_EQ(got[i].z, want[i].z) << s << "/" << i;
     }
   }
-  // DRDY time (cycles) of the newest reading in frame f: the one that
-  // completed it.
-  double newest_drdy_cycle(size_t f) const {
-    double newest = 0;
-    for (size_t s = 0; s < dev.size(); ++s) {
-      size_t k = 0;  // index among sensor s's data readings
-      for (size_t g = 0; g < f; ++g) k += frames()[g]->hall_samples[s].has_data();
-      if (!frames()[f]->hall_samples[s].has_data()) continue;
-      newest = std::max(newest, dev[s]->delivered()[k].t_done_ns / kClkNs);
-    }
-    return newest;
-  }
-
- private:
-  void uart(int level) {
-    if (!line.rx_sample(level, d.cycle)) return;
-    const uint8_t byte = line.byte();
-    if (!in_frame_ && byte != 0) {
-      in_frame_ = true;
-      first_byte_cycle.push_back(line.start_cycle());
-    }
-    if (byte == 0) in_frame_ = false;
-    dec.feed(&byte, 1);
-  }
-  bool in_frame_ = false;
-};
+}
 
 TEST(HallTop, FramesCarryEveryReadingTokenForToken) {
   HallBoard<Vhall_top> b(2, 2, false);
   b.run(12 * kConvCyc);
   const auto f = b.frames();
   ASSERT_GE(f.size(), 9u);
-  b.expect_frames_equal_devices();
+  expect_frames_equal_devices(b);
   EXPECT_EQ(b.dec.stats().crc_errors + b.dec.stats().framing_errors, 0u);
   for (auto& bus : b.buses)
     for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
@@ -249,7 +106,7 @@ TEST(HallTop, MissingSensorFlaggedInFramesAndCountedInBusStatus) {
   for (const Packet* p : f) EXPECT_EQ(p->hall_samples[3].flags, HallSample::kMissing);
   for (size_t i = 2; i < f.size(); ++i)
     for (int s = 0; s < 3; ++s) EXPECT_TRUE(f[i]->hall_samples[s].has_data()) << i;
-  b.expect_frames_equal_devices();
+  expect_frames_equal_devices(b);
   const Packet* st = nullptr;
   for (const auto& p : b.packets)
     if (p.type == eskin::link::kHallBusStatus) st = &p;
@@ -268,7 +125,7 @@ TEST(HallTop, SixteenSensorsOnFourBusesAtTheMaximumRate) {
   b.run(14 * kConvCyc);
   const auto f = b.frames();
   ASSERT_GE(f.size(), 12u);
-  b.expect_frames_equal_devices();
+  expect_frames_equal_devices(b);
   for (auto& bus : b.buses)
     for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
   // Steady state (from the third frame): all 48 values present, frames
@@ -282,7 +139,7 @@ TEST(HallTop, SixteenSensorsOnFourBusesAtTheMaximumRate) {
   // clocks in every steady-state frame.
   std::vector<uint64_t> lat;
   for (size_t i = 2; i < f.size(); ++i)
-    lat.push_back(b.first_byte_cycle[i] - uint64_t(std::ceil(b.newest_drdy_cycle(i))));
+    lat.push_back(b.frame_latency(i).first_byte);
   for (size_t i = 1; i < lat.size(); ++i) EXPECT_EQ(lat[i], lat[0]);
   std::printf("16 sensors / 4 buses: frame period 2053 us (487.1 Hz); DRDY -> first byte %llu "
               "clocks = %.1f us\n",
@@ -295,7 +152,7 @@ TEST(HallTop, EightSensorsPerBusBehindMuxesCannotKeepUp) {
   b.run(14 * kConvCyc);
   const auto f = b.frames();
   ASSERT_GE(f.size(), 6u);
-  b.expect_frames_equal_devices();
+  expect_frames_equal_devices(b);
   const uint32_t period = (f.back()->t - f[2]->t) / uint32_t(f.size() - 3);
   std::printf("16 sensors / 2 buses of 8 behind TCA9548A: mean frame period %u us\n", period);
   EXPECT_GT(period, 2053u);
@@ -339,7 +196,7 @@ TEST(HallTop, Seed000SceneThroughTheFpgaEqualsTheDeviceModels) {
   b.run(10 * kConvCyc);
   const auto f = b.frames();
   ASSERT_GE(f.size(), 8u);
-  b.expect_frames_equal_devices();
+  expect_frames_equal_devices(b);
   for (size_t i = 2; i < f.size(); ++i)
     for (const auto& h : f[i]->hall_samples) EXPECT_TRUE(h.has_data()) << i;
   for (auto& bus : b.buses)
