@@ -47,7 +47,7 @@
 // frame is followed by a FORCE_CURVE packet (type 0x15) of NC records, a
 // cell without a result in this frame with force 0, t 0 and flag bit 5.
 // force_curve and hall_decouple take one token at a time: the intake waits
-// while either is busy (45 and at most about 250 clocks; tokens come one per
+// while either is busy (45 and at most 257 clocks (docs/hall_fpga.md); tokens come one per
 // I2C reading, about 3000 clocks).
 // Packet order after a frame: HALL_SAMPLES, HALL_DELTAS, DECOUPLE3, WRENCH6,
 // FORCE_CURVE, HALL_BUS_STATUS, HALL_DECODE_STATUS (each only when due).
