@@ -1,4 +1,5 @@
 #include "bench/suite/latency.h"
+#include "eskin/shell.h"
 
 #include <fmt/format.h>
 
@@ -71,15 +72,9 @@ uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
   return h;
 }
 
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 // Runs a shell command, output into `log_file`; throws with its tail on failure.
 void run_logged(const std::string& cmd, const fs::path& log_file) {
-  const int st = std::system((cmd + " > " + quote(log_file.string()) + " 2>&1").c_str());
+  const int st = std::system((cmd + " > " + eskin::shell_quote(log_file.string()) + " 2>&1").c_str());
   if (st != 0) {
     std::string log = slurp(log_file);
     if (log.size() > 3000) log = "..." + log.substr(log.size() - 3000);
@@ -113,7 +108,7 @@ fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& 
   std::string args;
   for (const auto& a : hb.g_args) {
     h = fnv1a(a, h);
-    args += " " + quote(a);
+    args += " " + eskin::shell_quote(a);
   }
   const fs::path dir = cache_dir / fmt::format("{:016x}", h);
   const fs::path exe = dir / "obj" / hb.harness;
@@ -126,12 +121,12 @@ fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& 
   const double t0 = wall_seconds();
   const std::string cmd =
       "OBJCACHE=$(command -v ccache || true) verilator --cc --exe --build -j 2 -O3 -Wno-fatal "
-      "--x-assign unique --x-initial unique -y " + quote((src / "rtl").string()) +
-      " --top-module " + hb.top + args + " " + quote((src / "rtl" / (hb.top + ".v")).string()) +
-      " " + quote(harness.string()) + " -CFLAGS " +
-      quote("-std=c++17 -O2 -I" + src.string() + " -I" + (src / "tests/rtl").string() +
+      "--x-assign unique --x-initial unique -y " + eskin::shell_quote((src / "rtl").string()) +
+      " --top-module " + hb.top + args + " " + eskin::shell_quote((src / "rtl" / (hb.top + ".v")).string()) +
+      " " + eskin::shell_quote(harness.string()) + " -CFLAGS " +
+      eskin::shell_quote("-std=c++17 -O2 -I" + src.string() + " -I" + (src / "tests/rtl").string() +
             " -I" + (src / "common").string()) +
-      " -LDFLAGS " + quote(hb.ldflags) + " --Mdir " + quote((tmp / "obj").string()) + " -o " +
+      " -LDFLAGS " + eskin::shell_quote(hb.ldflags) + " --Mdir " + eskin::shell_quote((tmp / "obj").string()) + " -o " +
       hb.harness;
   run_logged(cmd, tmp / "build.log");
   build_seconds = wall_seconds() - t0;
@@ -204,7 +199,7 @@ LatencyRun measure_hall_latency(const LatencyConfig& c, const fs::path& cache_di
   if (run.build_seconds > 0) log << fmt::format("  built {} in {:.0f} s\n", exe.string(), run.build_seconds);
   const fs::path out = exe.parent_path().parent_path() / fmt::format("{}.{}.out", c.name, ::getpid());
   std::map<std::string, int64_t> counters;
-  run_harness(fmt::format("{} {} {}", quote(exe.string()), quote(scene_path), kHallFrames), out,
+  run_harness(fmt::format("{} {} {}", eskin::shell_quote(exe.string()), eskin::shell_quote(scene_path), kHallFrames), out,
               {"missing_readings", "i2c_violations", "link_errors"}, run, counters, log);
   require_zero(c, counters, {"missing_readings", "i2c_violations", "link_errors"},
                "a measured frame lacks a reading, or the bus or the link breaks its rules");
@@ -260,7 +255,7 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
   const fs::path out = exe.parent_path().parent_path() / (stem + ".out");
   const long cpb = std::lround(double(c.clk_hz) / double(p.spec.baud));
   std::map<std::string, int64_t> counters;
-  run_harness(fmt::format("{} {} {} {} {} {}", quote(exe.string()), quote(codes_file.string()),
+  run_harness(fmt::format("{} {} {} {} {} {}", eskin::shell_quote(exe.string()), eskin::shell_quote(codes_file.string()),
                           run.sample, run_to, c.clk_hz, cpb), out,
               {"engine_clocks", "engine_first_byte_clocks", "packets", "adc_overruns",
                "frame_overruns", "dropped_frames", "out_overflows", "link_errors"},

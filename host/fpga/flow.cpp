@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "eskin/shell.h"
 #include "hls/dtmf_ucode.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/world_model.h"
@@ -20,6 +21,7 @@
 namespace eskin::fpga {
 
 namespace fs = std::filesystem;
+using eskin::shell_quote;
 
 namespace {
 
@@ -28,12 +30,6 @@ std::string slurp(const fs::path& p) {
   std::stringstream s;
   s << f.rdbuf();
   return s.str();
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
 }
 
 bool on_path(const std::string& tool) {

@@ -1,5 +1,7 @@
 #include "sim/vboard/vboard_build.h"
 
+#include "eskin/shell.h"
+
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -16,12 +18,6 @@
 
 namespace eskin::vboard {
 namespace {
-
-std::string quoted(const std::string& s) {  // one shell word
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 std::string read_text(const std::string& path) {
   std::ifstream f(path);
@@ -44,7 +40,7 @@ std::string tail(const std::string& path, size_t lines) {
 
 // Runs `args` (already quoted) with stdout and stderr appended to `log`.
 void run_logged(const std::string& args, const std::string& log, const std::string& what) {
-  const int st = std::system((args + " >>" + quoted(log) + " 2>&1").c_str());
+  const int st = std::system((args + " >>" + shell_quote(log) + " 2>&1").c_str());
   if (st != 0 || !WIFEXITED(st))
     throw std::runtime_error(what + " failed (" + log + "), its last lines:\n" + tail(log, 15));
 }
@@ -77,7 +73,7 @@ std::string board_executable(const FpgaBuild& b,
          " MHz (Verilator and C++, a few minutes, once; log " + log + ")");
     std::ofstream(log, std::ios::trunc);
   }
-  const std::string cmake = quoted(ESKIN_CMAKE_COMMAND), tree = quoted(ESKIN_BINARY_DIR);
+  const std::string cmake = shell_quote(ESKIN_CMAKE_COMMAND), tree = shell_quote(ESKIN_BINARY_DIR);
   if (!listed) run_logged(cmake + " " + tree, log, "configuring the build tree for " + target);
   run_logged(cmake + " --build " + tree + " --target " + target, log, "building " + target);
   return exe;
