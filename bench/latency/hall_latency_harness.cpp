@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     for (const auto& h : b.frames()[f]->hall_samples) incomplete += !h.has_data();
   }
   size_t violations = 0;
-  for (const auto& bus : b.buses) violations += bus->bus.violations().size();
+  violations += b.io.violations().size();
   std::printf("hall.drdy 0\nuart.first_start_bit %llu\nuart.last_stop_bit %llu\n",
               (unsigned long long)worst.first_byte, (unsigned long long)worst.last_byte);
   // A reading missing from a measured frame, an I2C timing violation or a

@@ -188,7 +188,7 @@ LatencyRun measure_hall_latency(const LatencyConfig& c, const fs::path& cache_di
   hb.g_args = spec.verilog_params();
   for (const auto& p : spec.decode_params()) hb.g_args.push_back(p);
   hb.g_args.push_back("-GCLK_HZ=" + std::to_string(c.clk_hz));
-  hb.deps = {"tests/rtl/hall_top_board.h", "tests/rtl/clocked_dut.h", "tests/rtl/i2c_pin_bench.h",
+  hb.deps = {"tests/rtl/hall_top_board.h", "tests/rtl/clocked_dut.h", "sim/i2c_pin_bus.h", "sim/hall_sensor_array.h", "sim/hall_sensor_array.cpp",
              "tests/rtl/uart_line.h"};
   hb.ldflags = std::string(ESKIN_SIM_LIB) + " " + ESKIN_LINK_LIB + " " + ESKIN_COMMON_LIB +
                " -lyaml-cpp -lsndfile";

@@ -19,11 +19,9 @@
 #include "clocked_dut.h"
 #include "eskin/hall_config.h"
 #include "host/link/link_decoder.h"
-#include "i2c_pin_bench.h"
 #include "sim/hall_field_source.h"
 #include "sim/hall_top_spec.h"
-#include "sim/mlx90393_model.h"
-#include "sim/tca9548a_model.h"
+#include "sim/hall_sensor_array.h"
 #include "uart_line.h"
 
 namespace hall_bench {
@@ -43,31 +41,10 @@ struct HallBoard {
   using HallSample = eskin::link::HallSample;
   using LinkDecoder = eskin::link::LinkDecoder;
   using Packet = eskin::link::Packet;
-  using Mlx90393Model = eskin::sim::Mlx90393Model;
-  using Mlx90393Options = eskin::sim::Mlx90393Options;
-  using Tca9548aModel = eskin::sim::Tca9548aModel;
 
   ClockedDut<V> d;
   RampField ramp;
-  const eskin::sim::HallFieldSource* field = &ramp;
-  std::vector<std::unique_ptr<I2cPinBus>> buses;
-  std::vector<std::unique_ptr<Tca9548aModel>> muxes;
-  std::map<std::pair<int, int>, Tca9548aModel*> mux_of;  // scene builds: (bus, address)
-
-  // The bus segment of a scene sensor: 0 directly on the bus, else its
-  // TCA9548A channel's (one mux model per bus and address, 0x70 + A2 A1 A0).
-  int segment(int bus, int mux_address, int ch) {
-    if (mux_address < 0) return 0;
-    const std::pair<int, int> key{bus, mux_address};
-    if (!mux_of.count(key)) {
-      const int a = mux_address - 0x70;
-      muxes.push_back(std::make_unique<Tca9548aModel>(buses[size_t(bus)]->bus, (a >> 2) & 1,
-                                                      (a >> 1) & 1, a & 1));
-      mux_of[key] = muxes.back().get();
-    }
-    return mux_of[key]->channel_segment(ch);
-  }
-  std::vector<std::unique_ptr<Mlx90393Model>> dev;
+  eskin::sim::HallSensorArray io;  // the buses, muxes and sensors at the pins
   LinkDecoder dec;
   UartLine line{kCpb};
   std::vector<Packet> packets;
@@ -80,38 +57,11 @@ struct HallBoard {
   // FPGA slots of its hall_top spec.
   HallBoard(const eskin::sim::HallFieldSource& src, const eskin::HallConfig& h,
             const eskin::sim::HallTopSpec& spec)
-      : field(&src) {
-    for (int b = 0; b < spec.nb; ++b) buses.push_back(std::make_unique<I2cPinBus>());
-    dev.resize(h.sensors.size());
-    for (size_t i = 0; i < h.sensors.size(); ++i) {
-      const auto& hs = h.sensors[i];
-      Mlx90393Options o;
-      o.base_address = uint8_t(hs.i2c_address);
-      o.config = h.mlx;
-      o.noise_rms_uT = {h.noise_rms_ut[0], h.noise_rms_ut[1], h.noise_rms_ut[2]};
-      o.seed = 1000 + i;
-      dev[spec.slot[i]] = std::make_unique<Mlx90393Model>(
-          buses[hs.bus]->bus, *field, int(i), o, segment(hs.bus, hs.mux_address, hs.mux_channel));
-    }
+      : io(src, h, spec) {
     start();
   }
   // nb buses of nsb sensors: direct at 0x0C + k, or all 0x0C behind mux channel k.
-  HallBoard(int nb, int nsb, bool mux) {
-    for (int b = 0; b < nb; ++b) {
-      buses.push_back(std::make_unique<I2cPinBus>());
-      if (mux) muxes.push_back(std::make_unique<Tca9548aModel>(buses[b]->bus, 0, 0, 0));
-      for (int k = 0; k < nsb; ++k) {
-        Mlx90393Options o;
-        if (!mux) {
-          o.a1 = (k >> 1) & 1;
-          o.a0 = k & 1;
-        }
-        const int seg = mux ? muxes[b]->channel_segment(k) : 0;
-        dev.push_back(std::make_unique<Mlx90393Model>(buses[b]->bus, *field, b * nsb + k, o, seg));
-      }
-    }
-    start();
-  }
+  HallBoard(int nb, int nsb, bool mux) : io(ramp, nb, nsb, mux) { start(); }
   void start() {
     dec.on_packet([this](const Packet& p) {
       packets.push_back(p);
@@ -127,21 +77,14 @@ struct HallBoard {
   }
   void step() {
     const double t = double(d.cycle) * kClkNs;
-    uint64_t scl = 0, sda = 0, drdy = 0;
-    for (size_t b = 0; b < buses.size(); ++b) {
-      bool c, a;
-      buses[b]->before(t, c, a);
-      scl |= uint64_t(c) << b;
-      sda |= uint64_t(a) << b;
-    }
-    for (size_t s = 0; s < dev.size(); ++s) drdy |= uint64_t(dev[s]->drdy()) << s;
+    uint64_t scl, sda, drdy;
+    io.before(t, scl, sda, drdy);
     d.m.scl_i = scl;
     d.m.sda_i = sda;
     d.m.drdy = drdy;
     d.m.uart_rxd = uint8_t(line.tx_level());
     d.tick();
-    for (size_t b = 0; b < buses.size(); ++b)
-      buses[b]->after(t, (d.m.scl_oe >> b) & 1, (d.m.sda_oe >> b) & 1);
+    io.after(t, d.m.scl_oe, d.m.sda_oe);
     uart(d.m.uart_txd);
   }
   void run(uint64_t n) {
@@ -157,11 +100,11 @@ struct HallBoard {
   // completed it.
   double newest_drdy_cycle(size_t f) const {
     double newest = 0;
-    for (size_t s = 0; s < dev.size(); ++s) {
+    for (size_t s = 0; s < io.size(); ++s) {
       size_t k = 0;  // index among sensor s's data readings
       for (size_t g = 0; g < f; ++g) k += frames()[g]->hall_samples[s].has_data();
       if (!frames()[f]->hall_samples[s].has_data()) continue;
-      newest = std::max(newest, dev[s]->delivered()[k].t_done_ns / kClkNs);
+      newest = std::max(newest, io.device(s).delivered()[k].t_done_ns / kClkNs);
     }
     return newest;
   }

@@ -65,15 +65,15 @@ constexpr uint64_t kLatency16s = 3281;  // 273.4 us
 // deliveries in order (the last one may still be in flight).
 template <class V>
 void expect_frames_equal_devices(const HallBoard<V>& b) {
-  for (size_t s = 0; s < b.dev.size(); ++s) {
+  for (size_t s = 0; s < b.io.size(); ++s) {
     std::vector<HallSample> got;
     for (const Packet* f : b.frames()) {
-      ASSERT_EQ(f->hall_samples.size(), b.dev.size());
+      ASSERT_EQ(f->hall_samples.size(), b.io.size());
       const HallSample& h = f->hall_samples[s];
       EXPECT_EQ(h.id, s);
       if (h.has_data()) got.push_back(h);
     }
-    const auto& want = b.dev[s]->delivered();
+    const auto& want = b.io.device(s).delivered();
     ASSERT_TRUE(got.size() == want.size() || got.size() + 1 == want.size())
         << "sensor " << s << ": " << got.size() << " vs " << want.size();
     for (size_t i = 0; i < got.size(); ++i) {
@@ -91,15 +91,14 @@ TEST(HallTop, FramesCarryEveryReadingTokenForToken) {
   ASSERT_GE(f.size(), 9u);
   expect_frames_equal_devices(b);
   EXPECT_EQ(b.dec.stats().crc_errors + b.dec.stats().framing_errors, 0u);
-  for (auto& bus : b.buses)
-    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+  for (const auto& v : b.io.violations()) ADD_FAILURE() << v;
   // The first frame comes from the configuration round: no data yet.
   for (const auto& h : f[0]->hall_samples) EXPECT_EQ(h.flags, HallSample::kReply);
 }
 
 TEST(HallTop, MissingSensorFlaggedInFramesAndCountedInBusStatus) {
   HallBoard<Vhall_top> b(2, 2, false);
-  b.dev[3]->set_absent(true);  // bus 1, sensor 1 never answers
+  b.io.device(3).set_absent(true);  // bus 1, sensor 1 never answers
   b.run(66 * kConvCyc);        // HALL_BUS_STATUS follows every 64th frame
   const auto f = b.frames();
   ASSERT_GE(f.size(), 64u);
@@ -126,8 +125,7 @@ TEST(HallTop, SixteenSensorsOnFourBusesAtTheMaximumRate) {
   const auto f = b.frames();
   ASSERT_GE(f.size(), 12u);
   expect_frames_equal_devices(b);
-  for (auto& bus : b.buses)
-    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+  for (const auto& v : b.io.violations()) ADD_FAILURE() << v;
   // Steady state (from the third frame): all 48 values present, frames
   // exactly one conversion (2053 us) apart, 487.1 Hz.
   for (size_t i = 2; i < f.size(); ++i) {
@@ -199,8 +197,7 @@ TEST(HallTop, Seed000SceneThroughTheFpgaEqualsTheDeviceModels) {
   expect_frames_equal_devices(b);
   for (size_t i = 2; i < f.size(); ++i)
     for (const auto& h : f[i]->hall_samples) EXPECT_TRUE(h.has_data()) << i;
-  for (auto& bus : b.buses)
-    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+  for (const auto& v : b.io.violations()) ADD_FAILURE() << v;
 }
 
 // The decoding's first block inside hall_top (DELTAS=1, the seed-000
@@ -335,8 +332,7 @@ TEST(HallTop, BaselineCommandsOverTheUartTakeEffectBetweenFrames) {
   EXPECT_EQ(frame, kEnd);
   EXPECT_EQ(statuses, 1u);
   for (int s = 0; s < 16; ++s) EXPECT_EQ(no_delta_after_recap[size_t(s)], 16) << "sensor " << s;
-  for (auto& bus : b.buses)
-    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+  for (const auto& v : b.io.violations()) ADD_FAILURE() << v;
 }
 
 // A HALL_DECODE_STATUS after `accepted` good commands and one bad one.
@@ -457,8 +453,7 @@ TEST(HallTop, Seed002WrenchWithCommandLoadedC) {
     EXPECT_LT(err[size_t(a)] / held, 0.10) << "axis " << a;
   }
   std::printf("\n");
-  for (auto& bus : b.buses)
-    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+  for (const auto& v : b.io.violations()) ADD_FAILURE() << v;
 }
 
 
@@ -569,8 +564,7 @@ TEST(HallTop, Seed001DecouplingWithCommandSetCompensation) {
               outs, held, 100 * shear / held, 100 * normal / held);
   EXPECT_LT(shear / held, 0.025);
   EXPECT_LT(normal / held, 0.025);
-  for (auto& bus : b.buses)
-    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+  for (const auto& v : b.io.violations()) ADD_FAILURE() << v;
 }
 
 
@@ -676,8 +670,7 @@ TEST(HallTop, Seed003ForceCurvesWithCommandLoadedTables) {
     EXPECT_LT(err[size_t(r)] / held[size_t(r)], 0.02) << "range " << r;
   }
   std::printf("\n");
-  for (auto& bus : b.buses)
-    for (const auto& v : bus->bus.violations()) ADD_FAILURE() << v;
+  for (const auto& v : b.io.violations()) ADD_FAILURE() << v;
 }
 
 }  // namespace

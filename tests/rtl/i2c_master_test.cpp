@@ -21,12 +21,13 @@
 #include "Vi2c_master_badlow.h"
 #include "Vi2c_master_std.h"
 #include "clocked_dut.h"
-#include "i2c_pin_bench.h"
+#include "sim/i2c_pin_bus.h"
 #include "sim/mlx90393_model.h"
 
 namespace {
 
 namespace mlx = eskin::mlx90393;
+using eskin::sim::I2cPinBus;
 using eskin::sim::I2cTiming;
 using eskin::sim::Mlx90393Model;
 

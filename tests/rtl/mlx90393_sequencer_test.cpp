@@ -17,13 +17,14 @@
 #include "Vmlx90393_sequencer_tb.h"
 #include "Vmlx90393_sequencer_tb_single.h"
 #include "clocked_dut.h"
-#include "i2c_pin_bench.h"
+#include "sim/i2c_pin_bus.h"
 #include "sim/mlx90393_model.h"
 #include "sim/tca9548a_model.h"
 
 namespace {
 
 namespace mlx = eskin::mlx90393;
+using eskin::sim::I2cPinBus;
 using eskin::sim::Mlx90393Model;
 using eskin::sim::Mlx90393Options;
 using eskin::sim::Tca9548aModel;

@@ -5,14 +5,14 @@
 // bus the module masters.
 #pragma once
 
-#include <string>
-
 #include "sim/i2c_bus.h"
 
+namespace eskin::sim {
+
 struct I2cPinBus {
-  eskin::sim::I2cBus bus;
+  I2cBus bus;
   int master;
-  explicit I2cPinBus(eskin::sim::I2cTiming tm = eskin::sim::I2cTiming::fast(),
+  explicit I2cPinBus(I2cTiming tm = I2cTiming::fast(),
                      double pullup_ohm = 2200, double cap_pf = 100)
       : bus(tm, pullup_ohm, cap_pf), master(bus.attach("FPGA master")) {}
   // Levels for the inputs, just before the edge at t_ns.
@@ -24,3 +24,5 @@ struct I2cPinBus {
   // Pull-downs after the edge at t_ns.
   void after(double t_ns, bool scl_oe, bool sda_oe) { bus.drive(master, t_ns, scl_oe, sda_oe); }
 };
+
+}  // namespace eskin::sim
