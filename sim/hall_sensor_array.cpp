@@ -71,4 +71,10 @@ std::vector<std::string> HallSensorArray::violations() const {
   return v;
 }
 
+size_t HallSensorArray::violation_count() const {
+  size_t n = 0;
+  for (const auto& b : buses_) n += b->bus.violation_count();
+  return n;
+}
+
 }  // namespace eskin::sim

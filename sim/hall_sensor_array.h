@@ -44,8 +44,10 @@ class HallSensorArray {
   size_t size() const { return dev_.size(); }
   Mlx90393Model& device(size_t slot) { return *dev_[slot]; }
   const Mlx90393Model& device(size_t slot) const { return *dev_[slot]; }
-  // Every bus-timing violation so far, "bus B: ..." (empty: none).
+  // The bus-timing violations' messages so far, "bus B: ..." (empty:
+  // none; each bus keeps its first ones), and their count on all buses.
   std::vector<std::string> violations() const;
+  size_t violation_count() const;
 
  private:
   int segment(int bus, int mux_address, int ch);

@@ -1,4 +1,5 @@
 #include "bench/suite/latency.h"
+#include "eskin/fnv1a.h"
 #include "eskin/shell.h"
 
 #include <fmt/format.h>
@@ -66,11 +67,6 @@ namespace {
 constexpr int kHallFrames = 8;
 
 std::string slurp(const fs::path& p) { return eskin::bench::read_text(p.string()); }
-
-uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
 
 // Runs a shell command, output into `log_file`; throws with its tail on failure.
 void run_logged(const std::string& cmd, const fs::path& log_file) {

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "bench/suite/engine_model.h"
+#include "eskin/fnv1a.h"
 #include "hls/dtmf_top_config.h"
 #include "hls/dtmf_ucode.h"
 #include "hls/sdft_bank_config.h"
@@ -136,12 +137,6 @@ std::vector<TradePoint> tradeoff_points(bool quick) {
 // ---------------------------------------------------------------- synthesis
 
 namespace {
-
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
 
 sim::Scene scene_for(const TradePoint& p) {
   sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");

@@ -16,6 +16,8 @@
 
 #include "cli/command.h"
 #include "cli/csv_fields.h"
+#include "cli/progress.h"
+#include "cli/simulate_hall.h"
 #include "host/golden/decode_score.h"
 #include "host/golden/golden_decoder.h"
 #include "host/golden/sdft_bank.h"
@@ -67,33 +69,6 @@ struct Args {
 struct FpgaFrame {  // a packet with its arrival at the host
   Packet p;
   double arrival_us = -1;
-};
-
-class Progress {  // stderr: a bar on a terminal, else a line per quarter after 2 s
- public:
-  explicit Progress(size_t total) : total_(total), tty_(isatty(2)) {}
-  void update(size_t done) {
-    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
-    const double f = std::min(1.0, double(done) / double(total_));
-    if (tty_) {
-      if (el - last_ < 0.1 && f < 1) return;
-      last_ = el;
-      const int w = 30, n = int(f * w);
-      fmt::print(stderr, "\rvirtual board [{}{}] {:3.0f}%  {:.1f} s", std::string(size_t(n), '#'),
-                 std::string(size_t(w - n), ' '), 100 * f, el);
-      if (f >= 1) fmt::print(stderr, "\n");
-    } else if (el > 2 && int(f * 4) > quarter_) {
-      quarter_ = int(f * 4);
-      fmt::print(stderr, "virtual board: {:.0f}% after {:.1f} s\n", 100 * f, el);
-    }
-  }
-
- private:
-  size_t total_;
-  bool tty_;
-  double last_ = -1;
-  int quarter_ = 0;
-  std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
 };
 
 struct GoldenRun {
@@ -150,6 +125,11 @@ std::string ms(double v) { return fmt::format("{:.3f}", v); }
 
 int run_simulate(const Args& a) {
   const sim::Scene scene = sim::load_scene(a.scene);  // a bad scene fails here, before anything runs
+  if (scene.has_hall && scene.has_skin)
+    throw ConfigError("hall", a.scene + ": a scene with both a DTMF skin and Hall sensors needs "
+                                        "both FPGA tops on one board; the virtual board runs one "
+                                        "top (simulate the skin and the Hall sensors as two scenes)");
+  if (scene.has_hall) return run_simulate_hall(scene, a.scene, a.out, a.trace);
   const vboard::FpgaBuild build = board_build(scene);
   const std::string exe = vboard::board_executable(
       build, [](const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); });

@@ -1,7 +1,9 @@
 // The FPGA top as the virtual board sees it: one clock cycle at a time,
-// pins in and out (rtl/dtmf_top.v's ports; outputs the board does not know
-// are left alone). Implemented over the Verilated SystemC model in
-// vboard_main.cpp, which is compiled per FPGA parameter set.
+// pins in and out: the ADC's SPI pins (rtl/dtmf_top.v), the I2C buses and
+// DRDY lines (rtl/hall_top.v), the UART. A top leaves the pins it does not
+// have alone. Implemented over the Verilated SystemC model in
+// vboard_main.cpp (DTMF top) and vboard_hall_main.cpp (Hall top), which are
+// compiled per FPGA parameter set.
 #pragma once
 
 #include <cstdint>
@@ -12,12 +14,15 @@ namespace eskin::vboard {
 struct FpgaInputs {
   bool adc_sdata = false;
   bool uart_rxd = true;  // idle high
+  uint64_t scl_i = 0, sda_i = 0;  // I2C line levels, bit b: bus b
+  uint64_t drdy = 0;              // bit s: sensor slot s's DRDY
 };
 
 struct FpgaOutputs {
   bool adc_cs_n = true;
   bool adc_sclk = true;
   bool uart_txd = true;
+  uint64_t scl_oe = 0, sda_oe = 0;  // I2C pull-downs, bit b: bus b
 };
 
 class FpgaModel {

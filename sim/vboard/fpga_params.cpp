@@ -11,6 +11,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include "eskin/fnv1a.h"
 #include "eskin/skin_config.h"
 #include "hls/dtmf_ucode.h"
 #include "sim/dtmf_top_spec.h"
@@ -63,8 +64,7 @@ FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir, long c
   if (mine == defaults) {
     b.key = "default";
   } else {
-    uint64_t h = 1469598103934665603ull;  // FNV-1a
-    for (char c : mine) h = (h ^ uint8_t(c)) * 1099511628211ull;
+    const uint64_t h = fnv1a(mine);
     char buf[20];
     std::snprintf(buf, sizeof buf, "p%016llx", (unsigned long long)h);
     b.key = buf;

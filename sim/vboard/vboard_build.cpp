@@ -45,38 +45,59 @@ void run_logged(const std::string& args, const std::string& log, const std::stri
     throw std::runtime_error(what + " failed (" + log + "), its last lines:\n" + tail(log, 15));
 }
 
-}  // namespace
-
-std::string board_executable(const FpgaBuild& b,
-                             const std::function<void(const std::string&)>& note) {
-  const std::string bin = ESKIN_VBOARD_BIN_DIR;
-  if (b.key == "default") return bin + "/eskin-vboard";
-  const std::string dir = ESKIN_VBOARD_DIR, target = "eskin-vboard-" + b.key;
+// The board `target`: listed in builds.cmake by `cmake_call` the first
+// time, then built (CMake finds it up to date when nothing changed).
+std::string ensure_board(const std::string& target, const std::string& key,
+                         const std::string& cmake_call, const std::string& what,
+                         const std::function<void(const std::string&)>& note) {
+  const std::string dir = ESKIN_VBOARD_DIR, bin = ESKIN_VBOARD_BIN_DIR;
   const std::string exe = bin + "/" + target, list = dir + "/builds.cmake";
   BuildLock lock(dir, "builds");  // one writer of the list, one CMake run at a time
   const bool listed = read_text(list).find("(" + target + " ") != std::string::npos;
   if (!listed) {
-    std::string line = "eskin_vboard_target(" + target + " " + b.key + " " +
-                       std::to_string(b.plan.spec.clk_hz) + " " + std::to_string(b.plan.spec.baud);
-    for (const auto& p : b.params)
-      if (p.name != "UCODE_HEX" && p.name != "KROM_HEX") line += " -G" + p.name + "=" + p.value;
     std::ofstream f(list, std::ios::app);
     if (!std::filesystem::exists(list) || std::filesystem::file_size(list) == 0)
       f << "# Virtual boards that `eskin simulate` built for scenes (sim/vboard/vboard_build.h).\n";
-    f << line << ")\n";
+    f << cmake_call << "\n";
     if (!f) throw std::runtime_error(list + ": cannot append the board " + target);
   }
-  const std::string log = dir + "/" + b.key + ".build.log";
+  const std::string log = dir + "/" + key + ".build.log";
   if (!listed || !std::filesystem::exists(exe)) {
-    note("building the virtual board " + target + " for a " + std::to_string(b.plan.R) + "x" +
-         std::to_string(b.plan.C) + " skin at " + std::to_string(b.plan.spec.clk_hz / 1000000) +
-         " MHz (Verilator and C++, a few minutes, once; log " + log + ")");
+    note("building the virtual board " + target + " for " + what +
+         " (Verilator and C++, a few minutes, once; log " + log + ")");
     std::ofstream(log, std::ios::trunc);
   }
   const std::string cmake = shell_quote(ESKIN_CMAKE_COMMAND), tree = shell_quote(ESKIN_BINARY_DIR);
   if (!listed) run_logged(cmake + " " + tree, log, "configuring the build tree for " + target);
   run_logged(cmake + " --build " + tree + " --target " + target, log, "building " + target);
   return exe;
+}
+
+}  // namespace
+
+std::string board_executable(const FpgaBuild& b,
+                             const std::function<void(const std::string&)>& note) {
+  if (b.key == "default") return std::string(ESKIN_VBOARD_BIN_DIR) + "/eskin-vboard";
+  const std::string target = "eskin-vboard-" + b.key;
+  std::string call = "eskin_vboard_target(" + target + " " + b.key + " " +
+                     std::to_string(b.plan.spec.clk_hz) + " " + std::to_string(b.plan.spec.baud);
+  for (const auto& p : b.params)
+    if (p.name != "UCODE_HEX" && p.name != "KROM_HEX") call += " -G" + p.name + "=" + p.value;
+  const std::string what = "a " + std::to_string(b.plan.R) + "x" + std::to_string(b.plan.C) +
+                           " skin at " + std::to_string(b.plan.spec.clk_hz / 1000000) + " MHz";
+  return ensure_board(target, b.key, call + ")", what, note);
+}
+
+std::string board_executable(const HallBuild& b,
+                             const std::function<void(const std::string&)>& note) {
+  const std::string target = "eskin-vboard-" + b.key;
+  std::string call = "eskin_vboard_hall_target(" + target + " " + b.key + " " +
+                     std::to_string(b.clk_hz) + " " + std::to_string(b.baud);
+  for (const auto& p : b.params) call += " " + p;
+  const std::string what = std::to_string(b.spec.nb) + " I2C bus(es) of " +
+                           std::to_string(b.spec.nsb) + " MLX90393 at " +
+                           std::to_string(b.clk_hz / 1000000) + " MHz";
+  return ensure_board(target, b.key, call + ")", what, note);
 }
 
 }  // namespace eskin::vboard

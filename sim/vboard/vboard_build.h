@@ -4,7 +4,8 @@
 // it is added to the build tree's list of boards (build/vboard/builds.cmake,
 // read by sim/vboard/CMakeLists.txt) and built by CMake, i.e. Verilator's
 // SystemC model of rtl/dtmf_top.v at the build's parameters plus
-// vboard_main.cpp. That takes minutes once; later runs find it up to date
+// vboard_main.cpp (of rtl/hall_top.v plus vboard_hall_main.cpp for a Hall
+// build). That takes minutes once; later runs find it up to date
 // (and rebuilt if the RTL changed).
 #pragma once
 
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "sim/vboard/fpga_params.h"
+#include "sim/vboard/hall_build.h"
 
 namespace eskin::vboard {
 
@@ -19,6 +21,9 @@ namespace eskin::vboard {
 // line before a build starts (it takes minutes). Throws std::runtime_error
 // naming the log and quoting its tail when CMake fails.
 std::string board_executable(const FpgaBuild& b,
+                             const std::function<void(const std::string&)>& note);
+// The same for a Hall scene's build (rtl/hall_top.v, vboard_hall_main.cpp).
+std::string board_executable(const HallBuild& b,
                              const std::function<void(const std::string&)>& note);
 
 }  // namespace eskin::vboard

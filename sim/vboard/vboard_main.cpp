@@ -10,10 +10,8 @@
 // when every byte is in it. Messages go to stderr.
 #include <fmt/format.h>
 
-#include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <unistd.h>
 #include <memory>
 #include <systemc>
 
@@ -22,6 +20,8 @@
 #include "sim/scene.h"
 #include "sim/vboard/fpga_params.h"
 #include "sim/vboard/direct_wire.h"
+#include "sim/vboard/vboard_cli.h"
+#include "sim/vboard/verilated_step.h"
 #include "sim/vboard/virtual_board.h"
 #include "sim/world_model.h"
 
@@ -35,24 +35,11 @@
 #error "VBOARD_BUILD_DIR: where the model reads KEY.ucode.hex and KEY.krom.hex"
 #endif
 
+ESKIN_EXPOSE_EVAL_STEP(Vdtmf_top)
+
 namespace {
 
 using eskin::vboard::DirectWire;
-FILE* json_out = stdout;
-
-// Verilator's SystemC model evaluates itself in an SC_METHOD sensitive to
-// its input ports, i.e. one SystemC delta cycle per clock edge, which costs
-// more than the evaluation (docs/vboard.md). The board clocks it directly
-// instead, through the model's own eval_step(), which Verilator declares
-// private; an explicit instantiation may name a private member (C++17
-// [temp.explicit]/14), which hands its address to eval_step_of().
-using EvalStep = void (Vdtmf_top::*)();
-EvalStep eval_step_of();
-template <EvalStep M>
-struct ExposeEvalStep {
-  friend EvalStep eval_step_of() { return M; }
-};
-template struct ExposeEvalStep<&Vdtmf_top::eval_step>;
 
 class VerilatedFpga final : public eskin::vboard::FpgaModel {
  public:
@@ -78,7 +65,11 @@ class VerilatedFpga final : public eskin::vboard::FpgaModel {
     clk_.write(false);
     (top_.*eval_)();
     if (fst_) fst_->dump(t_ps + half_ps_);
-    return {cs_n_.read(), sclk_.read(), txd_.read()};
+    eskin::vboard::FpgaOutputs out;
+    out.adc_cs_n = cs_n_.read();
+    out.adc_sclk = sclk_.read();
+    out.uart_txd = txd_.read();
+    return out;
   }
 
   void open_trace(const std::string& path) override {
@@ -96,19 +87,12 @@ class VerilatedFpga final : public eskin::vboard::FpgaModel {
  private:
   DirectWire clk_, rst_n_, sdata_, rxd_, cs_n_, sclk_, txd_;
   Vdtmf_top top_;
-  EvalStep eval_ = eval_step_of();
+  Vdtmf_top_eval_step eval_ = eval_step_of(&top_);
   std::unique_ptr<VerilatedFstC> fst_;
   uint64_t half_ps_ = 0;
 };
 
-struct Args {
-  std::string scene, pty_link, trace;
-  bool no_wait = false;
-  double reader_timeout_s = 60;
-  double tail_s = 0.002;
-};
-
-int run(const Args& a) {
+int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   const eskin::sim::Scene scene = eskin::sim::load_scene(a.scene);
   const eskin::vboard::FpgaBuild params = eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ, VBOARD_BAUD);
   if (params.key != VBOARD_PARAMS_KEY)
@@ -144,67 +128,24 @@ int run(const Args& a) {
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz())));
   eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
 
-  std::fprintf(json_out,
-      "{\"event\":\"ready\",\"pty\":\"%s\",\"params\":\"%s\",\"clk_hz\":%.0f,\"baud\":%.0f,"
-      "\"sample_hz\":%.0f,\"samples\":%llu,\"scene_samples\":%zu}\n",
-      pty.slave_path().c_str(), VBOARD_PARAMS_KEY, params.clk_hz(), params.baud(),
-      scene.skin.adc.rate_hz, (unsigned long long)cfg.samples, world.total_samples());
-  std::fflush(json_out);
-
+  eskin::vboard::print_ready(json, pty, VBOARD_PARAMS_KEY, params.clk_hz(), params.baud(),
+                             {{"top", "dtmf_top"},
+                              {"sample_hz", scene.skin.adc.rate_hz},
+                              {"samples", cfg.samples},
+                              {"scene_samples", world.total_samples()}});
   sc_core::sc_start();
   fpga.close_trace();
-  const auto& s = board.stats();
-  if (!s.error.empty()) throw std::runtime_error(s.error);
-  std::string frames;
-  for (double t : s.frame_end_ns) frames += fmt::format("{}{:.1f}", frames.empty() ? "" : ",", t);
-  std::fprintf(json_out,
-      "{\"event\":\"done\",\"cycles\":%llu,\"sim_s\":%.9f,\"wall_s\":%.6f,\"cpu_s\":%.6f,"
-      "\"samples\":%llu,\"adc_violations\":%llu,\"adc_first_violation\":\"%s\","
-      "\"bytes_to_host\":%llu,\"bytes_to_fpga\":%llu,\"usb_framing_errors\":%llu,"
-      "\"reader_baud\":%.0f,\"baud_mismatches\":%llu,\"reader_closed\":%s,"
-      "\"frame_end_ns\":[%s]}\n",
-      (unsigned long long)s.cycles, s.sim_s, s.wall_s, s.cpu_s, (unsigned long long)s.samples,
-      (unsigned long long)s.adc_violations, s.first_adc_violation.c_str(),
-      (unsigned long long)s.bytes_to_host, (unsigned long long)s.bytes_to_fpga,
-      (unsigned long long)s.usb_framing_errors, s.reader_baud,
-      (unsigned long long)s.baud_mismatches, s.reader_closed ? "true" : "false", frames.c_str());
-  std::fflush(json_out);
-  // The reader may still be draining the pty: closing the master now would
-  // hang up its side. Wait until it closes (or the timeout).
-  for (int i = 0; i < int(a.reader_timeout_s * 100) && !pty.reader_closed() && s.reader_baud > 0; ++i)
-    usleep(10000);
+  eskin::vboard::print_done(json, board.stats(), nlohmann::json::object());
+  eskin::vboard::wait_for_reader(pty, board.stats(), a.reader_timeout_s);
   return 0;
 }
 
 }  // namespace
 
 int sc_main(int argc, char** argv) {
-  // stdout is for the JSON lines only: keep it on its own stream and send
-  // everything else written to fd 1 (SystemC's banner) to stderr.
-  json_out = fdopen(dup(1), "w");
-  dup2(2, 1);
-  sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
-  Args a;
-  CLI::App app{"eskin-vboard: a scene on the SystemC virtual board (FPGA build " VBOARD_PARAMS_KEY
-               "); its serial port is a pseudo-terminal"};
-  app.add_option("scene", a.scene, "scene file (YAML, docs/scenes.md)")->required()->check(CLI::ExistingFile);
-  app.add_option("--pty-link", a.pty_link, "also make this path a symlink to the pty");
-  app.add_option("--trace", a.trace, "write an FST waveform of the FPGA (GTKWave; ~7x slower)");
-  app.add_flag("--no-wait", a.no_wait,
-               "start at once instead of waiting for a reader to set a baud rate");
-  app.add_option("--reader-timeout", a.reader_timeout_s, "seconds to wait for a reader")
-      ->capture_default_str();
-  app.add_option("--tail", a.tail_s, "seconds of idle input after the scene (last frames out)")
-      ->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  try {
-    return run(a);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "eskin-vboard: error: %s\n", e.what());
-    return 2;
-  }
+  return eskin::vboard::vboard_cli_main(
+      argc, argv,
+      "eskin-vboard: a scene on the SystemC virtual board (FPGA build " VBOARD_PARAMS_KEY
+      "); its serial port is a pseudo-terminal",
+      0.002, run);
 }

@@ -43,17 +43,26 @@ sc_core::sc_time VirtualBoard::time_of(uint64_t cycle) const {
   return sc_core::sc_time(double(cycle) * cycle_ns_, sc_core::SC_NS);
 }
 
-// One FPGA clock per iteration, as tests/rtl/dtmf_top_board.h does it: the
-// ADC's SDATA and the bridge's RXD as they are just before the rising edge
-// at t, the edge, then the pins the FPGA drives after it.
+bool VirtualBoard::running() const {
+  return cfg_.codes.empty() ? cycle_ < cfg_.cycles : adc_.samples_taken() < cfg_.samples;
+}
+
+// One FPGA clock per iteration, as tests/rtl/dtmf_top_board.h and
+// hall_top_board.h do it: the ADC's SDATA, the I2C lines and DRDYs and the
+// bridge's RXD as they are just before the rising edge at t, the edge, then
+// the pins the FPGA drives after it.
 void VirtualBoard::run_cycles(uint64_t until) {
-  while (cycle_ < until && adc_.samples_taken() < cfg_.samples) {
+  const bool adc = !cfg_.codes.empty();
+  sim::HallSensorArray* hall = cfg_.hall;
+  while (cycle_ < until && running()) {
     const double t = double(cycle_ + 1) * cycle_ns_;
-    in_.adc_sdata = adc_.sdata(t);
+    if (adc) in_.adc_sdata = adc_.sdata(t);
+    if (hall) hall->before(t, in_.scl_i, in_.sda_i, in_.drdy);
     in_.uart_rxd = usb_.rxd_level(t);
     out_ = fpga_.cycle(in_, uint64_t(std::llround(t * 1000.0)));
     ++cycle_;
-    adc_.drive(t, out_.adc_cs_n, out_.adc_sclk);
+    if (adc) adc_.drive(t, out_.adc_cs_n, out_.adc_sclk);
+    if (hall) hall->after(t, out_.scl_oe, out_.sda_oe);
     usb_.sample_txd(t, out_.uart_txd);
   }
 }
@@ -64,7 +73,7 @@ void VirtualBoard::fpga_thread() {
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpu_seconds();
   const uint64_t batch = uint64_t(std::llround(kBatch.to_seconds() * cfg_.clk_hz));
-  while (adc_.samples_taken() < cfg_.samples && !stats_.reader_closed) {
+  while (running() && !stats_.reader_closed) {
     run_cycles(cycle_ + batch);
     wait(time_of(cycle_) - sc_core::sc_time_stamp());
   }
@@ -143,6 +152,11 @@ void VirtualBoard::usb_thread() {
   stats_.samples = adc_.samples_taken();
   stats_.adc_violations = adc_.violation_count();
   if (!adc_.violations().empty()) stats_.first_adc_violation = adc_.violations()[0];
+  if (cfg_.hall) {
+    const std::vector<std::string> v = cfg_.hall->violations();
+    stats_.i2c_violations = cfg_.hall->violation_count();
+    if (!v.empty()) stats_.first_i2c_violation = v[0];
+  }
   stats_.bytes_to_host = usb_.bytes_to_host();
   stats_.bytes_to_fpga = usb_.bytes_to_fpga();
   stats_.usb_framing_errors = usb_.framing_errors();

@@ -1,8 +1,10 @@
 // The SystemC virtual board: the Verilated FPGA top clocked at its real
-// frequency, the AD7476A pin model on its SPI pins fed with the scene's ADC
-// codes, and the USB-serial bridge on its UART pins, exposed to the host as
-// a pseudo-terminal. Time is real: the FPGA clock, the ADC's SCLK edges
-// and the UART bits are placed in ns and checked in ns.
+// frequency; the AD7476A pin model on its SPI pins fed with the scene's ADC
+// codes (a DTMF skin), or the Hall skin's MLX90393s (and TCA9548As) on its
+// I2C buses, their field from the scene's world (sim/hall_sensor_array.h);
+// and the USB-serial bridge on its UART pins, exposed to the host as a
+// pseudo-terminal. Time is real: the FPGA clock, the ADC's SCLK edges, the
+// I2C lines and the UART bits are placed in ns and checked in ns.
 //
 // Two SystemC threads share the time axis:
 //   fpga   clocks the model for one batch (kBatch of simulated time) in a
@@ -22,6 +24,7 @@
 #include <vector>
 
 #include "sim/ad7476_model.h"
+#include "sim/hall_sensor_array.h"
 #include "sim/vboard/fpga_model.h"
 #include "sim/vboard/pty_port.h"
 #include "sim/vboard/usb_serial.h"
@@ -33,6 +36,8 @@ struct BoardConfig {
   double baud = 3e6;             // the FPGA top's BAUD
   std::vector<uint16_t> codes;   // 12-bit ADC codes, one per conversion
   uint64_t samples = 0;          // stop once the ADC has taken this many
+  sim::HallSensorArray* hall = nullptr;  // the Hall skin's devices (none: no I2C side)
+  uint64_t cycles = 0;           // with no ADC: stop after this many FPGA cycles
   bool wait_for_reader = true;   // hold time at 0 until a reader sets a baud rate
   std::string trace;             // FST waveform file ("": none), from the first cycle
   double reader_timeout_s = 60;  // ... for at most this long (wall clock)
@@ -44,6 +49,8 @@ struct BoardStats {
   uint64_t samples = 0;                 // ADC conversions started
   uint64_t adc_violations = 0;
   std::string first_adc_violation;
+  uint64_t i2c_violations = 0;          // bus timing limits broken (sim/i2c_bus.h)
+  std::string first_i2c_violation;
   uint64_t bytes_to_host = 0, bytes_to_fpga = 0;
   uint64_t usb_framing_errors = 0;      // stop bits the bridge read as 0
   double reader_baud = 0;               // last rate the reader set
@@ -64,6 +71,7 @@ SC_MODULE(VirtualBoard) {
   void fpga_thread();
   void usb_thread();
   void run_cycles(uint64_t until);
+  bool running() const;  // the scene (plus its tail) is not over yet
   void move_bytes();
   void follow_reader_baud();
   sc_core::sc_time time_of(uint64_t cycle) const;

@@ -1,36 +1,20 @@
 // `eskin simulate` as a user runs it: a real process on a real scene file,
 // the virtual board behind a real pty, the report and raw outputs on disk.
-#include <sys/wait.h>
-
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
+
+#include "run_command.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs a shell command; returns its exit status, stdout+stderr in *out.
-int run(const std::string& cmd, std::string* out) {
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  char buf[4096];
-  out->clear();
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out->append(buf, n);
-  const int st = pclose(p);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+using vboard_test::run;
+using vboard_test::slurp;
 
 // The default scene's skin, one 50 kPa press of taxel (1, 2): 5 ms ramp
 // from 10 ms, held 20 ms.

@@ -1,0 +1,81 @@
+#include "sim/vboard/vboard_cli.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <systemc>
+
+namespace eskin::vboard {
+
+int vboard_cli_main(int argc, char** argv, const std::string& title, double default_tail_s,
+                    const std::function<int(const VboardArgs&, FILE* json)>& run) {
+  // stdout is for the JSON lines only: keep it on its own stream and send
+  // everything else written to fd 1 (SystemC's banner) to stderr.
+  FILE* json = fdopen(dup(1), "w");
+  dup2(2, 1);
+  sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
+  VboardArgs a;
+  a.tail_s = default_tail_s;
+  CLI::App app{title};
+  app.add_option("scene", a.scene, "scene file (YAML, docs/scenes.md)")->required()->check(CLI::ExistingFile);
+  app.add_option("--pty-link", a.pty_link, "also make this path a symlink to the pty");
+  app.add_option("--trace", a.trace, "write an FST waveform of the FPGA (GTKWave; ~7x slower)");
+  app.add_flag("--no-wait", a.no_wait,
+               "start at once instead of waiting for a reader to set a baud rate");
+  app.add_option("--reader-timeout", a.reader_timeout_s, "seconds to wait for a reader")
+      ->capture_default_str();
+  app.add_option("--tail", a.tail_s, "seconds of idle input after the scene (last frames out)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    return run(a, json);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "eskin-vboard: error: %s\n", e.what());
+    return 2;
+  }
+}
+
+void print_ready(FILE* json, const PtyPort& pty, const std::string& key, double clk_hz, double baud,
+                 const nlohmann::json& extra) {
+  nlohmann::json j = {{"event", "ready"}, {"pty", pty.slave_path()}, {"params", key},
+                      {"clk_hz", clk_hz}, {"baud", baud}};
+  j.update(extra);
+  std::fprintf(json, "%s\n", j.dump().c_str());
+  std::fflush(json);
+}
+
+void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra) {
+  if (!s.error.empty()) throw std::runtime_error(s.error);
+  nlohmann::json j = {{"event", "done"},
+                      {"cycles", s.cycles},
+                      {"sim_s", s.sim_s},
+                      {"wall_s", s.wall_s},
+                      {"cpu_s", s.cpu_s},
+                      {"samples", s.samples},
+                      {"adc_violations", s.adc_violations},
+                      {"adc_first_violation", s.first_adc_violation},
+                      {"i2c_violations", s.i2c_violations},
+                      {"i2c_first_violation", s.first_i2c_violation},
+                      {"bytes_to_host", s.bytes_to_host},
+                      {"bytes_to_fpga", s.bytes_to_fpga},
+                      {"usb_framing_errors", s.usb_framing_errors},
+                      {"reader_baud", s.reader_baud},
+                      {"baud_mismatches", s.baud_mismatches},
+                      {"reader_closed", s.reader_closed},
+                      {"frame_end_ns", s.frame_end_ns}};
+  j.update(extra);
+  std::fprintf(json, "%s\n", j.dump().c_str());
+  std::fflush(json);
+}
+
+void wait_for_reader(const PtyPort& pty, const BoardStats& s, double timeout_s) {
+  for (int i = 0; i < int(timeout_s * 100) && !pty.reader_closed() && s.reader_baud > 0; ++i)
+    usleep(10000);
+}
+
+}  // namespace eskin::vboard

@@ -1,0 +1,40 @@
+// What every eskin-vboard executable shares (vboard_main.cpp: the DTMF top,
+// vboard_hall_main.cpp: the Hall top): its command line, the JSON status
+// lines on stdout (docs/vboard.md, "Status lines"), and the end of a run.
+#pragma once
+
+#include <cstdio>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/vboard/pty_port.h"
+#include "sim/vboard/virtual_board.h"
+
+namespace eskin::vboard {
+
+struct VboardArgs {
+  std::string scene, pty_link, trace;
+  bool no_wait = false;
+  double reader_timeout_s = 60;
+  double tail_s = 0.002;  // idle time after the scene, to let the last frames out
+};
+
+// sc_main's body: stdout kept for the JSON lines (`json` in `run`),
+// everything else written to fd 1 (SystemC's banner) sent to stderr; the
+// arguments parsed; `run` called; errors printed as "eskin-vboard: error:".
+int vboard_cli_main(int argc, char** argv, const std::string& title, double default_tail_s,
+                    const std::function<int(const VboardArgs&, FILE* json)>& run);
+
+// {"event":"ready","pty":...,"params":key,"clk_hz":...,"baud":..., extra...}
+void print_ready(FILE* json, const PtyPort& pty, const std::string& key, double clk_hz, double baud,
+                 const nlohmann::json& extra);
+// {"event":"done", the board's figures, extra...}; throws if the board
+// stopped with an error.
+void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra);
+// The reader may still be draining the pty: closing the master now would
+// hang up its side. Waits until it closes (or the timeout).
+void wait_for_reader(const PtyPort& pty, const BoardStats& s, double timeout_s);
+
+}  // namespace eskin::vboard
