@@ -8,12 +8,14 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <thread>
 
 #include "cli/command.h"
 #include "cli/hall_fpga_setup.h"
 #include "cli/progress.h"
 #include "eskin/mlx90393_config.h"
+#include "host/golden/contact_locate.h"
 #include "host/golden/force_curve.h"
 #include "host/golden/hall_baseline.h"
 #include "host/link/hall_packets.h"
@@ -231,6 +233,12 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
   if (spec.decouple) base.set(std::vector<Vec3>(ns, h.geomagnetic_ut));  // as the commands set it
   const auto& dcal = setup.decouple;
   const golden::Decoupled rest = golden::hall_decouple(dcal.rest_film_ut, dcal.params);
+  // Seed 000: localisation is host-side by design (docs/hall_fpga.md): the
+  // golden locator on the FPGA's readings.
+  std::unique_ptr<golden::ContactLocator> loc;
+  if (h.wants(HallDecode::Locate))
+    loc = std::make_unique<golden::ContactLocator>(calibrate_locator(world, scene.seed));
+  Mean loc1, locm, locroll;
   Mean f_shear, f_normal, g_shear, g_normal;
   std::array<Mean, 6> f_w, g_w;
   std::array<Mean, 3> f_range, g_range;
@@ -259,6 +267,7 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
     };
     if (spec.decouple) cols({"fx_n", "fy_n", "fnormal_n"});
     if (spec.ft) cols({"fx_n", "fy_n", "fz_n", "tx_nmm", "ty_nmm", "tz_nmm"});
+    if (h.wants(HallDecode::Locate)) head += ",golden_contacts_x_y_n";
     if (spec.curve) {
       std::vector<std::string> cells;
       for (int c = 0; c < spec.nc; ++c) cells.push_back(fmt::format("cell{}_n", c));
@@ -288,7 +297,7 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
     }
     if (!base.push(ut, delta)) continue;
     bool steady = false;
-    active_stimuli(scene.hall, t, steady);
+    const int active = active_stimuli(scene.hall, t, steady);
     const sim::HallTruth truth = world.truth(t);
     for (size_t s = 0; s < field_s.size(); ++s)
       field_s[s].add(t, std::sqrt(delta[s][0] * delta[s][0] + delta[s][1] * delta[s][1] + delta[s][2] * delta[s][2]));
@@ -381,6 +390,22 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
       }
       line += fs_ + gs_ + ts_;
     }
+    if (loc) {
+      Eigen::VectorXd x(Eigen::Index(3 * ns));
+      for (size_t i = 0; i < ns; ++i)
+        for (size_t a = 0; a < 3; ++a) x(Eigen::Index(3 * i + a)) = delta[i][a];
+      const auto found = loc->locate(x, std::max(1, active), 0.05);
+      std::string fx;
+      for (const auto& g : found) fx += fmt::format("{}{:.2f};{:.2f};{:.3f}", fx.empty() ? "" : "|", g.x_mm, g.y_mm, g.force_n);
+      line += "," + fx;
+      const bool rolling = !scene.hall.rolls.empty() && scene.hall.rolls[0].envelope(t) > 0;
+      for (const auto& c : truth.contacts) {  // each true contact against the nearest found one
+        if (!steady) break;
+        double best = 1e300;
+        for (const auto& g : found) best = std::min(best, std::hypot(g.x_mm - c.point_mm[0], g.y_mm - c.point_mm[1]));
+        (rolling ? locroll : truth.contacts.size() == 1 ? loc1 : locm).add(best);
+      }
+    }
     csv.print("{}\n", line);
   }
 
@@ -425,6 +450,13 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
       frow.push_back(fmt::format("{} ({} frames)", pct(f_range[size_t(r)].get()), f_range[size_t(r)].n));
       grow.push_back(pct(g_range[size_t(r)].get()));
     }
+  if (loc) {
+    head.insert(head.end(), {"single press, position", "multi-point", "rolling ball"});
+    frow.insert(frow.end(), {"host-side by design", "", ""});
+    grow.insert(grow.end(), {fmt::format("{:.2f} mm ({} frames)", loc1.get(), loc1.n),
+                             fmt::format("{:.2f} mm ({})", locm.get(), locm.n),
+                             fmt::format("{:.2f} mm ({})", locroll.get(), locroll.n)});
+  }
   head.push_back("frames scored");
   frow.push_back(std::to_string(scored));
   grow.push_back(std::to_string(scored));
@@ -517,6 +549,9 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
       fr.push_back(f_range[size_t(r)].get()), gr.push_back(g_range[size_t(r)].get()), n.push_back(f_range[size_t(r)].n);
     sum["force_curve"] = {{"fpga", fr}, {"golden", gr}, {"fpga_frames", n}};
   }
+  if (loc)
+    sum["locate"] = {{"golden_single_mm", loc1.get()}, {"golden_multi_mm", locm.get()},
+                     {"golden_rolling_mm", locroll.get()}, {"single_frames", loc1.n}};
   fmt::output_file((fs::path(out_dir) / "summary.json").string()).print("{}\n", sum.dump(2));
 
   const int status = board.wait();
@@ -539,6 +574,10 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
     fmt::print("force curve, ranges 1/2/3: FPGA {} / {} / {}, golden {} / {} / {} of the range's top\n",
                pct(f_range[0].get()), pct(f_range[1].get()), pct(f_range[2].get()),
                pct(g_range[0].get()), pct(g_range[1].get()), pct(g_range[2].get()));
+  if (loc)
+    fmt::print("locate (host-side, golden on the FPGA's readings): single presses {:.2f} mm over {} "
+               "frames, multi-point {:.2f} mm, rolling ball {:.2f} mm\n",
+               loc1.get(), loc1.n, locm.get(), locroll.get());
   if (lat_med >= 0)
     fmt::print("latency DRDY -> last byte on the host: median {:.0f} us, max {:.0f} us\n", lat_med, lat_max);
   fmt::print("report: {}\n", html);
