@@ -258,6 +258,7 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
           {"IMEM_WORDS", i(kDtmfImemWords)},
           {"DW", i(std::max(4, clog2(im.dend)))},
           {"KW", i(std::max(1, clog2(long(im.krom.size()))))},
+          {"OUT_DEPTH", i(p.out_depth)},
           {"UCODE_HEX", "\"" + ucode_hex + "\""},
           {"KROM_HEX", "\"" + krom_hex + "\""}};
 }

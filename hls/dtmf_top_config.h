@@ -83,7 +83,23 @@ struct DtmfTopPlan {
   SynapseWeightsConfig synapse;
   uint16_t decim_amp = 1, decim_tax = 1, sparse_min = 0;
   uint8_t mask = 0;
+  // Bytes of rtl/dtmf_top.v's output FIFO (OUT_DEPTH): a power of two, at
+  // least 512 (one EBR pair), holding the plan's largest packet whole.
+  int out_depth = 512;
 };
+
+// The longest packet a plan's top can queue, header (type, t, len: 7 bytes)
+// included, from the payloads of docs/protocol.md section 4: AMPLITUDES 2K;
+// TAXELS_DENSE 2 + 2T; TAXELS_SPARSE 4T (every taxel lit); SPIKES 5 bytes
+// per event, at most every neuron of both layers once per frame of the
+// spike window (decim_tax frames), capped by max_spikes; STATUS 28.
+// frame_engine writes a packet only when the FIFO has room for all of it
+// (pkt_begin in rtl/ucode/dtmf_chain.fe) and counts the rest as dropped,
+// so a packet longer than the FIFO could never be sent.
+inline int longest_packet_bytes(const DtmfTopPlan& p) {
+  const long spikes = std::min<long>(p.max_spikes, 2L * p.T * p.decim_tax);
+  return 7 + int(std::max({2L * p.K, 2L + 2L * p.T, 4L * p.T, 5 * spikes, 28L}));
+}
 
 constexpr int kSynapseFrac = 8;  // synapse weights: int16, 8 fraction bits
 
@@ -183,6 +199,8 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
   const double bytes = 1.5 * ((10.0 + 2 * p.K + 2) + (10.0 + 2 + 2.0 * p.T + 2));
   const double link = double(s.baud) / 10.0 * frame_ms / 1000.0;
   p.decim_amp = p.decim_tax = uint16_t(std::max(1.0, std::ceil(bytes / link)));
+  p.out_depth = 512;
+  while (p.out_depth < longest_packet_bytes(p)) p.out_depth *= 2;
   return p;
 }
 

@@ -37,6 +37,9 @@ module dtmf_top #(
     parameter integer IMEM_WORDS = 1280, // microcode words (10 EBRs)
     parameter integer DW = 10,          // engine data words 2^DW
     parameter integer KW = 9,           // engine constant words 2^KW
+    // Output FIFO bytes (hls/dtmf_top_config.h: the plan's longest packet
+    // fits whole; the engine drops, and counts, a packet without room).
+    parameter integer OUT_DEPTH = 512,
     // The scene's microcode and constants ($readmemh files written by
     // hls/dtmf_ucode.h's write_dtmf_top_build, e.g. through `eskin bitstream`).
     parameter UCODE_HEX = "",
@@ -51,7 +54,8 @@ module dtmf_top #(
     input  wire uart_rxd     // from the host
 );
   generate
-    if (KS < 1 || KS > 128 || N < 2 || ACC_W < 14 || ACC_W > 32 || STEP < 1) begin : g_bad_params
+    if (KS < 1 || KS > 128 || N < 2 || ACC_W < 14 || ACC_W > 32 || STEP < 1 ||
+        OUT_DEPTH < 512 || OUT_DEPTH > 32768 || (OUT_DEPTH & (OUT_DEPTH - 1)) != 0) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -168,7 +172,7 @@ module dtmf_top #(
   wire fifo_valid, fifo_ready, fr_valid, fr_ready;
   wire [7:0] fifo_data, fr_data;
   wire [15:0] out_free, out_overflows;
-  byte_fifo #(.DEPTH(512)) u_out (
+  byte_fifo #(.DEPTH(OUT_DEPTH)) u_out (
       .clk(clk), .rst(rst), .in_valid(wr_out), .in_data(io_wdata[7:0]),
       .out_valid(fifo_valid), .out_ready(fifo_ready), .out_data(fifo_data), .free(out_free),
       .overflows(out_overflows));

@@ -27,7 +27,7 @@ struct EngineCycleModel::Impl {
       switch (a) {
         case hls::kIoFrameT: return m->frame_t;
         case hls::kIoStatus: return m->pending ? 1u : 0u;  // no commands
-        case hls::kIoOutFree: return 512;                  // the link keeps up
+        case hls::kIoOutFree: return uint32_t(m->plan.out_depth);  // the link keeps up
         case hls::kIoAdcT: return m->adc_t;
         case hls::kIoFrameOvr: return m->overruns;
         default: return 0;  // other counters; a DFT write is never pending

@@ -27,10 +27,11 @@ struct EngineMax {
 using Engine = hls::FrameEngine<EngineMax>;
 
 // rtl/dtmf_top.v's IO ports as the microcode sees them: the frame buffer,
-// the command FIFO, an output FIFO that always has room, counters at 0, a
+// the command FIFO, an output FIFO that is always empty (OUT_DEPTH free), counters at 0, a
 // DFT that takes carrier writes at once.
 struct LoadIo {
   std::vector<int32_t> frame;
+  int out_depth = 512;  // the plan's OUT_DEPTH
   bool pending = false, adc_on = false, done = false;
   uint64_t done_clock = 0;
   uint32_t t = 0;
@@ -44,7 +45,7 @@ struct LoadIo {
       case hls::kIoFrameT: case hls::kIoAdcT: return t;
       case hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);
       case hls::kIoCmd: return cmd.empty() ? 0u : cmd.front();
-      case hls::kIoOutFree: return 512;
+      case hls::kIoOutFree: return uint32_t(out_depth);
       default: return 0;
     }
   }
@@ -87,6 +88,7 @@ class LoadRun {
     eng_->load_krom(im_.krom.data(), uint32_t(im_.krom.size()));
     eng_->reset();
     io_.frame.assign(size_t(2 * p.ks), 0);
+    io_.out_depth = p.out_depth;
     limit_ = 4000 * uint64_t(p.T + p.K) + 1000000;  // far above any frame, below a hang
     run_until(64 * uint64_t(im_.dend + im_.krom.size()) + 100000,
               [&] { return io_.adc_on && at_wait(); }, "its first wait");

@@ -50,6 +50,7 @@ class TopModel {
     eng_->reset();
     cfg_inc_.assign(size_t(plan.ks), 0);
     io_.inc = &cfg_inc_;
+    io_.out_depth = plan.out_depth;
     // Boot until the first carrier table reaches the DFT (the ADC starts then).
     eng_->run(io_, 2000000, [this](const auto&) { return io_.adc_on; });
   }
@@ -131,6 +132,7 @@ class TopModel {
     uint64_t frame_start = 0, max_frame = 0;
     std::vector<uint8_t> out;
     std::deque<uint8_t> cmd;
+    int out_depth = 512;  // the plan's OUT_DEPTH
     int cfg_k = 0;
     bool cfg_last = false;
     std::vector<uint32_t>* inc = nullptr;
@@ -142,7 +144,7 @@ class TopModel {
         case eskin::hls::kIoFrameT: return frame_t;
         case eskin::hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);
         case eskin::hls::kIoCmd: return cmd.empty() ? 0u : cmd.front();
-        case eskin::hls::kIoOutFree: return 512;  // the link keeps up
+        case eskin::hls::kIoOutFree: return uint32_t(out_depth);  // the link keeps up
         case eskin::hls::kIoAdcT: return adc_t;
         case eskin::hls::kIoFrameOvr: return frame_overruns;
         default: return 0;  // other counters, a DFT write never pending
