@@ -175,7 +175,7 @@ std::function<int()> setup(CLI::App& app) {
   auto* sub = app.add_subcommand(
       "stream", "read the FPGA link: NDJSON to stdout, CSV/HDF5 recording, live view");
   a->link.add_to(sub);
-  sub->add_option("--csv", a->csv_dir, "record DIR/<table>.csv (amplitudes, taxels, spikes, status)");
+  sub->add_option("--csv", a->csv_dir, "record DIR/<table>.csv (amplitudes, taxels, spikes, status; hall_* for a Hall board)");
   sub->add_option("--hdf5", a->hdf5_file, "record one HDF5 file (flushed every --flush-ms)");
   sub->add_option("--live", a->live, "serve the live view on [ADDR:]PORT (ADDR default 127.0.0.1)");
   sub->add_option("--scene", a->scene_file, "scene file: its configuration goes into the HDF5 attributes")

@@ -1,8 +1,9 @@
 // Decoded packets as rows of named tables: the one description of every
 // FPGA -> host packet type that all consumers share (NDJSON, CSV, HDF5, the
-// live view, the stream's per-type callbacks). A new packet type (e.g. the
-// Hall forces 0x10..) is one entry in packet_kinds() (packet_table.cpp),
-// after link_decoder's parse_payload learns its payload.
+// live view, the stream's per-type callbacks): the DTMF skin's packets and
+// the Hall skins' (readings, deltas, decoded forces, counters). A new packet
+// type is one entry in packet_kinds() (packet_table.cpp), after
+// link_decoder's parse_payload learns its payload.
 #pragma once
 
 #include <cstdint>

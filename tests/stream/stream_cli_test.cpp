@@ -10,7 +10,9 @@
 #include <sstream>
 #include <thread>
 
+#include "host/link/hall_packets.h"
 #include "host/link/link_decoder.h"
+#include "host/link/link_encoder.h"
 #include "tests/stream/frames.h"
 #include "tests/stream/process.h"
 #include "tests/stream/pty_pair.h"
@@ -267,6 +269,135 @@ TEST(StreamCli, KilledRunLeavesAReadableHdf5File) {
   EXPECT_EQ(p.wait_exit(10s), 128 + SIGKILL);
   expect_hdf5_matches((dir / "run.h5").string(), want);
   fs::remove_all(dir);
+}
+
+// A Hall board's packets (docs/protocol.md sections 8 and 9) through the
+// real binary: every reading, delta, decoded force and counter comes out as
+// one NDJSON row per sensor, bus or cell record, in CSV and HDF5 too. The
+// payloads are written here byte by byte from the protocol's layouts, and
+// the expected rows read back from those bytes, so the decoder and the
+// tables are what is tested.
+TEST(StreamCli, HallPacketsToNdjsonCsvAndHdf5) {
+  const fs::path dir = tmpdir();
+  eskin::link::LinkEncoder enc;
+  std::vector<uint8_t> wire;
+  std::vector<json> want;
+  auto u16 = [](std::vector<uint8_t>& b, uint32_t v) { b.push_back(uint8_t(v)), b.push_back(uint8_t(v >> 8)); };
+  auto u32 = [&](std::vector<uint8_t>& b, uint32_t v) { u16(b, v & 0xFFFF), u16(b, v >> 16); };
+  auto send = [&](uint8_t type, uint32_t t, const std::vector<uint8_t>& payload) {
+    const uint8_t seq = enc.next_seq();
+    const auto f = enc.frame(type, t, payload);
+    wire.insert(wire.end(), f.begin(), f.end());
+    return seq;
+  };
+  for (uint32_t k = 0; k < 40; ++k) {
+    const uint32_t t = 2053 * (k + 1);
+    std::vector<uint8_t> samples, deltas;
+    for (int id = 0; id < 3; ++id) {  // three sensors; sensor 2 missing on odd frames
+      const uint8_t flags = (id == 2 && k % 2) ? 0x08 : 0x00;
+      const uint16_t x = uint16_t(1000 * id + k), y = uint16_t(0xFF00 - k), z = uint16_t(7 * k);
+      const int16_t dx = int16_t(-int(k) - id), dy = int16_t(3 * k), dz = int16_t(-300 + id);
+      samples.insert(samples.end(), {uint8_t(id), flags}), u16(samples, t & 0xFFFF), u16(samples, x),
+          u16(samples, y), u16(samples, z);
+      deltas.insert(deltas.end(), {uint8_t(id), flags}), u16(deltas, t & 0xFFFF), u16(deltas, uint16_t(dx)),
+          u16(deltas, uint16_t(dy)), u16(deltas, uint16_t(dz));
+    }
+    const uint8_t s1 = send(eskin::link::kHallSamples, t, samples);
+    const uint8_t s2 = send(eskin::link::kHallDeltas, t, deltas);
+    for (int id = 0; id < 3; ++id) {
+      const size_t o = size_t(10 * id);
+      auto le = [&](const std::vector<uint8_t>& b, size_t i) { return int(b[i] | b[i + 1] << 8); };
+      want.push_back({{"type", "hall_samples"}, {"seq", s1}, {"t", t}, {"id", samples[o]},
+                      {"flags", samples[o + 1]}, {"t16", le(samples, o + 2)}, {"x", le(samples, o + 4)},
+                      {"y", le(samples, o + 6)}, {"z", le(samples, o + 8)}});
+    }
+    for (int id = 0; id < 3; ++id) {
+      const size_t o = size_t(10 * id);
+      auto sle = [&](size_t i) { return int(int16_t(deltas[i] | deltas[i + 1] << 8)); };
+      want.push_back({{"type", "hall_deltas"}, {"seq", s2}, {"t", t}, {"id", deltas[o]},
+                      {"flags", deltas[o + 1]}, {"t16", sle(o + 2) & 0xFFFF}, {"dx", sle(o + 4)},
+                      {"dy", sle(o + 6)}, {"dz", sle(o + 8)}});
+    }
+    std::vector<uint8_t> dec;  // rx, ry, sz s32, valid, flags
+    const int32_t rx = -int32_t(k) * 100000, ry = int32_t(k) * 7, sz = 16777216 * 5 + int32_t(k);
+    u32(dec, uint32_t(rx)), u32(dec, uint32_t(ry)), u32(dec, uint32_t(sz)), dec.push_back(1), dec.push_back(0);
+    want.push_back({{"type", "hall_decouple"}, {"seq", send(eskin::link::kHallDecouple3, t, dec)}, {"t", t},
+                    {"rx", rx}, {"ry", ry}, {"sz", sz}, {"valid", 1}, {"flags", 0}});
+    std::vector<uint8_t> w;  // six s32, flags
+    json wj = {{"type", "hall_wrench"}, {"t", t}, {"flags", 2}};
+    const char* names[] = {"fx_mn", "fy_mn", "fz_mn", "tx_mnmm", "ty_mnmm", "tz_mnmm"};
+    for (int a = 0; a < 6; ++a) {
+      const int32_t v = (a % 2 ? -1 : 1) * int32_t(1000 * a + k);
+      u32(w, uint32_t(v));
+      wj[names[a]] = v;
+    }
+    w.push_back(2);
+    wj["seq"] = send(eskin::link::kHallWrench6, t, w);
+    want.push_back(wj);
+    std::vector<uint8_t> fc;  // cell, range, flags, t u32, force s32
+    const uint8_t sf = enc.next_seq();
+    for (int c = 0; c < 2; ++c) {
+      fc.insert(fc.end(), {uint8_t(c), uint8_t(k % 3), uint8_t(c ? 0x20 : 0)});
+      u32(fc, c ? 0u : t - 300), u32(fc, uint32_t(c ? 0 : 450 * int32_t(k) - 2000));
+      want.push_back({{"type", "hall_forces"}, {"seq", sf}, {"t", t}, {"cell", c}, {"range", k % 3},
+                      {"flags", c ? 0x20 : 0}, {"t_us", c ? 0u : t - 300},
+                      {"force_mn", c ? 0 : 450 * int32_t(k) - 2000}});
+    }
+    send(eskin::link::kHallForceCurve, t, fc);
+  }
+  std::vector<uint8_t> bus;  // two buses of five u16 counters
+  for (int b = 0; b < 2; ++b)
+    for (int c = 0; c < 5; ++c) u16(bus, uint16_t(10 * b + c));
+  const uint8_t sb = send(eskin::link::kHallBusStatus, 90000, bus);
+  for (int b = 0; b < 2; ++b)
+    want.push_back({{"type", "hall_bus_status"}, {"seq", sb}, {"t", 90000}, {"bus", b},
+                    {"nacks", 10 * b}, {"status_errors", 10 * b + 1}, {"reply_errors", 10 * b + 2},
+                    {"recoveries", 10 * b + 3}, {"bus_errors", 10 * b + 4}});
+  std::vector<uint8_t> st;  // seven u16, three u8
+  const char* st16[] = {"baseline_dropped", "ft_skipped", "cmd_accepted", "cmd_rejected",
+                        "cmd_crc_errors", "cmd_frame_errors", "cmd_overflows"};
+  json sj = {{"type", "hall_decode_status"}, {"t", 90001}};
+  for (int i = 0; i < 7; ++i) u16(st, uint16_t(100 + i)), sj[st16[i]] = 100 + i;
+  st.insert(st.end(), {0x98, 3, 17});
+  sj["last_reject_type"] = 0x98, sj["last_reject_reason"] = 3, sj["last_reject_seq"] = 17;
+  sj["seq"] = send(eskin::link::kHallDecodeStatus, 90001, st);
+  want.push_back(sj);
+
+  const size_t frames = 40 * 5 + 2;
+  PtyPair pty;
+  Process p({ESKIN_BIN, "stream", "--port", pty.slave_path(), "--count", std::to_string(frames),
+             "--csv", (dir / "csv").string(), "--hdf5", (dir / "run.h5").string()},
+            (dir / "out").string(), (dir / "err").string());
+  ASSERT_TRUE(p.wait_output([](const std::string& e) { return e.find("link open") != e.npos; },
+                            true, 10s));
+  ASSERT_TRUE(write_fully(pty.master(), wire));
+  ASSERT_EQ(p.wait_exit(30s), 0) << p.err();
+  const auto got = parse_ndjson(p.out());
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) ASSERT_EQ(got[i], want[i]) << "line " << i;
+  const std::string forces = slurp((dir / "csv" / "hall_forces.csv").string());
+  EXPECT_EQ(forces.substr(0, forces.find('\n')), "seq,t,cell,range,flags,t_us,force_mn");
+  EXPECT_EQ(lines(forces), 80u + 1);
+  EXPECT_EQ(lines(slurp((dir / "csv" / "hall_samples.csv").string())), 120u + 1);
+  // HDF5: every scalar column of every Hall table, row for row.
+  const hid_t f = H5Fopen((dir / "run.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  std::vector<hsize_t> dims;
+  for (const char* table : {"hall_samples", "hall_deltas", "hall_decouple", "hall_wrench",
+                            "hall_forces", "hall_bus_status", "hall_decode_status"}) {
+    std::vector<const json*> rows;
+    for (const json& j : want)
+      if (j["type"] == table) rows.push_back(&j);
+    ASSERT_FALSE(rows.empty()) << table;
+    for (const auto& [column, value] : rows[0]->items()) {
+      if (column == "type") continue;
+      const auto v = read_set(f, std::string("/") + table + "/" + column, dims);
+      ASSERT_EQ(v.size(), rows.size()) << table << "/" << column;
+      for (size_t i = 0; i < rows.size(); ++i)
+        ASSERT_EQ(v[i], (*rows[i])[column].get<int64_t>()) << table << "/" << column << " row " << i;
+    }
+  }
+  H5Fclose(f);
 }
 
 TEST(StreamCli, BadOptionsFailWithAMessage) {
