@@ -1,5 +1,6 @@
 // eskin config: send one configuration command to the FPGA by name and
-// report its verdict (accepted, or rejected with the decoded reason).
+// report its verdict (accepted, or rejected with the decoded reason); the
+// hall-* commands go to a Hall top and are judged by its HALL_DECODE_STATUS.
 // Exit codes: 0 accepted, 3 rejected, 4 no verdict (no STATUS came back).
 #include <iostream>
 
@@ -28,6 +29,14 @@ void print_status(const eskin::link::StatusBlock& s) {
             << s.uart_rx_errors << ", samples " << s.samples << "\n";
 }
 
+void print_hall_status(const eskin::link::HallDecodeStatus& s) {
+  std::cout << "  hall decode status: accepted " << s.cmd_accepted << ", rejected "
+            << s.cmd_rejected << ", cmd crc errors " << s.cmd_crc_errors << ", cmd frame errors "
+            << s.cmd_frame_errors << ", cmd overflows " << s.cmd_overflows
+            << ", baseline dropped " << s.baseline_dropped << ", ft skipped " << s.ft_skipped
+            << "\n";
+}
+
 int run_config(const ConfigArgs& a) {
   const CommandSpec* spec = find_command(a.name);
   if (!spec) {
@@ -46,7 +55,8 @@ int run_config(const ConfigArgs& a) {
   stream.stop();
   std::cout << a.name << " (type 0x" << std::hex << int(r.type) << std::dec << ", seq "
             << int(r.seq) << "): " << r.message << "\n";
-  if (r.ack != Ack::Pending) print_status(r.status);
+  if (r.ack != Ack::Pending && spec->hall) print_hall_status(r.hall_status);
+  else if (r.ack != Ack::Pending) print_status(r.status);
   switch (r.ack) {
     case Ack::Accepted: return 0;
     case Ack::Rejected: return 3;

@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "host/link/hall_packets.h"
+
 namespace eskin::stream {
 
 namespace {
@@ -55,6 +57,41 @@ const std::vector<CommandSpec>& command_specs() {
        [](LinkEncoder& e, const V&) { return e.request_status(); }},
       {"clear", link::kCmdClearCounters, {}, "zero the status counters and last reject",
        [](LinkEncoder& e, const V&) { return e.clear_counters(); }},
+      // The Hall top (docs/protocol.md section 9).
+      {"hall-set-baseline", link::kCmdHallSetBaseline,
+       {{"sensor", 0, kU8}, {"axis", 0, kU8}, {"value", INT16_MIN, INT16_MAX}},
+       "Hall: baseline of one sensor axis (0 x, 1 y, 2 z) in LSB; a sensor with all three "
+       "set stops capturing",
+       [](LinkEncoder& e, const V& a) {
+         return link::hall_set_baseline(e, uint8_t(a[0]), uint8_t(a[1]), int16_t(a[2]));
+       },
+       true},
+      {"hall-recapture", link::kCmdHallRecapture, {},
+       "Hall: capture every sensor's baseline again (its next 16 readings)",
+       [](LinkEncoder& e, const V&) { return link::hall_recapture(e); }, true},
+      {"hall-load-c", link::kCmdHallLoadC,
+       {{"row", 0, kU8}, {"col", 0, kU8}, {"value", INT32_MIN, INT32_MAX}},
+       "Hall: six-axis matrix entry C[row 0..5][col 0..8], mN (mN*mm) per LSB * 2^16",
+       [](LinkEncoder& e, const V& a) {
+         return link::hall_load_c(e, uint8_t(a[0]), uint8_t(a[1]), int32_t(a[2]));
+       },
+       true},
+      {"hall-load-curve", link::kCmdHallLoadCurve,
+       {{"cell", 0, kU8}, {"index", 0, kU8}, {"which", 0, kU8}, {"value", INT32_MIN, INT32_MAX}},
+       "Hall: force curve breakpoint of a cell: which 0 |dB| (1/64 uT), 1 force (mN), "
+       "2 slope (Q15.16 mN per 1/64 uT)",
+       [](LinkEncoder& e, const V& a) {
+         return link::hall_load_curve(e, uint8_t(a[0]), uint8_t(a[1]), uint8_t(a[2]), int32_t(a[3]));
+       },
+       true},
+      {"hall-set-decouple", link::kCmdHallSetDecouple,
+       {{"k1", INT16_MIN, INT16_MAX}, {"c1", INT32_MIN, INT32_MAX}, {"k2", INT16_MIN, INT16_MAX},
+        {"c2", INT32_MIN, INT32_MAX}},
+       "Hall: seed-001 compensation k1, k2 (Q2.14) and c1, c2 (1/64 uT)",
+       [](LinkEncoder& e, const V& a) {
+         return link::hall_set_decouple(e, int16_t(a[0]), int32_t(a[1]), int16_t(a[2]), int32_t(a[3]));
+       },
+       true},
   };
   return specs;
 }
@@ -120,6 +157,16 @@ Ack judge_reply(uint8_t type, uint8_t seq, const link::StatusBlock& base,
                : Ack::Pending;
   if (base.cmd_accepted >= 0xFFFE) return Ack::Unknown;  // 16-bit counters saturate
   if (st.cmd_accepted >= base.cmd_accepted + 2) return Ack::Accepted;
+  return Ack::Pending;
+}
+
+Ack judge_hall_reply(uint8_t type, uint8_t seq, const link::HallDecodeStatus& base,
+                     const link::HallDecodeStatus& st) {
+  if (st.cmd_rejected != base.cmd_rejected && st.last_reject_seq == seq &&
+      st.last_reject_type == type)
+    return Ack::Rejected;
+  if (base.cmd_accepted == 0xFFFF) return Ack::Unknown;  // saturated
+  if (st.cmd_accepted > base.cmd_accepted) return Ack::Accepted;
   return Ack::Pending;
 }
 

@@ -163,6 +163,10 @@ void LinkStream::deliver(const link::Packet& p) {
       recent_status_.push_back({++status_count_, p.status});
       if (recent_status_.size() > kRecentStatus) recent_status_.pop_front();
     }
+    if (p.type == link::kHallDecodeStatus) {
+      recent_hall_status_.push_back({++hall_status_count_, p.hall.status});
+      if (recent_hall_status_.size() > kRecentStatus) recent_hall_status_.pop_front();
+    }
     if (opt_.queue_capacity > 0) {
       if (queue_.size() >= opt_.queue_capacity) {
         queue_.pop_front();
@@ -229,6 +233,7 @@ CommandReply LinkStream::command(const CommandSpec& spec, const std::vector<int6
   // Right after start() the reader may still be opening the link.
   while (!connected_ && running_ && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  if (spec.hall) return hall_command(spec, args, deadline);
   if (!last_status()) {  // no baseline yet: ask for one
     const uint64_t n = status_count();
     send(encoder_.request_status());
@@ -289,6 +294,45 @@ std::string stats_json(const StreamStats& s) {
                   kv("disconnects", s.disconnects) + "," + kv("queue_dropped", s.queue_dropped) +
                   "}";
   return j;
+}
+
+// A Hall command: the HALL_DECODE_STATUS before it is the base (waited for
+// when none has come yet: the top sends one every STATUS_EVERY frames), the
+// ones after it are judged.
+CommandReply LinkStream::hall_command(const CommandSpec& spec, const std::vector<int64_t>& args,
+                                      std::chrono::steady_clock::time_point deadline) {
+  CommandReply r;
+  r.type = spec.type;
+  std::unique_lock<std::mutex> lk(mu_);
+  if (!cv_.wait_until(lk, deadline, [this] { return !recent_hall_status_.empty(); })) {
+    r.message = "no HALL_DECODE_STATUS packet from the board (is it a Hall top with DELTAS, "
+                "and the link up?)";
+    return r;
+  }
+  const link::HallDecodeStatus base = recent_hall_status_.back().second;
+  uint64_t seen = recent_hall_status_.back().first;
+  r.seq = encoder_.next_seq();
+  const std::vector<uint8_t> wire = spec.build(encoder_, args);
+  lk.unlock();
+  send(wire);
+  lk.lock();
+  while (true) {
+    for (const auto& [index, st] : recent_hall_status_) {
+      if (index <= seen) continue;
+      seen = index;
+      r.ack = judge_hall_reply(spec.type, r.seq, base, st);
+      if (r.ack == Ack::Pending) continue;
+      r.hall_status = st;
+      r.message = r.ack == Ack::Accepted   ? "accepted"
+                  : r.ack == Ack::Rejected ? "rejected: " + reject_reason_text(st.last_reject_reason)
+                                           : "unknown: the Hall top's command counters are saturated";
+      return r;
+    }
+    if (cv_.wait_until(lk, deadline) == std::cv_status::timeout) {
+      r.message = "no verdict: no HALL_DECODE_STATUS decided it in time";
+      return r;
+    }
+  }
 }
 
 }  // namespace eskin::stream

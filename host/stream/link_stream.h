@@ -68,6 +68,7 @@ struct CommandReply {
   Ack ack = Ack::Pending;         // Pending here means: no verdict before the timeout
   uint8_t type = 0, seq = 0;      // the command as sent
   link::StatusBlock status;       // the STATUS that decided it
+  link::HallDecodeStatus hall_status;  // ... or the HALL_DECODE_STATUS (a hall-* command)
   std::string message;            // "accepted", "rejected: value out of range", ...
 };
 
@@ -144,6 +145,11 @@ class LinkStream {
   uint64_t status_count_ = 0;
   // The latest STATUS packets with their arrival number (1-based), for command().
   std::deque<std::pair<uint64_t, link::StatusBlock>> recent_status_;
+  // The latest HALL_DECODE_STATUS packets, numbered the same way.
+  std::deque<std::pair<uint64_t, link::HallDecodeStatus>> recent_hall_status_;
+  uint64_t hall_status_count_ = 0;
+  CommandReply hall_command(const CommandSpec& spec, const std::vector<int64_t>& args,
+                            std::chrono::steady_clock::time_point deadline);
 
   std::mutex cmd_mu_;           // one command at a time
   link::LinkEncoder encoder_;
