@@ -252,7 +252,7 @@ module hall_top #(
       wire [31:0] b_t;
       wire [15:0] b_dropped, ft_skipped, acc, rej, crc_err, frm_err, ovf;
       wire [7:0] l_type, l_reason, l_seq;
-      wire b_ready;  // always 1: its output is taken every cycle
+      wire b_ready;  // high at every take_tok: busy 1 cycle after a token, tokens 11+ apart
       wire set_v, recap;
       wire [SW-1:0] set_s;
       wire [1:0] set_a;
@@ -405,8 +405,10 @@ module hall_top #(
     end else begin
       fb2_we <= 1'b0;
       d_last <= 1'b0;
-      // Latency 1: the delta (if any) is out in the token's first write cycle.
-      if (taking && wbyte == 4'd0) begin
+      // hall_baseline's latency is 2: the delta (if any) is out in the
+      // token's second write cycle, before byte 2 (the flags) needs d_have.
+      // Its in_ready (II 2) is not looked at: tokens are taken 11+ cycles apart.
+      if (taking && wbyte == 4'd1) begin
         d_have <= b_valid;
         d_xyz <= b_valid ? b_xyz : 48'd0;
       end
