@@ -115,10 +115,11 @@ module hall_baseline #(
     value = (offset == 16'd0) ? {code[15], code} : $signed({1'b0, code}) - $signed({1'b0, offset});
   endfunction
 
+  // x fits int16 exactly when its top three bits agree (a sign test, not
+  // two 18-bit comparisons: fewer LUTs and carries).
   function [15:0] sat16(input signed [17:0] x);
-    if (x > 18'sd32767) sat16 = 16'h7FFF;
-    else if (x < -18'sd32768) sat16 = 16'h8000;
-    else sat16 = x[15:0];
+    if (x[17:15] == 3'b000 || x[17:15] == 3'b111) sat16 = x[15:0];
+    else sat16 = x[17] ? 16'h8000 : 16'h7FFF;
   endfunction
   // The mean of 2^n values of 17 bits fits 16 bits (|v| <= 32768): the
   // rounded shift's top bits are sign copies.

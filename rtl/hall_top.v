@@ -47,7 +47,7 @@
 // frame is followed by a FORCE_CURVE packet (type 0x15) of NC records, a
 // cell without a result in this frame with force 0, t 0 and flag bit 5.
 // force_curve and hall_decouple take one token at a time: the intake waits
-// while either is busy (45 and at most 257 clocks (docs/hall_fpga.md); tokens come one per
+// while either is busy (46 and at most 257 clocks (docs/hall_fpga.md); tokens come one per
 // I2C reading, about 3000 clocks).
 // Packet order after a frame: HALL_SAMPLES, HALL_DELTAS, DECOUPLE3, WRENCH6,
 // FORCE_CURVE, HALL_BUS_STATUS, HALL_DECODE_STATUS (each only when due).
@@ -244,7 +244,7 @@ module hall_top #(
   wire [31:0] dc_t;
   wire [111:0] dc_w;                  // DECOUPLE3 payload: rx, ry, sz s32, valid, flags
   wire        fc_idle, fc_valid;      // force_curve: in_ready, out_valid
-  reg         fc_wbusy;               // a FORCE_CURVE record being written to fc_ram
+  wire        fc_last;                // fc_ram gets the last byte of force_curve's record
   wire [87:0] fc_rec;                 // one FORCE_CURVE record
   wire [CW-1:0] fc_cell;
   generate
@@ -328,7 +328,7 @@ module hall_top #(
                       .LOCK_MN(LOCK_MN), .CW(CW)) u_fc (
             .clk(clk), .rst(rst), .in_valid(b_valid), .in_ready(fc_idle), .in_id(b_id),
             .in_t(b_t), .in_dx(b_xyz[47:32]), .in_dy(b_xyz[31:16]), .in_dz(b_xyz[15:0]),
-            .in_flags(b_flags), .out_valid(fc_valid), .out_ready(!fc_wbusy), .out_cell(o_cell),
+            .in_flags(b_flags), .out_valid(fc_valid), .out_ready(fc_last), .out_cell(o_cell),
             .out_t(t), .out_force_mn(f), .out_range(o_range), .out_flags(fl),
             .t_valid(t_v), .t_cell(t_c), .t_index(t_i), .t_which(t_w), .t_value(t_d));
         assign fc_rec = {f, t, fl, o_range, o_cell};
@@ -508,14 +508,16 @@ module hall_top #(
   reg [NC-1:0] fc_have;     // cells with a result in this frame
   // FORCE_CURVE records, byte j of cell c at {c, j}: a block RAM read like
   // the frame buffers (registers and their 11 * NC byte mux did not fit the
-  // UP5K at 9 cells). A record comes from force_curve as 88 bits and is
-  // written one byte per clock from fc_hold (11 clocks; force_curve waits
-  // meanwhile, and its next result is 45+ clocks away anyway).
+  // UP5K at 9 cells). force_curve holds its 88-bit record until out_ready:
+  // it is written one byte per clock straight from force_curve's output
+  // (11 clocks, out_ready with the last byte; the next result is 45+ clocks
+  // away anyway, and the record is in fc_ram before FORCE_CURVE is sent: the
+  // packets wait for force_curve's in_ready, low while it holds a result).
   reg  [7:0]  fc_ram [0:(1 << (CW + 4)) - 1];
   reg  [7:0]  fc_rdata;
-  reg  [87:0] fc_hold;
-  reg  [CW-1:0] fc_wcell, rc;  // cell being written; cell being sent
-  reg  [3:0]  fc_wj, rj;       // its byte
+  reg  [CW-1:0] rc;            // cell being sent
+  reg  [3:0]  fc_wj, rj;       // byte being written; byte being sent
+  assign fc_last = fc_wj == 4'd10;
   wire [NSENS-1:0] all = {NSENS{1'b1}};
   wire frame_done = (got == all) && !taking;
 
@@ -536,7 +538,7 @@ module hall_top #(
 
   // What follows packet e_kind (in E_NEXT): the first kind after it that is
   // due; n_wait while the wrench of this frame is still being computed.
-  wire n_wait = (e_kind == K_DELTAS) && !(ft_idle && dc_idle && fc_idle && !fc_wbusy);
+  wire n_wait = (e_kind == K_DELTAS) && !(ft_idle && dc_idle && fc_idle);
   reg        n_none;
   reg [2:0]  n_kind;
   always @(*) begin
@@ -595,7 +597,7 @@ module hall_top #(
         dc_vec <= dc_w;
         dc_tq <= dc_t;
       end
-      if (fc_valid && !fc_wbusy) fc_have[fc_cell] <= 1'b1;
+      if (fc_valid && fc_last) fc_have[fc_cell] <= 1'b1;
       if (taking && wbyte == 4'd9) got[tok[72 +: SW]] <= 1'b1;
       if (ft_valid) begin
         w_vec <= ft_w;
@@ -683,25 +685,12 @@ module hall_top #(
   end
 
   always @(posedge clk) begin
-    if (fc_wbusy) fc_ram[{fc_wcell, fc_wj}] <= fc_hold[7:0];
+    if (fc_valid) fc_ram[{fc_cell, fc_wj}] <= fc_rec[fc_wj*8 +: 8];
     fc_rdata <= fc_ram[{rc, rj}];
   end
   always @(posedge clk) begin
-    if (rst) begin
-      fc_wbusy <= 1'b0;
-      fc_hold <= 88'd0;
-      fc_wcell <= {CW{1'b0}};
-      fc_wj <= 4'd0;
-    end else if (fc_wbusy) begin
-      fc_hold <= fc_hold >> 8;
-      fc_wj <= fc_wj + 4'd1;
-      if (fc_wj == 4'd10) fc_wbusy <= 1'b0;
-    end else if (fc_valid) begin
-      fc_wbusy <= 1'b1;
-      fc_hold <= fc_rec;
-      fc_wcell <= fc_cell;
-      fc_wj <= 4'd0;
-    end
+    if (rst) fc_wj <= 4'd0;
+    else if (fc_valid) fc_wj <= fc_last ? 4'd0 : fc_wj + 4'd1;
   end
 
   link_framer u_framer (
