@@ -167,7 +167,8 @@ module hall_baseline #(
 
   // The RAMs: one synchronous read port (read at the handshake) and one
   // write port each. Only sb_* can be written in a read cycle (a command in
-  // a token's handshake cycle); the read returns the value from before it.
+  // a token's handshake cycle); the read returns the value from before it
+  // (Yosys emulates that read-first behaviour around the SB_RAM40_4K).
   always @(posedge clk) begin
     if (acc_we) acc[p_s] <= {cnt + 1'b1, nsz, nsy, nsx};
     if (take) acc_rd <= acc[s];
