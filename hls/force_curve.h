@@ -16,7 +16,7 @@
 // Curve per cell: NB breakpoints db (1/64 uT, ascending), f (mN), slope
 // (mN per 1/64 uT in Q15.16, from the builder hls/force_curve_config.h).
 // Output ForceToken {cell, t, force_mn, range, flags}.
-// RTL timing: out_valid NB + 32 cycles after the input handshake (schedule
+// RTL timing: out_valid NB + 33 cycles after the input handshake (schedule
 // in rtl/force_curve.v).
 #pragma once
 

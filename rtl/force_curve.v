@@ -16,8 +16,11 @@
 //   7..30  24 square-root steps
 //   31..   breakpoint reads db[1] .. db[NB-2] (cycles 31 .. NB + 28), each
 //          compared one cycle later (up to NB + 29); then one cycle reading
-//          db[k], f[k], slope[k] and one interpolation cycle
-// out_valid rises at cycle NB + 32 (45 for NB = 13) and holds until
+//          db[k], f[k], slope[k], one interpolation cycle (the force) and
+//          one cycle for its range (a cycle of its own so that the path
+//          RAM -> multiplier -> saturation -> range compares does not limit
+//          the clock: 11.2 MHz on the UP5K in one cycle, under its 12)
+// out_valid rises at cycle NB + 33 (46 for NB = 13) and holds until
 // out_ready; in_ready is high only while idle.
 module force_curve #(
     parameter integer NC = 9,
@@ -100,6 +103,7 @@ module force_curve #(
   reg [23:0] root;
   reg [4:0] k;         // breakpoint found so far
   reg cmp_v;           // db_q holds breakpoint cmp_i
+  reg rng_pend;        // S_OUT: out_force_mn is set, its range not yet
   reg [4:0] cmp_i;
 
   // SCALE: one 16 x 16 product per cycle.
@@ -153,6 +157,7 @@ module force_curve #(
       k <= 5'd0;
       cmp_v <= 1'b0;
       cmp_i <= 5'd0;
+      rng_pend <= 1'b0;
       d[0] <= 16'sd0; d[1] <= 16'sd0; d[2] <= 16'sd0;
       p[0] <= 32'sd0; p[1] <= 32'sd0; p[2] <= 32'sd0;
     end else begin
@@ -209,14 +214,18 @@ module force_curve #(
         S_FETCH: state <= S_INTERP;  // the RAMs read db[k], f[k], slope[k]
         S_INTERP: begin
           out_force_mn <= fsat;
-          out_range <= range_of(fsat);
-          out_valid <= 1'b1;
+          rng_pend <= 1'b1;
           state <= S_OUT;
         end
-        default: if (out_ready) begin  // S_OUT
-          out_valid <= 1'b0;
-          state <= S_IDLE;
-        end
+        default:  // S_OUT
+          if (rng_pend) begin
+            out_range <= range_of(out_force_mn);
+            out_valid <= 1'b1;
+            rng_pend <= 1'b0;
+          end else if (out_ready) begin
+            out_valid <= 1'b0;
+            state <= S_IDLE;
+          end
       endcase
     end
   end

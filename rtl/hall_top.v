@@ -47,7 +47,7 @@
 // frame is followed by a FORCE_CURVE packet (type 0x15) of NC records, a
 // cell without a result in this frame with force 0, t 0 and flag bit 5.
 // force_curve and hall_decouple take one token at a time: the intake waits
-// while either is busy (45 and at most 257 clocks (docs/hall_fpga.md); tokens come one per
+// while either is busy (46 and at most 257 clocks (docs/hall_fpga.md); tokens come one per
 // I2C reading, about 3000 clocks).
 // Packet order after a frame: HALL_SAMPLES, HALL_DELTAS, DECOUPLE3, WRENCH6,
 // FORCE_CURVE, HALL_BUS_STATUS, HALL_DECODE_STATUS (each only when due).
@@ -244,6 +244,7 @@ module hall_top #(
   wire [31:0] dc_t;
   wire [111:0] dc_w;                  // DECOUPLE3 payload: rx, ry, sz s32, valid, flags
   wire        fc_idle, fc_valid;      // force_curve: in_ready, out_valid
+  wire        fc_last;                // fc_ram gets the last byte of force_curve's record
   wire [87:0] fc_rec;                 // one FORCE_CURVE record
   wire [CW-1:0] fc_cell;
   generate
@@ -252,7 +253,7 @@ module hall_top #(
       wire [31:0] b_t;
       wire [15:0] b_dropped, ft_skipped, acc, rej, crc_err, frm_err, ovf;
       wire [7:0] l_type, l_reason, l_seq;
-      wire b_ready;  // always 1: its output is taken every cycle
+      wire b_ready;  // high at every take_tok: busy 1 cycle after a token, tokens 11+ apart
       wire set_v, recap;
       wire [SW-1:0] set_s;
       wire [1:0] set_a;
@@ -327,7 +328,7 @@ module hall_top #(
                       .LOCK_MN(LOCK_MN), .CW(CW)) u_fc (
             .clk(clk), .rst(rst), .in_valid(b_valid), .in_ready(fc_idle), .in_id(b_id),
             .in_t(b_t), .in_dx(b_xyz[47:32]), .in_dy(b_xyz[31:16]), .in_dz(b_xyz[15:0]),
-            .in_flags(b_flags), .out_valid(fc_valid), .out_ready(1'b1), .out_cell(o_cell),
+            .in_flags(b_flags), .out_valid(fc_valid), .out_ready(fc_last), .out_cell(o_cell),
             .out_t(t), .out_force_mn(f), .out_range(o_range), .out_flags(fl),
             .t_valid(t_v), .t_cell(t_c), .t_index(t_i), .t_which(t_w), .t_value(t_d));
         assign fc_rec = {f, t, fl, o_range, o_cell};
@@ -405,8 +406,10 @@ module hall_top #(
     end else begin
       fb2_we <= 1'b0;
       d_last <= 1'b0;
-      // Latency 1: the delta (if any) is out in the token's first write cycle.
-      if (taking && wbyte == 4'd0) begin
+      // hall_baseline's latency is 2: the delta (if any) is out in the
+      // token's second write cycle, before byte 2 (the flags) needs d_have.
+      // Its in_ready (II 2) is not looked at: tokens are taken 11+ cycles apart.
+      if (taking && wbyte == 4'd1) begin
         d_have <= b_valid;
         d_xyz <= b_valid ? b_xyz : 48'd0;
       end
@@ -503,30 +506,34 @@ module hall_top #(
   reg [31:0] dc_tq;
   reg [111:0] dc_vec;
   reg [NC-1:0] fc_have;     // cells with a result in this frame
-  reg [87:0] fc_recs [0:NC-1];
+  // FORCE_CURVE records, byte j of cell c at {c, j}: a block RAM read like
+  // the frame buffers (registers and their 11 * NC byte mux did not fit the
+  // UP5K at 9 cells). force_curve holds its 88-bit record until out_ready:
+  // it is written one byte per clock straight from force_curve's output
+  // (11 clocks, out_ready with the last byte; the next result is 45+ clocks
+  // away anyway, and the record is in fc_ram before FORCE_CURVE is sent: the
+  // packets wait for force_curve's in_ready, low while it holds a result).
+  reg  [7:0]  fc_ram [0:(1 << (CW + 4)) - 1];
+  reg  [7:0]  fc_rdata;
+  reg  [CW-1:0] rc;            // cell being sent
+  reg  [3:0]  fc_wj, rj;       // byte being written; byte being sent
+  assign fc_last = fc_wj == 4'd10;
   wire [NSENS-1:0] all = {NSENS{1'b1}};
   wire frame_done = (got == all) && !taking;
 
   // Register-sourced payloads, padded to one width: byte i at [8i +: 8].
   localparam integer VB0 = (NB * 10 > 25) ? NB * 10 : 25;
-  localparam integer VB1 = (VB0 > DEC_BYTES) ? VB0 : DEC_BYTES;
-  localparam integer VB = (VB1 > NC * 11) ? VB1 : NC * 11;
+  localparam integer VB = (VB0 > DEC_BYTES) ? VB0 : DEC_BYTES;
   localparam integer VW = $clog2(VB);
   wire [VB*8-1:0] v_wrench = (VB*8)'(w_vec);
   wire [VB*8-1:0] v_bus = (VB*8)'(counters);
   wire [VB*8-1:0] v_dec = (VB*8)'(dec_status);
   wire [VB*8-1:0] v_decouple = (VB*8)'(dc_vec);
-  wire [NC*88-1:0] curve_pay;  // NC records; a cell without a result: force 0, t 0, REPLY
-  genvar c;
-  generate
-    for (c = 0; c < NC; c = c + 1) begin : g_rec
-      assign curve_pay[c*88 +: 88] = fc_have[c] ? fc_recs[c] : {64'd0, 8'h20, 8'd0, 8'(c)};
-    end
-  endgenerate
-  wire [VB*8-1:0] v_curve = (VB*8)'(curve_pay);
   wire [VB*8-1:0] v_sel = (e_kind == K_WRENCH) ? v_wrench : (e_kind == K_BUS) ? v_bus :
-                          (e_kind == K_DECOUPLE) ? v_decouple : (e_kind == K_CURVE) ? v_curve :
-                          v_dec;
+                          (e_kind == K_DECOUPLE) ? v_decouple : v_dec;
+  // FORCE_CURVE byte rj of cell rc; a cell without a result in this frame
+  // has force 0, t 0, flags REPLY, range 0.
+  wire [7:0] curve_byte = fc_have[rc] ? fc_rdata : (rj == 4'd0) ? 8'(rc) : (rj == 4'd2) ? 8'h20 : 8'h00;
   wire [VW-1:0] v_idx = e_idx[VW-1:0];
 
   // What follows packet e_kind (in E_NEXT): the first kind after it that is
@@ -557,7 +564,7 @@ module hall_top #(
                       (s_kind == K_WRENCH) ? T_WRENCH : (s_kind == K_BUS) ? T_BUS_STATUS :
                       (s_kind == K_DECOUPLE) ? T_DECOUPLE : (s_kind == K_CURVE) ? T_CURVE :
                       T_DECODE_STATUS;
-  wire e_from_ram = (e_kind == K_SAMPLES) || (e_kind == K_DELTAS);
+  wire e_from_ram = (e_kind == K_SAMPLES) || (e_kind == K_DELTAS) || (e_kind == K_CURVE);
 
   always @(posedge clk) begin
     if (rst) begin
@@ -583,12 +590,14 @@ module hall_top #(
       dc_tq <= 32'd0;
       dc_vec <= 112'd0;
       fc_have <= {NC{1'b0}};
+      rc <= {CW{1'b0}};
+      rj <= 4'd0;
     end else begin
       if (dc_valid) begin
         dc_vec <= dc_w;
         dc_tq <= dc_t;
       end
-      if (fc_valid) fc_have[fc_cell] <= 1'b1;
+      if (fc_valid && fc_last) fc_have[fc_cell] <= 1'b1;
       if (taking && wbyte == 4'd9) got[tok[72 +: SW]] <= 1'b1;
       if (ft_valid) begin
         w_vec <= ft_w;
@@ -638,6 +647,8 @@ module hall_top #(
             if (h_idx == 3'd6) begin
               e_idx <= {AW{1'b0}};
               fb_raddr <= {AW{1'b0}};
+              rc <= {CW{1'b0}};
+              rj <= 4'd0;
               estate <= e_from_ram ? E_READ : E_VEC;
             end else begin
               h_idx <= h_idx + 3'd1;
@@ -647,7 +658,7 @@ module hall_top #(
         E_READ: estate <= E_WAIT;  // the RAM's read takes a clock
         E_WAIT: begin
           p_valid <= 1'b1;
-          p_data <= (e_kind == K_DELTAS) ? fb2_rdata : fb_rdata;
+          p_data <= (e_kind == K_DELTAS) ? fb2_rdata : (e_kind == K_CURVE) ? curve_byte : fb_rdata;
           estate <= E_OFFER;
         end
         E_VEC: begin
@@ -660,6 +671,8 @@ module hall_top #(
             p_valid <= 1'b0;
             e_idx <= e_idx + 1'b1;
             fb_raddr <= e_idx + 1'b1;
+            rj <= (rj == 4'd10) ? 4'd0 : rj + 4'd1;
+            if (rj == 4'd10) rc <= rc + 1'b1;
             if ({{(16 - AW) {1'b0}}, e_idx} == hdr_len - 16'd1) begin
               if (e_kind == K_SAMPLES) got <= {NSENS{1'b0}};
               estate <= E_NEXT;
@@ -671,8 +684,14 @@ module hall_top #(
     end
   end
 
-  always @(posedge clk)
-    if (fc_valid) fc_recs[fc_cell] <= fc_rec;
+  always @(posedge clk) begin
+    if (fc_valid) fc_ram[{fc_cell, fc_wj}] <= fc_rec[fc_wj*8 +: 8];
+    fc_rdata <= fc_ram[{rc, rj}];
+  end
+  always @(posedge clk) begin
+    if (rst) fc_wj <= 4'd0;
+    else if (fc_valid) fc_wj <= fc_last ? 4'd0 : fc_wj + 4'd1;
+  end
 
   link_framer u_framer (
       .clk(clk), .rst(rst), .s_valid(p_valid), .s_ready(p_ready), .s_data(p_data),

@@ -7,7 +7,10 @@
 // then a loaded baseline and a recapture; a second build
 // (hall_baseline_test.cmake: NS 3, ID_BASE 4, capture 2, offset-binary
 // codes 0x8000) on random codes reaching both saturation rails.
-// Timing: II = 1 and latency 1 cycle with the stream always ready (asserted).
+// Commands (set, recapture) given at random cycles while tokens flow, the
+// HLS kernel applying each after the tokens taken up to its cycle.
+// Timing: II = 2 for data tokens, 1 for dropped ones, latency 2 cycles with
+// the stream always ready (asserted).
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -96,17 +99,84 @@ TEST(HallBaselineRtl, BitExactOnSceneTokensWithDropsAndCommands) {
   EXPECT_GT(s.outs.size(), 2000u);
 }
 
-TEST(HallBaselineRtl, OneTokenPerCycleLatencyOne) {
+TEST(HallBaselineRtl, TwoCyclesPerDataTokenLatencyTwo) {
   auto data = eskin::test::hall_tokens("hall_003_metamaterial.yaml", 0.2);
+  std::vector<HallSampleToken> in = data.tokens;
+  for (size_t i = 5; i < in.size(); i += 7) in[i].flags = 0x10;  // no data: dropped
   auto d = std::make_unique<ClockedDut<Vhall_baseline>>();
   d->reset();
   auto s = stream<Vhall_baseline>();
-  s.run(*d, data.tokens, 1.0, 1.0, 8);
-  ASSERT_EQ(s.in_cycles.size(), data.tokens.size());
-  for (size_t i = 1; i < s.in_cycles.size(); ++i) ASSERT_EQ(s.in_cycles[i], s.in_cycles[i - 1] + 1);
-  // The first 9 * 16 tokens are captured; token i >= 144 leaves one cycle later.
-  ASSERT_EQ(s.out_cycles.size(), data.tokens.size() - 144);
-  for (size_t i = 0; i < s.out_cycles.size(); ++i) ASSERT_EQ(s.out_cycles[i], s.in_cycles[144 + i] + 1);
+  s.run(*d, in, 1.0, 1.0, 8);
+  ASSERT_EQ(s.in_cycles.size(), in.size());
+  // A data token holds the RAM read/write-back pipeline for 2 cycles (the
+  // handshake reads the sensor's words, the next cycle writes them back);
+  // a dropped token needs no state, so the next one follows in 1.
+  for (size_t i = 1; i < s.in_cycles.size(); ++i) {
+    const bool dropped = (in[i - 1].flags & 0x78) != 0;
+    ASSERT_EQ(s.in_cycles[i], s.in_cycles[i - 1] + (dropped ? 1u : 2u)) << "token " << i;
+  }
+  // Each of the scene's 9 sensors captures its first 16 data tokens; every
+  // later data token leaves 2 cycles after its handshake (RAM read, then
+  // compute into the output register).
+  std::vector<int> seen(256, 0);
+  std::vector<uint64_t> want_out;
+  for (size_t i = 0; i < in.size(); ++i) {
+    if (in[i].flags & 0x78) continue;
+    if (++seen[in[i].id] > 16) want_out.push_back(s.in_cycles[i] + 2);
+  }
+  ASSERT_GT(want_out.size(), 100u);
+  ASSERT_EQ(s.out_cycles, want_out);
+}
+
+TEST(HallBaselineRtl, CommandsDuringTheStream) {
+  auto data = eskin::test::hall_tokens("hall_003_metamaterial.yaml", 0.6);
+  const std::vector<HallSampleToken>& in = data.tokens;
+  // Per cycle: maybe a set (random sensor, axis 0..3 where 3 is ignored,
+  // value) or, rarely, a recapture, both also in cycles where a token is in
+  // its second (write-back) cycle or being taken.
+  struct Cmd {
+    uint64_t cycle;
+    bool recapture;
+    int sensor, axis;
+    int16_t value;
+  };
+  std::vector<Cmd> cmds;
+  std::mt19937_64 rng(12);
+  auto d = std::make_unique<ClockedDut<Vhall_baseline>>();
+  d->reset();
+  auto s = stream<Vhall_baseline>();
+  s.every_cycle = [&](Vhall_baseline& m) {
+    m.set_valid = 0, m.recapture = 0;
+    const uint64_t r = rng() % 1000;
+    if (r < 2) {
+      m.recapture = 1;
+      cmds.push_back({d->cycle, true, 0, 0, 0});
+    } else if (r < 40) {
+      const Cmd c{d->cycle, false, int(rng() % 10), int(rng() % 4), int16_t(rng())};
+      m.set_valid = 1, m.set_sensor = uint8_t(c.sensor), m.set_axis = uint8_t(c.axis);
+      m.set_value = uint16_t(c.value);
+      cmds.push_back(c);
+    }
+  };
+  s.run(*d, in, 0.7, 0.7, 13);
+  ASSERT_EQ(s.in_cycles.size(), in.size());
+  // The kernel in cycle order, a cycle's token before its command.
+  eskin::hls::HallBaseline<16, 4> k;
+  std::vector<OutTok> want;
+  size_t c = 0;
+  int recaptures = 0;
+  auto apply = [&](const Cmd& x) {
+    if (x.recapture) k.recapture(), ++recaptures;
+    else if (x.axis != 3) k.set(x.sensor, x.axis, x.value);
+  };
+  for (size_t i = 0; i < in.size(); ++i) {
+    while (c < cmds.size() && cmds[c].cycle < s.in_cycles[i]) apply(cmds[c++]);
+    HallDeltaToken o;
+    if (k.push(in[i], o)) want.push_back({o.id, o.t, {o.d[0], o.d[1], o.d[2]}, o.flags});
+  }
+  expect_equal(s.outs, want);
+  EXPECT_GE(recaptures, 3);
+  EXPECT_GT(want.size(), 1000u);
 }
 
 TEST(HallBaselineRtl, OffsetBinaryBuildSaturates) {
