@@ -242,7 +242,6 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
   Mean f_shear, f_normal, g_shear, g_normal;
   std::array<Mean, 6> f_w, g_w;
   std::array<Mean, 3> f_range, g_range;
-  Mean latency_mean;
   std::vector<double> latencies;
   std::vector<Series> force_s, field_s;
   const char* axis[] = {"Fx", "Fy", "Fz", "Tx", "Ty", "Tz"};
@@ -281,7 +280,6 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
     const double t = p.t * 1e-6;
     if (f.drdy_us >= 0 && f.last_arrival_us >= 0) {
       latencies.push_back(f.last_arrival_us - f.drdy_us);
-      latency_mean.add(latencies.back());
     }
     std::vector<Vec3> ut(ns);
     bool complete = p.hall_samples.size() == size_t(spec.nb * spec.nsb);
