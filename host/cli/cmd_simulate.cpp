@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "cli/board_link.h"
 #include "cli/command.h"
 #include "cli/csv_fields.h"
 #include "cli/progress.h"
@@ -143,13 +144,8 @@ int run_simulate(const Args& a) {
   vboard::VboardProcess board(exe, vargs);
   const size_t total = board.ready().at("scene_samples");
   // The board's serial port through the host streaming library
-  // (host/stream), as a host program reads a real board: raw 8N1 at the
-  // board's rate, packets decoded and checked by host/link.
-  stream::StreamOptions link_opt;
-  link_opt.endpoint = stream::Endpoint::serial(board.pty(), int(build.baud()));
-  link_opt.reconnect = false;   // the port exists until the board exits
-  link_opt.queue_capacity = 0;  // callbacks only
-  stream::LinkStream port(link_opt);
+  // (host/stream), packets decoded and checked by host/link.
+  stream::LinkStream port(board_link_options(board.pty(), int(build.baud())));
   // rx is filled on the stream's reader thread and read here only after
   // port.stop() has joined it; the progress bar follows last_t.
   std::vector<FpgaFrame> rx;
@@ -168,16 +164,7 @@ int run_simulate(const Args& a) {
   GoldenRun gold;
   std::thread golden_thread([&] { gold = run_golden(scene, build.plan.step); });  // the other core
   Progress bar(total);
-  for (;;) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    bar.update(last_t);
-    // Done when every byte the board sent has been read (or the port is gone).
-    const stream::StreamStats st = port.stats();
-    if (board.poll_done() &&
-        (st.link.bytes + st.sync_bytes >= board.done().at("bytes_to_host").get<uint64_t>() ||
-         !port.connected()))
-      break;
-  }
+  read_until_board_done(board, port, [&] { bar.update(last_t); });
   bar.update(total);
   golden_thread.join();
   const nlohmann::json done = board.done();

@@ -11,6 +11,7 @@
 #include <memory>
 #include <thread>
 
+#include "cli/board_link.h"
 #include "cli/command.h"
 #include "cli/hall_fpga_setup.h"
 #include "cli/progress.h"
@@ -22,6 +23,7 @@
 #include "host/link/link_decoder.h"
 #include "host/report/html_page.h"
 #include "host/stream/link_stream.h"
+#include "host/stream/packet_table.h"
 #include "sim/vboard/hall_build.h"
 #include "sim/vboard/vboard_build.h"
 #include "sim/vboard/vboard_process.h"
@@ -87,62 +89,6 @@ void series_chart(report::Page& page, const std::vector<Series>& ss, const std::
 
 std::string pct(double v) { return fmt::format("{:.2f} %", 100 * v); }
 
-// A Hall packet as the FPGA sent it (raw integers, docs/protocol.md
-// sections 8 and 9), with the simulated time its last byte reached the host.
-nlohmann::json packet_json(const Packet& p, double arrival_us) {
-  nlohmann::json j = {{"type", p.type}, {"seq", p.seq}, {"t", p.t}, {"arrival_us", arrival_us}};
-  auto records = [](const auto& v, auto fn) {
-    nlohmann::json a = nlohmann::json::array();
-    for (const auto& r : v) a.push_back(fn(r));
-    return a;
-  };
-  switch (p.type) {
-    case link::kHallSamples:
-      j["name"] = "HALL_SAMPLES";
-      j["samples"] = records(p.hall_samples, [](const link::HallSample& r) {
-        return nlohmann::json{r.id, r.flags, r.t16, r.x, r.y, r.z};
-      });
-      break;
-    case link::kHallDeltas:
-      j["name"] = "HALL_DELTAS";
-      j["deltas"] = records(p.hall.deltas, [](const link::HallDeltaRecord& r) {
-        return nlohmann::json{r.id, r.flags, r.t16, r.dx, r.dy, r.dz};
-      });
-      break;
-    case link::kHallDecouple3: {
-      const auto& d = p.hall.decouple;
-      j["name"] = "DECOUPLE3";
-      j["decouple"] = {d.rx, d.ry, d.sz, d.valid, d.flags};
-      break;
-    }
-    case link::kHallWrench6:
-      j["name"] = "WRENCH6";
-      j["wrench"] = p.hall.wrench.w;
-      j["flags"] = p.hall.wrench.flags;
-      break;
-    case link::kHallForceCurve:
-      j["name"] = "FORCE_CURVE";
-      j["forces"] = records(p.hall.forces, [](const link::ForceRecord& r) {
-        return nlohmann::json{r.cell, r.range, r.flags, r.t, r.force_mn};
-      });
-      break;
-    case link::kHallDecodeStatus:
-      j["name"] = "HALL_DECODE_STATUS";
-      j["accepted"] = p.hall.status.cmd_accepted;
-      j["rejected"] = p.hall.status.cmd_rejected;
-      break;
-    case link::kHallBusStatus:
-      j["name"] = "HALL_BUS_STATUS";
-      j["buses"] = records(p.hall_buses, [](const link::HallBusStatus& b) {
-        return nlohmann::json{b.nacks, b.status_errors, b.reply_errors, b.recoveries, b.bus_errors};
-      });
-      break;
-    default:
-      break;
-  }
-  return j;
-}
-
 }  // namespace
 
 int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
@@ -162,11 +108,7 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
   std::vector<std::string> vargs{scene_file};
   if (!trace.empty()) vargs.insert(vargs.end(), {"--trace", trace});
   vboard::VboardProcess board(exe, vargs);
-  stream::StreamOptions link_opt;
-  link_opt.endpoint = stream::Endpoint::serial(board.pty(), int(build.baud));
-  link_opt.reconnect = false;
-  link_opt.queue_capacity = 0;
-  stream::LinkStream port(link_opt);
+  stream::LinkStream port(board_link_options(board.pty(), int(build.baud)));
   std::vector<Packet> rx;  // filled on the reader thread, read after port.stop()
   std::atomic<uint32_t> last_t{0};
   port.on_packet([&](const Packet& p) {
@@ -176,15 +118,7 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
   port.start();
   if (!setup.commands.empty()) port.send(setup.commands);
   Progress bar(size_t(scene.duration_s * 1e6));
-  for (;;) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    bar.update(last_t);
-    const stream::StreamStats st = port.stats();
-    if (board.poll_done() &&
-        (st.link.bytes + st.sync_bytes >= board.done().at("bytes_to_host").get<uint64_t>() ||
-         !port.connected()))
-      break;
-  }
+  read_until_board_done(board, port, [&] { bar.update(last_t); });
   bar.update(size_t(scene.duration_s * 1e6));
   const nlohmann::json done = board.done();
   const link::DecoderStats ls = port.stats().link;
@@ -203,7 +137,14 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
   for (size_t i = 0; i < rx.size(); ++i) {
     const Packet& p = rx[i];
     const double arr = timed ? ends[i].get<double>() / 1000.0 : -1;
-    nd.print("{}\n", packet_json(p, arr).dump());
+    // The packet as `eskin stream` writes it (host/stream/packet_table.h:
+    // one row per reading, record or packet), with its arrival.
+    if (const stream::PacketKind* kind = stream::find_kind(p.type)) {
+      std::vector<stream::Row> rows;
+      kind->rows(p, rows);
+      for (const stream::Row& r : rows)
+        nd.print("{{\"arrival_us\":{:.2f},{}\n", arr, stream::ndjson_line(*kind, r).substr(1));
+    }
     if (p.type == link::kHallSamples) {
       HallFrameRx f;
       f.samples = &p;

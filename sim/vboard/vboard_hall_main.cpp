@@ -17,7 +17,6 @@
 #include <type_traits>
 
 #include "Vhall_top.h"
-#include "verilated_fst_c.h"
 #include "sim/hall_sensor_array.h"
 #include "sim/hall_world.h"
 #include "sim/scene.h"
@@ -25,6 +24,7 @@
 #include "sim/vboard/hall_build.h"
 #include "sim/vboard/vboard_cli.h"
 #include "sim/vboard/verilated_step.h"
+#include "sim/vboard/verilated_top.h"
 #include "sim/vboard/virtual_board.h"
 
 #ifndef VBOARD_PARAMS_KEY
@@ -47,13 +47,11 @@ using PortValue = typename std::remove_reference_t<Port>::data_type;
 using BusBits = PortValue<decltype(std::declval<Vhall_top>().scl_i)>;
 using SensorBits = PortValue<decltype(std::declval<Vhall_top>().drdy)>;
 
-class VerilatedHallFpga final : public eskin::vboard::FpgaModel {
+class VerilatedHallFpga final : public eskin::vboard::VerilatedTop<Vhall_top> {
  public:
   VerilatedHallFpga()
-      : clk_("clk"), rst_("rst", true), rxd_("uart_rxd", true), txd_("uart_txd", true),
-        scl_i_("scl_i"), sda_i_("sda_i"), scl_oe_("scl_oe"), sda_oe_("sda_oe"), drdy_("drdy"),
-        top_("fpga") {
-    top_.clk(clk_);
+      : rst_("rst", true), rxd_("uart_rxd", true), txd_("uart_txd", true), scl_i_("scl_i"),
+        sda_i_("sda_i"), scl_oe_("scl_oe"), sda_oe_("sda_oe"), drdy_("drdy") {
     top_.rst(rst_);
     top_.uart_rxd(rxd_);
     top_.uart_txd(txd_);
@@ -63,7 +61,6 @@ class VerilatedHallFpga final : public eskin::vboard::FpgaModel {
     top_.sda_oe(sda_oe_);
     top_.drdy(drdy_);
   }
-  ~VerilatedHallFpga() override { close_trace(); }
 
   eskin::vboard::FpgaOutputs cycle(const eskin::vboard::FpgaInputs& in, uint64_t t_ps) override {
     rst_.write(cycles_ < 2);  // hall_top's synchronous reset, two clocks at power-up
@@ -71,12 +68,7 @@ class VerilatedHallFpga final : public eskin::vboard::FpgaModel {
     scl_i_.write(BusBits(in.scl_i));
     sda_i_.write(BusBits(in.sda_i));
     drdy_.write(SensorBits(in.drdy));
-    clk_.write(true);
-    (top_.*eval_)();
-    if (fst_) fst_->dump(t_ps);
-    clk_.write(false);
-    (top_.*eval_)();
-    if (fst_) fst_->dump(t_ps + half_ps_);
+    clock(t_ps);
     ++cycles_;
     eskin::vboard::FpgaOutputs out;
     out.uart_txd = txd_.read();
@@ -85,26 +77,11 @@ class VerilatedHallFpga final : public eskin::vboard::FpgaModel {
     return out;
   }
 
-  void open_trace(const std::string& path) override {
-    Verilated::traceEverOn(true);
-    fst_ = std::make_unique<VerilatedFstC>();
-    top_.trace(fst_.get(), 99);
-    fst_->open(path.c_str());
-  }
-  void close_trace() override {
-    if (fst_) fst_->close();
-    fst_.reset();
-  }
-  void set_half_period_ps(uint64_t h) { half_ps_ = h; }
-
  private:
-  DirectWire clk_, rst_, rxd_, txd_;
+  DirectWire rst_, rxd_, txd_;
   DirectPort<BusBits> scl_i_, sda_i_, scl_oe_, sda_oe_;
   DirectPort<SensorBits> drdy_;
-  Vhall_top top_;
-  Vhall_top_eval_step eval_ = eval_step_of(&top_);
-  std::unique_ptr<VerilatedFstC> fst_;
-  uint64_t half_ps_ = 0, cycles_ = 0;
+  uint64_t cycles_ = 0;
 };
 
 int run(const eskin::vboard::VboardArgs& a, FILE* json) {

@@ -16,12 +16,12 @@
 #include <systemc>
 
 #include "Vdtmf_top.h"
-#include "verilated_fst_c.h"
 #include "sim/scene.h"
 #include "sim/vboard/fpga_params.h"
 #include "sim/vboard/direct_wire.h"
 #include "sim/vboard/vboard_cli.h"
 #include "sim/vboard/verilated_step.h"
+#include "sim/vboard/verilated_top.h"
 #include "sim/vboard/virtual_board.h"
 #include "sim/world_model.h"
 
@@ -41,12 +41,11 @@ namespace {
 
 using eskin::vboard::DirectWire;
 
-class VerilatedFpga final : public eskin::vboard::FpgaModel {
+class VerilatedFpga final : public eskin::vboard::VerilatedTop<Vdtmf_top> {
  public:
   VerilatedFpga()
-      : clk_("clk"), rst_n_("rst_n", true), sdata_("adc_sdata"), rxd_("uart_rxd", true),
-        cs_n_("adc_cs_n", true), sclk_("adc_sclk", true), txd_("uart_txd", true), top_("fpga") {
-    top_.clk(clk_);
+      : rst_n_("rst_n", true), sdata_("adc_sdata"), rxd_("uart_rxd", true), cs_n_("adc_cs_n", true),
+        sclk_("adc_sclk", true), txd_("uart_txd", true) {
     top_.rst_n(rst_n_);
     top_.adc_sdata(sdata_);
     top_.uart_rxd(rxd_);
@@ -54,17 +53,11 @@ class VerilatedFpga final : public eskin::vboard::FpgaModel {
     top_.adc_sclk(sclk_);
     top_.uart_txd(txd_);
   }
-  ~VerilatedFpga() override { close_trace(); }
 
   eskin::vboard::FpgaOutputs cycle(const eskin::vboard::FpgaInputs& in, uint64_t t_ps) override {
     sdata_.write(in.adc_sdata);
     rxd_.write(in.uart_rxd);
-    clk_.write(true);
-    (top_.*eval_)();
-    if (fst_) fst_->dump(t_ps);
-    clk_.write(false);
-    (top_.*eval_)();
-    if (fst_) fst_->dump(t_ps + half_ps_);
+    clock(t_ps);
     eskin::vboard::FpgaOutputs out;
     out.adc_cs_n = cs_n_.read();
     out.adc_sclk = sclk_.read();
@@ -72,24 +65,8 @@ class VerilatedFpga final : public eskin::vboard::FpgaModel {
     return out;
   }
 
-  void open_trace(const std::string& path) override {
-    Verilated::traceEverOn(true);
-    fst_ = std::make_unique<VerilatedFstC>();
-    top_.trace(fst_.get(), 99);
-    fst_->open(path.c_str());
-  }
-  void close_trace() override {
-    if (fst_) fst_->close();
-    fst_.reset();
-  }
-  void set_half_period_ps(uint64_t h) { half_ps_ = h; }
-
  private:
-  DirectWire clk_, rst_n_, sdata_, rxd_, cs_n_, sclk_, txd_;
-  Vdtmf_top top_;
-  Vdtmf_top_eval_step eval_ = eval_step_of(&top_);
-  std::unique_ptr<VerilatedFstC> fst_;
-  uint64_t half_ps_ = 0;
+  DirectWire rst_n_, sdata_, rxd_, cs_n_, sclk_, txd_;
 };
 
 int run(const eskin::vboard::VboardArgs& a, FILE* json) {

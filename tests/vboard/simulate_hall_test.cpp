@@ -86,40 +86,37 @@ TEST(SimulateHall, Seed001OnTheVirtualBoardMatchesItsKernelsAndTheTruth) {
     base[a] = std::lround(h.geomagnetic_ut[size_t(a)] / eskin::mlx90393::sensitivity_uT(h.mlx, a));
 
   std::istringstream nd(slurp(out / "fpga_packets.ndjson"));
-  nlohmann::json samples, deltas;
+  nlohmann::json sample;  // the frame's one reading (one sensor)
   size_t checked_deltas = 0, checked_decouple = 0;
   bool want_decouple = false;
   eskin::hls::DecoupleToken want;
   for (std::string line; std::getline(nd, line);) {
-    const nlohmann::json p = nlohmann::json::parse(line);
-    const std::string name = p.value("name", "");
-    if (name == "HALL_SAMPLES") {
+    const nlohmann::json p = nlohmann::json::parse(line);  // eskin stream's rows
+    const std::string type = p.at("type");
+    if (type == "hall_samples") {
       ASSERT_FALSE(want_decouple) << "a DECOUPLE3 is missing before t " << p.at("t");
-      samples = p.at("samples");
-    } else if (name == "HALL_DELTAS") {
-      deltas = p.at("deltas");
-      ASSERT_EQ(deltas.size(), 1u);
-      const auto& d = deltas[0];
-      const auto& s = samples.at(0);
-      ASSERT_EQ(d[1], s[1]) << "flags";
-      if (d[1].get<int>() & 0x78) continue;  // no data: no delta, no DECOUPLE3
+      sample = p;
+    } else if (type == "hall_deltas") {
+      ASSERT_EQ(p.at("flags"), sample.at("flags"));
+      if (p.at("flags").get<int>() & 0x78) continue;  // no data: no delta, no DECOUPLE3
+      const char* code[] = {"x", "y", "z"};
+      const char* delta[] = {"dx", "dy", "dz"};
       for (int a = 0; a < 3; ++a)
-        ASSERT_EQ(d[3 + a].get<int>(),
-                  sat16(eskin::mlx90393::code_to_lsb(h.mlx, a, s[3 + a].get<uint16_t>()) - base[a]))
+        ASSERT_EQ(p.at(delta[a]).get<int>(),
+                  sat16(eskin::mlx90393::code_to_lsb(h.mlx, a, sample.at(code[a]).get<uint16_t>()) - base[a]))
             << "axis " << a << " at t " << p.at("t");
       ++checked_deltas;
       eskin::hls::HallDeltaToken t;
-      t.id = d[0], t.t = d[2], t.flags = d[1];
-      for (int a = 0; a < 3; ++a) t.d[a] = d[3 + a].get<int16_t>();
+      t.id = p.at("id"), t.t = p.at("t16"), t.flags = p.at("flags");
+      for (int a = 0; a < 3; ++a) t.d[a] = p.at(delta[a]).get<int16_t>();
       want_decouple = kernel.push(t, want);
-    } else if (name == "DECOUPLE3") {
+    } else if (type == "hall_decouple") {
       ASSERT_TRUE(want_decouple) << "a DECOUPLE3 the kernel did not emit, t " << p.at("t");
-      const auto& d = p.at("decouple");
-      EXPECT_EQ(d[0].get<int32_t>(), want.rx);
-      EXPECT_EQ(d[1].get<int32_t>(), want.ry);
-      EXPECT_EQ(d[2].get<int32_t>(), want.sz);
-      EXPECT_EQ(d[3].get<int>() != 0, want.valid);
-      EXPECT_EQ(d[4].get<int>(), want.flags);
+      EXPECT_EQ(p.at("rx").get<int32_t>(), want.rx);
+      EXPECT_EQ(p.at("ry").get<int32_t>(), want.ry);
+      EXPECT_EQ(p.at("sz").get<int32_t>(), want.sz);
+      EXPECT_EQ(p.at("valid").get<int>() != 0, want.valid);
+      EXPECT_EQ(p.at("flags").get<int>(), want.flags);
       EXPECT_EQ(p.at("t").get<uint32_t>() & 0xFFFF, want.t);
       want_decouple = false;
       ++checked_decouple;
