@@ -14,15 +14,25 @@
 //      -> dropped, frame_errors + 1;
 //   2. the FIFO ran out of room during the frame -> dropped, overflows + 1;
 //   3. CRC register != 0 -> dropped, crc_errors + 1;
-//   4. otherwise committed without its two CRC bytes: the engine reads
+//   4. its type is not routed here (below) -> dropped, not counted: another
+//      decoder on the same line takes it;
+//   5. otherwise committed without its two CRC bytes: the engine reads
 //      type, seq, len (2 bytes LE), then len payload bytes.
+// Routing: a top sharing the host link with another (rtl/mixed_top.v) keeps
+// only the command types in TYPE_LO..TYPE_HI (TYPE_IN = 1) or only those
+// outside it (TYPE_IN = 0), so each command reaches exactly one top; the
+// defaults keep every type. Broken frames are counted by every decoder that
+// sees them (each top reports the line it listens to).
 // A dropped frame's bytes are discarded (write pointer back to the last
 // commit). Counters are 16-bit, saturating, zeroed by `clear`. Bytes are
 // taken every clock (s_ready = 1).
 // Reading: `avail` while a committed byte is there; `head` is that byte
 // one clock after it became the head (block RAM); `pop` takes it.
 module cmd_decoder #(
-    parameter integer DEPTH = 512   // FIFO bytes, power of two
+    parameter integer DEPTH = 512,  // FIFO bytes, power of two
+    parameter [7:0] TYPE_LO = 8'h00,
+    parameter [7:0] TYPE_HI = 8'hFF,
+    parameter integer TYPE_IN = 1   // 1: keep TYPE_LO..TYPE_HI, 0: keep the others
 ) (
     input  wire       clk,
     input  wire       rst,
@@ -40,7 +50,7 @@ module cmd_decoder #(
 );
   localparam integer AW = $clog2(DEPTH);
   generate
-    if (DEPTH < 16 || (1 << AW) != DEPTH) begin : g_bad_params
+    if (DEPTH < 16 || (1 << AW) != DEPTH || TYPE_LO > TYPE_HI || (TYPE_IN != 0 && TYPE_IN != 1)) begin : g_bad_params
       cmd_decoder_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -55,6 +65,7 @@ module cmd_decoder #(
   reg [16:0] count;      // raw bytes (saturating)
   reg [15:0] crc;
   reg [15:0] len;
+  reg [7:0]  typ;        // the frame's first raw byte
 
   wire delim = s_valid && s_data == 8'd0;
   wire is_code = s_valid && !delim && code_rem == 8'd0;
@@ -66,6 +77,18 @@ module cmd_decoder #(
   wire struct_ok = !bad && code_rem == 8'd0 && count >= 17'd10 &&
                    count == {1'b0, len} + 17'd10;
   wire do_frame = delim && in_frame;
+  // typ - TYPE_LO wraps below TYPE_LO, so one compare tests both ends.
+  wire [7:0] typ_off = typ - TYPE_LO;
+  wire routed_here;
+  generate
+    if (TYPE_LO == 8'h00 && TYPE_HI == 8'hFF) begin : g_all_types
+      assign routed_here = TYPE_IN != 0;
+      wire unused_typ = &{1'b0, typ_off};
+    end else begin : g_type_range
+      wire in_range = typ_off <= TYPE_HI - TYPE_LO;
+      assign routed_here = (TYPE_IN != 0) ? in_range : !in_range;
+    end
+  endgenerate
 
   // ---------------- FIFO with commit / rollback ----------------
   reg [7:0] mem [0:DEPTH-1];
@@ -94,6 +117,7 @@ module cmd_decoder #(
       count <= 17'd0;
       crc <= 16'hFFFF;
       len <= 16'd0;
+      typ <= 8'd0;
       wp <= {(AW + 1){1'b0}};
       wc <= {(AW + 1){1'b0}};
       rp <= {(AW + 1){1'b0}};
@@ -130,16 +154,17 @@ module cmd_decoder #(
         if (raw_en) begin
           crc <= crc_next;
           if (count != 17'h1FFFF) count <= count + 17'd1;
+          if (count == 17'd0) typ <= raw;
           if (count == 17'd6) len[7:0] <= raw;
           if (count == 17'd7) len[15:8] <= raw;
         end
       end
       if (do_frame) begin
-        if (!struct_ok || ovf || crc != 16'd0) begin
+        if (!struct_ok || ovf || crc != 16'd0 || !routed_here) begin
           wp <= wc;  // discard the frame
           if (!struct_ok) frame_errors <= sat_inc(frame_errors);
           else if (ovf) overflows <= sat_inc(overflows);
-          else crc_errors <= sat_inc(crc_errors);
+          else if (crc != 16'd0) crc_errors <= sat_inc(crc_errors);
         end else begin
           wc <= wp - TWO;  // without the CRC bytes
           wp <= wp - TWO;

@@ -8,7 +8,8 @@
 //   rtl/ucode/dtmf_chain.fe: carrier_demix, carrier_magnitude,
 //   taxel_reconstruct, ghost_filter, izhikevich_layer x 2 (receptors, then the
 //   3x3-weighted layer), synapse_weights, spike_encoder, packets, commands ->
-//   byte_fifo -> link_framer -> uart_tx --> host
+//   byte_fifo -> link_framer -> uart_tx --> host (with EXT_LINK: byte_fifo ->
+//   pkt_*, into rtl/mixed_top.v's shared link)
 //   host --> uart_rx -> cmd_decoder (COBS, CRC, length) -> frame_engine
 //
 // Everything after the DFT runs once per frame on the frame engine, whose
@@ -43,7 +44,16 @@ module dtmf_top #(
     // The scene's microcode and constants ($readmemh files written by
     // hls/dtmf_ucode.h's write_dtmf_top_build, e.g. through `eskin bitstream`).
     parameter UCODE_HEX = "",
-    parameter KROM_HEX = ""
+    parameter KROM_HEX = "",
+    // 0: this top owns the host link (link_framer -> uart_tx on uart_txd).
+    // 1: it shares the link with another top (rtl/mixed_top.v): its packets
+    // leave on pkt_* (whole packets, as link_framer takes them; uart_txd
+    // idles high).
+    parameter integer EXT_LINK = 0,
+    // 1: a Hall top beside this one takes the commands 0x90-0x9F from the
+    // same line (rtl/mixed_top.v): this top's decoder drops them, and keeps
+    // every other type, so an unknown type is still rejected here, once.
+    parameter integer HALL_CMDS = 0
 ) (
     input  wire clk,
     input  wire rst_n,       // active low (button); a power-on reset is built in
@@ -51,24 +61,22 @@ module dtmf_top #(
     output wire adc_sclk,
     input  wire adc_sdata,
     output wire uart_txd,    // to the host
-    input  wire uart_rxd     // from the host
+    input  wire uart_rxd,    // from the host
+    output wire pkt_valid,   // EXT_LINK = 1: the packet stream (else 0)
+    input  wire pkt_ready,
+    output wire [7:0] pkt_data
 );
   generate
     if (KS < 1 || KS > 128 || N < 2 || ACC_W < 14 || ACC_W > 32 || STEP < 1 ||
-        OUT_DEPTH < 512 || OUT_DEPTH > 32768 || (OUT_DEPTH & (OUT_DEPTH - 1)) != 0) begin : g_bad_params
+        OUT_DEPTH < 512 || OUT_DEPTH > 32768 || (OUT_DEPTH & (OUT_DEPTH - 1)) != 0 ||
+        (EXT_LINK != 0 && EXT_LINK != 1) || (HALL_CMDS != 0 && HALL_CMDS != 1)) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
 
   // ---------------- reset: power-on counter and synchronised button -------
-  reg [3:0] por_cnt = 4'd0;
-  reg [1:0] rst_sync = 2'b00;
-  reg rst = 1'b1;
-  always @(posedge clk) begin
-    rst_sync <= {rst_sync[0], rst_n};
-    if (por_cnt != 4'hF) por_cnt <= por_cnt + 4'd1;
-    rst <= (por_cnt != 4'hF) || !rst_sync[1];
-  end
+  wire rst;
+  power_on_reset u_por (.clk(clk), .rst_n(rst_n), .rst(rst));
 
   // ---------------- frame engine IO bus ---------------------------------
   wire [15:0] io_raddr, io_waddr;
@@ -161,7 +169,9 @@ module dtmf_top #(
   wire [7:0] cmd_head;
   wire [15:0] cmd_crc_errors, cmd_frame_errors, cmd_overflows;
   /* verilator lint_off PINCONNECTEMPTY */
-  cmd_decoder #(.DEPTH(512)) u_cmd (
+  // Every command type, or all but the Hall top's beside it.
+  cmd_decoder #(.DEPTH(512), .TYPE_LO(HALL_CMDS != 0 ? 8'h90 : 8'h00),
+                .TYPE_HI(HALL_CMDS != 0 ? 8'h9F : 8'hFF), .TYPE_IN(HALL_CMDS != 0 ? 0 : 1)) u_cmd (
       .clk(clk), .rst(rst), .s_valid(rx_valid), .s_ready(), .s_data(rx_data),
       .rx_error(rx_frame_err || rx_overrun), .avail(cmd_avail), .head(cmd_head),
       .pop(wr_pop), .clear(wr_clear), .crc_errors(cmd_crc_errors),
@@ -169,20 +179,38 @@ module dtmf_top #(
   /* verilator lint_on PINCONNECTEMPTY */
 
   // ---------------- packets out -----------------------------------------
-  wire fifo_valid, fifo_ready, fr_valid, fr_ready;
-  wire [7:0] fifo_data, fr_data;
+  wire fifo_valid, fifo_ready;
+  wire [7:0] fifo_data;
   wire [15:0] out_free, out_overflows;
   byte_fifo #(.DEPTH(OUT_DEPTH)) u_out (
       .clk(clk), .rst(rst), .in_valid(wr_out), .in_data(io_wdata[7:0]),
       .out_valid(fifo_valid), .out_ready(fifo_ready), .out_data(fifo_data), .free(out_free),
       .overflows(out_overflows));
   wire [7:0] link_seq;
-  link_framer u_framer (
-      .clk(clk), .rst(rst), .s_valid(fifo_valid), .s_ready(fifo_ready), .s_data(fifo_data),
-      .m_valid(fr_valid), .m_ready(fr_ready), .m_data(fr_data), .seq(link_seq));
-  uart_tx #(.CLK_HZ(CLK_HZ), .BAUD(BAUD)) u_tx (
-      .clk(clk), .rst(rst), .s_valid(fr_valid), .s_ready(fr_ready), .s_data(fr_data),
-      .tx(uart_txd));
+  wire       link_fire;  // a framed byte goes to the UART (own link only)
+  generate
+    if (EXT_LINK == 0) begin : g_link
+      wire fr_valid, fr_ready;
+      wire [7:0] fr_data;
+      link_framer u_framer (
+          .clk(clk), .rst(rst), .s_valid(fifo_valid), .s_ready(fifo_ready), .s_data(fifo_data),
+          .m_valid(fr_valid), .m_ready(fr_ready), .m_data(fr_data), .seq(link_seq));
+      uart_tx #(.CLK_HZ(CLK_HZ), .BAUD(BAUD)) u_tx (
+          .clk(clk), .rst(rst), .s_valid(fr_valid), .s_ready(fr_ready), .s_data(fr_data),
+          .tx(uart_txd));
+      assign link_fire = fr_valid && fr_ready;
+      assign pkt_valid = 1'b0;
+      assign pkt_data = 8'd0;
+      wire unused_pkt = &{1'b0, pkt_ready};
+    end else begin : g_ext_link
+      assign pkt_valid = fifo_valid;
+      assign pkt_data = fifo_data;
+      assign fifo_ready = pkt_ready;
+      assign uart_txd = 1'b1;
+      assign link_seq = 8'd0;  // the shared link_framer counts
+      assign link_fire = 1'b0;
+    end
+  endgenerate
 
   // ---------------- the frame engine -------------------------------------
   wire [15:0] events = {14'd0, cmd_avail, frame_pending};
@@ -228,7 +256,7 @@ module dtmf_top #(
   wire p_frame_done /* verilator public_flat_rd */ = wr_done;
   wire p_out_fire /* verilator public_flat_rd */ = wr_out;
   wire [15:0] p_out_overflows /* verilator public_flat_rd */ = out_overflows;
-  wire p_fr_fire /* verilator public_flat_rd */ = fr_valid && fr_ready;
+  wire p_fr_fire /* verilator public_flat_rd */ = link_fire;
   wire [7:0] p_seq /* verilator public_flat_rd */ = link_seq;
 endmodule
 `default_nettype wire

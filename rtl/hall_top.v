@@ -2,7 +2,8 @@
 // hall_top: the FPGA top of a magnetic (Hall) skin: NB I2C buses in
 // parallel, each an i2c_master driven by an mlx90393_sequencer with NSB
 // MLX90393 sensors (directly on the bus or behind TCA9548A channels), a frame
-// assembler, and the host link (link_framer + uart_tx, docs/protocol.md).
+// assembler, and the host link (link_framer + uart_tx, docs/protocol.md; or,
+// with EXT_LINK, its packet stream to rtl/mixed_top.v's shared link).
 // The parameters are generated from the scene (sensor addresses, mux
 // channels, register settings, conversion wait).
 //
@@ -86,7 +87,13 @@ module hall_top #(
     parameter [15:0] CURVE_GAIN_X = 16'd1540,
     parameter [15:0] CURVE_GAIN_Y = 16'd1540,
     parameter [15:0] CURVE_GAIN_Z = 16'd2478,
-    parameter [CURVE_NR*32-1:0] LOCK_MN = {32'sd16200, 32'sd4800, 32'sd900}
+    parameter [CURVE_NR*32-1:0] LOCK_MN = {32'sd16200, 32'sd4800, 32'sd900},
+    // 0: this top owns the host link (link_framer -> uart_tx on uart_txd).
+    // 1: it shares the link with a DTMF top (rtl/mixed_top.v): its packets
+    // leave on pkt_* (whole packets, as link_framer takes them; uart_txd
+    // idles high) and its command decoder keeps only the Hall commands
+    // 0x90-0x9F (the DTMF top judges every other type).
+    parameter integer EXT_LINK = 0
 ) (
     input  wire              clk,
     input  wire              rst,
@@ -96,7 +103,10 @@ module hall_top #(
     output wire [NB-1:0]     sda_oe,
     input  wire [NB*NSB-1:0] drdy,
     output wire              uart_txd,
-    input  wire              uart_rxd
+    input  wire              uart_rxd,
+    output wire              pkt_valid,   // EXT_LINK = 1: the packet stream (else 0)
+    input  wire              pkt_ready,
+    output wire [7:0]        pkt_data
 );
   localparam integer NSENS = NB * NSB;
   localparam integer FB = NSENS * 10;  // frame payload bytes
@@ -117,7 +127,7 @@ module hall_top #(
   endfunction
 
   generate
-    if (NSENS > 255 || CLK_HZ % 1_000_000 != 0) begin : g_bad
+    if (NSENS > 255 || CLK_HZ % 1_000_000 != 0 || (EXT_LINK != 0 && EXT_LINK != 1)) begin : g_bad
       hall_top_needs_at_most_255_sensors_and_a_whole_MHz_clock bad ();
     end
     if (FT != 0 && (DELTAS == 0 || FT_ID < 0 || FT_ID + 3 > NSENS)) begin : g_bad_ft
@@ -286,7 +296,8 @@ module hall_top #(
       uart_rx #(.CLK_HZ(CLK_HZ), .BAUD(BAUD)) u_rx (
           .clk(clk), .rst(rst), .rx(uart_rxd), .m_valid(r_valid), .m_ready(r_ready),
           .m_data(r_data), .frame_err(r_ferr), .overrun(r_ovr));
-      cmd_decoder #(.DEPTH(64)) u_cmd_dec (
+      cmd_decoder #(.DEPTH(64), .TYPE_LO(EXT_LINK != 0 ? 8'h90 : 8'h00),
+                    .TYPE_HI(EXT_LINK != 0 ? 8'h9F : 8'hFF)) u_cmd_dec (
           .clk(clk), .rst(rst), .s_valid(r_valid), .s_ready(r_ready), .s_data(r_data),
           .rx_error(r_ferr | r_ovr), .avail(q_avail), .head(q_head), .pop(q_pop),
           .clear(1'b0), .crc_errors(crc_err), .frame_errors(frm_err), .overflows(ovf));
@@ -484,8 +495,6 @@ module hall_top #(
   reg         p_valid;
   wire        p_ready;
   reg  [7:0]  p_data;
-  wire        l_valid, l_ready;
-  wire [7:0]  l_data, l_seq;
 
   // Packet kinds, in the order they follow a frame.
   localparam [2:0] K_SAMPLES = 3'd0, K_DELTAS = 3'd1, K_DECOUPLE = 3'd2, K_WRENCH = 3'd3,
@@ -693,12 +702,25 @@ module hall_top #(
     else if (fc_valid) fc_wj <= fc_last ? 4'd0 : fc_wj + 4'd1;
   end
 
-  link_framer u_framer (
-      .clk(clk), .rst(rst), .s_valid(p_valid), .s_ready(p_ready), .s_data(p_data),
-      .m_valid(l_valid), .m_ready(l_ready), .m_data(l_data), .seq(l_seq));
-  uart_tx #(.CLK_HZ(CLK_HZ), .BAUD(BAUD)) u_tx (
-      .clk(clk), .rst(rst), .s_valid(l_valid), .s_ready(l_ready), .s_data(l_data),
-      .tx(uart_txd));
-  wire unused_top = &{1'b0, l_seq};
+  generate
+    if (EXT_LINK == 0) begin : g_link
+      wire l_valid, l_ready;
+      wire [7:0] l_data, l_seq;
+      link_framer u_framer (
+          .clk(clk), .rst(rst), .s_valid(p_valid), .s_ready(p_ready), .s_data(p_data),
+          .m_valid(l_valid), .m_ready(l_ready), .m_data(l_data), .seq(l_seq));
+      uart_tx #(.CLK_HZ(CLK_HZ), .BAUD(BAUD)) u_tx (
+          .clk(clk), .rst(rst), .s_valid(l_valid), .s_ready(l_ready), .s_data(l_data),
+          .tx(uart_txd));
+      assign pkt_valid = 1'b0;
+      assign pkt_data = 8'd0;
+      wire unused_link = &{1'b0, l_seq, pkt_ready};
+    end else begin : g_ext_link
+      assign pkt_valid = p_valid;
+      assign pkt_data = p_data;
+      assign p_ready = pkt_ready;
+      assign uart_txd = 1'b1;
+    end
+  endgenerate
 endmodule
 `default_nettype wire

@@ -26,10 +26,12 @@
 #include "host/fpga/flow.h"
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
+#include "host/report/html_page.h"
 #include "host/report/simulate_report.h"
 #include "host/stream/link_stream.h"
 #include "sim/scene.h"
 #include "sim/vboard/fpga_params.h"
+#include "sim/vboard/mixed_build.h"
 #include "sim/vboard/vboard_build.h"
 #include "sim/vboard/vboard_process.h"
 #include "sim/world_model.h"
@@ -124,59 +126,23 @@ GoldenRun run_golden(const sim::Scene& scene, int fpga_step) {
 
 std::string ms(double v) { return fmt::format("{:.3f}", v); }
 
-int run_simulate(const Args& a) {
-  const sim::Scene scene = sim::load_scene(a.scene);  // a bad scene fails here, before anything runs
-  if (scene.has_hall && scene.has_skin)
-    throw ConfigError("hall", a.scene + ": a scene with both a DTMF skin and Hall sensors needs "
-                                        "both FPGA tops on one board; the virtual board runs one "
-                                        "top (simulate the skin and the Hall sensors as two scenes)");
-  if (scene.has_hall) return run_simulate_hall(scene, a.scene, a.out, a.trace);
-  const vboard::FpgaBuild build = board_build(scene);
-  const std::string exe = vboard::board_executable(
-      build, [](const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); });
+// The DTMF skin's packets of a board run (`run.rx`, other types ignored),
+// scored against the truth and the golden model: report.html, CSVs,
+// fpga_packets.ndjson and summary.json in `out_dir`; a summary on stdout.
+// Returns summary.json's contents.
+nlohmann::json report_dtmf(const sim::Scene& scene, const std::string& scene_file,
+                           const vboard::FpgaBuild& build, const GoldenRun& gold,
+                           const BoardRun& run, size_t total, const std::string& out_dir) {
+  std::filesystem::create_directories(out_dir);
   const SkinConfig& skin = scene.skin;
   const double fs = skin.adc.rate_hz;
   const int R = skin.rows, C = skin.cols, T = R * C, K = skin.carriers();
-  std::filesystem::create_directories(a.out);
-
-  std::vector<std::string> vargs{a.scene};
-  if (!a.trace.empty()) vargs.insert(vargs.end(), {"--trace", a.trace});
-  vboard::VboardProcess board(exe, vargs);
-  const size_t total = board.ready().at("scene_samples");
-  // The board's serial port through the host streaming library
-  // (host/stream), packets decoded and checked by host/link.
-  stream::LinkStream port(board_link_options(board.pty(), int(build.baud())));
-  // rx is filled on the stream's reader thread and read here only after
-  // port.stop() has joined it; the progress bar follows last_t.
+  const nlohmann::json& done = run.done;
+  const link::DecoderStats& ls = run.link;
+  const bool timed = run.timed;
   std::vector<FpgaFrame> rx;
-  std::atomic<uint32_t> last_t{0};
-  port.on_packet([&](const Packet& p) {
-    rx.push_back({p, -1});
-    last_t = p.t;
-  });
-  port.start();
-  // Configure the board like a host program: the scene's outputs, plus the
-  // periodic status (its counters go into the report).
-  link::LinkEncoder enc;
-  port.send(enc.set_output_mask(uint8_t((scene.outputs.amplitudes ? 1 : 0) |
-                                        (scene.outputs.taxels ? 2 : 0) |
-                                        (scene.outputs.spikes ? 4 : 0) | 8)));
-  GoldenRun gold;
-  std::thread golden_thread([&] { gold = run_golden(scene, build.plan.step); });  // the other core
-  Progress bar(total);
-  read_until_board_done(board, port, [&] { bar.update(last_t); });
-  bar.update(total);
-  golden_thread.join();
-  const nlohmann::json done = board.done();
-  const link::DecoderStats ls = port.stats().link;
-  port.stop();  // the board exits once its reader has closed the port
-  // Frame k on the wire is packet k when nothing was lost or corrupt.
-  const auto& ends = done.at("frame_end_ns");
-  const bool timed = ls.crc_errors + ls.framing_errors + ls.payload_errors == 0 &&
-                     ends.size() == rx.size();
-  if (timed)
-    for (size_t i = 0; i < rx.size(); ++i) rx[i].arrival_us = ends[i].get<double>() / 1000.0;
-
+  for (size_t i = 0; i < run.rx.size(); ++i)
+    if (!link::is_hall_packet(run.rx[i].type)) rx.push_back({run.rx[i], run.arrival_us[i]});
   // ---- FPGA frames in physical units, scored like the golden model's.
   sim::WorldModel truth_world(scene);
   golden::DecodeScorer fpga_scorer(skin, scene.decoder, [&](size_t n, std::vector<double>& p) {
@@ -188,7 +154,7 @@ int run_simulate(const Args& a) {
       std::ldexp(1.0, build.plan.mag_shift - build.adc_shift()) / (build.plan.N / 2.0);
   report::SimulateReport rep;
   rep.title = "eskin simulate: " + scene.name;
-  rep.scene_file = a.scene;
+  rep.scene_file = scene_file;
   for (int i = 0; i < R; ++i)
     for (int j = 0; j < C; ++j) rep.taxel_labels.push_back(fmt::format("r{}c{}", i, j));
   const auto freqs = skin.carrier_freqs_hz();
@@ -201,9 +167,9 @@ int run_simulate(const Args& a) {
   rep.golden_kpa.assign(size_t(T), {});
   rep.truth_kpa.assign(size_t(T), {});
   report::SpikeTrain fspk{"FPGA", {}, {}}, gspk{"golden", {}, {}};
-  auto amp_csv = fmt::output_file((std::filesystem::path(a.out) / "fpga_amplitudes.csv").string());
-  auto tax_csv = fmt::output_file((std::filesystem::path(a.out) / "fpga_taxels.csv").string());
-  auto nd = fmt::output_file((std::filesystem::path(a.out) / "fpga_packets.ndjson").string());
+  auto amp_csv = fmt::output_file((std::filesystem::path(out_dir) / "fpga_amplitudes.csv").string());
+  auto tax_csv = fmt::output_file((std::filesystem::path(out_dir) / "fpga_taxels.csv").string());
+  auto nd = fmt::output_file((std::filesystem::path(out_dir) / "fpga_packets.ndjson").string());
   amp_csv.print("sample,t_ms,arrival_us");
   for (double f : freqs) amp_csv.print(",amp_{}hz", f);
   tax_csv.print("sample,t_ms,arrival_us");
@@ -292,7 +258,7 @@ int run_simulate(const Args& a) {
   for (const auto& v : gold.spikes2_ms) gspk2 += v.size();
   rep.spikes = {fspk, gspk};
   {
-    auto s_csv = fmt::output_file((std::filesystem::path(a.out) / "spikes.csv").string());
+    auto s_csv = fmt::output_file((std::filesystem::path(out_dir) / "spikes.csv").string());
     s_csv.print("model,t_ms,taxel,row,col\n");
     for (const auto* tr : {&fspk, &gspk})
       for (size_t i = 0; i < tr->t_ms.size(); ++i)
@@ -302,7 +268,7 @@ int run_simulate(const Args& a) {
 
   // ---- latency: touch onset (truth) -> first frame with the taxel lit.
   const double thr = scene.decoder.ghost_threshold;
-  auto lat_csv = fmt::output_file((std::filesystem::path(a.out) / "latency.csv").string());
+  auto lat_csv = fmt::output_file((std::filesystem::path(out_dir) / "latency.csv").string());
   lat_csv.print("taxel,onset_ms,fpga_us,golden_us\n");
   std::vector<double> fpga_lat;
   for (const sim::Press& pr : scene.presses) {
@@ -376,10 +342,11 @@ int run_simulate(const Args& a) {
       R, C, K, total, fs, build.key, build.clk_hz() / 1e6, build.baud(),
       build.plan.spec.demix ? " + least-squares demixing" : "", build.plan.step,
       to_string(golden_variant), build.plan.step);
-  const std::string html = (std::filesystem::path(a.out) / "report.html").string();
+  const std::string html = (std::filesystem::path(out_dir) / "report.html").string();
   report::write_simulate_report(rep, html);
+  nlohmann::json summary;
   {
-    nlohmann::json sum = {{"scene", a.scene}, {"fpga_build", build.key},
+    nlohmann::json sum = {{"scene", scene_file}, {"fpga_build", build.key},
                           {"fpga_clk_hz", build.clk_hz()}, {"sim_s", sim_s},
                           {"cpu_s", cpu_s}, {"wall_s", wall_s}, {"cycles", cyc},
                           {"packets", rx.size()}, {"link_errors", ls.crc_errors + ls.framing_errors + ls.payload_errors},
@@ -395,10 +362,10 @@ int run_simulate(const Args& a) {
                           {"adc_overruns", last_status.adc_overruns},
                           {"frame_overruns", last_status.frame_overruns},
                           {"dropped_packets", last_status.dropped_frames}};
-    auto js = fmt::output_file((std::filesystem::path(a.out) / "summary.json").string());
+    auto js = fmt::output_file((std::filesystem::path(out_dir) / "summary.json").string());
     js.print("{}\n", sum.dump(2));
+    summary = sum;
   }
-  const int status = board.wait();
   fmt::print("scene {}: {}x{} skin, {:.3f} s simulated on the virtual board (FPGA build {}) in "
              "{:.1f} s ({:.2f} simulated s per CPU s)\n",
              scene.name, R, C, sim_s, build.key, wall_s, sim_s / cpu_s);
@@ -418,7 +385,143 @@ int run_simulate(const Args& a) {
     fmt::print("latency touch onset -> first FPGA frame on the host: median {:.0f} us over {} presses\n",
                lat_med, fpga_lat.size());
   fmt::print("report: {}\n", html);
-  return status == 0 ? 0 : 1;
+  return summary;
+}
+
+void note(const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); }
+
+// The skin's outputs (amplitudes, taxels, spikes as the scene asks) plus
+// the periodic status, whose counters go into the report.
+std::vector<uint8_t> output_mask_command(const sim::Scene& scene, link::LinkEncoder& enc) {
+  return enc.set_output_mask(uint8_t((scene.outputs.amplitudes ? 1 : 0) |
+                                     (scene.outputs.taxels ? 2 : 0) |
+                                     (scene.outputs.spikes ? 4 : 0) | 8));
+}
+
+// A scene with both a DTMF skin and Hall sensors: rtl/mixed_top.v on one
+// board, both tops' packets on one link. The host configures both (the
+// skin's outputs; the Hall decoding's calibration), then scores the skin's
+// packets as a DTMF scene's (OUT/skin) and the Hall top's as a Hall
+// scene's (OUT/hall); OUT/summary.json and OUT/report.html hold both and the
+// shared link's figures.
+int run_simulate_mixed(const sim::Scene& scene, const Args& a) {
+  const vboard::FpgaBuild dtmf = board_build(scene);
+  const vboard::MixedBuild build = vboard::mixed_build_for(scene, dtmf);  // names a bad field
+  const HallFpgaSetup setup = hall_simulation_setup(scene, build.hall.spec);
+  const std::string exe = vboard::board_executable(build, note);
+  std::filesystem::create_directories(a.out);
+
+  std::vector<std::string> vargs{a.scene};
+  if (!a.trace.empty()) vargs.insert(vargs.end(), {"--trace", a.trace});
+  vboard::VboardProcess board(exe, vargs);
+  const size_t total = board.ready().at("scene_samples");
+  stream::LinkStream port(board_link_options(board.pty(), int(dtmf.baud())));
+  std::vector<Packet> rx;  // filled on the reader thread, read after port.stop()
+  std::atomic<uint32_t> last_t{0};
+  port.on_packet([&](const Packet& p) {
+    rx.push_back(p);
+    if (!link::is_hall_packet(p.type)) last_t = p.t;
+  });
+  port.start();
+  link::LinkEncoder enc;
+  port.send(output_mask_command(scene, enc));
+  if (!setup.commands.empty()) port.send(setup.commands);
+  GoldenRun gold;
+  std::thread golden_thread([&] { gold = run_golden(scene, dtmf.plan.step); });
+  Progress bar(total);
+  read_until_board_done(board, port, [&] { bar.update(last_t); });
+  bar.update(total);
+  golden_thread.join();
+  const BoardRun run = finish_board_run(board, port, std::move(rx));
+
+  // Each part's report names the board's build.
+  vboard::FpgaBuild skin_build = dtmf;
+  skin_build.key = build.key;
+  vboard::HallBuild hall_build = build.hall;
+  hall_build.key = build.key;
+  const std::filesystem::path out(a.out);
+  const nlohmann::json skin = report_dtmf(scene, a.scene, skin_build, gold, run, total, (out / "skin").string());
+  const nlohmann::json hall = report_hall(scene, a.scene, hall_build, setup, run, (out / "hall").string());
+
+  size_t hall_n = 0;
+  for (const Packet& p : run.rx) hall_n += link::is_hall_packet(p.type);
+  const link::DecoderStats& ls = run.link;
+  const uint64_t link_errors = ls.crc_errors + ls.framing_errors + ls.payload_errors;
+  const nlohmann::json sum = {
+      {"scene", a.scene}, {"top", "mixed_top"}, {"fpga_build", build.key},
+      {"fpga_clk_hz", dtmf.clk_hz()}, {"packets", run.rx.size()},
+      {"dtmf_packets", run.rx.size() - hall_n}, {"hall_packets", hall_n},
+      {"link_errors", link_errors}, {"lost_packets", ls.lost_packets},
+      {"skin", skin}, {"hall", hall}};
+  fmt::output_file((out / "summary.json").string()).print("{}\n", sum.dump(2));
+  report::Page page("eskin simulate: " + scene.name);
+  page.text(fmt::format(
+      "A DTMF skin and Hall sensors on one FPGA (rtl/mixed_top.v, build {} at {:.0f} MHz): both "
+      "tops' packets share one link, numbered by one seq counter. The skin's report is "
+      "skin/report.html, the Hall sensors' hall/report.html. Scene file: {}.",
+      build.key, dtmf.clk_hz() / 1e6, a.scene));
+  page.table({"figure", "value"},
+             {{"packets: DTMF / Hall", fmt::format("{} / {}", run.rx.size() - hall_n, hall_n)},
+              {"link: bytes / CRC errors / framing errors / lost packets",
+               fmt::format("{} / {} / {} / {}", ls.bytes, ls.crc_errors, ls.framing_errors,
+                           ls.lost_packets)},
+              {"skin: worst taxel RMS error FPGA / golden (kPa)",
+               fmt::format("{:.3f} / {:.3f}", skin.at("fpga_worst_rms_kpa").get<double>(),
+                           skin.at("golden_worst_rms_kpa").get<double>())},
+              {"skin: latency onset -> host, median (us)",
+               fmt::format("{:.1f}", skin.at("latency_median_us").get<double>())},
+              {"Hall: frames / incomplete", fmt::format("{} / {}", hall.at("frames").get<size_t>(),
+                                                        hall.at("incomplete_frames").get<size_t>())},
+              {"Hall: latency DRDY -> host, median (us)",
+               fmt::format("{:.1f}", hall.at("latency_median_us").get<double>())},
+              {"I2C timing violations / ADC timing violations",
+               fmt::format("{} / {}", run.done.at("i2c_violations").get<uint64_t>(),
+                           run.done.at("adc_violations").get<uint64_t>())}});
+  page.write((out / "report.html").string());
+  fmt::print("mixed board {}: {} DTMF and {} Hall packets on one link, {} link errors, {} lost; "
+             "report: {}\n",
+             build.key, run.rx.size() - hall_n, hall_n, link_errors, ls.lost_packets,
+             (out / "report.html").string());
+  return board.wait() == 0 ? 0 : 1;
+}
+
+int run_simulate(const Args& a) {
+  const sim::Scene scene = sim::load_scene(a.scene);  // a bad scene fails here, before anything runs
+  if (scene.has_hall && scene.has_skin) return run_simulate_mixed(scene, a);
+  if (scene.has_hall) return run_simulate_hall(scene, a.scene, a.out, a.trace);
+  const vboard::FpgaBuild build = board_build(scene);
+  const std::string exe = vboard::board_executable(build, note);
+  std::filesystem::create_directories(a.out);
+
+  std::vector<std::string> vargs{a.scene};
+  if (!a.trace.empty()) vargs.insert(vargs.end(), {"--trace", a.trace});
+  vboard::VboardProcess board(exe, vargs);
+  const size_t total = board.ready().at("scene_samples");
+  // The board's serial port through the host streaming library
+  // (host/stream), packets decoded and checked by host/link.
+  stream::LinkStream port(board_link_options(board.pty(), int(build.baud())));
+  // rx is filled on the stream's reader thread and read here only after
+  // port.stop() has joined it; the progress bar follows last_t.
+  std::vector<Packet> rx;
+  std::atomic<uint32_t> last_t{0};
+  port.on_packet([&](const Packet& p) {
+    rx.push_back(p);
+    last_t = p.t;
+  });
+  port.start();
+  // Configure the board like a host program: the scene's outputs, plus the
+  // periodic status (its counters go into the report).
+  link::LinkEncoder enc;
+  port.send(output_mask_command(scene, enc));
+  GoldenRun gold;
+  std::thread golden_thread([&] { gold = run_golden(scene, build.plan.step); });  // the other core
+  Progress bar(total);
+  read_until_board_done(board, port, [&] { bar.update(last_t); });
+  bar.update(total);
+  golden_thread.join();
+  const BoardRun run = finish_board_run(board, port, std::move(rx));
+  report_dtmf(scene, a.scene, build, gold, run, total, a.out);
+  return board.wait() == 0 ? 0 : 1;
 }
 
 std::function<int()> setup(CLI::App& app) {

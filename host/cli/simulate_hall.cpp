@@ -91,42 +91,29 @@ std::string pct(double v) { return fmt::format("{:.2f} %", 100 * v); }
 
 }  // namespace
 
-int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
-                      const std::string& out_dir, const std::string& trace) {
-  const vboard::HallBuild build = vboard::hall_build_for(scene);  // names a bad field
+HallFpgaSetup hall_simulation_setup(const sim::Scene& scene, const sim::HallTopSpec& spec) {
+  const sim::HallWorld world(scene.hall);
+  link::LinkEncoder enc;
+  return hall_fpga_setup(world, spec, scene.seed, enc);
+}
+
+nlohmann::json report_hall(const sim::Scene& scene, const std::string& scene_file,
+                           const vboard::HallBuild& build, const HallFpgaSetup& setup,
+                           const BoardRun& run, const std::string& out_dir) {
+  fs::create_directories(out_dir);
   const sim::HallWorld world(scene.hall);
   const HallConfig& h = world.config();
   const sim::HallTopSpec& spec = build.spec;
-  // The decoding's constants, calibrated by the golden chain on the scene's
-  // skin and quantised for the FPGA (host/cli/hall_fpga_setup.h).
-  link::LinkEncoder enc;
-  const HallFpgaSetup setup = hall_fpga_setup(world, spec, scene.seed, enc);
-  const std::string exe = vboard::board_executable(
-      build, [](const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); });
-  fs::create_directories(out_dir);
-
-  std::vector<std::string> vargs{scene_file};
-  if (!trace.empty()) vargs.insert(vargs.end(), {"--trace", trace});
-  vboard::VboardProcess board(exe, vargs);
-  stream::LinkStream port(board_link_options(board.pty(), int(build.baud)));
-  std::vector<Packet> rx;  // filled on the reader thread, read after port.stop()
-  std::atomic<uint32_t> last_t{0};
-  port.on_packet([&](const Packet& p) {
-    rx.push_back(p);
-    if (p.type == link::kHallSamples) last_t = p.t;
-  });
-  port.start();
-  if (!setup.commands.empty()) port.send(setup.commands);
-  Progress bar(size_t(scene.duration_s * 1e6));
-  read_until_board_done(board, port, [&] { bar.update(last_t); });
-  bar.update(size_t(scene.duration_s * 1e6));
-  const nlohmann::json done = board.done();
-  const link::DecoderStats ls = port.stats().link;
-  port.stop();
+  const nlohmann::json& done = run.done;
+  const link::DecoderStats& ls = run.link;
   const uint64_t link_errors = ls.crc_errors + ls.framing_errors + ls.payload_errors;
-  const auto& ends = done.at("frame_end_ns");
-  const bool timed = link_errors == 0 && ends.size() == rx.size();
-
+  std::vector<Packet> rx;  // the Hall top's packets, with their arrivals
+  std::vector<double> arrival;
+  for (size_t i = 0; i < run.rx.size(); ++i)
+    if (link::is_hall_packet(run.rx[i].type)) {
+      rx.push_back(run.rx[i]);
+      arrival.push_back(run.arrival_us[i]);
+    }
   // ---- frames: HALL_SAMPLES and the decoding packets after it.
   std::vector<HallFrameRx> frames;
   const Packet* bus_status = nullptr;
@@ -136,7 +123,7 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
   auto nd = fmt::output_file((fs::path(out_dir) / "fpga_packets.ndjson").string());
   for (size_t i = 0; i < rx.size(); ++i) {
     const Packet& p = rx[i];
-    const double arr = timed ? ends[i].get<double>() / 1000.0 : -1;
+    const double arr = arrival[i];
     // The packet as `eskin stream` writes it (host/stream/packet_table.h:
     // one row per reading, record or packet), with its arrival.
     if (const stream::PacketKind* kind = stream::find_kind(p.type)) {
@@ -430,7 +417,7 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
                 {"options", {{"scales", {{"x", {{"title", {{"display", true}, {"text", "latency (us), 50 us bins"}}}}}}}}}});
   }
   page.heading("Run");
-  std::vector<std::vector<std::string>> run{
+  std::vector<std::vector<std::string>> run_rows{
       {"FPGA build", build.key},
       {"simulated time (s)", fmt::format("{:.4f}", sim_s)},
       {"FPGA cycles", fmt::format("{:.0f}", cyc)},
@@ -445,18 +432,18 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
       {"latency DRDY -> host, median / max (us)", fmt::format("{:.1f} / {:.1f}", lat_med, lat_max)}};
   if (decode_status) {
     const auto& d = decode_status->hall.status;
-    run.push_back({"FPGA decode status: commands accepted / rejected, baseline drops",
+    run_rows.push_back({"FPGA decode status: commands accepted / rejected, baseline drops",
                    fmt::format("{} / {} (sent {}), {}", d.cmd_accepted, d.cmd_rejected,
                                setup.command_count, d.baseline_dropped)});
   }
   if (bus_status)
     for (size_t b = 0; b < bus_status->hall_buses.size(); ++b) {
       const auto& s = bus_status->hall_buses[b];
-      run.push_back({fmt::format("bus {}: NACKs / status errors / reply errors / recoveries / bus errors", b),
+      run_rows.push_back({fmt::format("bus {}: NACKs / status errors / reply errors / recoveries / bus errors", b),
                      fmt::format("{} / {} / {} / {} / {}", s.nacks, s.status_errors, s.reply_errors,
                                  s.recoveries, s.bus_errors)});
     }
-  page.table({"figure", "value"}, run);
+  page.table({"figure", "value"}, run_rows);
   const std::string html = (fs::path(out_dir) / "report.html").string();
   page.write(html);
 
@@ -493,7 +480,6 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
                      {"golden_rolling_mm", locroll.get()}, {"single_frames", loc1.n}};
   fmt::output_file((fs::path(out_dir) / "summary.json").string()).print("{}\n", sum.dump(2));
 
-  const int status = board.wait();
   fmt::print("scene {}: {} Hall sensors on {} bus(es), {:.3f} s simulated on the virtual board (Hall "
              "build {}) in {:.1f} s ({:.2f} simulated s per CPU s)\n",
              scene.name, ns, spec.nb, sim_s, build.key, wall_s, sim_s / cpu_s);
@@ -520,7 +506,35 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
   if (lat_med >= 0)
     fmt::print("latency DRDY -> last byte on the host: median {:.0f} us, max {:.0f} us\n", lat_med, lat_max);
   fmt::print("report: {}\n", html);
-  return status == 0 ? 0 : 1;
+  return sum;
+}
+
+int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
+                      const std::string& out_dir, const std::string& trace) {
+  const vboard::HallBuild build = vboard::hall_build_for(scene);  // names a bad field
+  const HallFpgaSetup setup = hall_simulation_setup(scene, build.spec);
+  const std::string exe = vboard::board_executable(
+      build, [](const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); });
+  fs::create_directories(out_dir);
+
+  std::vector<std::string> vargs{scene_file};
+  if (!trace.empty()) vargs.insert(vargs.end(), {"--trace", trace});
+  vboard::VboardProcess board(exe, vargs);
+  stream::LinkStream port(board_link_options(board.pty(), int(build.baud)));
+  std::vector<Packet> rx;  // filled on the reader thread, read after port.stop()
+  std::atomic<uint32_t> last_t{0};
+  port.on_packet([&](const Packet& p) {
+    rx.push_back(p);
+    if (p.type == link::kHallSamples) last_t = p.t;
+  });
+  port.start();
+  if (!setup.commands.empty()) port.send(setup.commands);
+  Progress bar(size_t(scene.duration_s * 1e6));
+  read_until_board_done(board, port, [&] { bar.update(last_t); });
+  bar.update(size_t(scene.duration_s * 1e6));
+  const BoardRun run = finish_board_run(board, port, std::move(rx));
+  report_hall(scene, scene_file, build, setup, run, out_dir);
+  return board.wait() == 0 ? 0 : 1;
 }
 
 }  // namespace eskin::cli

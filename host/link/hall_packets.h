@@ -23,6 +23,11 @@ enum HallPacketType : uint8_t {
   kCmdHallSetDecouple = 0x9C,  // k1 s16, c1 s32, k2 s16, c2 s32
 };
 
+// The Hall top's packet types, 0x10..0x2F (docs/protocol.md section 4): on
+// a mixed board's shared link (rtl/mixed_top.v) everything else is the
+// DTMF top's.
+constexpr bool is_hall_packet(uint8_t type) { return type >= 0x10 && type <= 0x2F; }
+
 struct HallDeltaRecord {  // 10 bytes, HALL_SAMPLES' layout
   uint8_t id = 0, flags = 0;
   uint16_t t16 = 0;

@@ -100,4 +100,19 @@ std::string board_executable(const HallBuild& b,
   return ensure_board(target, b.key, call + ")", what, note);
 }
 
+std::string board_executable(const MixedBuild& b,
+                             const std::function<void(const std::string&)>& note) {
+  const std::string target = "eskin-vboard-" + b.key;
+  std::string call = "eskin_vboard_mixed_target(" + target + " " + b.key + " " + b.dtmf.key + " " +
+                     std::to_string(b.dtmf.plan.spec.clk_hz) + " " +
+                     std::to_string(b.dtmf.plan.spec.baud);
+  for (const auto& p : b.verilator_args()) call += " " + p;
+  const std::string what = "a " + std::to_string(b.dtmf.plan.R) + "x" +
+                           std::to_string(b.dtmf.plan.C) + " skin beside " +
+                           std::to_string(b.hall.spec.nb) + " I2C bus(es) of " +
+                           std::to_string(b.hall.spec.nsb) + " MLX90393 at " +
+                           std::to_string(b.dtmf.plan.spec.clk_hz / 1000000) + " MHz";
+  return ensure_board(target, b.key, call + ")", what, note);
+}
+
 }  // namespace eskin::vboard

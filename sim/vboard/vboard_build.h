@@ -14,6 +14,7 @@
 
 #include "sim/vboard/fpga_params.h"
 #include "sim/vboard/hall_build.h"
+#include "sim/vboard/mixed_build.h"
 
 namespace eskin::vboard {
 
@@ -24,6 +25,9 @@ std::string board_executable(const FpgaBuild& b,
                              const std::function<void(const std::string&)>& note);
 // The same for a Hall scene's build (rtl/hall_top.v, vboard_hall_main.cpp).
 std::string board_executable(const HallBuild& b,
+                             const std::function<void(const std::string&)>& note);
+// The same for a scene with both (rtl/mixed_top.v, vboard_mixed_main.cpp).
+std::string board_executable(const MixedBuild& b,
                              const std::function<void(const std::string&)>& note);
 
 }  // namespace eskin::vboard

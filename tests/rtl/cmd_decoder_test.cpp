@@ -11,6 +11,10 @@
 //  * a frame that does not fit the FIFO is dropped whole and counted as an
 //    overflow (32-byte build), the frames before it are intact, and once the
 //    reader drains the FIFO the next frame fits again;
+//  * routed builds (rtl/mixed_top.v's two decoders on one line): every
+//    command reaches exactly one of them, whole and in order, a type the
+//    other owns is dropped without being counted, and a broken frame is
+//    counted by both;
 //  * `clear` zeroes the counters. Expected counts are counted by the test
 //    from what it sent, never read back from the RTL.
 #include <gtest/gtest.h>
@@ -21,6 +25,8 @@
 #include <vector>
 
 #include "Vcmd_decoder_tb.h"
+#include "Vcmd_decoder_tb_dtmf.h"
+#include "Vcmd_decoder_tb_hall.h"
 #include "Vcmd_decoder_tb_small.h"
 #include "host/link/link_encoder.h"
 
@@ -164,6 +170,38 @@ TEST(CmdDecoder, AFrameThatDoesNotFitIsDroppedWhole) {
   EXPECT_EQ(b.drain(), expected(0x88, seq, p10));
   EXPECT_EQ(b.m->overflows, 1);
   EXPECT_EQ(b.m->crc_errors + b.m->frame_errors, 0);
+}
+
+TEST(CmdDecoder, RoutedDecodersSplitTheLineByType) {
+  Bench<Vcmd_decoder_tb_dtmf> d;  // all but 0x90-0x9F
+  Bench<Vcmd_decoder_tb_hall> h;  // 0x90-0x9F only
+  LinkEncoder enc;
+  std::vector<uint8_t> want_d, want_h;
+  // Both ends of the Hall range and their neighbours, interleaved.
+  const uint8_t types[] = {0x84, 0x90, 0x8F, 0x99, 0x9F, 0xA0, 0x9C, 0x80, 0x86};
+  for (uint8_t type : types) {
+    const std::vector<uint8_t> payload = {type, 0x00, 0x5A};
+    const uint8_t seq = enc.next_seq();
+    const auto wire = enc.frame(type, 0, payload);
+    d.send(wire);
+    h.send(wire);
+    const auto e = expected(type, seq, payload);
+    auto& w = (type >= 0x90 && type <= 0x9F) ? want_h : want_d;
+    w.insert(w.end(), e.begin(), e.end());
+  }
+  auto raw = raw_frame(0x99, 1, 0, {1, 2});
+  raw[9] ^= 0x10;  // a CRC error: both decoders count it
+  auto bad = cobs_encode(raw);
+  bad.push_back(0);
+  d.send(bad);
+  h.send(bad);
+  EXPECT_EQ(d.drain(), want_d);
+  EXPECT_EQ(h.drain(), want_h);
+  EXPECT_EQ(want_d.size(), 5u * 7u);  // 0x84 0x8F 0xA0 0x80 0x86
+  EXPECT_EQ(want_h.size(), 4u * 7u);  // 0x90 0x99 0x9F 0x9C
+  EXPECT_EQ(d.m->crc_errors, 1);
+  EXPECT_EQ(h.m->crc_errors, 1);
+  EXPECT_EQ(d.m->frame_errors + d.m->overflows + h.m->frame_errors + h.m->overflows, 0);
 }
 
 }  // namespace

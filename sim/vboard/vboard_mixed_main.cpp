@@ -1,0 +1,157 @@
+// eskin-vboard-mKEY SCENE.yaml: a scene with both a DTMF skin and Hall
+// sensors on the SystemC virtual board: rtl/mixed_top.v (dtmf_top and
+// hall_top sharing one host link) at the scene's build, the AD7476A on its
+// SPI pins fed with the skin's samples, the scene's MLX90393s (and
+// TCA9548As) on its I2C buses, its UART on a pseudo-terminal (docs/vboard.md,
+// "Mixed scenes").
+//
+// Compiled once per mixed build (sim/vboard/mixed_build.h), with the
+// Verilated SystemC model of rtl/mixed_top.v for it. The run ends when the
+// ADC has taken the skin's samples plus the tail. The `done` line carries
+// drdy_ns per Hall sensor slot, as the Hall board's does.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <systemc>
+#include <type_traits>
+
+#include "Vmixed_top.h"
+#include "sim/hall_sensor_array.h"
+#include "sim/hall_world.h"
+#include "sim/scene.h"
+#include "sim/vboard/direct_wire.h"
+#include "sim/vboard/mixed_build.h"
+#include "sim/vboard/vboard_cli.h"
+#include "sim/vboard/verilated_step.h"
+#include "sim/vboard/verilated_top.h"
+#include "sim/vboard/virtual_board.h"
+#include "sim/world_model.h"
+
+#ifndef VBOARD_PARAMS_KEY
+#error "VBOARD_PARAMS_KEY: the mixed build this board is made for"
+#endif
+#if !defined(VBOARD_CLK_HZ) || !defined(VBOARD_BAUD) || !defined(VBOARD_BUILD_DIR)
+#error "VBOARD_CLK_HZ, VBOARD_BAUD, VBOARD_BUILD_DIR: the build's clock, UART rate, files"
+#endif
+
+ESKIN_EXPOSE_EVAL_STEP(Vmixed_top)
+
+namespace {
+
+using eskin::vboard::DirectPort;
+using eskin::vboard::DirectWire;
+template <class Port>
+using PortValue = typename std::remove_reference_t<Port>::data_type;
+using BusBits = PortValue<decltype(std::declval<Vmixed_top>().scl_i)>;
+using SensorBits = PortValue<decltype(std::declval<Vmixed_top>().drdy)>;
+
+class VerilatedMixedFpga final : public eskin::vboard::VerilatedTop<Vmixed_top> {
+ public:
+  VerilatedMixedFpga()
+      : rst_n_("rst_n", true), sdata_("adc_sdata"), cs_n_("adc_cs_n", true),
+        sclk_("adc_sclk", true), rxd_("uart_rxd", true), txd_("uart_txd", true),
+        scl_i_("scl_i"), sda_i_("sda_i"), scl_oe_("scl_oe"), sda_oe_("sda_oe"), drdy_("drdy") {
+    top_.rst_n(rst_n_);
+    top_.adc_sdata(sdata_);
+    top_.adc_cs_n(cs_n_);
+    top_.adc_sclk(sclk_);
+    top_.uart_rxd(rxd_);
+    top_.uart_txd(txd_);
+    top_.scl_i(scl_i_);
+    top_.sda_i(sda_i_);
+    top_.scl_oe(scl_oe_);
+    top_.sda_oe(sda_oe_);
+    top_.drdy(drdy_);
+  }
+
+  eskin::vboard::FpgaOutputs cycle(const eskin::vboard::FpgaInputs& in, uint64_t t_ps) override {
+    sdata_.write(in.adc_sdata);
+    rxd_.write(in.uart_rxd);
+    scl_i_.write(BusBits(in.scl_i));
+    sda_i_.write(BusBits(in.sda_i));
+    drdy_.write(SensorBits(in.drdy));
+    clock(t_ps);
+    eskin::vboard::FpgaOutputs out;
+    out.adc_cs_n = cs_n_.read();
+    out.adc_sclk = sclk_.read();
+    out.uart_txd = txd_.read();
+    out.scl_oe = uint64_t(scl_oe_.read());
+    out.sda_oe = uint64_t(sda_oe_.read());
+    return out;
+  }
+
+ private:
+  DirectWire rst_n_, sdata_, cs_n_, sclk_, rxd_, txd_;
+  DirectPort<BusBits> scl_i_, sda_i_, scl_oe_, sda_oe_;
+  DirectPort<SensorBits> drdy_;
+};
+
+int run(const eskin::vboard::VboardArgs& a, FILE* json) {
+  const eskin::sim::Scene scene = eskin::sim::load_scene(a.scene);
+  const eskin::vboard::FpgaBuild dtmf =
+      eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ, VBOARD_BAUD);
+  const eskin::vboard::MixedBuild build = eskin::vboard::mixed_build_for(scene, dtmf);
+  if (build.key != VBOARD_PARAMS_KEY)
+    throw std::runtime_error(fmt::format(
+        "{}: this scene needs the mixed build '{}', this virtual board is '{}' (run the scene "
+        "with `eskin simulate`, which builds the board it needs)",
+        a.scene, build.key, VBOARD_PARAMS_KEY));
+
+  eskin::vboard::BoardConfig cfg;
+  cfg.clk_hz = dtmf.clk_hz();
+  cfg.baud = dtmf.baud();
+  eskin::sim::WorldModel world(scene);
+  for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << dtmf.adc_shift()));
+  const size_t tail = size_t(std::ceil(a.tail_s * scene.skin.adc.rate_hz));
+  cfg.codes.resize(cfg.codes.size() + tail, uint16_t(1u << 11));
+  cfg.samples = cfg.codes.size();
+  cfg.codes.resize(cfg.codes.size() + 64, uint16_t(1u << 11));  // a batch may end past it
+  const eskin::sim::HallWorld hall_world(scene.hall);
+  eskin::sim::HallSensorArray sensors(hall_world, scene.hall.config, build.hall.spec);
+  cfg.hall = &sensors;
+  cfg.wait_for_reader = !a.no_wait;
+  cfg.reader_timeout_s = a.reader_timeout_s;
+  cfg.trace = a.trace;
+
+  eskin::vboard::PtyPort pty;
+  if (!a.pty_link.empty()) pty.link(a.pty_link);
+  // The DTMF part reads the scene's microcode and constants when the model
+  // is constructed (as in vboard_main.cpp).
+  auto lock = std::make_unique<eskin::vboard::BuildLock>(VBOARD_BUILD_DIR, dtmf.key);
+  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR, VBOARD_CLK_HZ, VBOARD_BAUD);
+  VerilatedMixedFpga fpga;
+  lock.reset();
+  fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / cfg.clk_hz)));
+  eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
+
+  eskin::vboard::print_ready(json, pty, VBOARD_PARAMS_KEY, cfg.clk_hz, cfg.baud,
+                             {{"top", "mixed_top"},
+                              {"sample_hz", scene.skin.adc.rate_hz},
+                              {"samples", cfg.samples},
+                              {"scene_samples", world.total_samples()},
+                              {"sensors", sensors.size()},
+                              {"buses", sensors.bus_count()}});
+  sc_core::sc_start();
+  fpga.close_trace();
+  nlohmann::json drdy = nlohmann::json::array();
+  for (size_t s = 0; s < sensors.size(); ++s) {
+    std::vector<double> t;
+    for (const auto& m : sensors.device(s).delivered()) t.push_back(m.t_done_ns);
+    drdy.push_back(t);
+  }
+  eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", drdy}});
+  eskin::vboard::wait_for_reader(pty, board.stats(), a.reader_timeout_s);
+  return 0;
+}
+
+}  // namespace
+
+int sc_main(int argc, char** argv) {
+  return eskin::vboard::vboard_cli_main(
+      argc, argv,
+      "eskin-vboard: a scene with a DTMF skin and Hall sensors on the SystemC virtual board "
+      "(mixed build " VBOARD_PARAMS_KEY "); its serial port is a pseudo-terminal",
+      0.002, run);
+}
