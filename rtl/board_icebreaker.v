@@ -35,38 +35,12 @@ module board_icebreaker #(
     output wire ledr_n,
     output wire ledg_n
 );
-  localparam integer OSC_HZ = 12_000_000;
-  localparam integer PFD_HZ = OSC_HZ / (PLL_DIVR + 1);
-  localparam integer VCO_MHZ = PFD_HZ / 1000 * (PLL_DIVF + 1) / 1000;
-  localparam integer CLK_HZ = PFD_HZ * (PLL_DIVF + 1) / (1 << PLL_DIVQ);
-  // SB_PLL40 limits (iCE40 sysCLOCK PLL guide): PFD 10..133 MHz, VCO
-  // 533..1066 MHz, output 16..275 MHz; and an exact CLK_HZ.
-  generate
-    if (PLL_DIVR < 0 || PLL_DIVR > 15 || PLL_DIVF < 0 || PLL_DIVF > 127 || PLL_DIVQ < 1 ||
-        PLL_DIVQ > 6 || PLL_FILTER_RANGE < 0 || PLL_FILTER_RANGE > 7 ||
-        OSC_HZ % (PLL_DIVR + 1) != 0 || PFD_HZ < 10_000_000 || PFD_HZ > 133_000_000 ||
-        VCO_MHZ < 533 || VCO_MHZ > 1066 || CLK_HZ < 16_000_000 ||
-        (PFD_HZ * (PLL_DIVF + 1)) % (1 << PLL_DIVQ) != 0) begin : g_bad_pll
-      $error("board_icebreaker: PLL DIVR %0d, DIVF %0d, DIVQ %0d out of range (PFD %0d Hz, VCO %0d MHz)",
-             PLL_DIVR, PLL_DIVF, PLL_DIVQ, PFD_HZ, VCO_MHZ);
-    end
-  endgenerate
-
+  // The core's clock; icebreaker_pll stops elaboration on illegal dividers.
+  localparam integer CLK_HZ = 12_000_000 / (PLL_DIVR + 1) * (PLL_DIVF + 1) / (1 << PLL_DIVQ);
   wire clk, locked;
-`ifdef VERILATOR
-  // Lint and simulation only: Verilator has no iCE40 primitives, so the
-  // oscillator stands in for the PLL output.
-  assign clk = clk_12mhz;
-  assign locked = 1'b1;
-`else
-  SB_PLL40_PAD #(
-      .FEEDBACK_PATH("SIMPLE"), .DIVR(PLL_DIVR[3:0]), .DIVF(PLL_DIVF[6:0]),
-      .DIVQ(PLL_DIVQ[2:0]), .FILTER_RANGE(PLL_FILTER_RANGE[2:0])
-  ) u_pll (
-      .PACKAGEPIN(clk_12mhz), .PLLOUTCORE(), .PLLOUTGLOBAL(clk), .EXTFEEDBACK(1'b0),
-      .DYNAMICDELAY(8'd0), .LOCK(locked), .BYPASS(1'b0), .RESETB(1'b1),
-      .LATCHINPUTVALUE(1'b0), .SDI(1'b0), .SDO(), .SCLK(1'b0));
-`endif
+  icebreaker_pll #(
+      .DIVR(PLL_DIVR), .DIVF(PLL_DIVF), .DIVQ(PLL_DIVQ), .FILTER_RANGE(PLL_FILTER_RANGE)
+  ) u_pll (.clk_12mhz(clk_12mhz), .clk(clk), .locked(locked));
 
   wire rst_n = btn_n & locked;
 `ifdef ESKIN_DTMF_CORE

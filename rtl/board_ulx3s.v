@@ -31,39 +31,11 @@ module board_ulx3s #(
     input  wire adc_sdata,
     output wire [7:0] led
 );
-  localparam integer CLK_KHZ = 25_000 / CLKI_DIV * CLKFB_DIV;
-  localparam integer CLK_HZ = CLK_KHZ * 1000;
-  localparam integer VCO_MHZ = CLK_KHZ * CLKOP_DIV / 1000;
-  // EHXPLLL limits: PFD 3.125..400 MHz (CLKI_DIV <= 8 at 25 MHz), VCO
-  // 400..800 MHz, dividers 1..128; and an exact CLK_HZ.
-  generate
-    if (CLKI_DIV < 1 || CLKI_DIV > 8 || CLKFB_DIV < 1 || CLKFB_DIV > 128 ||
-        CLKOP_DIV < 1 || CLKOP_DIV > 128 || 25_000 % CLKI_DIV != 0 ||
-        VCO_MHZ < 400 || VCO_MHZ > 800) begin : g_bad_pll
-      $error("board_ulx3s: PLL CLKI_DIV %0d, CLKFB_DIV %0d, CLKOP_DIV %0d out of range (VCO %0d MHz)",
-             CLKI_DIV, CLKFB_DIV, CLKOP_DIV, VCO_MHZ);
-    end
-  endgenerate
-
+  // The core's clock; ulx3s_pll stops elaboration on illegal dividers.
+  localparam integer CLK_HZ = 25_000 / CLKI_DIV * CLKFB_DIV * 1000;
   wire clk, locked;
-`ifdef VERILATOR
-  // Lint and simulation only: Verilator has no ECP5 primitives, so the
-  // oscillator stands in for the PLL output.
-  assign clk = clk_25mhz;
-  assign locked = 1'b1;
-`else
-  (* FREQUENCY_PIN_CLKI = "25" *)
-  EHXPLLL #(
-      .PLLRST_ENA("DISABLED"), .INTFB_WAKE("DISABLED"), .STDBY_ENABLE("DISABLED"),
-      .DPHASE_SOURCE("DISABLED"), .OUTDIVIDER_MUXA("DIVA"), .OUTDIVIDER_MUXB("DIVB"),
-      .OUTDIVIDER_MUXC("DIVC"), .OUTDIVIDER_MUXD("DIVD"), .CLKI_DIV(CLKI_DIV),
-      .CLKOP_ENABLE("ENABLED"), .CLKOP_DIV(CLKOP_DIV), .CLKOP_CPHASE(CLKOP_DIV / 2 - 1),
-      .CLKOP_FPHASE(0), .FEEDBK_PATH("CLKOP"), .CLKFB_DIV(CLKFB_DIV)
-  ) u_pll (
-      .RST(1'b0), .STDBY(1'b0), .CLKI(clk_25mhz), .CLKOP(clk), .CLKFB(clk), .CLKINTFB(),
-      .PHASESEL0(1'b0), .PHASESEL1(1'b0), .PHASEDIR(1'b1), .PHASESTEP(1'b1),
-      .PHASELOADREG(1'b1), .PLLWAKESYNC(1'b0), .ENCLKOP(1'b0), .LOCK(locked));
-`endif
+  ulx3s_pll #(.CLKI_DIV(CLKI_DIV), .CLKFB_DIV(CLKFB_DIV), .CLKOP_DIV(CLKOP_DIV)) u_pll (
+      .clk_25mhz(clk_25mhz), .clk(clk), .locked(locked));
 
   wire rst_n = locked & ~btn_fire1;
 `ifdef ESKIN_DTMF_CORE
