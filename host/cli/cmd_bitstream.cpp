@@ -1,11 +1,14 @@
 // `eskin bitstream --board icebreaker|ulx3s [--scene SCENE.yaml] [--out DIR]
 //  [--seed N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]`:
-// builds the scene's DTMF core (parameters from hls/dtmf_top_config.h,
-// microcode and constants from hls/dtmf_ucode.h) in the board's wrapper with
-// Yosys, nextpnr and icepack / ecppack (host/fpga/flow.h), writes the
-// bitstream, OUT/bitstream_report.json and OUT/bitstream_report.txt, prints
-// the table, and exits 1 with the numbers (and the skins that would fit,
-// from docs/scale_table.csv) when the design does not fit or misses timing.
+// builds the core the scene needs (host/fpga/flow.h): its DTMF skin's
+// (parameters from hls/dtmf_top_config.h, microcode and constants from
+// hls/dtmf_ucode.h), its Hall sensors' (sim/hall_top_spec.h, with their I2C
+// and DRDY pins), or both on one link (rtl/mixed_top.v), in the board's
+// wrapper with Yosys, nextpnr and icepack / ecppack, writes the bitstream,
+// OUT/bitstream_report.json and OUT/bitstream_report.txt, prints the table,
+// and exits 1 with the numbers (for a skin, also the skins that would fit,
+// from docs/scale_table.csv) when the design does not fit (logic, RAM,
+// pins) or misses timing.
 //
 // `eskin bitstream --scale-table [--scene BASE.yaml] [--out DIR] [--targets
 // L] [--rates L] [--sizes L]`: measures the scale table
@@ -26,6 +29,7 @@
 #include "cli/command.h"
 #include "host/fpga/flow.h"
 #include "host/fpga/scale_table.h"
+#include "eskin/skin_config.h"
 #include "sim/scene.h"
 
 #ifndef ESKIN_SOURCE_DIR
@@ -107,13 +111,19 @@ int run_bitstream(const BitstreamArgs& a) {
   opt.clk_hz = std::lround(a.clk_mhz * 1e6);
   opt.load = a.engine_load == "stress" ? eskin::fpga::LoadPolicy::Stress
                                        : eskin::fpga::LoadPolicy::Scene;
-  if (opt.clk_hz > 0) eskin::fpga::choose_clock(board, 0, opt.clk_hz);  // throws naming --clk-mhz
+  // A clock the board cannot make is named before anything runs.
+  if (opt.clk_hz > 0 && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
+    eskin::fpga::choose_hall_clock(board, opt.clk_hz);
+  else if (opt.clk_hz > 0)
+    eskin::fpga::choose_clock(board, 0, opt.clk_hz);
   eskin::fpga::FlowReport r;
   try {
     r = eskin::fpga::run_flow(board, scene, opt);
   } catch (const std::invalid_argument& e) {
     // The plan names the scene field it cannot build.
     throw std::invalid_argument(scene_path + ": " + e.what());
+  } catch (const eskin::ConfigError& e) {
+    throw eskin::ConfigError(scene_path, e.what());  // a hall: field hall_top cannot carry
   }
   fs::create_directories(opt.out_dir);
   std::ofstream(fs::path(opt.out_dir) / "bitstream_report.json") << eskin::fpga::report_json(r);
@@ -123,8 +133,11 @@ int run_bitstream(const BitstreamArgs& a) {
   if (r.ok()) return 0;
   std::cerr << "eskin bitstream: " << board.name << " (" << board.device << "): " << r.failure
             << "\n  "
-            << eskin::fpga::fit_hint(read_scale_table(source_dir() + "/docs/scale_table.csv"),
-                                     board.name, board.device, r.spec.sample_hz)
+            << (r.core == eskin::fpga::Core::Dtmf
+                    ? eskin::fpga::fit_hint(read_scale_table(source_dir() + "/docs/scale_table.csv"),
+                                            board.name, board.device, r.spec.sample_hz)
+                    : std::string("docs/hall_fpga.md (Area) lists what each Hall build needs "
+                                  "on each FPGA"))
             << "\n";
   return 1;
 }
@@ -143,7 +156,9 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--seed", args->seed, "nextpnr placer seed")->capture_default_str();
   sub->add_option("--device", args->device, "ulx3s: ECP5 size 25k, 45k or 85k (default 85k)");
   sub->add_option("--clk-mhz", args->clk_mhz,
-                  "Core clock (default: the slowest the board makes at which the core keeps up)");
+                  "Core clock (default: the slowest the board makes at which the skin's core "
+                  "keeps up; Hall sensors only: 12 MHz, the iCEBreaker's oscillator, or the "
+                  "ULX3S's 30 MHz; Hall sensors need a whole number of MHz)");
   sub->add_option("--engine-load", args->engine_load,
                   "What the clock must carry: scene (the scene's longest frame) or stress (the "
                   "stress signals' longest frame + the longest command); the scale table uses "

@@ -13,9 +13,10 @@ namespace {
 const std::vector<Board>& boards() {
   static const std::vector<Board> b = {
       {"icebreaker", Family::Ice40, "up5k", "sg48", "board_icebreaker",
-       "constraints/icebreaker.pcf", 12000000, hls::kDtmfTopClkHz, "ICESTORM_LC"},
+       "constraints/icebreaker.pcf", 12000000, hls::kDtmfTopClkHz, "ICESTORM_LC",
+       "board_icebreaker_hall", true},
       {"ulx3s", Family::Ecp5, "85k", "CABGA381", "board_ulx3s", "constraints/ulx3s.lpf",
-       25000000, 30000000, "TRELLIS_COMB"},
+       25000000, 30000000, "TRELLIS_COMB", "board_ulx3s_hall", false},
   };
   return b;
 }
@@ -147,6 +148,19 @@ Clocking choose_clock(const Board& b, long min_hz, long clk_hz) {
     if (c.clk_hz >= want) return c;
   throw std::invalid_argument(fmt::format("board {}: the core needs {} or more; the board makes {}",
                                           b.name, mhz(want), list()));
+}
+
+Clocking choose_hall_clock(const Board& b, long clk_hz) {
+  if (clk_hz > 0 && clk_hz % 1000000 != 0)
+    throw std::invalid_argument(fmt::format(
+        "--clk-mhz: hall_top counts microseconds and needs a whole number of MHz, got {}",
+        mhz(clk_hz)));
+  const bool ice = b.family == Family::Ice40;
+  if (b.hall_osc_clock && exact_baud(b.osc_hz) > 0 && (clk_hz == 0 || clk_hz == b.osc_hz))
+    return {b.osc_hz, exact_baud(b.osc_hz), {{"PLL", "0"}}};
+  Clocking c = choose_clock(b, 0, clk_hz);  // every board clock is whole MHz (exact UART)
+  if (ice) c.wrapper_params.insert(c.wrapper_params.begin(), {"PLL", "1"});
+  return c;
 }
 
 }  // namespace eskin::fpga

@@ -1,6 +1,7 @@
 // The boards `eskin bitstream` builds for: which FPGA, which tools, which
-// wrapper (rtl/board_*.v) and pins (constraints/), and how the board makes
-// the core's clock from its oscillator.
+// wrappers (rtl/board_*.v: the DTMF top's, and the one for scenes with Hall
+// sensors) and pins (constraints/; the Hall sensors' in hall_pins.h), and
+// how the board makes the core's clock from its oscillator.
 #pragma once
 
 #include <string>
@@ -22,6 +23,8 @@ struct Board {
   long osc_hz;              // the board's oscillator
   long default_clk_hz;      // the core's clock unless a scene needs more
   std::string logic_resource;  // nextpnr's logic cell: ICESTORM_LC, TRELLIS_COMB
+  std::string hall_wrapper;    // rtl/<hall_wrapper>.v: hall_top or mixed_top
+  bool hall_osc_clock = false; // the Hall wrapper can run on the oscillator itself (PLL = 0)
 };
 
 // "icebreaker" or "ulx3s"; device_override ("25k", "85k"; empty: the
@@ -46,5 +49,14 @@ std::vector<Clocking> board_clocks(const Board& b);
 // clock if that is faster); clk_hz > 0 asks for exactly that clock instead.
 // Throws std::invalid_argument listing the clocks the board can make.
 Clocking choose_clock(const Board& b, long min_hz, long clk_hz = 0);
+
+// The clock of a build with hall_top (alone, or in mixed_top), which counts
+// microseconds and so needs a whole number of MHz: exactly clk_hz when > 0,
+// else the oscillator itself where the Hall wrapper takes it (iCEBreaker:
+// 12 MHz, hall_top's clock, docs/hall_fpga.md), else the board's default
+// clock. On the iCE40 the wrapper's PLL parameter (0: oscillator, 1: PLL)
+// is among the wrapper parameters. Throws std::invalid_argument naming
+// --clk-mhz and the clocks the board can make.
+Clocking choose_hall_clock(const Board& b, long clk_hz = 0);
 
 }  // namespace eskin::fpga

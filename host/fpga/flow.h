@@ -1,7 +1,13 @@
-// `eskin bitstream`'s flow: a scene's DTMF core (hls/dtmf_top_config.h) in
-// a board wrapper, through Yosys, nextpnr and icepack / ecppack (run by
-// scripts/synth_ice40.sh and scripts/synth_ecp5.sh), and the report of what
-// it used and how fast it runs.
+// `eskin bitstream`'s flow: the core a scene needs in a board wrapper,
+// through Yosys, nextpnr and icepack / ecppack (run by
+// scripts/synth_ice40.sh and scripts/synth_ecp5.sh, host/fpga/tool_run.h),
+// and the report of what it used and how fast it runs. The core:
+//   a skin only: rtl/dtmf_top.v (hls/dtmf_top_config.h) in rtl/board_<board>.v;
+//   Hall sensors only: rtl/hall_top.v (sim/hall_top_spec.h) in
+//     rtl/board_<board>_hall.v, with the sensors' I2C and DRDY pins
+//     (hall_pins.h);
+//   both: rtl/mixed_top.v (both parameter sets, one clock: the DTMF one's)
+//     in rtl/board_<board>_hall.v with the ADC's pins as well.
 #pragma once
 
 #include <string>
@@ -10,6 +16,8 @@
 #include "hls/dtmf_top_config.h"
 #include "host/fpga/board.h"
 #include "host/fpga/engine_load.h"
+#include "host/fpga/hall_pins.h"
+#include "sim/hall_top_spec.h"
 #include "sim/scene.h"
 
 namespace eskin::fpga {
@@ -39,16 +47,33 @@ struct ClockResult {
   double achieved_mhz = 0, required_mhz = 0;
 };
 
+// Which top a scene needs.
+enum class Core { Dtmf, Hall, Mixed };
+Core scene_core(const sim::Scene& scene);
+const char* core_top(Core c);  // "dtmf_top", "hall_top", "mixed_top"
+
+// The Hall side of a Hall or mixed build.
+struct HallReport {
+  sim::HallTopSpec spec;            // buses, sensors, decoding (sim/hall_top_spec.h)
+  std::vector<std::string> decode;  // the scene's decode: list, by name
+  HallPins pins;                    // the I2C and DRDY pins (or the failure)
+  int pins_available = 0;           // the board's free pins for them
+};
+
 struct FlowReport {
   std::string board, device, scene;
-  hls::DtmfTopSpec spec;            // clk_hz and baud as built
+  Core core = Core::Dtmf;
+  long clk_hz = 0, baud = 0;        // the core's clock and UART as built
+  bool pll = true;                  // the clock comes from the PLL (else the oscillator)
+  HallReport hall;                  // Hall and mixed builds
+  hls::DtmfTopSpec spec;            // DTMF and mixed builds: clk_hz and baud as built
   int step = 1;                      // from the plan
   EngineLoad load;                   // the frame engine's clocks per frame
   LoadPolicy policy = LoadPolicy::Scene;
   long engine_clocks = 0;            // what the policy makes the clock carry
   long core_min_hz = 0;              // no slower clock keeps up (a lower bound)
   hls::DtmfTopClockBudget budget;    // at the chosen clock
-  std::vector<hls::VerilogParam> params;  // dtmf_top's, then the wrapper's
+  std::vector<hls::VerilogParam> params;  // the core's, then the wrapper's
   std::vector<Resource> resources;   // nextpnr's utilisation (post-pack)
   std::string logic_resource;        // the board's logic cell resource name
   std::vector<ClockResult> clocks;   // per clock net
@@ -80,13 +105,16 @@ struct CoreClock {
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
                             long clk_hz = 0);
 
-// Builds `spec` (its clk_hz and baud are chosen here) on board `b`: the
-// plan, the engine's load (engine_load.h), the clock, the microcode and
-// constant files and the core wrapper in OUT, then the tools. Never throws
-// for a design that does not fit or meet timing (the report says so);
-// throws std::runtime_error when a tool is missing or fails otherwise, and
-// std::invalid_argument for a clock the board cannot make or a skin the
-// plan or the frame engine cannot build (naming the field / the numbers).
+// Builds the scene's core (scene_core) on board `b`: for a skin the plan,
+// the engine's load (engine_load.h), the clock, the microcode and constant
+// files; for Hall sensors hall_top's parameters at the Hall clock
+// (choose_hall_clock; a mixed build's is the DTMF one's) and the pins; the
+// core wrapper and (Hall) the constraints in OUT; then the tools. Never
+// throws for a design that does not fit, has too few pins or misses timing
+// (the report says so, with the numbers); throws std::runtime_error when a
+// tool is missing or fails otherwise, std::invalid_argument for a clock the
+// board cannot make or a skin the plan or the frame engine cannot build,
+// and ConfigError naming the hall: field hall_top cannot carry.
 FlowReport run_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt);
 
 // The report as JSON (written to OUT/bitstream_report.json) and as a table.

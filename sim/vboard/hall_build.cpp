@@ -7,10 +7,11 @@
 
 namespace eskin::vboard {
 
-HallBuild hall_build_for(const sim::Scene& scene, long clk_hz) {
+HallBuild hall_build_for(const sim::Scene& scene, long clk_hz, long baud) {
   if (!scene.has_hall) throw ConfigError("hall", "expected a hall: section for the Hall top");
   HallBuild b;
   b.clk_hz = clk_hz;
+  b.baud = baud;
   b.spec = sim::hall_top_spec(scene.hall.config, double(clk_hz));
   b.params = {"-GCLK_HZ=" + std::to_string(clk_hz), "-GBAUD=" + std::to_string(b.baud)};
   for (const auto& p : b.spec.verilog_params()) b.params.push_back(p);

@@ -23,7 +23,8 @@ struct HallBuild {
 };
 
 // Throws ConfigError naming the field when the scene has no hall: section or
-// the top cannot carry its sensors.
-HallBuild hall_build_for(const sim::Scene& scene, long clk_hz = 12000000);
+// the top cannot carry its sensors. `baud`: the UART's (a board's clock may
+// not divide into 3 Mbaud; `eskin bitstream` passes its own).
+HallBuild hall_build_for(const sim::Scene& scene, long clk_hz = 12000000, long baud = 3000000);
 
 }  // namespace eskin::vboard

@@ -1,0 +1,26 @@
+// The per-core halves of run_flow (host/fpga/flow.h), shared by a mixed
+// build: the DTMF core's plan (flow.cpp) and the Hall or mixed build
+// (hall_flow.cpp). Internal to host/fpga.
+#pragma once
+
+#include <vector>
+
+#include "hls/dtmf_top_config.h"
+#include "host/fpga/board.h"
+#include "host/fpga/flow.h"
+#include "sim/scene.h"
+
+namespace eskin::fpga {
+
+// The DTMF core up to the tools: the plan at the chosen clock (its figures
+// into r), its microcode and constants written into OUT as
+// dtmf_scene.ucode.hex / .krom.hex; `clk` and dtmf_top's parameters out.
+// False, with r.failure naming each budget missed, when no clock keeps up.
+bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
+                    FlowReport& r, Clocking& clk, std::vector<hls::VerilogParam>& params);
+
+// A Hall or mixed build (r.core), after r's board fields are set.
+void run_hall_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
+                   FlowReport& r);
+
+}  // namespace eskin::fpga

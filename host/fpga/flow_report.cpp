@@ -1,0 +1,169 @@
+// `eskin bitstream`'s report (host/fpga/flow.h): OUT/bitstream_report.json
+// and the table printed and written to OUT/bitstream_report.txt. A DTMF
+// build reports its skin, clock budget and frame engine load; a Hall build
+// its buses, sensors, decoding and pins; a mixed build both; every build
+// the resources nextpnr used and each clock's Fmax against its requirement.
+#include <fmt/core.h>
+
+#include <nlohmann/json.hpp>
+
+#include "host/fpga/flow.h"
+
+namespace eskin::fpga {
+
+namespace {
+
+std::string mhz(double hz) { return fmt::format("{:.6g}", hz / 1e6); }
+
+void dtmf_json(const FlowReport& r, nlohmann::json& j) {
+  j["skin"] = {{"rows", r.spec.rows},
+               {"cols", r.spec.cols},
+               {"carriers", r.spec.rows + r.spec.cols},
+               {"window", r.spec.window},
+               {"sample_hz", r.spec.sample_hz},
+               {"spikes", r.spec.spikes}};
+  j["clock"]["step"] = r.step;
+  j["clock"]["sample_period_clocks"] = r.budget.period;
+  j["clock"]["frame_clocks"] = r.budget.frame_clocks;
+  j["clock"]["core_min_hz"] = r.core_min_hz;
+  nlohmann::json cases = nlohmann::json::object();
+  for (const auto& [name, clocks] : r.load.cases) cases[name] = clocks;
+  j["engine"] = {{"policy", r.policy == LoadPolicy::Stress ? "stress" : "scene"},
+                 {"required_clocks", r.engine_clocks},
+                 {"scene_longest_frame_clocks", r.load.scene_clocks},
+                 {"scene_frames", r.load.scene_frames},
+                 {"stress_longest_frame_clocks", r.load.stress_clocks},
+                 {"stress_longest_frame_signal", r.load.stress_case},
+                 {"stress_frames", r.load.stress_frames},
+                 {"longest_command_clocks", r.load.command_clocks},
+                 {"longest_command", r.load.command_case},
+                 {"cases", cases}};
+}
+
+void hall_json(const FlowReport& r, nlohmann::json& j) {
+  nlohmann::json pins = nlohmann::json::array();
+  for (const auto& p : r.hall.pins.pins)
+    pins.push_back({{"signal", p.signal}, {"site", p.pin.site}, {"connector", p.pin.connector},
+                    {"open_drain", p.i2c}});
+  j["hall"] = {{"buses", r.hall.spec.nb},
+               {"sensors_per_bus", r.hall.spec.nsb},
+               {"sensors", r.hall.spec.nb * r.hall.spec.nsb},
+               {"decode", r.hall.decode},
+               {"pins_needed", r.hall.pins.needed},
+               {"pins_available", r.hall.pins_available},
+               {"pins", pins}};
+}
+
+std::string dtmf_table(const FlowReport& r) {
+  const double frame = double(std::max(1L, r.budget.frame_clocks));
+  std::string t = fmt::format(
+      "skin {}x{}, {} carriers, window {}, {:g} S/s, step {}\n"
+      "clock {} MHz (the skin's core needs at least {} MHz), UART {:g} Mbaud\n"
+      "frame engine, clocks of the {} a frame has (STEP x {} per sample):\n"
+      "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
+      "  stress longest frame  {:>9} ({:.0f} %, {})\n"
+      "  + longest command     {:>9} ({:.0f} %, {})\n"
+      "  the clock carries the {}\n",
+      r.spec.rows, r.spec.cols, r.spec.rows + r.spec.cols, r.spec.window, r.spec.sample_hz,
+      r.step, mhz(double(r.spec.clk_hz)), mhz(double(r.core_min_hz)),
+      double(r.spec.baud) / 1e6, r.budget.frame_clocks, r.budget.period, r.load.scene_clocks,
+      100.0 * double(r.load.scene_clocks) / frame, r.load.scene_frames, r.load.stress_clocks,
+      100.0 * double(r.load.stress_clocks) / frame, r.load.stress_case, r.load.stress_total(),
+      100.0 * double(r.load.stress_total()) / frame, r.load.command_case,
+      r.policy == LoadPolicy::Scene && r.load.scene_frames > 0
+          ? "scene's frames (--engine-load scene)"
+          : "stress frames and a command (--engine-load stress)");
+  for (const auto& w : flow_warnings(r)) t += "warning: " + w + "\n";
+  return t;
+}
+
+std::string hall_table(const FlowReport& r) {
+  std::string decode;
+  for (const auto& d : r.hall.decode) decode += (decode.empty() ? "" : ", ") + d;
+  const int nb = r.hall.spec.nb, ns = nb * r.hall.spec.nsb;
+  std::string t = fmt::format("Hall: {} I2C bus{} x {} sensor{} = {}, decoding: {}\n", nb,
+                              nb == 1 ? "" : "es", r.hall.spec.nsb,
+                              r.hall.spec.nsb == 1 ? "" : "s", ns, decode.empty() ? "none" : decode);
+  if (r.core == Core::Hall && r.clk_hz > 0)  // (not chosen when the pins stopped it)
+    t += fmt::format("clock {} MHz ({}), UART {:g} Mbaud\n", mhz(double(r.clk_hz)),
+                     r.pll ? "PLL" : "the oscillator itself", double(r.baud) / 1e6);
+  t += fmt::format("pins: {} needed, {} free on the board\n", r.hall.pins.needed,
+                   r.hall.pins_available);
+  for (const auto& p : r.hall.pins.pins)
+    t += fmt::format("  {:<12} {:>4}  {}{}\n", p.signal, p.pin.site, p.pin.connector,
+                     p.i2c ? " (open drain)" : "");
+  return t;
+}
+
+}  // namespace
+
+std::vector<std::string> flow_warnings(const FlowReport& r) {
+  std::vector<std::string> w;
+  if (r.budget.frame_clocks > 0 && long(r.load.stress_total()) > r.budget.frame_clocks)
+    w.push_back(fmt::format(
+        "under the stress signals the engine needs {} + {} = {} clocks of the {} a frame has: "
+        "frames are lost (STATUS frame_overruns) while input like '{}' lasts",
+        r.load.stress_clocks, r.load.command_clocks, r.load.stress_total(),
+        r.budget.frame_clocks, r.load.stress_case));
+  return w;
+}
+
+std::string report_json(const FlowReport& r) {
+  nlohmann::json j;
+  j["board"] = r.board;
+  j["device"] = r.device;
+  j["scene"] = r.scene;
+  j["core"] = core_top(r.core);
+  j["clock"] = {{"clk_hz", r.clk_hz}, {"baud", r.baud}, {"source", r.pll ? "pll" : "oscillator"}};
+  if (r.core != Core::Hall) dtmf_json(r, j);
+  if (r.core != Core::Dtmf) hall_json(r, j);
+  j["warnings"] = flow_warnings(r);
+  nlohmann::json params = nlohmann::json::object();
+  for (const auto& p : r.params) params[p.name] = p.value;
+  j["parameters"] = params;
+  nlohmann::json res = nlohmann::json::object();
+  for (const auto& x : r.resources) res[x.name] = {{"used", x.used}, {"available", x.available}};
+  j["resources"] = res;
+  nlohmann::json clocks = nlohmann::json::array();
+  for (const auto& c : r.clocks)
+    clocks.push_back({{"net", c.net}, {"fmax_mhz", c.achieved_mhz}, {"required_mhz", c.required_mhz}});
+  j["clocks"] = clocks;
+  j["fits"] = r.fits;
+  j["meets_timing"] = r.meets_timing;
+  j["bitstream"] = r.bitstream;
+  j["failure"] = r.failure;
+  j["tool_seconds"] = r.seconds;
+  return j.dump(2) + "\n";
+}
+
+std::string report_table(const FlowReport& r) {
+  std::string t = fmt::format("board {} ({}), scene {}: {}\n", r.board, r.device, r.scene,
+                              core_top(r.core));
+  // A Hall scene that has too few pins stops before its clock is chosen.
+  if (r.core != Core::Hall && r.budget.period > 0) t += dtmf_table(r);
+  if (r.core != Core::Dtmf) t += hall_table(r);
+  if (!r.resources.empty()) {
+    t += fmt::format("\n{:<16} {:>8} {:>10} {:>6}\n", "resource", "used", "available", "use");
+    for (const auto& x : r.resources) {
+      if (x.used == 0 && x.name != r.logic_resource) continue;
+      t += fmt::format("{:<16} {:>8} {:>10} {:>5.0f}%{}\n", x.name, x.used, x.available,
+                       100.0 * double(x.used) / double(std::max(1L, x.available)),
+                       x.used > x.available ? "  over" : "");
+    }
+  }
+  if (!r.clocks.empty()) {
+    t += fmt::format("\n{:<28} {:>9} {:>13} {:>7}\n", "clock net", "Fmax MHz", "required MHz",
+                     "slack");
+    for (const auto& c : r.clocks)
+      t += fmt::format("{:<28} {:>9.1f} {:>13.1f} {:>6.0f}%\n", c.net, c.achieved_mhz,
+                       c.required_mhz, 100.0 * (c.achieved_mhz / c.required_mhz - 1.0));
+  }
+  t += "\n";
+  if (r.ok())
+    t += fmt::format("fits and meets timing: {} ({:.0f} s of tools)\n", r.bitstream, r.seconds);
+  else
+    t += "FAILED: " + r.failure + "\n";
+  return t;
+}
+
+}  // namespace eskin::fpga

@@ -1,0 +1,33 @@
+// One run of the tools for `eskin bitstream` (host/fpga/flow.h): a board
+// wrapper with its generated core through scripts/synth_ice40.sh or
+// scripts/synth_ecp5.sh (Yosys, nextpnr, icepack / ecppack), and the
+// verdict from what nextpnr reported. Every core (DTMF, Hall, mixed) goes
+// through it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hls/dtmf_top_config.h"
+#include "host/fpga/board.h"
+#include "host/fpga/flow.h"
+
+namespace eskin::fpga {
+
+struct ToolRun {
+  std::string top;                         // the board wrapper, rtl/<top>.v
+  std::vector<std::string> reads;          // generated Verilog read with it
+  std::vector<std::string> defines;        // NAME=VALUE Verilog macros
+  std::string constraints;                 // the .pcf / .lpf (absolute path)
+  long clk_hz = 0;                         // the clock nextpnr must meet
+  std::vector<hls::VerilogParam> params;   // the wrapper's own (chparam)
+};
+
+// Runs the tools into opt.out_dir and fills r's resources, clocks, fits,
+// meets_timing, bitstream, failure (with the numbers), log and seconds.
+// Never throws for a design that does not fit or meet timing; throws
+// std::runtime_error when a tool is missing (naming the bootstrap step) or
+// cannot be run.
+void run_tools(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowReport& r);
+
+}  // namespace eskin::fpga
