@@ -8,6 +8,7 @@
 #include "hls/dtmf_top_config.h"
 #include "host/fpga/board.h"
 #include "host/fpga/flow.h"
+#include "host/fpga/tool_run.h"
 #include "sim/scene.h"
 
 namespace eskin::fpga {
@@ -19,7 +20,14 @@ namespace eskin::fpga {
 bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
                     FlowReport& r, Clocking& clk, std::vector<hls::VerilogParam>& params);
 
-// A Hall or mixed build (r.core), after r's board fields are set.
+// A Hall or mixed build (r.core) up to the tools, after r's board fields
+// are set: the Hall spec, the pins, the clock (and, mixed, the DTMF plan),
+// the core module and the constraints written into OUT, and the tools' run
+// in `t`. False, with r.failure and the numbers, when the board has too few
+// pins or (mixed) no clock keeps up.
+bool prepare_hall_build(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
+                        FlowReport& r, ToolRun& t);
+// prepare_hall_build, then the tools.
 void run_hall_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
                    FlowReport& r);
 

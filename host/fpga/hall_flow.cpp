@@ -29,8 +29,8 @@ std::string slurp(const fs::path& p) {
 
 }  // namespace
 
-void run_hall_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
-                   FlowReport& r) {
+bool prepare_hall_build(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
+                        FlowReport& r, ToolRun& t) {
   const bool mixed = r.core == Core::Mixed;
   const HallConfig& hc = scene.hall.config;
   // The buses first (the spec names a hall: field it cannot build): a scene
@@ -41,7 +41,7 @@ void run_hall_flow(const Board& b, const sim::Scene& scene, const FlowOptions& o
   r.hall.pins = assign_hall_pins(b, r.hall.spec.nb, r.hall.spec.nsb);
   if (!r.hall.pins.failure.empty()) {
     r.failure = r.hall.pins.failure;
-    return;
+    return false;
   }
 
   std::vector<hls::VerilogParam> core;
@@ -50,7 +50,7 @@ void run_hall_flow(const Board& b, const sim::Scene& scene, const FlowOptions& o
     // One clock for both tops: the DTMF build's (the slowest the skin keeps
     // up at, or --clk-mhz), which hall_top needs in whole MHz.
     vboard::FpgaBuild dtmf;
-    if (!plan_dtmf_core(b, scene, opt, r, clk, dtmf.params)) return;
+    if (!plan_dtmf_core(b, scene, opt, r, clk, dtmf.params)) return false;
     dtmf.plan.spec = r.spec;
     const vboard::MixedBuild m = vboard::mixed_build_for(scene, dtmf);  // names the field
     r.hall.spec = m.hall.spec;
@@ -80,7 +80,6 @@ void run_hall_flow(const Board& b, const sim::Scene& scene, const FlowOptions& o
   std::ofstream(pins) << hall_constraints(b, slurp(fs::path(opt.source_dir) / b.constraints),
                                           r.hall.pins);
 
-  ToolRun t;
   t.top = b.hall_wrapper;
   t.reads = {wrapper.string()};
   t.defines = {"ESKIN_HALL_CORE=" + name};
@@ -91,7 +90,13 @@ void run_hall_flow(const Board& b, const sim::Scene& scene, const FlowOptions& o
   t.params.insert(t.params.end(), clk.wrapper_params.begin(), clk.wrapper_params.end());
   r.params = core;
   r.params.insert(r.params.end(), t.params.begin(), t.params.end());
-  run_tools(b, opt, t, r);
+  return true;
+}
+
+void run_hall_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
+                   FlowReport& r) {
+  ToolRun t;
+  if (prepare_hall_build(b, scene, opt, r, t)) run_tools(b, opt, t, r);
 }
 
 }  // namespace eskin::fpga

@@ -78,12 +78,16 @@ HallPins assign_hall_pins(const Board& b, int nb, int nsb) {
         pool.size(), hall_pin_pool_where(b));
     return h;
   }
+  // nextpnr names the pin of a one-bit port by the port alone ("drdy", not
+  // "drdy[0]"), as Yosys writes it.
+  auto bit = [](const char* port, int i, int width) {
+    return width == 1 ? std::string(port) : fmt::format("{}[{}]", port, i);
+  };
   size_t next = 0;
   for (int bus = 0; bus < nb; ++bus)
-    for (const char* line : {"scl", "sda"})
-      h.pins.push_back({fmt::format("i2c_{}[{}]", line, bus), pool[next++], true});
-  for (int s = 0; s < nb * nsb; ++s)
-    h.pins.push_back({fmt::format("drdy[{}]", s), pool[next++], false});
+    for (const char* line : {"i2c_scl", "i2c_sda"})
+      h.pins.push_back({bit(line, bus, nb), pool[next++], true});
+  for (int s = 0; s < nb * nsb; ++s) h.pins.push_back({bit("drdy", s, nb * nsb), pool[next++], false});
   return h;
 }
 

@@ -24,7 +24,7 @@ const std::vector<BoardPin>& hall_pin_pool(const Board& b);
 std::string hall_pin_pool_where(const Board& b);
 
 struct PinAssignment {
-  std::string signal;  // the wrapper's port bit: "i2c_scl[0]", "drdy[3]"
+  std::string signal;  // the wrapper's port bit: "i2c_scl[0]", "drdy[3]" ("drdy": one bit)
   BoardPin pin;
   bool i2c = false;    // an open-drain bus line (pull-up on)
 };

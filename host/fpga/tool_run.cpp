@@ -68,6 +68,16 @@ std::string last_error(const std::string& log) {
   return found;
 }
 
+// The first such line: where a tool stopped before placing (a missing pin
+// constraint, say), the last one only says that loading failed.
+std::string first_error(const std::string& log) {
+  std::string line;
+  std::stringstream ss(log);
+  while (std::getline(ss, line))
+    if (line.rfind("ERROR", 0) == 0) return line;
+  return "";
+}
+
 }  // namespace
 
 void run_tools(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowReport& r) {
@@ -132,7 +142,9 @@ void run_tools(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowRep
         over += fmt::format("{}{} {}/{} ({:.1f} %)", over.empty() ? "" : ", ", x.name, x.used,
                             x.available, 100.0 * double(x.used) / double(x.available));
     const std::string err = last_error(slurp(out / "nextpnr.log"));
-    r.failure = "does not fit: " + (over.empty() ? err : over);
+    r.failure = !over.empty()           ? "does not fit: " + over
+                : r.resources.empty() ? "nextpnr failed: " + first_error(slurp(out / "nextpnr.log"))
+                                      : "does not fit: " + err;
   } else if (!r.meets_timing) {
     std::string slow;
     for (const auto& c : r.clocks)

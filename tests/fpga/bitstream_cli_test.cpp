@@ -97,6 +97,38 @@ TEST(BitstreamCli, MissingIce40ToolsNameTheBootstrapStep) {
   EXPECT_NE(r.out.find("scripts/bootstrap.sh"), std::string::npos) << r.out;
 }
 
+// Seed 000's 16 sensors on 4 buses need 4 x 2 + 16 = 24 pins; the
+// iCEBreaker has 16 free (PMOD1B, PMOD2): refused before the tools, with
+// the numbers, and the report written.
+TEST(BitstreamCli, HallSceneWithMorePinsThanTheBoardHasFailsBeforeTheTools) {
+  const fs::path d = tmpdir();
+  const Result r = sh("--board icebreaker --scene " ESKIN_SOURCE_DIR
+                      "/scenes/hall_000_skin.yaml --out " + (d / "out").string());
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("does not fit: the Hall sensors need 24 pins (4 I2C buses x 2 (SCL, SDA) + "
+                       "16 DRDY lines), board icebreaker has 16 free (PMOD1B and PMOD2)"),
+            std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(d / "out" / "yosys.log"));
+  const std::string json = slurp(d / "out" / "bitstream_report.json");
+  EXPECT_NE(json.find("\"core\": \"hall_top\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"pins_needed\": 24"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"pins_available\": 16"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"fits\": false"), std::string::npos) << json;
+}
+
+// hall_top counts microseconds: a Hall build's clock is a whole number of
+// MHz, and one the board makes.
+TEST(BitstreamCli, HallClockMustBeWholeMHzAndMakeable) {
+  const std::string scene = " --scene " ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml";
+  Result r = sh("--board icebreaker --clk-mhz 12.5" + scene);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--clk-mhz: hall_top counts microseconds and needs a whole number of MHz, "
+                       "got 12.5 MHz"), std::string::npos) << r.out;
+  r = sh("--board ulx3s --clk-mhz 12" + scene);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("cannot make 12 MHz exactly"), std::string::npos) << r.out;
+}
+
 TEST(BitstreamCli, BadOptionsAreNamed) {
   Result r = sh("--board de0nano");
   EXPECT_NE(r.status, 0);
