@@ -48,6 +48,7 @@ struct BitstreamArgs {
   int seed = 1;
   double clk_mhz = 0;
   std::string engine_load = "scene";
+  bool engine_load_given = false;  // a Hall-only scene has no engine to load
   bool scale_table = false;
   eskin::fpga::ScaleSelection scale;  // --targets, --rates, --sizes
 };
@@ -73,6 +74,12 @@ std::vector<eskin::fpga::ScaleRow> read_scale_table(const std::string& path) {
 
 int run_scale_table(const BitstreamArgs& a) {
   const auto base = eskin::sim::load_scene(scene_or_default(a.scene));
+  // The table is of DTMF skins: its scenes are the base's skin resized.
+  if (eskin::fpga::scene_core(base) != eskin::fpga::Core::Dtmf)
+    throw std::invalid_argument("--scale-table: the table is of DTMF skins, and " +
+                                scene_or_default(a.scene) + " has " +
+                                (base.has_skin ? "Hall sensors too" : "no skin") +
+                                " (a base scene with a skin: section only)");
   eskin::fpga::FlowOptions opt;
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/scale" : a.out;
@@ -104,6 +111,9 @@ int run_bitstream(const BitstreamArgs& a) {
   const auto board = eskin::fpga::find_board(a.board, a.device);
   const std::string scene_path = scene_or_default(a.scene);
   const auto scene = eskin::sim::load_scene(scene_path);
+  if (a.engine_load_given && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
+    throw std::invalid_argument("--engine-load: " + scene_path +
+                                " has no skin, so no frame engine to load");
   eskin::fpga::FlowOptions opt;
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/" + board.name : a.out;
@@ -164,7 +174,8 @@ std::function<int()> setup_bitstream(CLI::App& app) {
                   "stress signals' longest frame + the longest command); the scale table uses "
                   "stress")
       ->check(CLI::IsMember({"scene", "stress"}))
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([args](const std::string&) { args->engine_load_given = true; });
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");
   sub->add_option("--sizes", args->scale.sizes,

@@ -129,6 +129,20 @@ TEST(BitstreamCli, HallClockMustBeWholeMHzAndMakeable) {
   EXPECT_NE(r.out.find("cannot make 12 MHz exactly"), std::string::npos) << r.out;
 }
 
+// What a Hall scene cannot use is refused, not ignored: the frame engine's
+// load (no skin), and the DTMF scale table from a base with Hall sensors.
+TEST(BitstreamCli, DtmfOnlyOptionsAreRefusedForHallScenes) {
+  Result r = sh("--board icebreaker --engine-load stress --scene " ESKIN_SOURCE_DIR
+                "/scenes/hall_002_magtac.yaml");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--engine-load: " ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml has no "
+                       "skin, so no frame engine to load"), std::string::npos) << r.out;
+  r = sh("--scale-table --scene " ESKIN_SOURCE_DIR "/scenes/mixed_neuroskin_split.yaml");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--scale-table: the table is of DTMF skins"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("has Hall sensors too"), std::string::npos) << r.out;
+}
+
 TEST(BitstreamCli, BadOptionsAreNamed) {
   Result r = sh("--board de0nano");
   EXPECT_NE(r.status, 0);
