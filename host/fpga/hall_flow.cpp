@@ -4,7 +4,7 @@
 // sim/vboard/mixed_build.h), its I2C and DRDY pins from hall_pins.h.
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <stdexcept>
 
 #include "host/fpga/core_flows.h"
 #include "host/fpga/core_wrapper.h"
@@ -16,18 +16,6 @@
 namespace eskin::fpga {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  if (!f) throw std::runtime_error("cannot read " + p.string());
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-}  // namespace
 
 bool prepare_hall_build(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
                         FlowReport& r, ToolRun& t) {
@@ -77,8 +65,9 @@ bool prepare_hall_build(const Board& b, const sim::Scene& scene, const FlowOptio
                                    : hall_core_wrapper(name, nb, nsb, core));
   const bool ice = b.family == Family::Ice40;
   const fs::path pins = out / (b.hall_wrapper + (ice ? ".pcf" : ".lpf"));
-  std::ofstream(pins) << hall_constraints(b, slurp(fs::path(opt.source_dir) / b.constraints),
-                                          r.hall.pins);
+  const fs::path base = fs::path(opt.source_dir) / b.constraints;
+  if (!fs::exists(base)) throw std::runtime_error("cannot read " + base.string());
+  std::ofstream(pins) << hall_constraints(b, slurp(base.string()), r.hall.pins);
 
   t.top = b.hall_wrapper;
   t.reads = {wrapper.string()};

@@ -18,14 +18,14 @@ namespace eskin::fpga {
 namespace fs = std::filesystem;
 using eskin::shell_quote;
 
-namespace {
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
+std::string slurp(const std::string& path) {
+  std::ifstream f(path);
   std::stringstream s;
   s << f.rdbuf();
   return s.str();
 }
+
+namespace {
 
 bool on_path(const std::string& tool) {
   const char* path = std::getenv("PATH");

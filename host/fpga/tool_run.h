@@ -30,4 +30,7 @@ struct ToolRun {
 // cannot be run.
 void run_tools(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowReport& r);
 
+// A file's text ("" if it cannot be read: the tools' logs may be missing).
+std::string slurp(const std::string& path);
+
 }  // namespace eskin::fpga
