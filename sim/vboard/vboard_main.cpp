@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <memory>
 #include <systemc>
+#include <type_traits>
 
 #include "Vdtmf_top.h"
 #include "sim/scene.h"
@@ -40,18 +41,25 @@ ESKIN_EXPOSE_EVAL_STEP(Vdtmf_top)
 namespace {
 
 using eskin::vboard::DirectWire;
+template <class Port>
+using PortValue = typename std::remove_reference_t<Port>::data_type;
 
 class VerilatedFpga final : public eskin::vboard::VerilatedTop<Vdtmf_top> {
  public:
   VerilatedFpga()
       : rst_n_("rst_n", true), sdata_("adc_sdata"), rxd_("uart_rxd", true), cs_n_("adc_cs_n", true),
-        sclk_("adc_sclk", true), txd_("uart_txd", true) {
+        sclk_("adc_sclk", true), txd_("uart_txd", true), pkt_valid_("pkt_valid"),
+        pkt_ready_("pkt_ready"), pkt_data_("pkt_data") {
     top_.rst_n(rst_n_);
     top_.adc_sdata(sdata_);
     top_.uart_rxd(rxd_);
     top_.adc_cs_n(cs_n_);
     top_.adc_sclk(sclk_);
     top_.uart_txd(txd_);
+    // The top owns its link (EXT_LINK = 0): no packet stream to take.
+    top_.pkt_valid(pkt_valid_);
+    top_.pkt_ready(pkt_ready_);
+    top_.pkt_data(pkt_data_);
   }
 
   eskin::vboard::FpgaOutputs cycle(const eskin::vboard::FpgaInputs& in, uint64_t t_ps) override {
@@ -66,7 +74,8 @@ class VerilatedFpga final : public eskin::vboard::VerilatedTop<Vdtmf_top> {
   }
 
  private:
-  DirectWire rst_n_, sdata_, rxd_, cs_n_, sclk_, txd_;
+  DirectWire rst_n_, sdata_, rxd_, cs_n_, sclk_, txd_, pkt_valid_, pkt_ready_;
+  eskin::vboard::DirectPort<PortValue<decltype(std::declval<Vdtmf_top>().pkt_data)>> pkt_data_;
 };
 
 int run(const eskin::vboard::VboardArgs& a, FILE* json) {
