@@ -21,6 +21,13 @@
 
 namespace eskin::cli {
 
+// The board executable's arguments: the scene, and an FST trace if asked.
+inline std::vector<std::string> board_args(const std::string& scene, const std::string& trace) {
+  std::vector<std::string> a{scene};
+  if (!trace.empty()) a.insert(a.end(), {"--trace", trace});
+  return a;
+}
+
 // Raw 8N1 at the board's rate; no reopening (the port exists until the
 // board exits); packets to callbacks only.
 inline stream::StreamOptions board_link_options(const std::string& pty, int baud) {

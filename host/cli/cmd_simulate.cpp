@@ -411,9 +411,7 @@ int run_simulate_mixed(const sim::Scene& scene, const Args& a) {
   const std::string exe = vboard::board_executable(build, note);
   std::filesystem::create_directories(a.out);
 
-  std::vector<std::string> vargs{a.scene};
-  if (!a.trace.empty()) vargs.insert(vargs.end(), {"--trace", a.trace});
-  vboard::VboardProcess board(exe, vargs);
+  vboard::VboardProcess board(exe, board_args(a.scene, a.trace));
   const size_t total = board.ready().at("scene_samples");
   link::LinkEncoder enc;
   GoldenRun gold;
@@ -481,9 +479,7 @@ int run_simulate(const Args& a) {
   const std::string exe = vboard::board_executable(build, note);
   std::filesystem::create_directories(a.out);
 
-  std::vector<std::string> vargs{a.scene};
-  if (!a.trace.empty()) vargs.insert(vargs.end(), {"--trace", a.trace});
-  vboard::VboardProcess board(exe, vargs);
+  vboard::VboardProcess board(exe, board_args(a.scene, a.trace));
   const size_t total = board.ready().at("scene_samples");
   // The board's serial port through the host streaming library
   // (host/stream), packets decoded and checked by host/link. The host

@@ -128,13 +128,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
                               {"cycles", cfg.cycles}});
   sc_core::sc_start();
   fpga.close_trace();
-  nlohmann::json drdy = nlohmann::json::array();
-  for (size_t s = 0; s < sensors.size(); ++s) {
-    std::vector<double> t;
-    for (const auto& m : sensors.device(s).delivered()) t.push_back(m.t_done_ns);
-    drdy.push_back(t);
-  }
-  eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", drdy}});
+  eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", eskin::vboard::drdy_times_ns(sensors)}});
   eskin::vboard::wait_for_reader(pty, board.stats(), a.reader_timeout_s);
   return 0;
 }

@@ -24,7 +24,6 @@
 #include "sim/vboard/verilated_step.h"
 #include "sim/vboard/verilated_top.h"
 #include "sim/vboard/virtual_board.h"
-#include "sim/world_model.h"
 
 #ifndef VBOARD_PARAMS_KEY
 #error "VBOARD_PARAMS_KEY: the FPGA parameter set this board is built for"
@@ -90,13 +89,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   eskin::vboard::BoardConfig cfg;
   cfg.clk_hz = params.clk_hz();
   cfg.baud = params.baud();
-  eskin::sim::WorldModel world(scene);
-  for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << params.adc_shift()));
-  // A tail of mid-scale samples after the scene lets the last frames out.
-  const size_t tail = size_t(std::ceil(a.tail_s * scene.skin.adc.rate_hz));
-  cfg.codes.resize(cfg.codes.size() + tail, uint16_t(1u << 11));
-  cfg.samples = cfg.codes.size();
-  cfg.codes.resize(cfg.codes.size() + 64, uint16_t(1u << 11));  // a batch may end past it
+  const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, params.adc_shift(), a.tail_s);
   cfg.wait_for_reader = !a.no_wait;
   cfg.reader_timeout_s = a.reader_timeout_s;
   cfg.trace = a.trace;
@@ -118,7 +111,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
                              {{"top", "dtmf_top"},
                               {"sample_hz", scene.skin.adc.rate_hz},
                               {"samples", cfg.samples},
-                              {"scene_samples", world.total_samples()}});
+                              {"scene_samples", scene_samples}});
   sc_core::sc_start();
   fpga.close_trace();
   eskin::vboard::print_done(json, board.stats(), nlohmann::json::object());
