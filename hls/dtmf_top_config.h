@@ -347,7 +347,8 @@ inline std::string dtmf_top_wrapper(const std::vector<VerilogParam>& ps,
   for (size_t j = 0; j < ps.size(); ++j)
     v += "      ." + ps[j].name + "(" + ps[j].value + ")" + (j + 1 < ps.size() ? ",\n" : "\n");
   v += "  ) u_top (.clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),\n"
-       "      .adc_sdata(adc_sdata), .uart_txd(uart_txd), .uart_rxd(uart_rxd));\n"
+       "      .adc_sdata(adc_sdata), .uart_txd(uart_txd), .uart_rxd(uart_rxd),\n"
+       "      .pkt_valid(), .pkt_ready(1'b0), .pkt_data());  // own link: no packet stream out\n"
        "endmodule\n`default_nettype wire\n";
   return v;
 }

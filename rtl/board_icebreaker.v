@@ -43,13 +43,16 @@ module board_icebreaker #(
   ) u_pll (.clk_12mhz(clk_12mhz), .clk(clk), .locked(locked));
 
   wire rst_n = btn_n & locked;
+  /* verilator lint_off PINCONNECTEMPTY */
 `ifdef ESKIN_DTMF_CORE
   `ESKIN_DTMF_CORE u_core (
 `else
   dtmf_top #(.CLK_HZ(CLK_HZ)) u_core (
 `endif
       .clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),
-      .adc_sdata(adc_sdata), .uart_txd(uart_tx), .uart_rxd(uart_rx));
+      .adc_sdata(adc_sdata), .uart_txd(uart_tx), .uart_rxd(uart_rx),
+      .pkt_valid(), .pkt_ready(1'b0), .pkt_data());  // own link: no packet stream out
+  /* verilator lint_on PINCONNECTEMPTY */
 
   wire heartbeat, tx_act, rx_act, adc_act;
   board_status #(.CLK_HZ(CLK_HZ)) u_status (

@@ -38,13 +38,16 @@ module board_ulx3s #(
       .clk_25mhz(clk_25mhz), .clk(clk), .locked(locked));
 
   wire rst_n = locked & ~btn_fire1;
+  /* verilator lint_off PINCONNECTEMPTY */
 `ifdef ESKIN_DTMF_CORE
   `ESKIN_DTMF_CORE u_core (
 `else
   dtmf_top #(.CLK_HZ(CLK_HZ)) u_core (
 `endif
       .clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),
-      .adc_sdata(adc_sdata), .uart_txd(ftdi_rxd), .uart_rxd(ftdi_txd));
+      .adc_sdata(adc_sdata), .uart_txd(ftdi_rxd), .uart_rxd(ftdi_txd),
+      .pkt_valid(), .pkt_ready(1'b0), .pkt_data());  // own link: no packet stream out
+  /* verilator lint_on PINCONNECTEMPTY */
 
   wire heartbeat, tx_act, rx_act, adc_act;
   board_status #(.CLK_HZ(CLK_HZ)) u_status (

@@ -127,8 +127,11 @@ module hall_top #(
   endfunction
 
   generate
-    if (NSENS > 255 || CLK_HZ % 1_000_000 != 0 || (EXT_LINK != 0 && EXT_LINK != 1)) begin : g_bad
+    if (NSENS > 255 || CLK_HZ % 1_000_000 != 0) begin : g_bad
       hall_top_needs_at_most_255_sensors_and_a_whole_MHz_clock bad ();
+    end
+    if (EXT_LINK != 0 && EXT_LINK != 1) begin : g_bad_link
+      hall_top_EXT_LINK_is_0_or_1 bad ();
     end
     if (FT != 0 && (DELTAS == 0 || FT_ID < 0 || FT_ID + 3 > NSENS)) begin : g_bad_ft
       hall_top_FT_needs_DELTAS_and_sensors_FT_ID_to_FT_ID_plus_2 bad ();

@@ -3,6 +3,7 @@
 // reads a real board, until the board has put its last byte in the pty.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -13,11 +14,19 @@
 #include <utility>
 #include <vector>
 
+#include "cli/progress.h"
 #include "host/link/link_decoder.h"
 #include "host/stream/link_stream.h"
 #include "sim/vboard/vboard_process.h"
 
 namespace eskin::cli {
+
+// The board executable's arguments: the scene, and an FST trace if asked.
+inline std::vector<std::string> board_args(const std::string& scene, const std::string& trace) {
+  std::vector<std::string> a{scene};
+  if (!trace.empty()) a.insert(a.end(), {"--trace", trace});
+  return a;
+}
 
 // Raw 8N1 at the board's rate; no reopening (the port exists until the
 // board exits); packets to callbacks only.
@@ -70,6 +79,35 @@ inline BoardRun finish_board_run(vboard::VboardProcess& board, stream::LinkStrea
   if (r.timed)
     for (size_t i = 0; i < r.rx.size(); ++i) r.arrival_us[i] = ends[i].get<double>() / 1000.0;
   return r;
+}
+
+// One run of a started board, as a host program would do it: its pty read
+// through host/stream, `commands` (framed) sent once the reader is up,
+// `alongside` run on another thread meanwhile (the golden model: the
+// board process has the other core), a progress bar over `progress_total`
+// fed by `progress_of` (a packet's position, or -1 for none) until every
+// byte the board sent has been read.
+inline BoardRun run_board(vboard::VboardProcess& board, int baud,
+                          const std::vector<std::vector<uint8_t>>& commands, size_t progress_total,
+                          const std::function<long(const link::Packet&)>& progress_of,
+                          const std::function<void()>& alongside = {}) {
+  stream::LinkStream port(board_link_options(board.pty(), baud));
+  std::vector<link::Packet> rx;  // filled on the reader thread, read after port.stop()
+  std::atomic<long> last{0};
+  port.on_packet([&](const link::Packet& p) {
+    rx.push_back(p);
+    if (const long at = progress_of(p); at >= 0) last = at;
+  });
+  port.start();
+  for (const auto& c : commands)
+    if (!c.empty()) port.send(c);
+  std::thread side;
+  if (alongside) side = std::thread(alongside);
+  Progress bar(progress_total);
+  read_until_board_done(board, port, [&] { bar.update(size_t(last.load())); });
+  bar.update(progress_total);
+  if (side.joinable()) side.join();
+  return finish_board_run(board, port, std::move(rx));
 }
 
 }  // namespace eskin::cli

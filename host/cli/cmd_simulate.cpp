@@ -411,28 +411,14 @@ int run_simulate_mixed(const sim::Scene& scene, const Args& a) {
   const std::string exe = vboard::board_executable(build, note);
   std::filesystem::create_directories(a.out);
 
-  std::vector<std::string> vargs{a.scene};
-  if (!a.trace.empty()) vargs.insert(vargs.end(), {"--trace", a.trace});
-  vboard::VboardProcess board(exe, vargs);
+  vboard::VboardProcess board(exe, board_args(a.scene, a.trace));
   const size_t total = board.ready().at("scene_samples");
-  stream::LinkStream port(board_link_options(board.pty(), int(dtmf.baud())));
-  std::vector<Packet> rx;  // filled on the reader thread, read after port.stop()
-  std::atomic<uint32_t> last_t{0};
-  port.on_packet([&](const Packet& p) {
-    rx.push_back(p);
-    if (!link::is_hall_packet(p.type)) last_t = p.t;
-  });
-  port.start();
   link::LinkEncoder enc;
-  port.send(output_mask_command(scene, enc));
-  if (!setup.commands.empty()) port.send(setup.commands);
   GoldenRun gold;
-  std::thread golden_thread([&] { gold = run_golden(scene, dtmf.plan.step); });
-  Progress bar(total);
-  read_until_board_done(board, port, [&] { bar.update(last_t); });
-  bar.update(total);
-  golden_thread.join();
-  const BoardRun run = finish_board_run(board, port, std::move(rx));
+  const BoardRun run = run_board(
+      board, int(dtmf.baud()), {output_mask_command(scene, enc), setup.commands}, total,
+      [](const Packet& p) { return link::is_hall_packet(p.type) ? -1L : long(p.t); },
+      [&] { gold = run_golden(scene, dtmf.plan.step); });
 
   // Each part's report names the board's build.
   vboard::FpgaBuild skin_build = dtmf;
@@ -493,33 +479,18 @@ int run_simulate(const Args& a) {
   const std::string exe = vboard::board_executable(build, note);
   std::filesystem::create_directories(a.out);
 
-  std::vector<std::string> vargs{a.scene};
-  if (!a.trace.empty()) vargs.insert(vargs.end(), {"--trace", a.trace});
-  vboard::VboardProcess board(exe, vargs);
+  vboard::VboardProcess board(exe, board_args(a.scene, a.trace));
   const size_t total = board.ready().at("scene_samples");
   // The board's serial port through the host streaming library
-  // (host/stream), packets decoded and checked by host/link.
-  stream::LinkStream port(board_link_options(board.pty(), int(build.baud())));
-  // rx is filled on the stream's reader thread and read here only after
-  // port.stop() has joined it; the progress bar follows last_t.
-  std::vector<Packet> rx;
-  std::atomic<uint32_t> last_t{0};
-  port.on_packet([&](const Packet& p) {
-    rx.push_back(p);
-    last_t = p.t;
-  });
-  port.start();
-  // Configure the board like a host program: the scene's outputs, plus the
-  // periodic status (its counters go into the report).
+  // (host/stream), packets decoded and checked by host/link. The host
+  // configures the board like a host program: the scene's outputs, plus
+  // the periodic status (its counters go into the report).
   link::LinkEncoder enc;
-  port.send(output_mask_command(scene, enc));
   GoldenRun gold;
-  std::thread golden_thread([&] { gold = run_golden(scene, build.plan.step); });  // the other core
-  Progress bar(total);
-  read_until_board_done(board, port, [&] { bar.update(last_t); });
-  bar.update(total);
-  golden_thread.join();
-  const BoardRun run = finish_board_run(board, port, std::move(rx));
+  const BoardRun run = run_board(
+      board, int(build.baud()), {output_mask_command(scene, enc)}, total,
+      [](const Packet& p) { return long(p.t); },
+      [&] { gold = run_golden(scene, build.plan.step); });
   report_dtmf(scene, a.scene, build, gold, run, total, a.out);
   return board.wait() == 0 ? 0 : 1;
 }

@@ -517,22 +517,10 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
       build, [](const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); });
   fs::create_directories(out_dir);
 
-  std::vector<std::string> vargs{scene_file};
-  if (!trace.empty()) vargs.insert(vargs.end(), {"--trace", trace});
-  vboard::VboardProcess board(exe, vargs);
-  stream::LinkStream port(board_link_options(board.pty(), int(build.baud)));
-  std::vector<Packet> rx;  // filled on the reader thread, read after port.stop()
-  std::atomic<uint32_t> last_t{0};
-  port.on_packet([&](const Packet& p) {
-    rx.push_back(p);
-    if (p.type == link::kHallSamples) last_t = p.t;
-  });
-  port.start();
-  if (!setup.commands.empty()) port.send(setup.commands);
-  Progress bar(size_t(scene.duration_s * 1e6));
-  read_until_board_done(board, port, [&] { bar.update(last_t); });
-  bar.update(size_t(scene.duration_s * 1e6));
-  const BoardRun run = finish_board_run(board, port, std::move(rx));
+  vboard::VboardProcess board(exe, board_args(scene_file, trace));
+  const BoardRun run = run_board(
+      board, int(build.baud), {setup.commands}, size_t(scene.duration_s * 1e6),
+      [](const Packet& p) { return p.type == link::kHallSamples ? long(p.t) : -1L; });
   report_hall(scene, scene_file, build, setup, run, out_dir);
   return board.wait() == 0 ? 0 : 1;
 }

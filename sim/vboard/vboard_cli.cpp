@@ -1,8 +1,11 @@
 #include "sim/vboard/vboard_cli.h"
 
+#include "sim/world_model.h"
+
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <systemc>
 
 namespace eskin::vboard {
@@ -76,6 +79,26 @@ void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra) {
 void wait_for_reader(const PtyPort& pty, const BoardStats& s, double timeout_s) {
   for (int i = 0; i < int(timeout_s * 100) && !pty.reader_closed() && s.reader_baud > 0; ++i)
     usleep(10000);
+}
+
+size_t load_skin_samples(BoardConfig& cfg, const sim::Scene& scene, int adc_shift, double tail_s) {
+  sim::WorldModel world(scene);
+  for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << adc_shift));
+  const size_t tail = size_t(std::ceil(tail_s * scene.skin.adc.rate_hz));
+  cfg.codes.resize(cfg.codes.size() + tail, uint16_t(1u << 11));
+  cfg.samples = cfg.codes.size();
+  cfg.codes.resize(cfg.codes.size() + 64, uint16_t(1u << 11));  // a batch may end past it
+  return world.total_samples();
+}
+
+nlohmann::json drdy_times_ns(const sim::HallSensorArray& sensors) {
+  nlohmann::json drdy = nlohmann::json::array();
+  for (size_t s = 0; s < sensors.size(); ++s) {
+    std::vector<double> t;
+    for (const auto& m : sensors.device(s).delivered()) t.push_back(m.t_done_ns);
+    drdy.push_back(t);
+  }
+  return drdy;
 }
 
 }  // namespace eskin::vboard

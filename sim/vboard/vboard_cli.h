@@ -1,5 +1,6 @@
 // What every eskin-vboard executable shares (vboard_main.cpp: the DTMF top,
-// vboard_hall_main.cpp: the Hall top): its command line, the JSON status
+// vboard_hall_main.cpp: the Hall top, vboard_mixed_main.cpp: both): its
+// command line, the board's two sides fed from the scene, the JSON status
 // lines on stdout (docs/vboard.md, "Status lines"), and the end of a run.
 #pragma once
 
@@ -9,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sim/hall_sensor_array.h"
+#include "sim/scene.h"
 #include "sim/vboard/pty_port.h"
 #include "sim/vboard/virtual_board.h"
 
@@ -26,6 +29,16 @@ struct VboardArgs {
 // arguments parsed; `run` called; errors printed as "eskin-vboard: error:".
 int vboard_cli_main(int argc, char** argv, const std::string& title, double default_tail_s,
                     const std::function<int(const VboardArgs&, FILE* json)>& run);
+
+// The ADC side: the skin's samples as 12-bit codes (scene codes << shift),
+// then `tail_s` of mid-scale so the last frames get out; the run ends once
+// the ADC has taken them. Returns the scene's own sample count.
+size_t load_skin_samples(BoardConfig& cfg, const sim::Scene& scene, int adc_shift, double tail_s);
+
+// Per Hall sensor slot, the times (ns) each conversion the FPGA read
+// completed (DRDY rose): the start of the DRDY -> host latency, for the
+// `done` line.
+nlohmann::json drdy_times_ns(const sim::HallSensorArray& sensors);
 
 // {"event":"ready","pty":...,"params":key,"clk_hz":...,"baud":..., extra...}
 void print_ready(FILE* json, const PtyPort& pty, const std::string& key, double clk_hz, double baud,

@@ -51,7 +51,8 @@ class VerilatedHallFpga final : public eskin::vboard::VerilatedTop<Vhall_top> {
  public:
   VerilatedHallFpga()
       : rst_("rst", true), rxd_("uart_rxd", true), txd_("uart_txd", true), scl_i_("scl_i"),
-        sda_i_("sda_i"), scl_oe_("scl_oe"), sda_oe_("sda_oe"), drdy_("drdy") {
+        sda_i_("sda_i"), scl_oe_("scl_oe"), sda_oe_("sda_oe"), drdy_("drdy"),
+        pkt_valid_("pkt_valid"), pkt_ready_("pkt_ready"), pkt_data_("pkt_data") {
     top_.rst(rst_);
     top_.uart_rxd(rxd_);
     top_.uart_txd(txd_);
@@ -60,6 +61,10 @@ class VerilatedHallFpga final : public eskin::vboard::VerilatedTop<Vhall_top> {
     top_.scl_oe(scl_oe_);
     top_.sda_oe(sda_oe_);
     top_.drdy(drdy_);
+    // The top owns its link (EXT_LINK = 0): no packet stream to take.
+    top_.pkt_valid(pkt_valid_);
+    top_.pkt_ready(pkt_ready_);
+    top_.pkt_data(pkt_data_);
   }
 
   eskin::vboard::FpgaOutputs cycle(const eskin::vboard::FpgaInputs& in, uint64_t t_ps) override {
@@ -81,6 +86,8 @@ class VerilatedHallFpga final : public eskin::vboard::VerilatedTop<Vhall_top> {
   DirectWire rst_, rxd_, txd_;
   DirectPort<BusBits> scl_i_, sda_i_, scl_oe_, sda_oe_;
   DirectPort<SensorBits> drdy_;
+  DirectWire pkt_valid_, pkt_ready_;
+  DirectPort<PortValue<decltype(std::declval<Vhall_top>().pkt_data)>> pkt_data_;
   uint64_t cycles_ = 0;
 };
 
@@ -121,13 +128,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
                               {"cycles", cfg.cycles}});
   sc_core::sc_start();
   fpga.close_trace();
-  nlohmann::json drdy = nlohmann::json::array();
-  for (size_t s = 0; s < sensors.size(); ++s) {
-    std::vector<double> t;
-    for (const auto& m : sensors.device(s).delivered()) t.push_back(m.t_done_ns);
-    drdy.push_back(t);
-  }
-  eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", drdy}});
+  eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", eskin::vboard::drdy_times_ns(sensors)}});
   eskin::vboard::wait_for_reader(pty, board.stats(), a.reader_timeout_s);
   return 0;
 }

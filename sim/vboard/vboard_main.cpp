@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <memory>
 #include <systemc>
+#include <type_traits>
 
 #include "Vdtmf_top.h"
 #include "sim/scene.h"
@@ -23,7 +24,6 @@
 #include "sim/vboard/verilated_step.h"
 #include "sim/vboard/verilated_top.h"
 #include "sim/vboard/virtual_board.h"
-#include "sim/world_model.h"
 
 #ifndef VBOARD_PARAMS_KEY
 #error "VBOARD_PARAMS_KEY: the FPGA parameter set this board is built for"
@@ -40,18 +40,25 @@ ESKIN_EXPOSE_EVAL_STEP(Vdtmf_top)
 namespace {
 
 using eskin::vboard::DirectWire;
+template <class Port>
+using PortValue = typename std::remove_reference_t<Port>::data_type;
 
 class VerilatedFpga final : public eskin::vboard::VerilatedTop<Vdtmf_top> {
  public:
   VerilatedFpga()
       : rst_n_("rst_n", true), sdata_("adc_sdata"), rxd_("uart_rxd", true), cs_n_("adc_cs_n", true),
-        sclk_("adc_sclk", true), txd_("uart_txd", true) {
+        sclk_("adc_sclk", true), txd_("uart_txd", true), pkt_valid_("pkt_valid"),
+        pkt_ready_("pkt_ready"), pkt_data_("pkt_data") {
     top_.rst_n(rst_n_);
     top_.adc_sdata(sdata_);
     top_.uart_rxd(rxd_);
     top_.adc_cs_n(cs_n_);
     top_.adc_sclk(sclk_);
     top_.uart_txd(txd_);
+    // The top owns its link (EXT_LINK = 0): no packet stream to take.
+    top_.pkt_valid(pkt_valid_);
+    top_.pkt_ready(pkt_ready_);
+    top_.pkt_data(pkt_data_);
   }
 
   eskin::vboard::FpgaOutputs cycle(const eskin::vboard::FpgaInputs& in, uint64_t t_ps) override {
@@ -66,7 +73,8 @@ class VerilatedFpga final : public eskin::vboard::VerilatedTop<Vdtmf_top> {
   }
 
  private:
-  DirectWire rst_n_, sdata_, rxd_, cs_n_, sclk_, txd_;
+  DirectWire rst_n_, sdata_, rxd_, cs_n_, sclk_, txd_, pkt_valid_, pkt_ready_;
+  eskin::vboard::DirectPort<PortValue<decltype(std::declval<Vdtmf_top>().pkt_data)>> pkt_data_;
 };
 
 int run(const eskin::vboard::VboardArgs& a, FILE* json) {
@@ -81,13 +89,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   eskin::vboard::BoardConfig cfg;
   cfg.clk_hz = params.clk_hz();
   cfg.baud = params.baud();
-  eskin::sim::WorldModel world(scene);
-  for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << params.adc_shift()));
-  // A tail of mid-scale samples after the scene lets the last frames out.
-  const size_t tail = size_t(std::ceil(a.tail_s * scene.skin.adc.rate_hz));
-  cfg.codes.resize(cfg.codes.size() + tail, uint16_t(1u << 11));
-  cfg.samples = cfg.codes.size();
-  cfg.codes.resize(cfg.codes.size() + 64, uint16_t(1u << 11));  // a batch may end past it
+  const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, params.adc_shift(), a.tail_s);
   cfg.wait_for_reader = !a.no_wait;
   cfg.reader_timeout_s = a.reader_timeout_s;
   cfg.trace = a.trace;
@@ -109,7 +111,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
                              {{"top", "dtmf_top"},
                               {"sample_hz", scene.skin.adc.rate_hz},
                               {"samples", cfg.samples},
-                              {"scene_samples", world.total_samples()}});
+                              {"scene_samples", scene_samples}});
   sc_core::sc_start();
   fpga.close_trace();
   eskin::vboard::print_done(json, board.stats(), nlohmann::json::object());

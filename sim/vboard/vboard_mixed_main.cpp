@@ -27,7 +27,6 @@
 #include "sim/vboard/verilated_step.h"
 #include "sim/vboard/verilated_top.h"
 #include "sim/vboard/virtual_board.h"
-#include "sim/world_model.h"
 
 #ifndef VBOARD_PARAMS_KEY
 #error "VBOARD_PARAMS_KEY: the mixed build this board is made for"
@@ -102,12 +101,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   eskin::vboard::BoardConfig cfg;
   cfg.clk_hz = dtmf.clk_hz();
   cfg.baud = dtmf.baud();
-  eskin::sim::WorldModel world(scene);
-  for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << dtmf.adc_shift()));
-  const size_t tail = size_t(std::ceil(a.tail_s * scene.skin.adc.rate_hz));
-  cfg.codes.resize(cfg.codes.size() + tail, uint16_t(1u << 11));
-  cfg.samples = cfg.codes.size();
-  cfg.codes.resize(cfg.codes.size() + 64, uint16_t(1u << 11));  // a batch may end past it
+  const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, dtmf.adc_shift(), a.tail_s);
   const eskin::sim::HallWorld hall_world(scene.hall);
   eskin::sim::HallSensorArray sensors(hall_world, scene.hall.config, build.hall.spec);
   cfg.hall = &sensors;
@@ -130,18 +124,12 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
                              {{"top", "mixed_top"},
                               {"sample_hz", scene.skin.adc.rate_hz},
                               {"samples", cfg.samples},
-                              {"scene_samples", world.total_samples()},
+                              {"scene_samples", scene_samples},
                               {"sensors", sensors.size()},
                               {"buses", sensors.bus_count()}});
   sc_core::sc_start();
   fpga.close_trace();
-  nlohmann::json drdy = nlohmann::json::array();
-  for (size_t s = 0; s < sensors.size(); ++s) {
-    std::vector<double> t;
-    for (const auto& m : sensors.device(s).delivered()) t.push_back(m.t_done_ns);
-    drdy.push_back(t);
-  }
-  eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", drdy}});
+  eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", eskin::vboard::drdy_times_ns(sensors)}});
   eskin::vboard::wait_for_reader(pty, board.stats(), a.reader_timeout_s);
   return 0;
 }
