@@ -343,12 +343,14 @@ inline std::string dtmf_top_wrapper(const std::vector<VerilogParam>& ps,
                   name +
                   " (\n    input wire clk, input wire rst_n,\n"
                   "    output wire adc_cs_n, output wire adc_sclk, input wire adc_sdata,\n"
-                  "    output wire uart_txd, input wire uart_rxd);\n  dtmf_top #(\n";
+                  "    output wire uart_txd, input wire uart_rxd,\n"
+                  "    output wire pkt_valid, input wire pkt_ready, output wire [7:0] pkt_data);\n"
+                  "  dtmf_top #(\n";
   for (size_t j = 0; j < ps.size(); ++j)
     v += "      ." + ps[j].name + "(" + ps[j].value + ")" + (j + 1 < ps.size() ? ",\n" : "\n");
   v += "  ) u_top (.clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),\n"
        "      .adc_sdata(adc_sdata), .uart_txd(uart_txd), .uart_rxd(uart_rxd),\n"
-       "      .pkt_valid(), .pkt_ready(1'b0), .pkt_data());  // own link: no packet stream out\n"
+       "      .pkt_valid(pkt_valid), .pkt_ready(pkt_ready), .pkt_data(pkt_data));\n"
        "endmodule\n`default_nettype wire\n";
   return v;
 }
