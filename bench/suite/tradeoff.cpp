@@ -22,6 +22,7 @@
 #include "hls/sdft_bank_config.h"
 #include "hls/sdft_damped.h"
 #include "host/engine/dtmf_engine.h"
+#include "host/fpga/core_wrapper.h"
 #include "host/engine/engine_setup.h"
 #include "host/golden/ghost_filter.h"
 #include "host/golden/golden_decoder.h"
@@ -232,7 +233,7 @@ SynthEntry synthesize(const TradePoint& p, const std::string& cache_dir) {
     // parameters (Yosys reads the hex files while it elaborates).
     const auto params =
         hls::write_dtmf_top_build(plan_for(p, scene_for(p)), fs::absolute(tmp).string(), "top");
-    std::ofstream(tmp / "tradeoff_top.v") << hls::dtmf_top_wrapper(params, "tradeoff_top");
+    std::ofstream(tmp / "tradeoff_top.v") << fpga::dtmf_core_wrapper("tradeoff_top", params);
     // The project's flow (scripts/synth_ice40.sh: -dsp -spram -abc9), as
     // docs/fpga.md's figures; it writes stat.txt into --out.
     const std::string cmd = fmt::format(

@@ -11,6 +11,7 @@
 
 #include "hls/dtmf_ucode.h"
 #include "host/fpga/core_flows.h"
+#include "host/fpga/core_wrapper.h"
 #include "host/fpga/tool_run.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/world_model.h"
@@ -151,7 +152,7 @@ FlowReport run_flow(const Board& b, const sim::Scene& scene, const FlowOptions& 
   Clocking clk;
   if (!plan_dtmf_core(b, scene, opt, r, clk, r.params)) return r;
   const fs::path wrapper = fs::absolute(opt.out_dir) / "dtmf_scene.v";
-  std::ofstream(wrapper) << hls::dtmf_top_wrapper(r.params, "dtmf_scene");
+  std::ofstream(wrapper) << dtmf_core_wrapper("dtmf_scene", r.params);
   r.params.insert(r.params.end(), clk.wrapper_params.begin(), clk.wrapper_params.end());
 
   ToolRun t;

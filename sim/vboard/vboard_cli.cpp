@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <stdexcept>
 #include <systemc>
 
 namespace eskin::vboard {
@@ -79,6 +80,15 @@ void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra) {
 void wait_for_reader(const PtyPort& pty, const BoardStats& s, double timeout_s) {
   for (int i = 0; i < int(timeout_s * 100) && !pty.reader_closed() && s.reader_baud > 0; ++i)
     usleep(10000);
+}
+
+void require_build(const std::string& scene_file, const std::string& kind,
+                   const std::string& needed, const std::string& board_key) {
+  if (needed != board_key)
+    throw std::runtime_error(scene_file + ": this scene needs the " + kind + " build '" + needed +
+                             "', this virtual board is '" + board_key +
+                             "' (run the scene with `eskin simulate`, which builds the board it "
+                             "needs)");
 }
 
 size_t load_skin_samples(BoardConfig& cfg, const sim::Scene& scene, int adc_shift, double tail_s) {

@@ -30,6 +30,12 @@ struct VboardArgs {
 int vboard_cli_main(int argc, char** argv, const std::string& title, double default_tail_s,
                     const std::function<int(const VboardArgs&, FILE* json)>& run);
 
+// Throws, naming both, when the scene needs another build (`kind`: "FPGA",
+// "Hall", "mixed") than this board's: boards are made per build by
+// `eskin simulate`.
+void require_build(const std::string& scene_file, const std::string& kind,
+                   const std::string& needed, const std::string& board_key);
+
 // The ADC side: the skin's samples as 12-bit codes (scene codes << shift),
 // then `tail_s` of mid-scale so the last frames get out; the run ends once
 // the ADC has taken them. Returns the scene's own sample count.

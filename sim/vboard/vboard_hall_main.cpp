@@ -8,7 +8,6 @@
 // VBOARD_PARAMS_KEY naming the build). The `done` line adds, per FPGA
 // sensor slot, the time (ns) each conversion the FPGA read completed
 // (DRDY rose): the start of the DRDY -> host latency.
-#include <fmt/format.h>
 
 #include <cmath>
 #include <cstdio>
@@ -94,11 +93,7 @@ class VerilatedHallFpga final : public eskin::vboard::VerilatedTop<Vhall_top> {
 int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   const eskin::sim::Scene scene = eskin::sim::load_scene(a.scene);
   const eskin::vboard::HallBuild build = eskin::vboard::hall_build_for(scene, VBOARD_CLK_HZ);
-  if (build.key != VBOARD_PARAMS_KEY)
-    throw std::runtime_error(fmt::format(
-        "{}: this scene needs the Hall build '{}', this virtual board is '{}' (run the scene "
-        "with `eskin simulate`, which builds the board it needs)",
-        a.scene, build.key, VBOARD_PARAMS_KEY));
+  eskin::vboard::require_build(a.scene, "Hall", build.key, VBOARD_PARAMS_KEY);
   if (scene.has_skin)
     throw std::runtime_error(a.scene + ": a scene with a DTMF skin and Hall sensors needs both "
                              "tops on one board, which the virtual board does not have yet");

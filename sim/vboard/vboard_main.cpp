@@ -8,7 +8,6 @@
 // stdout carries one JSON object per line for the program that started the
 // board: {"event":"ready",...} once the pty exists, {"event":"done",...}
 // when every byte is in it. Messages go to stderr.
-#include <fmt/format.h>
 
 #include <cmath>
 #include <cstdio>
@@ -80,11 +79,7 @@ class VerilatedFpga final : public eskin::vboard::VerilatedTop<Vdtmf_top> {
 int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   const eskin::sim::Scene scene = eskin::sim::load_scene(a.scene);
   const eskin::vboard::FpgaBuild params = eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ, VBOARD_BAUD);
-  if (params.key != VBOARD_PARAMS_KEY)
-    throw std::runtime_error(fmt::format(
-        "{}: this scene needs the FPGA build '{}', this virtual board is '{}' (run the scene "
-        "with `eskin simulate`, which builds the board it needs)",
-        a.scene, params.key, VBOARD_PARAMS_KEY));
+  eskin::vboard::require_build(a.scene, "FPGA", params.key, VBOARD_PARAMS_KEY);
 
   eskin::vboard::BoardConfig cfg;
   cfg.clk_hz = params.clk_hz();

@@ -9,7 +9,6 @@
 // Verilated SystemC model of rtl/mixed_top.v for it. The run ends when the
 // ADC has taken the skin's samples plus the tail. The `done` line carries
 // drdy_ns per Hall sensor slot, as the Hall board's does.
-#include <fmt/format.h>
 
 #include <cmath>
 #include <cstdio>
@@ -92,11 +91,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   const eskin::vboard::FpgaBuild dtmf =
       eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ, VBOARD_BAUD);
   const eskin::vboard::MixedBuild build = eskin::vboard::mixed_build_for(scene, dtmf);
-  if (build.key != VBOARD_PARAMS_KEY)
-    throw std::runtime_error(fmt::format(
-        "{}: this scene needs the mixed build '{}', this virtual board is '{}' (run the scene "
-        "with `eskin simulate`, which builds the board it needs)",
-        a.scene, build.key, VBOARD_PARAMS_KEY));
+  eskin::vboard::require_build(a.scene, "mixed", build.key, VBOARD_PARAMS_KEY);
 
   eskin::vboard::BoardConfig cfg;
   cfg.clk_hz = dtmf.clk_hz();
