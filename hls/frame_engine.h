@@ -87,6 +87,10 @@ struct FrameEngineConfig {
   static constexpr int IW = 9;
   static constexpr int DW = 8;
   static constexpr int KW = 8;
+  // rtl/frame_engine.v's FAST_SHIFT: shl/shr/rnd by a barrel shifter (one
+  // clock for any count) instead of one bit per clock. Timing only: every
+  // result is the same.
+  static constexpr bool FAST_SHIFT = false;
 };
 
 // An IO bus with nothing on it: reads give 0, writes vanish, no events.
@@ -112,6 +116,7 @@ class FrameEngine {
   static constexpr int IW = CONFIG_T::IW;
   static constexpr int DW = CONFIG_T::DW;
   static constexpr int KW = CONFIG_T::KW;
+  static constexpr bool FAST_SHIFT = CONFIG_T::FAST_SHIFT;
   static_assert(IW >= 4 && IW <= 12, "frame_engine: IW must be 4..12");
   static_assert(DW >= 4 && DW <= 15, "frame_engine: DW must be 4..15");
   static_assert(KW >= 1 && KW <= 12, "frame_engine: KW must be 1..12");
@@ -286,24 +291,25 @@ class FrameEngine {
     return clk;
   }
 
-  // shl/shr/rnd by n: one bit per clock; an immediate count is known in
-  // cycle A, another takes one B clock to load; rnd adds one clock for the
-  // rounding carry. n = 0 leaves A alone in 2 clocks.
+  // shl/shr/rnd by n: one bit per clock (FAST_SHIFT: all n bits in one
+  // clock); an immediate count is known in cycle A, another takes one B
+  // clock to load; rnd adds one clock for the rounding carry. n = 0 leaves
+  // A alone in 2 clocks.
   uint32_t shift(uint32_t fn, uint32_t n, bool imm_count) {
     if (n == 0) return 2;
-    const uint32_t base = imm_count ? 1 : 2;
+    const uint32_t base = imm_count ? 1 : 2, steps = FAST_SHIFT ? 1 : n;
     if (fn == fe::kShl) {
       a_ = n >= 48 ? 0 : wrap48(int64_t(uint64_t(a_) << n));
-      return base + n;
+      return base + steps;
     }
     const int64_t q = a_ >> (n >= 48 ? 47 : n);             // floor(A / 2^n)
     if (fn == fe::kShr) {
       a_ = q;
-      return base + n;
+      return base + steps;
     }
     const int64_t half = n - 1 >= 47 ? (a_ < 0) : ((a_ >> (n - 1)) & 1);  // bit n-1 of A
     a_ = q + half;
-    return base + n + 1;
+    return base + steps + 1;
   }
 
   uint32_t control(uint32_t fn, uint32_t xi, uint32_t cond, uint32_t addr, uint32_t pc1) {

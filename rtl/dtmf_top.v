@@ -38,6 +38,9 @@ module dtmf_top #(
     parameter integer IMEM_WORDS = 1280, // microcode words (10 EBRs)
     parameter integer DW = 10,          // engine data words 2^DW
     parameter integer KW = 9,           // engine constant words 2^KW
+    // 1: the engine's barrel shifter (frame_engine FAST_SHIFT): the same
+    // packets in fewer clocks, for the larger FPGAs.
+    parameter integer ENGINE_FAST_SHIFT = 0,
     // Output FIFO bytes (hls/dtmf_top_config.h: the plan's longest packet
     // fits whole; the engine drops, and counts, a packet without room).
     parameter integer OUT_DEPTH = 512,
@@ -69,7 +72,8 @@ module dtmf_top #(
   generate
     if (KS < 1 || KS > 128 || N < 2 || ACC_W < 14 || ACC_W > 32 || STEP < 1 ||
         OUT_DEPTH < 512 || OUT_DEPTH > 32768 || (OUT_DEPTH & (OUT_DEPTH - 1)) != 0 ||
-        (EXT_LINK != 0 && EXT_LINK != 1) || (HALL_CMDS != 0 && HALL_CMDS != 1)) begin : g_bad_params
+        (EXT_LINK != 0 && EXT_LINK != 1) || (HALL_CMDS != 0 && HALL_CMDS != 1) ||
+        (ENGINE_FAST_SHIFT != 0 && ENGINE_FAST_SHIFT != 1)) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -215,7 +219,7 @@ module dtmf_top #(
   // ---------------- the frame engine -------------------------------------
   wire [15:0] events = {14'd0, cmd_avail, frame_pending};
   frame_engine #(.IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX),
-                 .KROM_HEX(KROM_HEX)) u_eng (
+                 .KROM_HEX(KROM_HEX), .FAST_SHIFT(ENGINE_FAST_SHIFT)) u_eng (
       .clk(clk), .rst(rst), .io_raddr(io_raddr), .io_re(io_re), .io_waddr(io_waddr), .io_rdata(io_rdata),
       .io_we(io_we), .io_wdata(io_wdata), .events(events));
 

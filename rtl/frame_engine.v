@@ -4,7 +4,8 @@
 // tests/rtl/frame_engine_test.cpp.
 //
 // Organisation (area first: one 48-bit adder, one logic unit, a 1-bit/clock
-// shifter and a 2-clock/digit square root, all writing A):
+// shifter and a 2-clock/digit square root, all writing A; FAST_SHIFT = 1
+// adds a barrel shifter, so shl/shr/rnd take one B clock for any count):
 //   cycle A  IR (the IMEM read port's output register) is decoded; ea =
 //            addr + X[x] addresses DMEM, KROM and the IO bus (io_re); jumps,
 //            calls, returns and X writes take effect at the end of A, and
@@ -28,7 +29,10 @@ module frame_engine #(
     parameter integer IMEM_WORDS = 1 << IW,  // IMEM depth (<= 2^IW; the program must fit)
     parameter UCODE_HEX = "",          // IMEM contents ("": none)
     parameter KROM_HEX = "",           // KROM contents as a $readmemh file, else KROM_INIT
-    parameter [32*(1<<KW)-1:0] KROM_INIT = 0
+    parameter [32*(1<<KW)-1:0] KROM_INIT = 0,
+    // 1: shl/shr/rnd shift in one clock (two 48-bit barrel shifters, about
+    // 600 LUT4: for the larger FPGAs); 0: one bit per clock.
+    parameter integer FAST_SHIFT = 0
 ) (
     input  wire        clk,
     input  wire        rst,            // synchronous, active high
@@ -52,6 +56,9 @@ module frame_engine #(
     end
     if (IMEM_WORDS < 16 || IMEM_WORDS > (1 << IW)) begin : g_bad_imem
       frame_engine_parameter_IMEM_WORDS_must_be_16_to_2_pow_IW stop();
+    end
+    if (FAST_SHIFT != 0 && FAST_SHIFT != 1) begin : g_bad_fast_shift
+      frame_engine_parameter_FAST_SHIFT_must_be_0_or_1 stop();
     end
   endgenerate
 
@@ -97,6 +104,7 @@ module frame_engine #(
   reg u_left;                          // shift direction (shl, sqrt)
   reg u_latch;                         // this clock loads the shift count from y
   reg u_shift, u_rnd, u_sq, u_wait;    // the instruction in B
+  reg u_bar;                           // FAST_SHIFT: this clock shifts A by cnt at once
 
   wire [1:0]  cls = ir[31:30];
   wire [3:0]  fn = ir[29:26];
@@ -197,9 +205,16 @@ module frame_engine #(
                     ({7{u_f_mid}} & w[14:8]) | ({7{u_f_h}} & w[30:24]) | ({7{u_f_h15}} & w[29:23]),
                     ({8{u_f_lo}} & w[7:0]) | ({8{u_f_h}} & w[23:16]) | ({8{u_f_h15}} & w[22:15])};
   wire [47:0] sha = u_left ? {acc[46:0], 1'b0} : {acc[47], acc[47:1]};
+  // Barrel shifts by cnt (FAST_SHIFT; constant-0 u_bar removes them
+  // otherwise). A 49-bit right shift of {A, 0} gives floor(A / 2^n) in its
+  // top 48 bits and bit n - 1 of A, rnd's rounding bit, in bit 0 (the sign
+  // for n > 48, as the model's rnd has it).
+  wire [48:0] bar_r = $signed({acc, 1'b0}) >>> cnt;
+  wire [47:0] bar_l = acc << cnt;
+  wire [47:0] bar = u_left ? bar_l : bar_r[48:1];
   wire [47:0] m = fv | ({48{u_sel_i}} & {{22{irb[25]}}, irb[25:0]}) |
                   ({48{u_sel_x}} & {32'd0, xv_b}) | ({48{u_step}} & sha) |
-                  ({48{u_sel_q}} & {24'd0, root[24:1]});
+                  ({48{u_bar}} & bar) | ({48{u_sel_q}} & {24'd0, root[24:1]});
 
   // ---- ALU: s = A + y + cin, lg = ~y / A & y / A | y / A ^ y ----------------
   // u_sub = 1 also where A takes m through the logic unit (lg = ~y = m).
@@ -288,6 +303,7 @@ module frame_engine #(
   always @* begin
     if (u_latch) done = y[5:0] == 6'd0;
     else if (u_step) done = u_shift && !u_rnd && last_step;
+    else if (u_bar) done = !u_rnd;
     else if (u_wait) done = |(events & irb[15:0]);
     else done = !(u_min || u_max);
   end
@@ -310,6 +326,7 @@ module frame_engine #(
   wire alu_op = !ctl && fn <= F_XOR;
   wire shift_op = !ctl && (fn == F_SHL || fn == 4'd11 || fn == F_RND);
   wire imm_steps = shift_op && cls == C_IMM && ir[5:0] != 6'd0;
+  wire fast = FAST_SHIFT != 0;
   wire sq_op = ctl && (fn == K_SQRT || fn == K_SQRTR);
   wire txa_op = ctl && fn == K_TXA;
   wire reads_m = !ctl && fn <= F_RND && !imm_steps;
@@ -338,6 +355,7 @@ module frame_engine #(
       {u_sub, u_lop, u_use_s, u_we, u_min, u_max, u_cin_r, u_cin_q} <= 9'd0;
       {u_lt, u_mpy, u_st, u_out, u_left, u_latch, u_shift, u_rnd, u_sq, u_wait} <= 10'd0;
       u_put <= 1'b0;
+      u_bar <= 1'b0;
     end else if (!ph) begin
       // ---- end of cycle A: control flow, X, the controls of B
       ph <= 1'b1;
@@ -359,7 +377,8 @@ module frame_engine #(
       u_sel_i <= reads_m && cls == C_IMM;
       u_sel_x <= txa_op;
       u_sel_q <= 1'b0;
-      u_step <= imm_steps || sq_op;
+      u_step <= (imm_steps && !fast) || sq_op;
+      u_bar <= imm_steps && fast;
       u_sub <= (alu_op && (fn == F_LD || fn == F_SUB || fn == F_MIN || fn == F_MAX)) ||
                imm_steps || sq_op || txa_op;
       u_lop <= (alu_op && fn[2]) ? fn[1:0] : 2'd0;
@@ -393,18 +412,21 @@ module frame_engine #(
         cnt <= cnt - 6'd1;
         rbit <= acc[0];
       end
+      if (u_bar) rbit <= bar_r[0];
       // Controls of the next B clock of a multi-clock instruction.
       if (u_latch) begin                 // count loaded: steps follow
         cnt <= y[5:0];
         u_sel_i <= 1'b0;
         {u_f_lo, u_f_mid, u_f_15, u_f_hi, u_f_h, u_f_h15, u_e15, u_e31, u_e31t} <= 9'd0;
         u_latch <= 1'b0;
-        u_step <= 1'b1;
+        u_step <= !fast;
+        u_bar <= fast;
         u_sub <= 1'b1;
         u_we <= 1'b1;
       end
-      if (u_step && last_step && (u_rnd || u_sq)) begin  // final clock: A + y + cin
+      if ((u_step && last_step && (u_rnd || u_sq)) || (u_bar && u_rnd)) begin  // final clock: A + y + cin
         u_step <= 1'b0;
+        u_bar <= 1'b0;
         u_sub <= 1'b0;
         u_use_s <= 1'b1;
         u_sel_q <= u_sq;

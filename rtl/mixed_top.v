@@ -39,6 +39,7 @@ module mixed_top #(
     parameter integer DW = 10,
     parameter integer KW = 9,
     parameter integer OUT_DEPTH = 512,
+    parameter integer ENGINE_FAST_SHIFT = 0,
     parameter UCODE_HEX = "",
     parameter KROM_HEX = "",
     // hall_top
@@ -96,7 +97,7 @@ module mixed_top #(
   dtmf_top #(
       .CLK_HZ(CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .BAUD(BAUD), .KS(KS), .N(N), .ACC_W(ACC_W),
       .STEP(STEP), .IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .OUT_DEPTH(OUT_DEPTH),
-      .UCODE_HEX(UCODE_HEX), .KROM_HEX(KROM_HEX), .EXT_LINK(1), .HALL_CMDS(DELTAS != 0 ? 1 : 0)
+      .ENGINE_FAST_SHIFT(ENGINE_FAST_SHIFT), .UCODE_HEX(UCODE_HEX), .KROM_HEX(KROM_HEX), .EXT_LINK(1), .HALL_CMDS(DELTAS != 0 ? 1 : 0)
   ) u_dtmf (
       .clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk), .adc_sdata(adc_sdata),
       .uart_txd(), .uart_rxd(uart_rxd), .pkt_valid(pv[0]), .pkt_ready(pr[0]), .pkt_data(pd[7:0]));

@@ -11,9 +11,11 @@
 namespace eskin::bench {
 namespace {
 
-// The largest memories any plan's build asks for (dtmf_top_params: DW, KW).
+// The largest memories any plan's build asks for (dtmf_top_params: DW, KW);
+// the UP5K build's bit-serial shifter (the benches' builds).
 struct Widest {
   static constexpr int IW = hls::kDtmfImemBits, DW = 15, KW = 12;
+  static constexpr bool FAST_SHIFT = false;
 };
 
 }  // namespace
@@ -67,6 +69,9 @@ struct EngineCycleModel::Impl {
     const auto words = hls::dtmf_ucode_words(im);
     if (im.dend > (1 << Widest::DW) || im.krom.size() > (size_t(1) << Widest::KW))
       throw std::invalid_argument("engine model: the plan's DMEM/KROM exceed DW 15 / KW 12");
+    if (p.spec.engine_fast_shift)  // its clocks would be counted for the other engine
+      throw std::invalid_argument("engine model: counts the bit-serial shifter only "
+                                  "(engine_fast_shift must be false)");
     eng.load_program(words.data(), uint32_t(words.size()));
     eng.load_krom(im.krom.data(), uint32_t(im.krom.size()));
     eng.reset();

@@ -46,6 +46,7 @@ struct RunConfig {  // the largest legal configuration
   static constexpr int IW = 12;
   static constexpr int DW = 15;
   static constexpr int KW = 12;
+  static constexpr bool FAST_SHIFT = false;  // `run` counts the UP5K build's clocks
 };
 using Engine = eskin::hls::FrameEngine<RunConfig>;
 

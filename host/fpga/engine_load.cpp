@@ -20,11 +20,13 @@ namespace eskin::fpga {
 
 namespace {
 
-// The largest engine rtl/frame_engine.v builds (its DW and KW limits).
+// The largest engine rtl/frame_engine.v builds (its DW and KW limits),
+// with or without the barrel shifter (the plan's engine_fast_shift).
+template <bool FAST>
 struct EngineMax {
   static constexpr int IW = hls::kDtmfImemBits, DW = 15, KW = 12;
+  static constexpr bool FAST_SHIFT = FAST;
 };
-using Engine = hls::FrameEngine<EngineMax>;
 
 // rtl/dtmf_top.v's IO ports as the microcode sees them: the frame buffer,
 // the command FIFO, an output FIFO that is always empty (OUT_DEPTH free), counters at 0, a
@@ -69,14 +71,17 @@ using Bank = hls::SdftBank<1, 2, 12, 16, 10, 14>;
 
 // The engine booted on the plan's microcode (configuration copied, state
 // cleared, carriers to the DFT), fed frames and commands.
+template <bool FAST>
 class LoadRun {
+  using Engine = hls::FrameEngine<EngineMax<FAST>>;
+
  public:
   explicit LoadRun(const hls::DtmfTopPlan& p) : p_(p), im_(hls::dtmf_engine_image(p)) {
-    if (im_.dend > (1 << EngineMax::DW) || im_.krom.size() > (1u << EngineMax::KW))
+    if (im_.dend > (1 << Engine::DW) || im_.krom.size() > (1u << Engine::KW))
       throw std::invalid_argument(fmt::format(
           "frame_engine: a {}x{} skin needs {} DMEM words and {} KROM words; the engine "
           "addresses at most {} and {}",
-          p.R, p.C, im_.dend, im_.krom.size(), 1 << EngineMax::DW, 1u << EngineMax::KW));
+          p.R, p.C, im_.dend, im_.krom.size(), 1 << Engine::DW, 1u << Engine::KW));
     std::vector<uint32_t> words;
     try {
       words = hls::dtmf_ucode_words(im_);
@@ -172,9 +177,9 @@ std::vector<uint8_t> cat(std::vector<uint8_t> a, const std::vector<uint8_t>& b) 
   return a;
 }
 
-}  // namespace
-
-EngineLoad measure_engine_load(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_x) {
+template <bool FAST>
+EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_x) {
+  using LoadRun = LoadRun<FAST>;
   EngineLoad load;
   // The scene: every frame its samples make (hls/dtmf_chain.h's frame
   // rule: the first when the window is full, then every STEP samples).
@@ -250,6 +255,12 @@ EngineLoad measure_engine_load(const hls::DtmfTopPlan& p, const std::vector<int3
     if (clocks > load.command_clocks) load.command_clocks = clocks, load.command_case = name;
   }
   return load;
+}
+
+}  // namespace
+
+EngineLoad measure_engine_load(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_x) {
+  return p.spec.engine_fast_shift ? measure<true>(p, scene_x) : measure<false>(p, scene_x);
 }
 
 }  // namespace eskin::fpga

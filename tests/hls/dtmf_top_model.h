@@ -21,8 +21,9 @@
 
 namespace dtmf_model {
 
-struct EngineCfg {
+struct EngineCfg {  // the UP5K build's engine (no barrel shifter)
   static constexpr int IW = 11, DW = 15, KW = 12;
+  static constexpr bool FAST_SHIFT = false;
 };
 
 

@@ -78,12 +78,17 @@ struct TableIo {
 
 struct Small {
   static constexpr int IW = 6, DW = 5, KW = 3;
+  static constexpr bool FAST_SHIFT = false;
+};
+struct Fast : eskin::hls::FrameEngineConfig {  // the barrel shifter
+  static constexpr bool FAST_SHIFT = true;
 };
 using Engine = FrameEngine<>;
 
 // Engine with one instruction (or a program) at 0.
-std::unique_ptr<Engine> with(std::vector<uint32_t> prog) {
-  auto e = std::make_unique<Engine>();
+template <class CFG = eskin::hls::FrameEngineConfig>
+std::unique_ptr<FrameEngine<CFG>> with(std::vector<uint32_t> prog) {
+  auto e = std::make_unique<FrameEngine<CFG>>();
   e->load_program(prog.data(), uint32_t(prog.size()));
   e->reset();
   return e;
@@ -214,12 +219,14 @@ int64_t expect_shift(uint32_t fn, int64_t a, uint32_t n) {
 }
 // Clocks from the manual's table: immediate counts start shifting in the
 // first B clock; other operands load the count first; rnd adds one clock.
-uint32_t expect_shift_clocks(uint32_t fn, uint32_t n, bool imm) {
+// One bit per clock, or all n bits in one clock with the barrel shifter.
+uint32_t expect_shift_clocks(uint32_t fn, uint32_t n, bool imm, bool fast) {
   if (n == 0) return 2;
-  return (imm ? 1 : 2) + n + (fn == fe::kRnd ? 1 : 0);
+  return (imm ? 1 : 2) + (fast ? 1 : n) + (fn == fe::kRnd ? 1 : 0);
 }
 
-TEST(FrameEngineModel, ShiftsAtTheEdgesAndRandom) {
+template <class CFG>
+void shifts_at_the_edges_and_random() {
   std::mt19937_64 rng(2);
   std::vector<ShiftCase> cases;
   const int64_t edges[] = {0, 1, -1, 2, -2, 3, -3, kMax47, kMin47, kMin47 + 1, 0x123456789ABll};
@@ -231,16 +238,26 @@ TEST(FrameEngineModel, ShiftsAtTheEdgesAndRandom) {
   TableIo io;
   for (const auto& c : cases) {
     // Immediate count, and the same count from DMEM (high bits ignored).
-    auto e = with({fe::imm(c.fn, int32_t(c.n)), fe::mem(c.fn, fe::kDmem, 0, fe::kW, 4)});
+    auto e = with<CFG>({fe::imm(c.fn, int32_t(c.n)), fe::mem(c.fn, fe::kDmem, 0, fe::kW, 4)});
     e->set_dmem(4, c.n | 0xFFFFFFC0u);
     e->set_a(c.a);
     const uint32_t clk = e->step(io);
     ASSERT_EQ(e->a(), expect_shift(c.fn, c.a, c.n)) << "fn " << c.fn << " a " << c.a << " n " << c.n;
-    ASSERT_EQ(clk, expect_shift_clocks(c.fn, c.n, true));
+    ASSERT_EQ(clk, expect_shift_clocks(c.fn, c.n, true, CFG::FAST_SHIFT));
     e->set_a(c.a);
-    ASSERT_EQ(e->step(io), expect_shift_clocks(c.fn, c.n, false));
+    ASSERT_EQ(e->step(io), expect_shift_clocks(c.fn, c.n, false, CFG::FAST_SHIFT));
     ASSERT_EQ(e->a(), expect_shift(c.fn, c.a, c.n));
   }
+}
+
+TEST(FrameEngineModel, ShiftsAtTheEdgesAndRandom) {
+  shifts_at_the_edges_and_random<eskin::hls::FrameEngineConfig>();
+}
+
+// The barrel shifter: the same results; `shl 15` in 2 clocks instead of 16,
+// `rnd 12` in 3 instead of 14, `rnd [m]` in 4.
+TEST(FrameEngineModel, FastShiftSameResultsInOneClock) {
+  shifts_at_the_edges_and_random<Fast>();
 }
 
 // ---------------------------------------------------------------------------

@@ -12,7 +12,8 @@ module frame_engine_tb #(
     parameter integer DW = 8,
     parameter integer KW = 4,
     parameter UCODE_HEX = "",
-    parameter [32*(1<<KW)-1:0] KROM_INIT = 512'he3779b90_454021d7_a708a81e_08d12e65_6a99b4ac_cc623af3_2e2ac13a_8ff34781_f1bbcdc8_5384540f_b54cda56_1715609d_78dde6e4_daa66d2b_3c6ef372_9e3779b9
+    parameter [32*(1<<KW)-1:0] KROM_INIT = 512'he3779b90_454021d7_a708a81e_08d12e65_6a99b4ac_cc623af3_2e2ac13a_8ff34781_f1bbcdc8_5384540f_b54cda56_1715609d_78dde6e4_daa66d2b_3c6ef372_9e3779b9,
+    parameter integer FAST_SHIFT = 0
 ) (
     input  wire        clk,
     input  wire        rst,
@@ -47,7 +48,8 @@ module frame_engine_tb #(
     output wire [IW-1:0] stk0,
     output wire [IW-1:0] stk1
 );
-  frame_engine #(.IW(IW), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX), .KROM_INIT(KROM_INIT)) u (
+  frame_engine #(.IW(IW), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX), .KROM_INIT(KROM_INIT),
+                 .FAST_SHIFT(FAST_SHIFT)) u (
       .clk(clk), .rst(rst), .io_raddr(io_raddr), .io_re(io_re), .io_waddr(io_waddr), .io_rdata(io_rdata),
       .io_we(io_we), .io_wdata(io_wdata), .events(events));
 

@@ -17,6 +17,22 @@ verilate(${exe} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v
   VERILATOR_ARGS -y ${CMAKE_SOURCE_DIR}/rtl -Wno-fatal --x-assign unique --x-initial unique -O3
     ${fe_dw14_params})
 
+# Third set: the barrel shifter (FAST_SHIFT 1; IW 10 for the directed
+# shift program, DW 8, KW 4 with the bench's KROM_INIT).
+set(fe_fast_params -GIW=10 -GFAST_SHIFT=1)
+verilate(${exe} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v
+  TOP_MODULE frame_engine_tb PREFIX Vframe_engine_tb_fast
+  VERILATOR_ARGS -y ${CMAKE_SOURCE_DIR}/rtl -Wall --x-assign unique --x-initial unique -O3
+    ${fe_fast_params})
+add_test(NAME lint.frame_engine_tb_fast
+  COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module frame_engine_tb
+    ${fe_fast_params} ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v)
+set_tests_properties(lint.frame_engine_tb_fast PROPERTIES LABELS lint)
+add_test(NAME lint.frame_engine_rejects_fast_shift2
+  COMMAND verilator --lint-only -Wall -GFAST_SHIFT=2 ${CMAKE_SOURCE_DIR}/rtl/frame_engine.v)
+set_tests_properties(lint.frame_engine_rejects_fast_shift2 PROPERTIES LABELS lint
+  PASS_REGULAR_EXPRESSION "frame_engine_parameter_FAST_SHIFT_must_be_0_or_1")
+
 # Lint (every warning fatal) at every set built here: the bench's defaults
 # (IW 9, DW 8, KW 4 with its KROM_INIT), the DW=14 set, and the place-and-
 # route wrapper's (IW 10, DW 14, KW 8).

@@ -14,7 +14,9 @@
 // Parameter sets: tests/rtl/frame_engine_tb.v's defaults (IW 9, DW 8: EBR
 // DMEM, KW 4 with a KROM_INIT pattern) and frame_engine_test.cmake's
 // Vframe_engine_tb_dw14 (IW 10, DW 14: the SPRAM DMEM, KW 8, IMEM from
-// $readmemh of the self-test program).
+// $readmemh of the self-test program), and Vframe_engine_tb_fast (IW 10,
+// DW 8, KW 4 with the barrel shifter, FAST_SHIFT 1: the model's
+// FAST_SHIFT timing, shl/shr in one B clock and rnd in two).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,6 +31,7 @@
 
 #include "Vframe_engine_tb.h"
 #include "Vframe_engine_tb_dw14.h"
+#include "Vframe_engine_tb_fast.h"
 #include "clocked_dut.h"
 #include "hls/frame_engine.h"
 #include "hls/frame_engine_asm.h"
@@ -41,9 +44,15 @@ using eskin::hls::FrameEngine;
 
 struct SetEbr {  // frame_engine_tb.v defaults
   static constexpr int IW = 9, DW = 8, KW = 4;
+  static constexpr bool FAST_SHIFT = false;
 };
 struct SetSpram {  // Vframe_engine_tb_dw14
   static constexpr int IW = 10, DW = 14, KW = 8;
+  static constexpr bool FAST_SHIFT = false;
+};
+struct SetFast {  // Vframe_engine_tb_fast: the barrel shifter
+  static constexpr int IW = 10, DW = 8, KW = 4;
+  static constexpr bool FAST_SHIFT = true;
 };
 // KROM_INIT of frame_engine_tb.v: word k = 0x9e3779b9 (k + 1) mod 2^32.
 const uint32_t kKromInit[16] = {0x9e3779b9u, 0x3c6ef372u, 0xdaa66d2bu, 0x78dde6e4u,
@@ -295,11 +304,11 @@ TEST(FrameEngineRtl, DirectedFieldsOfKromInit) {
 }
 
 // Shifts and square roots at the edges: counts 0, 1, 15, 47, 48, 63 from
-// immediates and from DMEM, on A = +-2^22 and the 48-bit extremes.
-TEST(FrameEngineRtl, DirectedShiftsAndRootsAtTheEdges) {
+// immediates and from DMEM (and 5), on A = +-2^22 and the 48-bit extremes.
+std::string shifts_and_roots_program() {
   std::string src;
   const char* values[] = {"1", "-1", "0x1FFFFFF", "-0x2000000"};
-  const int counts[] = {0, 1, 15, 47, 48, 63};
+  const int counts[] = {0, 1, 5, 15, 47, 48, 63};
   int slot = 0;
   for (const char* v : values)
     for (int n : counts)
@@ -316,14 +325,27 @@ TEST(FrameEngineRtl, DirectedShiftsAndRootsAtTheEdges) {
     src += std::string("        ld ") + v + "\n        shl 22\n        add 0x3FFFFF\n        sqrt\n";
   }
   src += "        ld -1\n        shr 1\n        sqrt\n        sqrtr\nhalt:   j halt\n";
-  const auto p = assemble(src);
+  return src;
+}
+
+template <class V, class CFG>
+void shifts_and_roots_at_the_edges() {
+  const auto p = assemble(shifts_and_roots_program());
   ASSERT_LE(p.words.size(), 1024u);
-  Lockstep<Vframe_engine_tb_dw14, SetSpram> ls(3);
+  Lockstep<V, CFG> ls(3);
   ls.load_program(p.words);
   ls.clear_dmem();
   ls.reset();
   const uint32_t halt = uint32_t(p.symbols.at("halt"));
   EXPECT_EQ(ls.run_until(halt, 5000), halt);
+}
+
+TEST(FrameEngineRtl, DirectedShiftsAndRootsAtTheEdges) {
+  shifts_and_roots_at_the_edges<Vframe_engine_tb_dw14, SetSpram>();
+}
+
+TEST(FrameEngineRtl, FastShiftDirectedShiftsAndRootsAtTheEdges) {
+  shifts_and_roots_at_the_edges<Vframe_engine_tb_fast, SetFast>();
 }
 
 // The self-test program, loaded into the RTL by $readmemh (UCODE_HEX) and
@@ -354,6 +376,12 @@ TEST(FrameEngineRtl, RandomProgramsEbrDmem) {
 
 TEST(FrameEngineRtl, RandomProgramsSpramDmem) {
   random_lockstep<Vframe_engine_tb_dw14, SetSpram>(200, 12, 50000);
+}
+
+// Random programs are about 3/64 shifts of random counts: the barrel
+// shifter's every count against the model's result and clocks.
+TEST(FrameEngineRtl, FastShiftRandomPrograms) {
+  random_lockstep<Vframe_engine_tb_fast, SetFast>(300, 16, 50000);
 }
 
 }  // namespace
