@@ -25,6 +25,10 @@ struct Board {
   std::string logic_resource;  // nextpnr's logic cell: ICESTORM_LC, TRELLIS_COMB
   std::string hall_wrapper;    // rtl/<hall_wrapper>.v: hall_top or mixed_top
   bool hall_osc_clock = false; // the Hall wrapper can run on the oscillator itself (PLL = 0)
+  // The frame engine's barrel shifter (DtmfTopSpec::engine_fast_shift): on
+  // where its ~600 LUT4 are cheap (the ECP5s), off on the UP5K, whose
+  // default scene keeps its 18 MHz clock either way.
+  bool engine_fast_shift = false;
 };
 
 // "icebreaker" or "ulx3s"; device_override ("25k", "85k"; empty: the

@@ -76,7 +76,9 @@ std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text) {
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
                             long clk_hz) {
   CoreClock c;
-  c.plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene));
+  hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
+  spec.engine_fast_shift = b.engine_fast_shift;  // before the load: it sets the engine's clocks
+  c.plan = hls::make_dtmf_top_plan(spec);
   // The scene's samples as the top takes them: 12-bit codes minus 2048.
   std::vector<int32_t> x;
   sim::WorldModel world(scene);

@@ -29,6 +29,7 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
   nlohmann::json cases = nlohmann::json::object();
   for (const auto& [name, clocks] : r.load.cases) cases[name] = clocks;
   j["engine"] = {{"policy", r.policy == LoadPolicy::Stress ? "stress" : "scene"},
+                 {"fast_shift", r.spec.engine_fast_shift},
                  {"required_clocks", r.engine_clocks},
                  {"scene_longest_frame_clocks", r.load.scene_clocks},
                  {"scene_frames", r.load.scene_frames},
@@ -59,14 +60,15 @@ std::string dtmf_table(const FlowReport& r) {
   std::string t = fmt::format(
       "skin {}x{}, {} carriers, window {}, {:g} S/s, step {}\n"
       "clock {} MHz (the skin's core needs at least {} MHz), UART {:g} Mbaud\n"
-      "frame engine, clocks of the {} a frame has (STEP x {} per sample):\n"
+      "frame engine ({} shifter), clocks of the {} a frame has (STEP x {} per sample):\n"
       "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
       "  stress longest frame  {:>9} ({:.0f} %, {})\n"
       "  + longest command     {:>9} ({:.0f} %, {})\n"
       "  the clock carries the {}\n",
       r.spec.rows, r.spec.cols, r.spec.rows + r.spec.cols, r.spec.window, r.spec.sample_hz,
       r.step, mhz(double(r.spec.clk_hz)), mhz(double(r.core_min_hz)),
-      double(r.spec.baud) / 1e6, r.budget.frame_clocks, r.budget.period, r.load.scene_clocks,
+      double(r.spec.baud) / 1e6, r.spec.engine_fast_shift ? "barrel" : "bit-serial",
+      r.budget.frame_clocks, r.budget.period, r.load.scene_clocks,
       100.0 * double(r.load.scene_clocks) / frame, r.load.scene_frames, r.load.stress_clocks,
       100.0 * double(r.load.stress_clocks) / frame, r.load.stress_case, r.load.stress_total(),
       100.0 * double(r.load.stress_total()) / frame, r.load.command_case,

@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "hls/dtmf_engine_config.h"
 #include "hls/dtmf_top_config.h"
 #include "host/fpga/board.h"
 #include "host/fpga/flow.h"
@@ -207,6 +208,35 @@ TEST(ScaleTable, CsvRoundTripAndFitHint) {
   EXPECT_EQ(merged[1].rows, 8);
   const std::string md = scale_markdown(rows);
   EXPECT_NE(md.find("| up5k | 35 kS/s | 2x2 |"), std::string::npos) << md;
+}
+
+}  // namespace
+
+namespace {
+
+// The engine's barrel shifter is the ECP5 board's, not the UP5K's (whose
+// LCs are scarce). Bound: the same 6x6 35 kS/s skin under the same stress
+// signals needs fewer engine clocks with it (every shift of n > 1 bits
+// saves n - 1 clocks and nothing gets slower), so its minimum core clock is
+// lower; the 6x6 skin, whose bit-serial engine needs about 40 000 clocks a
+// millisecond, must then be carried by the ULX3S at 45 MHz or less (its
+// Fmax is about 43 MHz: docs/scale_table.csv) — at most 34 000 clocks.
+TEST(CoreClock, Ulx3sEngineHasTheBarrelShifterIcebreakerNot) {
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const auto sc = scale_scene(base, 6, 35000.0);
+  const CoreClock ice = choose_core_clock(find_board("icebreaker"), sc, LoadPolicy::Stress);
+  const CoreClock ecp = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress);
+  EXPECT_FALSE(ice.plan.spec.engine_fast_shift);
+  EXPECT_TRUE(ecp.plan.spec.engine_fast_shift);
+  std::printf("6x6 at 35 kS/s, engine clocks per frame (stress + command): bit-serial %ld, "
+              "barrel %ld; minimum clocks %.1f / %.1f MHz\n",
+              ice.engine_clocks, ecp.engine_clocks, ice.core_min_hz / 1e6, ecp.core_min_hz / 1e6);
+  EXPECT_LT(ecp.engine_clocks, ice.engine_clocks);
+  EXPECT_LE(ecp.engine_clocks, 34000);
+  EXPECT_LT(ecp.core_min_hz, ice.core_min_hz);
+  EXPECT_EQ(param(eskin::hls::dtmf_top_params(ecp.plan, eskin::hls::dtmf_engine_image(ecp.plan), "", ""),
+                  "ENGINE_FAST_SHIFT"),
+            "1");
 }
 
 }  // namespace

@@ -6,7 +6,10 @@
 #  default: scenes/neuroskin2.yaml at 18 MHz (the iCE40 UP5K build: 12 MHz
 #           oscillator x 3/2 by the PLL);
 #  s10:     scenes/staggered10x10.yaml at 96 MHz (100 taxels, two neuron
-#           layers each: the engine needs ~80 000 clocks per 1 ms frame).
+#           layers each: the engine needs ~80 000 clocks per 1 ms frame);
+#  s10fast: the same scene at 72 MHz with the engine's barrel shifter
+#           (ENGINE_FAST_SHIFT, the ECP5 builds'): ~66 000 clocks a frame,
+#           where the bit-serial engine's ~90 000 would not fit 72 000.
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
 set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
@@ -16,9 +19,17 @@ set(eskin_default_args ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucod
 eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10}
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10.krom.hex\")
+set(dtmf_s10fast ${dtmf_s10})
+list(TRANSFORM dtmf_s10fast REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=72000000")
+list(TRANSFORM dtmf_s10fast REPLACE "^-GENGINE_FAST_SHIFT=.*" "-GENGINE_FAST_SHIFT=1")
+eskin_verilate(${exe} Vdtmf_top_s10fast ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10fast}
+  -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_fast.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/staggered10x10_fast.krom.hex\")
 string(JOIN " " dtmf_default_str ${dtmf_default})
 string(JOIN " " dtmf_s10_str ${dtmf_s10})
+string(JOIN " " dtmf_s10fast_str ${dtmf_s10fast})
 target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=${ESKIN_DTMF_TOP_CLK_HZ}
-  DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000)
-target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode)
+  DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000
+  DTMF_TOP_S10FAST_PARAMS="${dtmf_s10fast_str}" DTMF_TOP_S10FAST_CLK_HZ=72000000)
+target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode eskin_fpga)

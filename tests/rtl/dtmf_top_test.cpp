@@ -25,10 +25,13 @@
 #include "Vdtmf_top___024root.h"
 #include "Vdtmf_top_s10.h"
 #include "Vdtmf_top_s10___024root.h"
+#include "Vdtmf_top_s10fast.h"
+#include "Vdtmf_top_s10fast___024root.h"
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_top_config.h"
 #include "hls/dtmf_ucode.h"
+#include "host/fpga/engine_load.h"
 #include "host/golden/decode_score.h"
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
@@ -45,10 +48,13 @@ using eskin::link::Packet;
 struct Build {
   std::string scene, name, params;
   long clk_hz;
+  bool fast_shift = false;  // the engine's barrel shifter (ENGINE_FAST_SHIFT)
 };
 const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ};
 const Build kS10{"scenes/staggered10x10.yaml", "staggered10x10", DTMF_TOP_S10_PARAMS,
                  DTMF_TOP_S10_CLK_HZ};
+const Build kS10Fast{"scenes/staggered10x10.yaml", "staggered10x10_fast", DTMF_TOP_S10FAST_PARAMS,
+                     DTMF_TOP_S10FAST_CLK_HZ, true};
 
 struct BuildSetup {
   eskin::sim::Scene scene;
@@ -63,7 +69,9 @@ struct BuildSetup {
 BuildSetup prepare(const Build& b) {
   BuildSetup s;
   s.scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/" + b.scene);
-  s.plan = eskin::hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(s.scene, b.clk_hz));
+  eskin::hls::DtmfTopSpec spec = eskin::sim::dtmf_top_spec(s.scene, b.clk_hz);
+  spec.engine_fast_shift = b.fast_shift;
+  s.plan = eskin::hls::make_dtmf_top_plan(spec);
   std::filesystem::create_directories(DTMF_TOP_DIR);
   const auto params = eskin::hls::write_dtmf_top_build(s.plan, DTMF_TOP_DIR, b.name);
   std::map<std::string, std::string> built;
@@ -386,6 +394,30 @@ TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
 
 TEST(DtmfTop, Staggered10x10MatchesTheChainAndTheTruth) {
   scene_test<Vdtmf_top_s10, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10);
+}
+
+// The barrel shifter (the ECP5 builds' engine): the same packets, and a
+// clock the bit-serial engine could not keep up with. Bound: the scene's
+// longest frame, measured on the instruction-set model for each engine,
+// must exceed a frame's clocks at 72 MHz (STEP x 1029) without the shifter
+// and fit with it; then the Verilated top runs the scene with no frame
+// overrun and every packet equal to the chain's (scene_test).
+TEST(DtmfTop, Staggered10x10At72MHzWithTheBarrelShifter) {
+  const BuildSetup s = prepare(kS10Fast);
+  std::vector<int32_t> x;
+  for (uint16_t c : s.codes12) x.push_back(int32_t(c) - 2048);
+  auto slow = s.plan;
+  slow.spec.engine_fast_shift = false;
+  const long frame = long(s.plan.step) * std::lround(double(kS10Fast.clk_hz) / s.plan.spec.sample_hz);
+  const auto fast_load = eskin::fpga::measure_engine_load(s.plan, x);
+  const auto slow_load = eskin::fpga::measure_engine_load(slow, x);
+  std::printf("staggered10x10, longest scene frame: %llu clocks bit-serial, %llu with the barrel "
+              "shifter; a frame at 72 MHz has %ld\n",
+              (unsigned long long)slow_load.scene_clocks, (unsigned long long)fast_load.scene_clocks,
+              frame);
+  EXPECT_GT(long(slow_load.scene_clocks), frame);
+  EXPECT_LT(long(fast_load.scene_clocks), frame);
+  scene_test<Vdtmf_top_s10fast, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Fast);
 }
 
 }  // namespace
