@@ -18,11 +18,33 @@ const std::string& dtmf_ucode_source() {
   return s;
 }
 
-std::vector<uint32_t> dtmf_ucode_words(const EngineImage& image) {
+namespace {
+fe_asm::Program assemble_for(const EngineImage& image) {
   fe_asm::Options o;
   for (const auto& [name, value] : image.symbols) o.symbols[name] = value;
   o.imem_words = kDtmfImemWords;
-  return fe_asm::assemble(dtmf_ucode_source(), "rtl/ucode/dtmf_chain.fe", o).words;
+  return fe_asm::assemble(dtmf_ucode_source(), "rtl/ucode/dtmf_chain.fe", o);
+}
+}  // namespace
+
+std::vector<uint32_t> dtmf_ucode_words(const EngineImage& image) {
+  return assemble_for(image).words;
+}
+
+std::vector<std::string> dtmf_ucode_routines(const EngineImage& image) {
+  const fe_asm::Program prog = assemble_for(image);
+  std::vector<std::string> routine(prog.words.size(), "?");
+  std::string current = "?";
+  for (const auto& l : prog.listing) {
+    // "; ====...==== NAME ==": the name is the last word before the closing "==".
+    const std::string& t = l.text;
+    if (t.rfind("; ====", 0) == 0 && t.size() > 3 && t.compare(t.size() - 3, 3, " ==") == 0) {
+      const size_t end = t.size() - 3, begin = t.rfind(' ', end - 1) + 1;
+      current = t.substr(begin, end - begin);
+    }
+    if (l.has_word && l.addr < routine.size()) routine[l.addr] = current;
+  }
+  return routine;
 }
 
 std::vector<VerilogParam> write_dtmf_top_build(const DtmfTopPlan& plan, const std::string& dir,

@@ -20,6 +20,12 @@ const std::string& dtmf_ucode_source();
 // line on an error (e.g. a program larger than kDtmfImemWords).
 std::vector<uint32_t> dtmf_ucode_words(const EngineImage& image);
 
+// The routine each microcode word belongs to: the program's sections, each
+// opened by a `; ==== NAME ==` line and named after the HLS kernel it
+// implements (carrier_demix, izhikevich_layer, ...) or its part of the
+// program (boot, main, packets, commands). Index = IMEM address.
+std::vector<std::string> dtmf_ucode_routines(const EngineImage& image);
+
 // The files a build of the top needs, written into `dir` as
 // NAME.ucode.hex and NAME.krom.hex; returns dtmf_top's parameters (paths
 // absolute when `dir` is). Throws std::runtime_error naming a file it could

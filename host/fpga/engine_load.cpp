@@ -6,6 +6,7 @@
 #include <cmath>
 #include <deque>
 #include <functional>
+#include <map>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -102,8 +103,9 @@ class LoadRun {
 
   // The frame whose newest sample is t, from samples x[t - N + 1 .. t]
   // (sample 0 is the first after the carrier load: phase 0); its clocks
-  // from `pending` to the release.
-  uint64_t frame(const std::vector<int32_t>& x, uint32_t t) {
+  // from `pending` to the release. `pc_clocks` (IMEM words long), when
+  // given, gets each instruction's clocks added at its address.
+  uint64_t frame(const std::vector<int32_t>& x, uint32_t t, std::vector<uint64_t>* pc_clocks = nullptr) {
     for (int j = 0; j < p_.ks; ++j) {
       int64_t re = 0, im = 0;
       for (uint32_t m = t + 1 - uint32_t(p_.N); m != t + 1; ++m) {
@@ -117,7 +119,15 @@ class LoadRun {
     io_.pending = true;
     io_.done = false;
     const uint64_t start = eng_->clocks();
-    run_until(limit_, [&] { return io_.done; }, "the end of a frame");
+    uint64_t at = start;
+    uint32_t pc = eng_->pc();
+    run_until(limit_, [&] {
+      if (pc_clocks) {  // called before each instruction: the last one is done
+        (*pc_clocks)[pc] += eng_->clocks() - at;
+        at = eng_->clocks(), pc = eng_->pc();
+      }
+      return io_.done;
+    }, "the end of a frame");
     run_until(limit_, [&] { return at_wait(); }, "its wait after a frame");
     park();
     return io_.done_clock - start;
@@ -199,6 +209,8 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
   std::uniform_real_distribution<double> uni(0, 1.3);
   std::bernoulli_distribution coin(0.5);
   const int frames = std::max({64, 3 * p.lookback, 3 * int(p.decim_tax) + 2, 3 * int(p.decim_amp) + 2});
+  // Clocks per instruction address of the longest stress frame.
+  std::vector<uint64_t> pcs(hls::kDtmfImemWords), worst_pcs;
   using Levels = std::function<void(int, std::vector<double>&)>;
   const std::vector<std::pair<const char*, Levels>> signals = {
       {"random levels", [&](int, auto& l) { for (auto& v : l) v = uni(rng); }},
@@ -221,7 +233,10 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
                std::cos(2 * M_PI * std::fmod(p.spec.carrier_hz[size_t(k)] / p.spec.sample_hz * m, 1.0) + 0.7 * k);
         x.push_back(int32_t(std::clamp(std::round(v), -2048.0, 2047.0)));
       }
-      worst = std::max(worst, run.frame(x, t));
+      std::fill(pcs.begin(), pcs.end(), 0);
+      const uint64_t clocks = run.frame(x, t, &pcs);
+      if (clocks > std::max(worst, load.stress_clocks)) worst_pcs = pcs;
+      worst = std::max(worst, clocks);
     }
     load.cases.emplace_back(name, worst);
     if (worst > load.stress_clocks) load.stress_clocks = worst, load.stress_case = name;
@@ -254,6 +269,14 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
     load.cases.emplace_back(name, clocks);
     if (clocks > load.command_clocks) load.command_clocks = clocks, load.command_case = name;
   }
+  // The longest stress frame by routine, most clocks first.
+  const std::vector<std::string> routine = hls::dtmf_ucode_routines(hls::dtmf_engine_image(p));
+  std::map<std::string, uint64_t> by;
+  for (size_t a = 0; a < worst_pcs.size() && a < routine.size(); ++a)
+    if (worst_pcs[a]) by[routine[a]] += worst_pcs[a];
+  for (const auto& r : by) load.stress_routines.push_back(r);
+  std::stable_sort(load.stress_routines.begin(), load.stress_routines.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
   return load;
 }
 

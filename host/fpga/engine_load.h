@@ -41,6 +41,10 @@ struct EngineLoad {
   int stress_frames = 0;
   // Each stress signal's longest frame, then each command's clocks.
   std::vector<std::pair<std::string, uint64_t>> cases;
+  // The longest stress frame's clocks by microcode routine (named after
+  // the HLS kernels: hls::dtmf_ucode_routines), most first; they add up to
+  // stress_clocks (the last instruction's tail past the release aside).
+  std::vector<std::pair<std::string, uint64_t>> stress_routines;
   uint64_t stress_total() const { return stress_clocks + command_clocks; }
 };
 

@@ -28,6 +28,9 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
   j["clock"]["core_min_hz"] = r.core_min_hz;
   nlohmann::json cases = nlohmann::json::object();
   for (const auto& [name, clocks] : r.load.cases) cases[name] = clocks;
+  nlohmann::json routines = nlohmann::json::array();
+  for (const auto& [name, clocks] : r.load.stress_routines)
+    routines.push_back({{"routine", name}, {"clocks", clocks}});
   j["engine"] = {{"policy", r.policy == LoadPolicy::Stress ? "stress" : "scene"},
                  {"fast_shift", r.spec.engine_fast_shift},
                  {"required_clocks", r.engine_clocks},
@@ -38,7 +41,8 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
                  {"stress_frames", r.load.stress_frames},
                  {"longest_command_clocks", r.load.command_clocks},
                  {"longest_command", r.load.command_case},
-                 {"cases", cases}};
+                 {"cases", cases},
+                 {"stress_longest_frame_by_routine", routines}};
 }
 
 void hall_json(const FlowReport& r, nlohmann::json& j) {
@@ -75,6 +79,13 @@ std::string dtmf_table(const FlowReport& r) {
       r.policy == LoadPolicy::Scene && r.load.scene_frames > 0
           ? "scene's frames (--engine-load scene)"
           : "stress frames and a command (--engine-load stress)");
+  if (!r.load.stress_routines.empty()) {
+    t += "  the longest stress frame by routine:";
+    for (const auto& [name, clocks] : r.load.stress_routines)
+      if (clocks * 100 >= r.load.stress_clocks)  // 1 % and more
+        t += fmt::format(" {} {:.0f} %,", name, 100.0 * double(clocks) / double(r.load.stress_clocks));
+    t.back() = '\n';
+  }
   for (const auto& w : flow_warnings(r)) t += "warning: " + w + "\n";
   return t;
 }

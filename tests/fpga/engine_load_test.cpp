@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <set>
 #include <string>
 
 #include "hls/dtmf_chain.h"
@@ -132,6 +133,36 @@ TEST(EngineLoad, RefusesASkinBeyondTheEnginesMemory) {
     EXPECT_NE(std::string(e.what()).find("a 56x56 skin needs"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("at most 32768"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The longest stress frame by routine: every clock of it in exactly one
+// routine of the program, so the routines add up to the frame: the frame
+// ends at the FRAME_DONE write, in the first of the `out`'s two clocks, the
+// profile at the end of that instruction, one clock later. Every name is a
+// section of rtl/ucode/dtmf_chain.fe. On a 6x6 skin (72 neurons, two
+// layers) the neurons' update is the largest share, as the instruction
+// counts say (about 80 instructions per neuron, ~20 per taxel elsewhere).
+TEST(EngineLoad, LongestStressFrameByRoutine) {
+  const auto base = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const auto plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(fpga::scale_scene(base, 6, 35000.0)));
+  const fpga::EngineLoad load = fpga::measure_engine_load(plan, {});
+  uint64_t sum = 0;
+  const std::set<std::string> sections = {"boot", "main", "carrier_demix", "carrier_magnitude",
+                                          "taxel_reconstruct", "ghost_filter", "neurons",
+                                          "izhikevich_layer", "synapse_weights", "spike_encoder",
+                                          "packets", "status", "commands"};
+  for (const auto& [name, clocks] : load.stress_routines) {
+    std::printf("  %-20s %7llu clocks\n", name.c_str(), (unsigned long long)clocks);
+    EXPECT_TRUE(sections.count(name)) << name;
+    sum += clocks;
+  }
+  EXPECT_EQ(sum, load.stress_clocks + 1);
+  ASSERT_FALSE(load.stress_routines.empty());
+  EXPECT_EQ(load.stress_routines.front().first, "izhikevich_layer");
 }
 
 }  // namespace
