@@ -49,6 +49,7 @@ struct BitstreamArgs {
   double clk_mhz = 0;
   std::string engine_load = "scene";
   bool engine_load_given = false;  // a Hall-only scene has no engine to load
+  std::string engine_shifter;      // "serial", "barrel"; empty: the board's
   bool scale_table = false;
   eskin::fpga::ScaleSelection scale;  // --targets, --rates, --sizes
 };
@@ -114,6 +115,9 @@ int run_bitstream(const BitstreamArgs& a) {
   if (a.engine_load_given && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
     throw std::invalid_argument("--engine-load: " + scene_path +
                                 " has no skin, so no frame engine to load");
+  if (!a.engine_shifter.empty() && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
+    throw std::invalid_argument("--engine-shifter: " + scene_path +
+                                " has no skin, so no frame engine to build");
   eskin::fpga::FlowOptions opt;
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/" + board.name : a.out;
@@ -121,6 +125,7 @@ int run_bitstream(const BitstreamArgs& a) {
   opt.clk_hz = std::lround(a.clk_mhz * 1e6);
   opt.load = a.engine_load == "stress" ? eskin::fpga::LoadPolicy::Stress
                                        : eskin::fpga::LoadPolicy::Scene;
+  opt.fast_shift = a.engine_shifter.empty() ? -1 : a.engine_shifter == "barrel" ? 1 : 0;
   // A clock the board cannot make is named before anything runs.
   if (opt.clk_hz > 0 && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
     eskin::fpga::choose_hall_clock(board, opt.clk_hz);
@@ -176,6 +181,11 @@ std::function<int()> setup_bitstream(CLI::App& app) {
       ->check(CLI::IsMember({"scene", "stress"}))
       ->capture_default_str()
       ->each([args](const std::string&) { args->engine_load_given = true; });
+  sub->add_option("--engine-shifter", args->engine_shifter,
+                  "The frame engine's shifter: serial (one bit per clock, the smallest) or "
+                  "barrel (any shift in one clock: fewer engine clocks a frame, ~600 LUT4 "
+                  "more); default: the board's (icebreaker serial, ulx3s barrel)")
+      ->check(CLI::IsMember({"serial", "barrel"}));
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");
   sub->add_option("--sizes", args->scale.sizes,

@@ -74,10 +74,11 @@ std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text) {
 }
 
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
-                            long clk_hz) {
+                            long clk_hz, int fast_shift) {
   CoreClock c;
   hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
-  spec.engine_fast_shift = b.engine_fast_shift;  // before the load: it sets the engine's clocks
+  // Before the load: the shifter sets the engine's clocks.
+  spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
   c.plan = hls::make_dtmf_top_plan(spec);
   // The scene's samples as the top takes them: 12-bit codes minus 2048.
   std::vector<int32_t> x;
@@ -105,7 +106,7 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
 
 bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
                     FlowReport& r, Clocking& clk, std::vector<hls::VerilogParam>& params) {
-  CoreClock cc = choose_core_clock(b, scene, opt.load, opt.clk_hz);
+  CoreClock cc = choose_core_clock(b, scene, opt.load, opt.clk_hz, opt.fast_shift);
   const hls::DtmfTopPlan& plan = cc.plan;
   clk = cc.clocking;
   r.step = plan.step;

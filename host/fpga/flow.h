@@ -35,6 +35,7 @@ struct FlowOptions {
   LoadPolicy load = LoadPolicy::Scene;
   long clk_hz = 0;         // 0: the slowest board clock (not below the board's
                            // default) at which the core keeps up
+  int fast_shift = -1;     // the engine's barrel shifter: 1 on, 0 off, -1 the board's
 };
 
 struct Resource {
@@ -102,8 +103,10 @@ struct CoreClock {
   Clocking clocking;
   hls::DtmfTopClockBudget budget;
 };
+// fast_shift: the engine's barrel shifter, 1 on, 0 off, -1 the board's
+// (Board::engine_fast_shift).
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
-                            long clk_hz = 0);
+                            long clk_hz = 0, int fast_shift = -1);
 
 // Builds the scene's core (scene_core) on board `b`: for a skin the plan,
 // the engine's load (engine_load.h), the clock, the microcode and constant

@@ -81,6 +81,39 @@ TEST(BitstreamCli, ClockTooSlowForTheSampleRateFailsBeforeTheTools) {
   EXPECT_NE(json.find("\"core_min_hz\": 44000000"), std::string::npos) << json;
 }
 
+// --engine-shifter reaches the plan (the report's engine.fast_shift), and
+// without it the board decides: the ULX3S's engine has the barrel shifter,
+// the iCEBreaker's not. The 1 MS/s scene fails its clock budget at these
+// clocks, so the report is written before any tool runs.
+TEST(BitstreamCli, EngineShifterIsTheUsersOrTheBoards) {
+  const fs::path d = tmpdir();
+  const std::string scene = one_msps_scene(d).string();
+  struct Case { std::string args; const char* want; };
+  const Case cases[] = {
+      {"--board icebreaker --clk-mhz 18", "\"fast_shift\": false"},
+      {"--board icebreaker --clk-mhz 18 --engine-shifter barrel", "\"fast_shift\": true"},
+      {"--board ulx3s --clk-mhz 30", "\"fast_shift\": true"},
+      {"--board ulx3s --clk-mhz 30 --engine-shifter serial", "\"fast_shift\": false"},
+  };
+  int i = 0;
+  for (const auto& c : cases) {
+    const fs::path out = d / ("out" + std::to_string(i++));
+    const Result r = sh(c.args + " --scene " + scene + " --out " + out.string());
+    EXPECT_EQ(r.status, 1) << c.args << "\n" << r.out;
+    EXPECT_FALSE(fs::exists(out / "yosys.log")) << c.args;
+    const std::string json = slurp(out / "bitstream_report.json");
+    EXPECT_NE(json.find(c.want), std::string::npos) << c.args << "\n" << json;
+  }
+  Result r = sh("--board ulx3s --engine-shifter fast");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--engine-shifter"), std::string::npos) << r.out;
+  r = sh("--board icebreaker --engine-shifter barrel --scene " ESKIN_SOURCE_DIR
+         "/scenes/hall_002_magtac.yaml");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--engine-shifter: " ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml has no "
+                       "skin, so no frame engine to build"), std::string::npos) << r.out;
+}
+
 TEST(BitstreamCli, MissingEcp5ToolsNameTheBootstrapStep) {
   const fs::path d = tmpdir();
   const Result r = sh("ESKIN_VENV", "/nonexistent/venv", "--board ulx3s --out " + (d / "out").string());
