@@ -259,6 +259,7 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
           {"DW", i(std::max(4, clog2(im.dend)))},
           {"KW", i(std::max(1, clog2(long(im.krom.size()))))},
           {"OUT_DEPTH", i(p.out_depth)},
+          {"SDFT_LANES", i(p.spec.sdft_lanes)},
           {"UCODE_HEX", "\"" + ucode_hex + "\""},
           {"KROM_HEX", "\"" + krom_hex + "\""}};
 }

@@ -41,14 +41,17 @@ namespace {
 using namespace dtmf_bench;
 using eskin::link::Packet;
 
-// One Verilated build: its scene, clock and the -G parameters CMake gave it.
+// One Verilated build: its scene, clock, DFT lanes and the -G parameters
+// CMake gave it. The 10x10 build runs its DFT in 3 lanes (rtl/sdft_lanes.v:
+// the merged token stream into frame_capture), the default in one.
 struct Build {
   std::string scene, name, params;
   long clk_hz;
+  int sdft_lanes;
 };
-const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ};
+const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ, 1};
 const Build kS10{"scenes/staggered10x10.yaml", "staggered10x10", DTMF_TOP_S10_PARAMS,
-                 DTMF_TOP_S10_CLK_HZ};
+                 DTMF_TOP_S10_CLK_HZ, 3};
 
 struct BuildSetup {
   eskin::sim::Scene scene;
@@ -63,7 +66,9 @@ struct BuildSetup {
 BuildSetup prepare(const Build& b) {
   BuildSetup s;
   s.scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/" + b.scene);
-  s.plan = eskin::hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(s.scene, b.clk_hz));
+  auto spec = eskin::sim::dtmf_top_spec(s.scene, b.clk_hz);
+  spec.sdft_lanes = b.sdft_lanes;
+  s.plan = eskin::hls::make_dtmf_top_plan(spec);
   std::filesystem::create_directories(DTMF_TOP_DIR);
   const auto params = eskin::hls::write_dtmf_top_build(s.plan, DTMF_TOP_DIR, b.name);
   std::map<std::string, std::string> built;
