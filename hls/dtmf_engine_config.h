@@ -260,6 +260,7 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
           {"KW", i(std::max(1, clog2(long(im.krom.size()))))},
           {"OUT_DEPTH", i(p.out_depth)},
           {"ENGINE_FAST_SHIFT", i(p.spec.engine_fast_shift ? 1 : 0)},
+          {"SDFT_LANES", i(p.spec.sdft_lanes)},
           {"UCODE_HEX", "\"" + ucode_hex + "\""},
           {"KROM_HEX", "\"" + krom_hex + "\""}};
 }

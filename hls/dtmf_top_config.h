@@ -57,6 +57,9 @@ struct DtmfTopSpec {
   // same packets in fewer clocks, for about 600 LUT4 more; the flow turns it
   // on for boards with room (host/fpga/board.h).
   bool engine_fast_shift = false;
+  // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS): the board flow
+  // picks them (host/fpga/flow.cpp choose_core_clock); 1 is sdft_bank.
+  int sdft_lanes = 1;
 };
 
 // A Verilog parameter override: value in Verilog syntax (e.g. "16'd35").
@@ -135,6 +138,11 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
     throw std::invalid_argument("decoder.window: expected 4..4096 samples, got " +
                                 std::to_string(s.window));
   p.acc_w = 12 + 1 + clog2(p.N);
+  const int ks = s.demix ? p.K + 1 : p.K;
+  if (s.sdft_lanes < 1 || s.sdft_lanes > std::min(16, ks))
+    throw std::invalid_argument("sdft_lanes: expected 1.." + std::to_string(std::min(16, ks)) +
+                                " (at most 16, at most the " + std::to_string(ks) +
+                                " DFT channels), got " + std::to_string(s.sdft_lanes));
   p.mag_shift = clog2(p.N) > 5 ? clog2(p.N) - 5 : 0;
   p.step = int(std::lround(s.frame_ms * s.sample_hz / 1000.0));
   if (p.step < 1)
@@ -253,7 +261,10 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    <= 20 MHz at any clock); the AD7476A needs (period - 28 H) clocks >=
 //    250 ns of acquisition (tACQ) and (period - 31 H) clocks >= 86 ns of
 //    quiet time (t8 + tQUIET).
-//  - sdft_bank: the next sample is accepted 6 KS + 2 clocks after the last.
+//  - the DFT: the next sample is accepted sdft_clocks after the last:
+//    6 KS + 2 with one lane (sdft_bank), sdft_lanes_interval(KS, L, 2) with
+//    L >= 2 lanes (rtl/sdft_lanes.v; frame_capture takes a token every 2
+//    clocks, so 2 KS + 8 from 3 lanes on).
 //  - frame_engine: frame_capture loses a frame unless the engine has
 //    released the previous one when it is complete, so the engine's longest
 //    frame plus the longest command it may have started just before that
@@ -267,12 +278,19 @@ struct DtmfTopClockBudget {
   long clk_hz = 0;
   long period = 0;         // clocks per ADC sample
   long sclk_div = 0;       // H
-  long sdft_clocks = 0;    // 6 KS + 2
+  long sdft_clocks = 0;    // the DFT's II: dtmf_top_sdft_clocks()
   long frame_clocks = 0;   // STEP x period: the engine's time per frame
   long engine_clocks = 0;  // what the engine needs of it
   std::vector<std::string> problems;  // empty: the top keeps up
   bool ok() const { return problems.empty(); }
 };
+
+// Clocks from one sample's handshake into the DFT to the next (input always
+// valid) in rtl/dtmf_top.v: frame_capture, the consumer, needs 2 clocks per
+// token.
+inline long dtmf_top_sdft_clocks(int ks, int lanes) {
+  return long(sdft_lanes_interval(ks, lanes, 2));
+}
 
 inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_hz,
                                                 long engine_clocks) {
@@ -281,7 +299,8 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
   b.clk_hz = clk_hz;
   b.period = std::lround(double(clk_hz) / fs);
   b.sclk_div = (clk_hz + 39999999) / 40000000;
-  b.sdft_clocks = 6L * p.ks + 2;
+  const int lanes = p.spec.sdft_lanes;
+  b.sdft_clocks = dtmf_top_sdft_clocks(p.ks, lanes);
   b.frame_clocks = long(p.step) * b.period;
   b.engine_clocks = engine_clocks;
   auto at = [&] {
@@ -301,8 +320,11 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
     b.problems.push_back(s + at());
   }
   if (b.period < b.sdft_clocks)
-    b.problems.push_back("sdft_bank: needs 6 KS + 2 = " + n(b.sdft_clocks) +
-                         " clocks per sample, the sample period is " + n(b.period) + at());
+    b.problems.push_back((lanes == 1 ? std::string("sdft_bank: needs 6 KS + 2 = ")
+                                     : "sdft_lanes (" + n(lanes) + " lanes of KS = " + n(p.ks) +
+                                           " channels): needs ") +
+                         n(b.sdft_clocks) + " clocks per sample, the sample period is " +
+                         n(b.period) + at());
   if (engine_clocks > b.frame_clocks)
     b.problems.push_back("frame_engine: its longest frame and command take " + n(engine_clocks) +
                          " clocks, a frame is STEP x period = " + n(p.step) + " x " +
@@ -318,18 +340,26 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
   return b;
 }
 
-// The slowest clock the sdft_bank, the engine and the ADC's acquisition
-// time allow (each with SCLK_DIV = 1 at best). Only a lower bound: check a
-// clock with dtmf_top_clock_budget (the SCLK divider steps up at every
-// 40 MHz, and periods are rounded). 0 when the ADC cannot convert at the
-// sample rate at any clock.
-inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
+// The slowest clock the ADC's acquisition time and the engine allow (with
+// SCLK_DIV = 1 at best), the DFT aside: what its lanes must not exceed. 0
+// when the ADC cannot convert at the sample rate at any clock.
+inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_clocks) {
   const double fs = p.spec.sample_hz;
   const double room = 1.0 / fs - 250e-9;  // s per sample left after tACQ
   if (room <= 28.0 / 40e6) return 0;      // 28 H / clk >= 0.7 us at any clock
-  const double hz = std::max({28.0 / room, fs * double(6L * p.ks + 2),
-                              fs * double(engine_clocks) / double(p.step)});
-  return long(std::ceil(hz));
+  return long(std::ceil(std::max(28.0 / room, fs * double(engine_clocks) / double(p.step))));
+}
+
+// The slowest clock the DFT (at the spec's lanes), the engine and the ADC's
+// acquisition time allow. Only a lower bound: check a clock with
+// dtmf_top_clock_budget (the SCLK divider steps up at every 40 MHz, and
+// periods are rounded). 0 when the ADC cannot convert at the sample rate at
+// any clock.
+inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
+  const long other = dtmf_top_min_clock_hz_without_dft(p, engine_clocks);
+  if (other == 0) return 0;
+  const double dft = p.spec.sample_hz * double(dtmf_top_sdft_clocks(p.ks, p.spec.sdft_lanes));
+  return std::max(other, long(std::ceil(dft)));
 }
 
 // "-GNAME=VALUE" arguments for verilator.

@@ -2,8 +2,9 @@
 // dtmf_top: the FPGA top of the DTMF (spatial-frequency) skin path, the whole
 // decoding chain (docs/fpga.md):
 //
-//   AD7476A --SPI--> adc_ad7476 -> x = code - 2048 -> sdft_bank (KS channels:
-//   the carriers, + DC when demixing) -> frame_capture (every STEP-th sample
+//   AD7476A --SPI--> adc_ad7476 -> x = code - 2048 -> sdft_lanes (KS channels:
+//   the carriers, + DC when demixing; SDFT_LANES sdft_bank lanes, 1: sdft_bank
+//   itself) -> frame_capture (every STEP-th sample
 //   once the window is full; double-buffered) -> frame_engine, microcode
 //   rtl/ucode/dtmf_chain.fe: carrier_demix, carrier_magnitude,
 //   taxel_reconstruct, ghost_filter, izhikevich_layer x 2 (receptors, then the
@@ -23,8 +24,8 @@
 //
 // Sample format: the AD7476A gives 12-bit codes, x = code - 2048 (12 bits
 // signed). Timestamps: every frame carries t, the ADC sample counter of its
-// newest sample (latched when that sample enters sdft_bank).
-// Start-up: the engine writes the carrier table to sdft_bank; the first
+// newest sample (latched when that sample enters the DFT).
+// Start-up: the engine writes the carrier table to the DFT; the first
 // write with `last` enables the ADC, whose first conversion is sample t = 0.
 module dtmf_top #(
     parameter integer CLK_HZ = 18_000_000,
@@ -56,7 +57,12 @@ module dtmf_top #(
     // 1: a Hall top beside this one takes the commands 0x90-0x9F from the
     // same line (rtl/mixed_top.v): this top's decoder drops them, and keeps
     // every other type, so an unknown type is still rejected here, once.
-    parameter integer HALL_CMDS = 0
+    parameter integer HALL_CMDS = 0,
+    // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS): a sample takes
+    // 6 KS + 2 clocks with 1 lane, 10 + 2 (KS - 1) + max(0, 6 - 2 L)
+    // (ceil(KS / L) - 1) with L >= 2 (frame_capture writes a token in 2
+    // clocks; hls/sdft_bank.h's sdft_lanes_interval). 1 on the UP5K.
+    parameter integer SDFT_LANES = 1
 ) (
     input  wire clk,
     input  wire rst_n,       // active low (button); a power-on reset is built in
@@ -73,7 +79,8 @@ module dtmf_top #(
     if (KS < 1 || KS > 128 || N < 2 || ACC_W < 14 || ACC_W > 32 || STEP < 1 ||
         OUT_DEPTH < 512 || OUT_DEPTH > 32768 || (OUT_DEPTH & (OUT_DEPTH - 1)) != 0 ||
         (EXT_LINK != 0 && EXT_LINK != 1) || (HALL_CMDS != 0 && HALL_CMDS != 1) ||
-        (ENGINE_FAST_SHIFT != 0 && ENGINE_FAST_SHIFT != 1)) begin : g_bad_params
+        (ENGINE_FAST_SHIFT != 0 && ENGINE_FAST_SHIFT != 1) ||
+        SDFT_LANES < 1 || SDFT_LANES > 16 || SDFT_LANES > KS) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -97,7 +104,7 @@ module dtmf_top #(
   wire        wr_sdinc = io_we && io_waddr == 16'h0204;
   wire        wr_clear = io_we && io_waddr == 16'h0205;
 
-  // ---------------- carrier table writes to sdft_bank --------------------
+  // ---------------- carrier table writes to the DFT ---------------------
   reg [7:0]  cfg_k;
   reg        cfg_last, cfg_valid;
   reg [31:0] cfg_inc;
@@ -141,7 +148,8 @@ module dtmf_top #(
   wire sd_valid, sd_last, sd_ready;
   wire [7:0] sd_k;
   wire [ACC_W-1:0] sd_re, sd_im;
-  sdft_bank #(.K_MAX(KS), .N(N), .XW(12), .CW(16), .TW(10), .ACC_W(ACC_W), .K_W(8)) u_sdft (
+  sdft_lanes #(.K_MAX(KS), .N(N), .XW(12), .CW(16), .TW(10), .ACC_W(ACC_W), .K_W(8),
+               .LANES(SDFT_LANES)) u_sdft (
       .clk(clk), .rst(rst), .in_valid(adc_valid), .in_ready(sdft_in_ready), .in_x(x),
       .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k), .cfg_inc(cfg_inc),
       .cfg_last(cfg_last), .out_valid(sd_valid), .out_ready(sd_ready), .out_k(sd_k),

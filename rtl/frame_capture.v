@@ -18,7 +18,8 @@
 // (16-bit, saturating; cleared by `clear`). The engine reads rd_data one
 // clock after rd_addr (registered), and releases with `done`.
 // Each token is written in two clocks (re, then im): tok_ready is low in the
-// second; sdft_bank emits at most one token per 6 clocks.
+// second; sdft_bank emits at most one token per 6 clocks (sdft_lanes with
+// 3 or more lanes is held to this pace: rtl/sdft_lanes.v).
 module frame_capture #(
     parameter integer KS = 7,      // tokens per sample (carriers + DC channel)
     parameter integer W = 18,      // signed token width (sdft_bank ACC_W)

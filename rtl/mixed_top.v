@@ -42,6 +42,7 @@ module mixed_top #(
     parameter integer ENGINE_FAST_SHIFT = 0,
     parameter UCODE_HEX = "",
     parameter KROM_HEX = "",
+    parameter integer SDFT_LANES = 1,
     // hall_top
     parameter integer SCL_HZ = 400_000,
     parameter integer NB = 2,
@@ -97,7 +98,8 @@ module mixed_top #(
   dtmf_top #(
       .CLK_HZ(CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .BAUD(BAUD), .KS(KS), .N(N), .ACC_W(ACC_W),
       .STEP(STEP), .IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .OUT_DEPTH(OUT_DEPTH),
-      .ENGINE_FAST_SHIFT(ENGINE_FAST_SHIFT), .UCODE_HEX(UCODE_HEX), .KROM_HEX(KROM_HEX), .EXT_LINK(1), .HALL_CMDS(DELTAS != 0 ? 1 : 0)
+      .ENGINE_FAST_SHIFT(ENGINE_FAST_SHIFT), .UCODE_HEX(UCODE_HEX), .KROM_HEX(KROM_HEX), .EXT_LINK(1),
+      .HALL_CMDS(DELTAS != 0 ? 1 : 0), .SDFT_LANES(SDFT_LANES)
   ) u_dtmf (
       .clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk), .adc_sdata(adc_sdata),
       .uart_txd(), .uart_rxd(uart_rxd), .pkt_valid(pv[0]), .pkt_ready(pr[0]), .pkt_data(pd[7:0]));

@@ -29,6 +29,13 @@ struct Board {
   // where its ~600 LUT4 are cheap (the ECP5s), off on the UP5K, whose
   // default scene keeps its 18 MHz clock either way.
   bool engine_fast_shift = false;
+  // The most parallel DFT lanes (rtl/sdft_lanes.v) the flow may give
+  // dtmf_top: each costs a multiplier and block RAM, and beyond 3 none
+  // shortens a sample (frame_capture takes a token every 2 clocks: 3 lanes
+  // already reach its 2 KS + 8). iCEBreaker 1: the UP5K has no block RAM
+  // left for a second window. ULX3S 3: 3 of the ECP5's 28 (25F) or 156
+  // (85F) multipliers, a few of its 56 or 208 DP16KDs.
+  int max_sdft_lanes = 1;
 };
 
 // "icebreaker" or "ulx3s"; device_override ("25k", "85k"; empty: the

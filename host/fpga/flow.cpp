@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -73,6 +74,16 @@ std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text) {
   return out;
 }
 
+int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks) {
+  const long other = hls::dtmf_top_min_clock_hz_without_dft(plan, engine_clocks);
+  const int most = std::min({b.max_sdft_lanes, 16, plan.ks});
+  int lanes = 1;
+  while (other > 0 && lanes < most &&
+         plan.spec.sample_hz * double(hls::dtmf_top_sdft_clocks(plan.ks, lanes)) > double(other))
+    ++lanes;
+  return lanes;
+}
+
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
                             long clk_hz, int fast_shift) {
   CoreClock c;
@@ -87,6 +98,7 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
   c.load = measure_engine_load(c.plan, x);
   c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
                              ? c.load.stress_total() : c.load.scene_clocks);
+  c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
   c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   auto budget_at = [&](const Clocking& k) {
     c.plan.spec.clk_hz = k.clk_hz;

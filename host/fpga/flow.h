@@ -89,8 +89,16 @@ struct FlowReport {
   const Resource* resource(const std::string& name) const;
 };
 
+// The DFT lanes (rtl/sdft_lanes.v) for a plan on board `b`: the fewest, up
+// to the board's max_sdft_lanes, with which the DFT needs no faster clock
+// than the ADC and the engine (engine_clocks) already do; the board's most
+// when none does (the budget then names the DFT). 1 when the ADC cannot
+// convert at the rate at all.
+int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks);
+
 // The core's clock for a scene on board `b`: the plan, the engine's load
-// (engine_load.h) under `policy`, and the slowest of the board's clocks
+// (engine_load.h) under `policy`, the DFT lanes (choose_sdft_lanes; the
+// plan's spec carries them), and the slowest of the board's clocks
 // (not below its default) at which every budget holds, or exactly
 // `clk_hz` when > 0. `budget.ok()` is false when no clock keeps up (the
 // board's default or the asked-for clock is returned with the problems).

@@ -6,14 +6,16 @@
 #  default: scenes/neuroskin2.yaml at 18 MHz (the iCE40 UP5K build: 12 MHz
 #           oscillator x 3/2 by the PLL);
 #  s10:     scenes/staggered10x10.yaml at 96 MHz (100 taxels, two neuron
-#           layers each: the engine needs ~80 000 clocks per 1 ms frame);
+#           layers each: the engine needs ~80 000 clocks per 1 ms frame),
+#           its 20 DFT channels in 3 lanes (rtl/sdft_lanes.v);
 #  s10fast: the same scene at 72 MHz with the engine's barrel shifter
 #           (ENGINE_FAST_SHIFT, the ECP5 builds'): ~66 000 clocks a frame,
 #           where the bit-serial engine's ~90 000 would not fit 72 000.
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
 set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
-  -GSTEP=70 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=8 -GOUT_DEPTH=2048 -GENGINE_FAST_SHIFT=0)
+  -GSTEP=70 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=8 -GOUT_DEPTH=2048 -GENGINE_FAST_SHIFT=0
+  -GSDFT_LANES=3)
 set(eskin_default_args ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/neuroskin2.krom.hex\")
 eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10}

@@ -44,17 +44,20 @@ namespace {
 using namespace dtmf_bench;
 using eskin::link::Packet;
 
-// One Verilated build: its scene, clock and the -G parameters CMake gave it.
+// One Verilated build: its scene, clock, DFT lanes and the -G parameters
+// CMake gave it. The 10x10 build runs its DFT in 3 lanes (rtl/sdft_lanes.v:
+// the merged token stream into frame_capture), the default in one.
 struct Build {
   std::string scene, name, params;
   long clk_hz;
+  int sdft_lanes;
   bool fast_shift = false;  // the engine's barrel shifter (ENGINE_FAST_SHIFT)
 };
-const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ};
+const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ, 1};
 const Build kS10{"scenes/staggered10x10.yaml", "staggered10x10", DTMF_TOP_S10_PARAMS,
-                 DTMF_TOP_S10_CLK_HZ};
+                 DTMF_TOP_S10_CLK_HZ, 3};
 const Build kS10Fast{"scenes/staggered10x10.yaml", "staggered10x10_fast", DTMF_TOP_S10FAST_PARAMS,
-                     DTMF_TOP_S10FAST_CLK_HZ, true};
+                     DTMF_TOP_S10FAST_CLK_HZ, 3, true};
 
 struct BuildSetup {
   eskin::sim::Scene scene;
@@ -70,6 +73,7 @@ BuildSetup prepare(const Build& b) {
   BuildSetup s;
   s.scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/" + b.scene);
   eskin::hls::DtmfTopSpec spec = eskin::sim::dtmf_top_spec(s.scene, b.clk_hz);
+  spec.sdft_lanes = b.sdft_lanes;
   spec.engine_fast_shift = b.fast_shift;
   s.plan = eskin::hls::make_dtmf_top_plan(spec);
   std::filesystem::create_directories(DTMF_TOP_DIR);

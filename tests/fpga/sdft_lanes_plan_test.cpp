@@ -1,0 +1,109 @@
+// The DFT lanes in the plan and the flow (pure planning, no tools run):
+// hls/dtmf_top_config.h's budget at L lanes, dtmf_top_params' SDFT_LANES,
+// and choose_sdft_lanes / choose_core_clock (host/fpga/flow.h) on both
+// boards. The lanes' clocks themselves are asserted against the RTL by
+// tests/rtl/sdft_lanes_test.cpp.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "hls/dtmf_engine_config.h"
+#include "hls/dtmf_top_config.h"
+#include "host/fpga/board.h"
+#include "host/fpga/flow.h"
+#include "host/fpga/scale_table.h"
+#include "sim/dtmf_top_spec.h"
+#include "sim/scene.h"
+
+namespace {
+
+using namespace eskin;
+
+sim::Scene base() { return sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml"); }
+
+std::string param(const std::vector<hls::VerilogParam>& ps, const std::string& name) {
+  for (const auto& p : ps)
+    if (p.name == name) return p.value;
+  return "<missing>";
+}
+
+// dtmf_top's DFT clocks per sample (frame_capture takes a token every 2
+// clocks): 1 lane 6 KS + 2; 2 lanes 10 + 2 (KS - 1) + 2 (ceil(KS/2) - 1);
+// from 3 lanes on 2 KS + 8.
+TEST(SdftLanesPlan, ClocksPerSampleAtEachLaneCount) {
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 1), 50);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 2), 10 + 14 + 2 * 3);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(9, 2), 10 + 16 + 2 * 4);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 3), 24);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 8), 24);
+}
+
+// The spec's lanes reach the Verilog parameters, the budget and its
+// message; the plan refuses lanes beyond 16 or the channels.
+TEST(SdftLanesPlan, LanesInTheParametersAndTheBudget) {
+  auto spec = sim::dtmf_top_spec(fpga::scale_scene(base(), 4, 1e6));
+  ASSERT_FALSE(spec.demix);  // 8 channels
+  spec.sdft_lanes = 2;
+  const auto plan = hls::make_dtmf_top_plan(spec);
+  EXPECT_EQ(param(hls::dtmf_top_params(plan, hls::dtmf_engine_image(plan), "", ""), "SDFT_LANES"),
+            "2");
+  const auto at25 = hls::dtmf_top_clock_budget(plan, 25000000, 0);
+  EXPECT_EQ(at25.sdft_clocks, 30);
+  bool named = false;
+  for (const auto& p : at25.problems)
+    named = named || p.find("sdft_lanes (2 lanes of KS = 8 channels): needs 30 clocks per "
+                            "sample, the sample period is 25") != std::string::npos;
+  EXPECT_TRUE(named) << "no DFT problem at 25 MHz";
+  EXPECT_EQ(hls::dtmf_top_min_clock_hz(plan, 0), hls::dtmf_top_min_clock_hz_without_dft(plan, 0));
+  for (int bad : {0, 9, 17}) {
+    spec.sdft_lanes = bad;
+    EXPECT_THROW(hls::make_dtmf_top_plan(spec), std::invalid_argument) << bad;
+  }
+}
+
+// A 4x4 skin at 1 MS/s on the ULX3S: one lane would need 50 MHz, outside
+// the AD7476A's band at SCLK_DIV 1 (37.3..40 MHz, docs/bitstream.md); two
+// lanes need 30, below the ADC's 37.3, and are the fewest that do. The
+// clock is then in that band, and every budget holds there.
+TEST(SdftLanesPlan, FourByFourAtOneMegasampleTakesLanesOnTheUlx3s) {
+  const auto sc = fpga::scale_scene(base(), 4, 1e6);
+  const fpga::Board b = fpga::find_board("ulx3s", "85k");
+  const auto c = fpga::choose_core_clock(b, sc, fpga::LoadPolicy::Stress);
+  const int lanes = c.plan.spec.sdft_lanes;
+  EXPECT_GT(lanes, 1);
+  EXPECT_LE(lanes, b.max_sdft_lanes);
+  const long other = hls::dtmf_top_min_clock_hz_without_dft(c.plan, c.engine_clocks);
+  EXPECT_LE(1e6 * double(hls::dtmf_top_sdft_clocks(c.plan.ks, lanes)), double(other));
+  EXPECT_GT(1e6 * double(hls::dtmf_top_sdft_clocks(c.plan.ks, lanes - 1)), double(other))
+      << "fewer lanes would do";
+  EXPECT_EQ(c.core_min_hz, other) << "the DFT sets the minimum clock";
+  ASSERT_TRUE(c.budget.ok()) << c.budget.problems.front();
+  EXPECT_LE(c.budget.sdft_clocks, c.budget.period);
+  EXPECT_LE(c.clocking.clk_hz, 40000000);
+  EXPECT_EQ(c.plan.spec.clk_hz, c.clocking.clk_hz);
+}
+
+// The iCEBreaker never gets a second lane, whatever the skin asks.
+TEST(SdftLanesPlan, IcebreakerKeepsOneLane) {
+  const fpga::Board b = fpga::find_board("icebreaker");
+  EXPECT_EQ(b.max_sdft_lanes, 1);
+  for (int n : {2, 4, 6}) {
+    const auto plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(fpga::scale_scene(base(), n, 1e6)));
+    EXPECT_EQ(fpga::choose_sdft_lanes(b, plan, 0), 1) << n << "x" << n;
+  }
+  const auto c = fpga::choose_core_clock(b, fpga::scale_scene(base(), 4, 1e6),
+                                         fpga::LoadPolicy::Stress);
+  EXPECT_EQ(c.plan.spec.sdft_lanes, 1);
+  EXPECT_EQ(c.core_min_hz, 50000000);  // the DFT's 50 clocks per sample set it
+}
+
+// The default scene at 35 kS/s needs no lanes on either board.
+TEST(SdftLanesPlan, DefaultSceneNeedsOneLane) {
+  for (const char* name : {"icebreaker", "ulx3s"}) {
+    const auto c = fpga::choose_core_clock(fpga::find_board(name), base(), fpga::LoadPolicy::Scene);
+    EXPECT_EQ(c.plan.spec.sdft_lanes, 1) << name;
+  }
+}
+
+}  // namespace
