@@ -54,8 +54,15 @@
 // hls/sdft_bank.h's sdft_lanes_interval() is this formula; the test
 // (tests/rtl/sdft_lanes_test.cpp) asserts it clock for clock.
 //
-// Resources (K_MAX 9, N 32, XW 12, ACC_W 18, as a 4x4 skin's dtmf_top):
-// see the table in docs/fpga.md, "DFT lanes".
+// Resources (K_MAX 9, N 32, XW 12, ACC_W 18; Yosys 0.70 synth_ecp5):
+//   1 lane:   301 LUT4,  97 CCU2C,  320 FF, 32 DPR16X4, 1 MULT18X18D, 1 DP16KD
+//   2 lanes:  733 LUT4, 198 CCU2C,  764 FF, 64 DPR16X4, 2 MULT18X18D, 2 DP16KD
+//   3 lanes: 1112 LUT4, 299 CCU2C, 1106 FF, 96 DPR16X4, 3 MULT18X18D, 3 DP16KD
+// (merger and routing: 130 / 210 LUT4 beyond the lanes). Yosys 0.23
+// synth_ice40, 2 lanes: 1000 LUT4, 2 SB_MAC16, 20 SB_RAM40_4K. Placed in
+// dtmf_top (4x4 skin, 1 MS/s, 2 lanes, ECP5-85F, nextpnr seed 1): 4448
+// TRELLIS_COMB, 3 MULT18X18D, 11 DP16KD, Fmax 43.5 MHz at 40 MHz (the path
+// is a lane's own: sine ROM -> multiplier -> sum, as in sdft_bank).
 module sdft_lanes #(
     parameter integer K_MAX = 6,
     parameter integer N = 32,
@@ -135,7 +142,7 @@ module sdft_lanes #(
       reg [K_W-1:0] m_k;
       reg [ACC_W-1:0] m_re, m_im;
       wire m_free = !m_valid || out_ready;
-      reg [ACC_W-1:0] sel_re, sel_im;  // lane sel's token (one-hot AND-OR mux)
+      reg [ACC_W-1:0] sel_re, sel_im;  // lane sel's token (sel decoded one-hot)
       reg sel_valid;
       wire take = m_free && sel_valid;
       integer i;
@@ -191,7 +198,8 @@ module sdft_lanes #(
                     .K_W(K_W)) u_bank (
             .clk(clk), .rst(rst), .in_valid(in_fire && act[l]), .in_ready(l_in_ready[l]),
             .in_x(in_x), .cfg_valid(b_cfg_valid), .cfg_ready(l_cfg_ready[l]),
-            .cfg_k({{(K_W - JB){1'b0}}, b_idx}), .cfg_inc(resend ? rem_inc : cfg_inc), .cfg_last(cfg_last),
+            .cfg_k({{(K_W - JB){1'b0}}, b_idx}), .cfg_inc(resend ? rem_inc : cfg_inc),
+            .cfg_last(cfg_last),
             .out_valid(l_out_valid[l]), .out_ready(l_take[l] && m_free), .out_k(),
             .out_re(l_re[l*ACC_W +: ACC_W]), .out_im(l_im[l*ACC_W +: ACC_W]), .out_last());
         /* verilator lint_on PINCONNECTEMPTY */

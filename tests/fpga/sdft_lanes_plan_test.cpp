@@ -89,7 +89,8 @@ TEST(SdftLanesPlan, IcebreakerKeepsOneLane) {
   const fpga::Board b = fpga::find_board("icebreaker");
   EXPECT_EQ(b.max_sdft_lanes, 1);
   for (int n : {2, 4, 6}) {
-    const auto plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(fpga::scale_scene(base(), n, 1e6)));
+    const auto spec = sim::dtmf_top_spec(fpga::scale_scene(base(), n, 1e6));
+    const auto plan = hls::make_dtmf_top_plan(spec);
     EXPECT_EQ(fpga::choose_sdft_lanes(b, plan, 0), 1) << n << "x" << n;
   }
   const auto c = fpga::choose_core_clock(b, fpga::scale_scene(base(), 4, 1e6),
