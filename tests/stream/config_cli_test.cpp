@@ -124,7 +124,8 @@ CliRun config(const std::string& port, std::vector<std::string> args) {
   const fs::path dir = fs::temp_directory_path();
   const std::string out = (dir / ("eskin_config_out_" + std::to_string(getpid()))).string();
   const std::string err = (dir / ("eskin_config_err_" + std::to_string(getpid()))).string();
-  args.insert(args.begin(), {ESKIN_BIN, "config", "--port", port, "--timeout-ms", "1000"});
+  // 3 s: a loaded machine (ctest -j2 beside place-and-route) once missed 1 s.
+  args.insert(args.begin(), {ESKIN_BIN, "config", "--port", port, "--timeout-ms", "3000"});
   Process p(args, out, err);
   const int rc = p.wait_exit(20s);
   CliRun r{rc, p.out(), p.err()};
