@@ -261,10 +261,13 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    <= 20 MHz at any clock); the AD7476A needs (period - 28 H) clocks >=
 //    250 ns of acquisition (tACQ) and (period - 31 H) clocks >= 86 ns of
 //    quiet time (t8 + tQUIET).
-//  - the DFT: the next sample is accepted sdft_clocks after the last:
-//    6 KS + 2 with one lane (sdft_bank), sdft_lanes_interval(KS, L, 2) with
-//    L >= 2 lanes (rtl/sdft_lanes.v; frame_capture takes a token every 2
-//    clocks, so 2 KS + 8 from 3 lanes on).
+//  - the DFT: samples at least sdft_clocks apart: 6 KS + 3 with one lane
+//    (sdft_bank's II is 6 KS + 2, but a handshake in the clock of the last
+//    token would have frame_capture judge that token by the next sample:
+//    FrameCapture.ExactPaceInTheClockOfTheLastTokenLosesFrames), and
+//    sdft_lanes_interval(KS, L, 2) with L >= 2 lanes (rtl/sdft_lanes.v
+//    takes the next sample the clock after the last token; frame_capture
+//    takes a token every 2 clocks, so 2 KS + 8 from 3 lanes on).
 //  - frame_engine: frame_capture loses a frame unless the engine has
 //    released the previous one when it is complete, so the engine's longest
 //    frame plus the longest command it may have started just before that
@@ -285,11 +288,11 @@ struct DtmfTopClockBudget {
   bool ok() const { return problems.empty(); }
 };
 
-// Clocks from one sample's handshake into the DFT to the next (input always
-// valid) in rtl/dtmf_top.v: frame_capture, the consumer, needs 2 clocks per
-// token.
+// Clocks from one sample's handshake into the DFT to the next that
+// rtl/dtmf_top.v needs: the DFT's II with frame_capture, the consumer,
+// taking 2 clocks per token; one clock more with one lane (above).
 inline long dtmf_top_sdft_clocks(int ks, int lanes) {
-  return long(sdft_lanes_interval(ks, lanes, 2));
+  return long(sdft_lanes_interval(ks, lanes, 2)) + (lanes <= 1 ? 1 : 0);
 }
 
 inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_hz,
@@ -320,7 +323,7 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
     b.problems.push_back(s + at());
   }
   if (b.period < b.sdft_clocks)
-    b.problems.push_back((lanes == 1 ? std::string("sdft_bank: needs 6 KS + 2 = ")
+    b.problems.push_back((lanes == 1 ? std::string("sdft_bank: needs 6 KS + 3 = ")
                                      : "sdft_lanes (" + n(lanes) + " lanes of KS = " + n(p.ks) +
                                            " channels): needs ") +
                          n(b.sdft_clocks) + " clocks per sample, the sample period is " +

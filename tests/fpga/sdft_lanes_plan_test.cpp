@@ -29,10 +29,11 @@ std::string param(const std::vector<hls::VerilogParam>& ps, const std::string& n
 }
 
 // dtmf_top's DFT clocks per sample (frame_capture takes a token every 2
-// clocks): 1 lane 6 KS + 2; 2 lanes 10 + 2 (KS - 1) + 2 (ceil(KS/2) - 1);
+// clocks): 1 lane 6 KS + 3 (sdft_bank's 6 KS + 2 and a clock for
+// frame_capture's last token); 2 lanes 10 + 2 (KS - 1) + 2 (ceil(KS/2) - 1);
 // from 3 lanes on 2 KS + 8.
 TEST(SdftLanesPlan, ClocksPerSampleAtEachLaneCount) {
-  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 1), 50);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 1), 51);
   EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 2), 10 + 14 + 2 * 3);
   EXPECT_EQ(hls::dtmf_top_sdft_clocks(9, 2), 10 + 16 + 2 * 4);
   EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 3), 24);
@@ -96,7 +97,7 @@ TEST(SdftLanesPlan, IcebreakerKeepsOneLane) {
   const auto c = fpga::choose_core_clock(b, fpga::scale_scene(base(), 4, 1e6),
                                          fpga::LoadPolicy::Stress);
   EXPECT_EQ(c.plan.spec.sdft_lanes, 1);
-  EXPECT_EQ(c.core_min_hz, 50000000);  // the DFT's 50 clocks per sample set it
+  EXPECT_EQ(c.core_min_hz, 51000000);  // the DFT's 6 KS + 3 = 51 clocks per sample set it
 }
 
 // The default scene at 35 kS/s needs no lanes on either board.

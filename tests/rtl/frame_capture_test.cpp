@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 #include <random>
 #include <vector>
@@ -44,23 +45,33 @@ struct Bench {
     const int32_t v = int32_t((t * 7919u + uint32_t(k) * 104729u + uint32_t(im) * 31u) % (1u << kW));
     return v - (1 << (kW - 1));
   }
-  void sample(uint32_t t) {
-    m->smp_fire = 1;
-    m->smp_t = t;
-    tick();
-    m->smp_fire = 0;
+  // Sample t's handshake, then its tokens 6 clocks apart, then `tail`
+  // clocks. fire_next: sample t + 1's handshake comes in the clock of t's
+  // last token (sdft_bank's tightest pace, 6 KS + 2 clocks a sample), and
+  // that sample's tokens follow at once (call it with fired = true).
+  void sample(uint32_t t, int tail = 4, bool fire_next = false, bool fired = false) {
+    if (!fired) {
+      m->smp_fire = 1;
+      m->smp_t = t;
+      tick();
+      m->smp_fire = 0;
+    }
     for (int k = 0; k < kKs; ++k) {
       for (int i = 0; i < 5; ++i) tick();
       m->tok_valid = 1;
       m->tok_last = k == kKs - 1;
       m->tok_re = uint32_t(token(t, k, 0)) & ((1u << kW) - 1);
       m->tok_im = uint32_t(token(t, k, 1)) & ((1u << kW) - 1);
+      const bool next = fire_next && k == kKs - 1;
+      m->smp_fire = next;
+      m->smp_t = t + 1;
       m->eval();
       EXPECT_TRUE(m->tok_ready);
       tick();
       m->tok_valid = 0;
+      m->smp_fire = 0;
     }
-    for (int i = 0; i < 4; ++i) tick();
+    for (int i = 0; i < tail; ++i) tick();
   }
   // Reads the engine's bank as the engine does (address, one clock later data).
   int32_t read(int a) {
@@ -130,6 +141,53 @@ TEST(FrameCapture, FramesFollowTheRuleAndHoldTheirTokens) {
   EXPECT_EQ(b.m->overruns, lost);
   b.pulse(b.m->clear);
   EXPECT_EQ(b.m->overruns, 0);
+}
+
+// The tightest paces: the next sample's handshake one clock after the last
+// token (the DFT budget's minimum: hls::dtmf_top_sdft_clocks) must keep
+// every frame and its tokens; in the clock of the last token itself
+// (sdft_bank's own II, 6 KS + 2) the capture would judge that token by the
+// next sample, which the budget therefore excludes (ExactPace below shows
+// what goes wrong).
+void run_paced(int tail, bool overlap, int& frames_ok, int& frames_wrong) {
+  Bench b;
+  int filled = 0, phase = 0;
+  frames_ok = frames_wrong = 0;
+  int64_t check = -1;  // a frame sample to check once the next one's handshake is in
+  for (uint32_t t = 0; t < 300; ++t) {
+    bool frame = false;
+    if (filled < kN) {
+      frame = ++filled == kN;
+      phase = 0;
+    } else {
+      phase = phase + 1 == kStep ? 0 : phase + 1;
+      frame = phase == 0;
+    }
+    b.sample(t, tail, overlap, overlap && t > 0);
+    if (check >= 0) {  // the engine reads the previous frame between samples
+      const uint32_t f = uint32_t(check);
+      bool good = b.m->pending && b.m->frame_t == f;
+      for (int k = 0; k < kKs && good; ++k)
+        good = b.read(2 * k) == Bench::token(f, k, 0) && b.read(2 * k + 1) == Bench::token(f, k, 1);
+      (good ? frames_ok : frames_wrong)++;
+      if (b.m->pending) b.pulse(b.m->done);
+    }
+    check = frame ? int64_t(t) : -1;
+  }
+}
+
+TEST(FrameCapture, NextSampleOneClockAfterTheLastTokenKeepsEveryFrame) {
+  int ok = 0, wrong = 0;
+  run_paced(0, false, ok, wrong);  // handshake in the clock after the last token
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(ok, 8);  // samples 31, 66, ..., 276
+}
+
+TEST(FrameCapture, ExactPaceInTheClockOfTheLastTokenLosesFrames) {
+  int ok = 0, wrong = 0;
+  run_paced(0, true, ok, wrong);
+  std::printf("handshake in the last token's clock: %d frames right, %d wrong\n", ok, wrong);
+  EXPECT_GT(wrong, 0);  // why dtmf_top_sdft_clocks() asks for one clock more
 }
 
 }  // namespace
