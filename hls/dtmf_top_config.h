@@ -54,7 +54,7 @@ struct DtmfTopSpec {
   long clk_hz = kDtmfTopClkHz;     // FPGA clock
   long baud = 3000000;
   // The frame engine's barrel shifter (rtl/frame_engine.v FAST_SHIFT): the
-  // same packets in fewer clocks, for about 600 LUT4 more; the flow turns it
+  // same packets in fewer clocks, for ~1000 logic cells more; the flow turns it
   // on for boards with room (host/fpga/board.h).
   bool engine_fast_shift = false;
   // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS): the board flow

@@ -31,7 +31,7 @@ module frame_engine #(
     parameter KROM_HEX = "",           // KROM contents as a $readmemh file, else KROM_INIT
     parameter [32*(1<<KW)-1:0] KROM_INIT = 0,
     // 1: shl/shr/rnd shift in one clock (two 48-bit barrel shifters, about
-    // 600 LUT4: for the larger FPGAs); 0: one bit per clock.
+    // 1000 ECP5 logic cells: for the larger FPGAs); 0: one bit per clock.
     parameter integer FAST_SHIFT = 0
 ) (
     input  wire        clk,

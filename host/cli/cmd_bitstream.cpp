@@ -183,8 +183,8 @@ std::function<int()> setup_bitstream(CLI::App& app) {
       ->each([args](const std::string&) { args->engine_load_given = true; });
   sub->add_option("--engine-shifter", args->engine_shifter,
                   "The frame engine's shifter: serial (one bit per clock, the smallest) or "
-                  "barrel (any shift in one clock: fewer engine clocks a frame, ~600 LUT4 "
-                  "more); default: the board's (icebreaker serial, ulx3s barrel)")
+                  "barrel (any shift in one clock: fewer engine clocks a frame, ~1000 "
+                  "logic cells more); default: the board's (icebreaker serial, ulx3s barrel)")
       ->check(CLI::IsMember({"serial", "barrel"}));
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");

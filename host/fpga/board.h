@@ -26,7 +26,7 @@ struct Board {
   std::string hall_wrapper;    // rtl/<hall_wrapper>.v: hall_top or mixed_top
   bool hall_osc_clock = false; // the Hall wrapper can run on the oscillator itself (PLL = 0)
   // The frame engine's barrel shifter (DtmfTopSpec::engine_fast_shift): on
-  // where its ~600 LUT4 are cheap (the ECP5s), off on the UP5K, whose
+  // where its ~1000 logic cells are cheap (the ECP5s), off on the UP5K, whose
   // default scene keeps its 18 MHz clock either way.
   bool engine_fast_shift = false;
   // The most parallel DFT lanes (rtl/sdft_lanes.v) the flow may give
