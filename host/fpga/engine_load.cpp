@@ -103,7 +103,7 @@ class LoadRun {
 
   // The frame whose newest sample is t, from samples x[t - N + 1 .. t]
   // (sample 0 is the first after the carrier load: phase 0); its clocks
-  // from `pending` to the release. `pc_clocks` (IMEM words long), when
+  // from `pending` to the release. `pc_clocks` (2^IW long), when
   // given, gets each instruction's clocks added at its address.
   uint64_t frame(const std::vector<int32_t>& x, uint32_t t, std::vector<uint64_t>* pc_clocks = nullptr) {
     for (int j = 0; j < p_.ks; ++j) {
@@ -210,7 +210,7 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
   std::bernoulli_distribution coin(0.5);
   const int frames = std::max({64, 3 * p.lookback, 3 * int(p.decim_tax) + 2, 3 * int(p.decim_amp) + 2});
   // Clocks per instruction address of the longest stress frame.
-  std::vector<uint64_t> pcs(hls::kDtmfImemWords), worst_pcs;
+  std::vector<uint64_t> pcs(size_t(1) << hls::kDtmfImemBits), worst_pcs;  // every PC the engine can hold
   using Levels = std::function<void(int, std::vector<double>&)>;
   const std::vector<std::pair<const char*, Levels>> signals = {
       {"random levels", [&](int, auto& l) { for (auto& v : l) v = uni(rng); }},
