@@ -28,6 +28,7 @@
 #include "Vsdft_bank_odd.h"
 #include "hls/sdft_bank.h"
 #include "hls/sdft_bank_config.h"
+#include "sdft_port.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
 
@@ -38,7 +39,7 @@ using eskin::hls::SdftBankToken;
 
 constexpr double kFs = 35000;
 
-int32_t sext(uint32_t v, int bits) { return int32_t(v << (32 - bits)) >> (32 - bits); }
+using sdft_port::random_samples;
 
 struct Segment {
   std::vector<double> freqs;
@@ -52,13 +53,6 @@ struct Timing {
 template <class V, class Bank, int XW, int ACC_W>
 class Harness {
  public:
-  Harness() : m_(std::make_unique<V>()) {
-    m_->rst = 1;
-    m_->in_valid = m_->cfg_valid = 0;
-    m_->out_ready = 0;
-    for (int i = 0; i < 3; ++i) tick();
-    m_->rst = 0;
-  }
 
   // Drives every segment (config, then samples) with the given probabilities
   // of in_valid/cfg_valid being offered and out_ready being high per cycle.
@@ -82,9 +76,9 @@ class Harness {
     size_t got = 0, seg = 0, cfg_sent = 0, x_sent = 0;
     bool held = false;  // an output token was offered and not taken last cycle
     SdftBankToken held_tok{};
-    const uint64_t limit = cycle_ + 400 * (expect.size() + 1000);
+    const uint64_t limit = port_.cycle + 400 * (expect.size() + 1000);
     while (got < expect.size()) {
-      ASSERT_LT(cycle_, limit) << "stalled: " << got << " of " << expect.size() << " tokens";
+      ASSERT_LT(port_.cycle, limit) << "stalled: " << got << " of " << expect.size() << " tokens";
       const Segment* s = seg < segs.size() ? &segs[seg] : nullptr;
       const bool cfg_phase = s && cfg_sent < s->freqs.size();
       // A new config may be sent only after every earlier sample was taken
@@ -106,26 +100,26 @@ class Harness {
       // Stream rule: a token offered but not taken is offered again unchanged.
       if (held) {
         ASSERT_TRUE(m_->out_valid) << "out_valid dropped before the handshake";
-        ASSERT_EQ(current().re, held_tok.re);
-        ASSERT_EQ(current().im, held_tok.im);
-        ASSERT_EQ(current().k, held_tok.k);
+        ASSERT_EQ(port_.token().re, held_tok.re);
+        ASSERT_EQ(port_.token().im, held_tok.im);
+        ASSERT_EQ(port_.token().k, held_tok.k);
       }
       if (m_->out_valid && m_->out_ready) {
-        const SdftBankToken t = current(), &e = expect[got];
+        const SdftBankToken t = port_.token(), &e = expect[got];
         ASSERT_EQ(t.k, e.k) << "token " << got;
         ASSERT_EQ(t.re, e.re) << "token " << got << " k " << int(e.k);
         ASSERT_EQ(t.im, e.im) << "token " << got << " k " << int(e.k);
         ASSERT_EQ(t.last, e.last) << "token " << got;
-        if (timing) timing->out_cycle.push_back(cycle_);
+        if (timing) timing->out_cycle.push_back(port_.cycle);
         ++got;
         held = false;
       } else {
         held = m_->out_valid;
-        if (held) held_tok = current();
+        if (held) held_tok = port_.token();
       }
       if (m_->cfg_valid && m_->cfg_ready) ++cfg_sent;
       if (m_->in_valid && m_->in_ready) {
-        if (timing) timing->in_cycle.push_back(cycle_);
+        if (timing) timing->in_cycle.push_back(port_.cycle);
         ++x_sent;
       }
       if (s && cfg_sent == s->freqs.size() && x_sent == s->xs.size()) {
@@ -133,47 +127,20 @@ class Harness {
         cfg_sent = x_sent = 0;
         base_ += s->xs.size() * s->freqs.size();
       }
-      tick_high();
+      port_.tick_high();
     }
   }
 
  private:
   size_t expected_before(const std::vector<Segment>&, size_t) const { return base_; }
-  SdftBankToken current() const {
-    SdftBankToken t;
-    t.k = uint8_t(m_->out_k);
-    t.re = sext(m_->out_re, ACC_W);
-    t.im = sext(m_->out_im, ACC_W);
-    t.last = m_->out_last;
-    return t;
-  }
-  void tick() {
-    m_->clk = 0;
-    m_->eval();
-    tick_high();
-  }
-  void tick_high() {
-    m_->clk = 1;
-    m_->eval();
-    ++cycle_;
-  }
-
-  std::unique_ptr<V> m_;
+  sdft_port::SdftPort<V, ACC_W> port_;
+  V* const m_ = port_.m.get();
   Bank bank_;
-  uint64_t cycle_ = 0;
   size_t base_ = 0;  // tokens of the segments already fully sent
 };
 
 const std::vector<double> kThesis = {1900, 3300, 5000, 7140, 8300, 10000};
 const std::vector<double> kOdd = {800, 2500, 6000, 11000, 16500};
-
-std::vector<int32_t> random_samples(int xw, size_t n, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<int32_t> d(-(1 << (xw - 1)), (1 << (xw - 1)) - 1);
-  std::vector<int32_t> xs(n);
-  for (auto& x : xs) x = d(rng);
-  return xs;
-}
 
 std::vector<int32_t> scene_samples() {
   const auto scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");

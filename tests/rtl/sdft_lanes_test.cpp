@@ -37,12 +37,13 @@
 #include "Vsdft_lanes_l3.h"
 #include "Vsdft_lanes_l8.h"
 #include "hls/sdft_bank.h"
+#include "sdft_port.h"
 
 namespace {
 
 using eskin::hls::SdftBankToken;
 
-int32_t sext(uint32_t v, int bits) { return int32_t(v << (32 - bits)) >> (32 - bits); }
+using sdft_port::random_samples;
 
 struct CfgWrite {
   int k;
@@ -86,14 +87,6 @@ Segment segment(int k, std::vector<int32_t> xs, uint64_t seed, bool shuffle) {
   return s;
 }
 
-std::vector<int32_t> random_samples(int xw, size_t n, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<int32_t> d(-(1 << (xw - 1)), (1 << (xw - 1)) - 1);
-  std::vector<int32_t> xs(n);
-  for (auto& x : xs) x = d(rng);
-  return xs;
-}
-
 std::vector<int32_t> extremes(int xw, size_t n) {
   std::vector<int32_t> xs(n);
   const int32_t hi = (1 << (xw - 1)) - 1, lo = -(1 << (xw - 1));
@@ -105,14 +98,6 @@ template <class V, class Bank, int LANES, int XW, int ACC_W>
 class Harness {
  public:
   static constexpr int kLanes = LANES, kXw = XW;
-
-  Harness() : m_(std::make_unique<V>()) {
-    m_->rst = 1;
-    m_->in_valid = m_->cfg_valid = 0;
-    m_->out_ready = 0;
-    for (int i = 0; i < 3; ++i) tick();
-    m_->rst = 0;
-  }
 
   // Drives the segments in order: each one's configuration writes, then its
   // samples (the next configuration is offered as soon as the last sample
@@ -138,9 +123,9 @@ class Harness {
     size_t got = 0, seg = 0, w = 0, xi = 0, samples = 0;
     bool held = false, took = false;
     SdftBankToken held_tok{};
-    const uint64_t limit = cycle_ + 64 * (expect.size() + 1000) + 200 * samples_of(segs);
+    const uint64_t limit = port_.cycle + 64 * (expect.size() + 1000) + 200 * samples_of(segs);
     while (got < expect.size()) {
-      ASSERT_LT(cycle_, limit) << "stalled: " << got << " of " << expect.size() << " tokens";
+      ASSERT_LT(port_.cycle, limit) << "stalled: " << got << " of " << expect.size() << " tokens";
       const Segment* s = seg < segs.size() ? &segs[seg] : nullptr;
       const bool cfg_phase = s && w < s->writes.size();
       m_->cfg_valid = cfg_phase && offer(rng);
@@ -159,7 +144,7 @@ class Harness {
       m_->eval();
       if (held) {  // a token offered and not taken is offered again unchanged
         ASSERT_TRUE(m_->out_valid) << "out_valid dropped before the handshake";
-        const SdftBankToken t = current();
+        const SdftBankToken t = port_.token();
         ASSERT_EQ(t.k, held_tok.k);
         ASSERT_EQ(t.re, held_tok.re);
         ASSERT_EQ(t.im, held_tok.im);
@@ -171,21 +156,21 @@ class Harness {
       }
       took = m_->out_valid && m_->out_ready;
       if (took) {
-        const SdftBankToken t = current(), &e = expect[got];
+        const SdftBankToken t = port_.token(), &e = expect[got];
         ASSERT_EQ(t.k, e.k) << "token " << got;
         ASSERT_EQ(t.re, e.re) << "token " << got << " k " << int(e.k);
         ASSERT_EQ(t.im, e.im) << "token " << got << " k " << int(e.k);
         ASSERT_EQ(t.last, e.last) << "token " << got << " k " << int(e.k);
-        if (timing) timing->out_cycle.push_back(cycle_);
+        if (timing) timing->out_cycle.push_back(port_.cycle);
         ++got;
         held = false;
       } else {
         held = m_->out_valid;
-        if (held) held_tok = current();
+        if (held) held_tok = port_.token();
       }
       if (m_->cfg_valid && m_->cfg_ready) ++w;
       if (m_->in_valid && m_->in_ready) {
-        if (timing) timing->in_cycle.push_back(cycle_);
+        if (timing) timing->in_cycle.push_back(port_.cycle);
         ++xi;
         ++samples;
       }
@@ -193,7 +178,7 @@ class Harness {
         ++seg;
         w = xi = 0;
       }
-      tick_high();
+      port_.tick_high();
     }
     // Nothing more comes out.
     m_->in_valid = m_->cfg_valid = 0;
@@ -202,7 +187,7 @@ class Harness {
       m_->clk = 0;
       m_->eval();
       ASSERT_FALSE(m_->out_valid) << "an extra token " << i << " clocks after the last";
-      tick_high();
+      port_.tick_high();
     }
   }
 
@@ -212,28 +197,9 @@ class Harness {
     for (const auto& s : segs) n += s.xs.size() + s.writes.size();
     return n;
   }
-  SdftBankToken current() const {
-    SdftBankToken t;
-    t.k = uint8_t(m_->out_k);
-    t.re = sext(m_->out_re, ACC_W);
-    t.im = sext(m_->out_im, ACC_W);
-    t.last = m_->out_last;
-    return t;
-  }
-  void tick() {
-    m_->clk = 0;
-    m_->eval();
-    tick_high();
-  }
-  void tick_high() {
-    m_->clk = 1;
-    m_->eval();
-    ++cycle_;
-  }
-
-  std::unique_ptr<V> m_;
+  sdft_port::SdftPort<V, ACC_W> port_;
+  V* const m_ = port_.m.get();
   Bank bank_;
-  uint64_t cycle_ = 0;
 };
 
 using eskin::hls::SdftBank;
