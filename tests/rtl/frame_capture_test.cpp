@@ -87,24 +87,33 @@ struct Bench {
   }
 };
 
+// The frame rule of hls/dtmf_chain.h, coded from its statement: the N-th
+// sample after reset or a carrier reload, then every STEP-th.
+struct FrameRule {
+  int filled = 0, phase = 0;
+  void restart() { filled = 0; }
+  bool next() {  // is the next sample a frame?
+    if (filled < kN) {
+      phase = 0;
+      return ++filled == kN;
+    }
+    phase = phase + 1 == kStep ? 0 : phase + 1;
+    return phase == 0;
+  }
+};
+
 TEST(FrameCapture, FramesFollowTheRuleAndHoldTheirTokens) {
   Bench b;
   std::mt19937 rng(4);
-  int filled = 0, phase = 0, frames = 0, lost = 0;
+  FrameRule rule;
+  int frames = 0, lost = 0;
   bool pending = false, hold = false;
   for (uint32_t t = 0; t < 1200; ++t) {
     if (t == 500) {  // carrier reload mid-stream: the window refills
       b.pulse(b.m->clr);
-      filled = 0;
+      rule.restart();
     }
-    bool frame = false;
-    if (filled < kN) {
-      frame = ++filled == kN;
-      phase = 0;
-    } else {
-      phase = phase + 1 == kStep ? 0 : phase + 1;
-      frame = phase == 0;
-    }
+    const bool frame = rule.next();
     b.sample(t);
     if (frame) {
       if (pending) {
@@ -149,21 +158,14 @@ TEST(FrameCapture, FramesFollowTheRuleAndHoldTheirTokens) {
 // (sdft_bank's own II, 6 KS + 2) the capture would judge that token by the
 // next sample, which the budget therefore excludes (ExactPace below shows
 // what goes wrong).
-void run_paced(int tail, bool overlap, int& frames_ok, int& frames_wrong) {
+void run_paced(bool overlap, int& frames_ok, int& frames_wrong) {
   Bench b;
-  int filled = 0, phase = 0;
+  FrameRule rule;
   frames_ok = frames_wrong = 0;
   int64_t check = -1;  // a frame sample to check once the next one's handshake is in
   for (uint32_t t = 0; t < 300; ++t) {
-    bool frame = false;
-    if (filled < kN) {
-      frame = ++filled == kN;
-      phase = 0;
-    } else {
-      phase = phase + 1 == kStep ? 0 : phase + 1;
-      frame = phase == 0;
-    }
-    b.sample(t, tail, overlap, overlap && t > 0);
+    const bool frame = rule.next();
+    b.sample(t, 0, overlap, overlap && t > 0);
     if (check >= 0) {  // the engine reads the previous frame between samples
       const uint32_t f = uint32_t(check);
       bool good = b.m->pending && b.m->frame_t == f;
@@ -178,14 +180,14 @@ void run_paced(int tail, bool overlap, int& frames_ok, int& frames_wrong) {
 
 TEST(FrameCapture, NextSampleOneClockAfterTheLastTokenKeepsEveryFrame) {
   int ok = 0, wrong = 0;
-  run_paced(0, false, ok, wrong);  // handshake in the clock after the last token
+  run_paced(false, ok, wrong);  // handshake in the clock after the last token
   EXPECT_EQ(wrong, 0);
   EXPECT_EQ(ok, 8);  // samples 31, 66, ..., 276
 }
 
 TEST(FrameCapture, ExactPaceInTheClockOfTheLastTokenLosesFrames) {
   int ok = 0, wrong = 0;
-  run_paced(0, true, ok, wrong);
+  run_paced(true, ok, wrong);
   std::printf("handshake in the last token's clock: %d frames right, %d wrong\n", ok, wrong);
   EXPECT_GT(wrong, 0);  // why dtmf_top_sdft_clocks() asks for one clock more
 }
