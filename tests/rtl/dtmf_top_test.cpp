@@ -183,8 +183,7 @@ eskin::golden::DecodeScore score(const BuildSetup& s, const std::vector<Received
 }
 
 template <class M, class S>
-void scene_test(const Build& build) {
-  const BuildSetup s = prepare(build);
+void scene_test(const Build& build, const BuildSetup& s) {
   const size_t n = s.codes12.size();
   auto codes = s.codes12;
   // Quiet conversions while the last frames and the final status get out
@@ -215,7 +214,7 @@ void scene_test(const Build& build) {
 }
 
 TEST(DtmfTop, DefaultSceneMatchesTheChainAndTheTruth) {
-  scene_test<Vdtmf_top, eskin::hls::DtmfChainSizes<3, 3, 32>>(kDefault);
+  scene_test<Vdtmf_top, eskin::hls::DtmfChainSizes<3, 3, 32>>(kDefault, prepare(kDefault));
 }
 
 // Every command over the UART while the default scene runs, then the HLS
@@ -397,7 +396,7 @@ TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
 }
 
 TEST(DtmfTop, Staggered10x10MatchesTheChainAndTheTruth) {
-  scene_test<Vdtmf_top_s10, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10);
+  scene_test<Vdtmf_top_s10, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10, prepare(kS10));
 }
 
 // The barrel shifter (the ECP5 builds' engine): the same packets, and a
@@ -421,7 +420,7 @@ TEST(DtmfTop, Staggered10x10At72MHzWithTheBarrelShifter) {
               frame);
   EXPECT_GT(long(slow_load.scene_clocks), frame);
   EXPECT_LT(long(fast_load.scene_clocks), frame);
-  scene_test<Vdtmf_top_s10fast, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Fast);
+  scene_test<Vdtmf_top_s10fast, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Fast, s);
 }
 
 }  // namespace
