@@ -43,9 +43,15 @@ class ProtocolBoard {
       const auto bytes = read_some(fd_, 5);
       dec.feed(bytes);
       Packet c;
-      while (dec.pop(c)) apply(c);
+      while (dec.pop(c)) {
+        apply(c);
+        heard_ = true;
+      }
       if (++tick % 10 == 0) write_fully(fd_, enc_.amplitudes(samples_, {1, 2, 3, 4, 5, 6}));
-      if (tick % 40 == 0) send_status();  // periodic status
+      // Periodic status, once a host has spoken: the first `eskin config`
+      // then always finds no status to start from and asks for one (seq 0)
+      // before its command (seq 1), however slowly it starts.
+      if (tick % 40 == 0 && heard_) send_status();
       samples_ += 175;
     }
   }
@@ -105,6 +111,7 @@ class ProtocolBoard {
   std::vector<uint8_t> neuron_ids_;
   int fd_;
   std::atomic<bool> stop_{false};
+  bool heard_ = false;  // a command came (the board thread's own)
   eskin::link::LinkEncoder enc_;
   eskin::link::StatusBlock st_ = [] {
     eskin::link::StatusBlock b;
@@ -124,8 +131,7 @@ CliRun config(const std::string& port, std::vector<std::string> args) {
   const fs::path dir = fs::temp_directory_path();
   const std::string out = (dir / ("eskin_config_out_" + std::to_string(getpid()))).string();
   const std::string err = (dir / ("eskin_config_err_" + std::to_string(getpid()))).string();
-  // 3 s: a loaded machine (ctest -j2 beside place-and-route) once missed 1 s.
-  args.insert(args.begin(), {ESKIN_BIN, "config", "--port", port, "--timeout-ms", "3000"});
+  args.insert(args.begin(), {ESKIN_BIN, "config", "--port", port, "--timeout-ms", "1000"});
   Process p(args, out, err);
   const int rc = p.wait_exit(20s);
   CliRun r{rc, p.out(), p.err()};
