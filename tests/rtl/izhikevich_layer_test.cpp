@@ -1,0 +1,402 @@
+// rtl/izhikevich_layer.v against hls/izhikevich_layer.h, update by update.
+//
+// Bound: bit-exact (out_spike, out_v, out_u, out_x_prev of every update).
+// Why exact: the RTL forms every C++ intermediate at a width that holds it
+// (module header), rounds with the same rnd and saturates at the same
+// points, so there is no tolerance to allow. Domain: any x, x_prev and any
+// configuration in the ranges of neuron_params() (hls/dtmf_engine_config.h);
+// v in [-2^29 - 2^13, 2^29 - 2^13) and U in [-2^30, 2^30), the range where the
+// C++ is free of int32 overflow (beyond it w^2 and m3 * vh overflow int32,
+// undefined behaviour, so there is nothing to compare with). It contains
+// the stored ranges (v in [V_MIN, V_PEAK), v_reset; U saturated), and
+// Realistic checks that the outputs never leave them.
+// Timing: every update asserts the 14-edge handshake (Update below).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "Vizhikevich_layer.h"
+#include "clocked_dut.h"
+#include "hls/izhikevich_layer.h"
+#include "hls/izhikevich_layer_config.h"
+
+namespace {
+
+using eskin::hls::IzhikevichConfig;
+namespace izh = eskin::hls::izh;
+
+constexpr int kLatency = 14;                                  // edges, handshake to results
+constexpr int32_t kVLo = -(int32_t(1) << 29) - (1 << 13);     // domain of v (see above)
+constexpr int32_t kVHi = (int32_t(1) << 29) - (1 << 13);      // exclusive
+
+// The layer's constant block as the engine's DMEM holds it (the words of
+// dtmf_engine_image(), hls/dtmf_engine_config.h), words 2..16.
+std::vector<std::pair<int, uint32_t>> config_words(const IzhikevichConfig& c) {
+  const int64_t w[] = {c.v_reset, c.u_jump, c.u_frac - 22, c.c_const, c.m2, c.s2, c.m3, c.s3,
+                       c.m4, c.s4, c.gain, c.gain_shift > 0 ? c.gain_shift : 0,
+                       c.gain_shift < 0 ? -c.gain_shift : 0, c.x_shift, c.input_change ? 1 : 0};
+  std::vector<std::pair<int, uint32_t>> out;
+  for (int i = 0; i < 15; ++i) out.emplace_back(i + 2, uint32_t(w[i]));
+  return out;
+}
+
+struct Operands {
+  int32_t x = 0, x_prev = 0, v = 0, U = 0;
+};
+struct Result {
+  bool spike = false;
+  int32_t v = 0, U = 0, x_prev = 0;
+  bool operator==(const Result& o) const {
+    return spike == o.spike && v == o.v && U == o.U && x_prev == o.x_prev;
+  }
+};
+std::ostream& operator<<(std::ostream& s, const Result& r) {
+  return s << "{spike " << r.spike << ", v " << r.v << ", U " << r.U << ", x_prev " << r.x_prev
+           << "}";
+}
+
+// Golden for one neuron in an arbitrary state: IzhikevichLayer::update's
+// input stage (it keeps x_prev privately, so it cannot be put into an
+// arbitrary state; Realistic runs the class itself in both modes), then
+// izhikevich_update.
+Result golden(const IzhikevichConfig& c, const Operands& o) {
+  Result r;
+  int32_t drive = o.x;
+  r.x_prev = o.x_prev;
+  if (c.input_change) {
+    const int64_t d = int64_t(o.x) - o.x_prev;
+    drive = d > 0 ? int32_t(d > INT32_MAX ? INT32_MAX : d) : 0;
+    r.x_prev = o.x;
+  }
+  r.v = o.v, r.U = o.U;
+  r.spike = eskin::hls::izhikevich_update(c, r.v, r.U, drive);
+  return r;
+}
+
+// The unit has no out_ready, so ClockedDut's reset() does not fit: its own.
+struct Unit : ClockedDut<Vizhikevich_layer> {
+  Unit() { reset(); }
+  void reset() {
+    m.rst = 1, m.in_valid = 0, m.cfg_we = 0;
+    tick();
+    tick();
+    m.rst = 0;
+  }
+  void write(int addr, uint32_t data) {
+    m.cfg_we = 1, m.cfg_addr = uint8_t(addr), m.cfg_data = data;
+    tick();
+    m.cfg_we = 0;
+  }
+  void configure(const IzhikevichConfig& c) {
+    for (const auto& [a, d] : config_words(c)) write(a, d);
+  }
+  void drive(const Operands& o) {
+    m.in_x = uint32_t(o.x), m.in_x_prev = uint32_t(o.x_prev);
+    m.in_v = uint32_t(o.v), m.in_u = uint32_t(o.U);
+  }
+  Result out() const {
+    return Result{m.out_spike != 0, int32_t(m.out_v), int32_t(m.out_u), int32_t(m.out_x_prev)};
+  }
+  // One update; `during(k)` runs before edge E+k (k = 1..14) to test writes
+  // while busy. Asserts the timing: idle before, busy (in_ready = 0,
+  // out_valid = 0) right after edges E .. E+13, done right after E+14.
+  template <class F>
+  Result update(const Operands& o, F during) {
+    EXPECT_TRUE(m.in_ready && m.out_valid);
+    drive(o);
+    m.in_valid = 1;
+    tick();  // E
+    m.in_valid = 0;
+    for (int k = 1; k <= kLatency; ++k) {
+      EXPECT_FALSE(m.in_ready) << "after edge E+" << k - 1;
+      EXPECT_FALSE(m.out_valid) << "after edge E+" << k - 1;
+      during(k);
+      tick();
+    }
+    EXPECT_TRUE(m.in_ready && m.out_valid);
+    return out();
+  }
+  Result update(const Operands& o) {
+    return update(o, [](int) {});
+  }
+};
+
+// A configuration drawn from the ranges of neuron_params(); shifts either
+// anywhere in 0..40 or small (where products reach the saturations).
+IzhikevichConfig random_config(std::mt19937& g, bool change) {
+  auto uni = [&g](int64_t lo, int64_t hi) {
+    return std::uniform_int_distribution<int64_t>(lo, hi)(g);
+  };
+  auto shift = [&](int hi) { return int(uni(0, 1) ? uni(0, hi) : uni(0, std::min(hi, 16))); };
+  IzhikevichConfig c;
+  c.v_init = 0, c.u_init = 0;  // not the unit's
+  c.v_reset = int32_t(uni(-(int64_t(1) << 29), (int64_t(30) << 22) - 1));
+  c.u_jump = int32_t(uni(izh::kUMin, izh::kUMax));
+  c.u_frac = uint8_t(uni(22, 30));
+  c.c_const = int32_t(uni(-68157440, 0));
+  c.m2 = int16_t(uni(-32768, 32767)), c.s2 = uint8_t(shift(40));
+  c.m3 = int16_t(uni(-32768, 32767)), c.s3 = uint8_t(shift(40));
+  c.m4 = int16_t(uni(-32768, 32767)), c.s4 = uint8_t(shift(40));
+  c.gain = int16_t(uni(-32768, 32767));
+  c.gain_shift = int8_t(uni(0, 1) ? uni(-15, 40) : uni(-15, 2));
+  c.x_shift = uint8_t(uni(0, 16));
+  c.input_change = change;
+  return c;
+}
+
+// What the random cases reach (so that they cannot pass vacuously).
+struct Reach {
+  long spikes = 0, quiet = 0, v_floor = 0, u_hi = 0, u_lo = 0;
+  void count(const Result& r) {
+    r.spike ? ++spikes : ++quiet;
+    v_floor += !r.spike && r.v == izh::kVMin;
+    u_hi += r.U == izh::kUMax;
+    u_lo += r.U == izh::kUMin;
+  }
+  void expect_all(long n) const {
+    EXPECT_GT(spikes, n) << "spikes";
+    EXPECT_GT(quiet, n) << "no spike";
+    EXPECT_GT(v_floor, n) << "v clamped at V_MIN";
+    EXPECT_GT(u_hi, n) << "U at its upper saturation";
+    EXPECT_GT(u_lo, n) << "U at its lower saturation";
+  }
+};
+
+// (1) Bound: exact. 40000 updates, a new random in-range configuration
+// every 40, both input modes; x, x_prev uniform over all 32-bit values, U
+// uniform over [-2^30, 2^30); v uniform over the whole domain half of the
+// time, over the stored range [V_MIN, V_PEAK) otherwise.
+TEST(IzhikevichLayerRtl, RandomOperandsAndConfigsMatchHls) {
+  std::mt19937 g(20240611);
+  Unit u;
+  std::uniform_int_distribution<int32_t> any(INT32_MIN, INT32_MAX), uu(izh::kUMin, izh::kUMax);
+  std::uniform_int_distribution<int32_t> vd(kVLo, kVHi - 1), vs(izh::kVMin, izh::kVPeak - 1);
+  Reach reach;
+  long bad = 0;
+  for (int n = 0; n < 1000; ++n) {
+    const IzhikevichConfig c = random_config(g, n % 2 == 1);
+    u.configure(c);
+    for (int i = 0; i < 40; ++i) {
+      const Operands o{any(g), any(g), i % 2 ? vd(g) : vs(g), uu(g)};
+      const Result want = golden(c, o), got = u.update(o);
+      reach.count(want);
+      if (!(got == want) && ++bad <= 5)
+        ADD_FAILURE() << "config " << n << " x " << o.x << " x_prev " << o.x_prev << " v " << o.v
+                      << " U " << o.U << ": got " << got << ", want " << want;
+    }
+  }
+  EXPECT_EQ(bad, 0);
+  reach.expect_all(500);
+}
+
+// (3) Bound: exact. Every field at its extremes, in random combinations:
+// v at the domain ends, V_MIN, V_MIN - 1, V_PEAK - 1 and around 0; U at the
+// saturation bounds; x, x_prev at INT32_MIN/MAX; each shift 0 or 40,
+// gain_shift -15 or 40, u_frac 22 or 30, x_shift 0 or 16, mantissas at
+// -32768, -1, 0, 1, 32767; v_reset, u_jump, c_const at their range ends.
+TEST(IzhikevichLayerRtl, ExtremeOperandsAndConfigsMatchHls) {
+  std::mt19937 g(7);
+  auto pick = [&g](const auto& set) {
+    return set[std::uniform_int_distribution<size_t>(0, set.size() - 1)(g)];
+  };
+  const std::array<int32_t, 9> vs = {kVLo,       kVHi - 1,         izh::kVMin, izh::kVMin - 1,
+                                     izh::kVPeak - 1, izh::kVPeak, 0, -1, 1};
+  const std::array<int32_t, 5> us = {izh::kUMin, izh::kUMax, 0, -1, 1};
+  const std::array<int32_t, 6> xs = {INT32_MIN, INT32_MAX, 0, -1, 1, INT32_MIN + 1};
+  const std::array<int16_t, 5> ms = {-32768, -1, 0, 1, 32767};
+  const std::array<uint8_t, 2> sh = {0, 40};
+  const std::array<int8_t, 2> gs = {-15, 40};
+  const std::array<uint8_t, 2> fu = {22, 30}, xsh = {0, 16};
+  const std::array<int32_t, 2> vr = {-(int32_t(1) << 29), (int32_t(30) << 22) - 1};
+  const std::array<int32_t, 2> uj = {izh::kUMin, izh::kUMax}, cc = {-68157440, 0};
+  Unit u;
+  long bad = 0, spikes = 0, quiet = 0;
+  for (int n = 0; n < 1500; ++n) {
+    IzhikevichConfig c;
+    c.v_reset = pick(vr), c.u_jump = pick(uj), c.u_frac = pick(fu), c.c_const = pick(cc);
+    c.m2 = pick(ms), c.s2 = pick(sh), c.m3 = pick(ms), c.s3 = pick(sh);
+    c.m4 = pick(ms), c.s4 = pick(sh), c.gain = pick(ms), c.gain_shift = pick(gs);
+    c.x_shift = pick(xsh), c.input_change = n % 2 == 1;
+    u.configure(c);
+    for (int i = 0; i < 16; ++i) {
+      const Operands o{pick(xs), pick(xs), pick(vs), pick(us)};
+      const Result want = golden(c, o), got = u.update(o);
+      want.spike ? ++spikes : ++quiet;
+      if (!(got == want) && ++bad <= 5)
+        ADD_FAILURE() << "config " << n << " x " << o.x << " x_prev " << o.x_prev << " v " << o.v
+                      << " U " << o.U << ": got " << got << ", want " << want;
+    }
+  }
+  EXPECT_EQ(bad, 0);
+  EXPECT_GT(spikes, 1000);
+  EXPECT_GT(quiet, 1000);
+}
+
+// (2) Bound: exact, and identical spike trains. One neuron of a realistic
+// layer (make_izhikevich_config, 35 kHz steps) fed back its own state by the
+// test, next to IzhikevichLayer<1> (the class itself, x_prev included), 1 s
+// each: RS in level mode on a staircase input, RA in change mode on a random
+// walk of presses with jumps over the whole int32 range. Every output also
+// stays in the stored ranges (the domain is closed).
+TEST(IzhikevichLayerRtl, RealisticNeuronSpikeTrainsMatchHls) {
+  std::mt19937 g(3);
+  for (const bool change : {false, true}) {
+    SCOPED_TRACE(change ? "RA, rectified change" : "RS, level");
+    auto cfg = eskin::hls::make_izhikevich_config(
+        eskin::hls::izhikevich_fixed_preset(change ? "RA" : "RS"), 1.0 / 35.0, 1.0 / 1024, 1);
+    cfg.input_change = change;
+    eskin::hls::IzhikevichLayer<1> h(cfg);
+    Unit u;
+    u.configure(cfg);
+    Operands o{0, 0, cfg.v_init, cfg.u_init};
+    std::vector<long> want, got;
+    int32_t x = 0;
+    long bad = 0;
+    for (long n = 0; n < 35000; ++n) {
+      if (change) {  // presses: small steps, now and then a jump anywhere
+        const int r = std::uniform_int_distribution<int>(0, 99)(g);
+        x = r == 0 ? std::uniform_int_distribution<int32_t>(INT32_MIN, INT32_MAX)(g)
+                   : r < 20 ? std::uniform_int_distribution<int32_t>(0, 60000)(g) : x;
+      } else {  // 0, then 5, 10, 20 units of input for 11000 steps each (x: 1/1024 units)
+        x = n < 2000 ? 0 : int32_t((5L << ((n - 2000) / 11000)) * 1024);
+      }
+      o.x = x;
+      const Result r = u.update(o);
+      if (h.update(0, x)) want.push_back(n);
+      if (r.spike) got.push_back(n);
+      const Result w{!want.empty() && want.back() == n, h.v(0), h.U(0), change ? x : o.x_prev};
+      if (!(r == w) && ++bad <= 5) ADD_FAILURE() << "step " << n << ": got " << r << ", want " << w;
+      EXPECT_TRUE((r.v >= izh::kVMin && r.v < izh::kVPeak) || r.v == cfg.v_reset) << n;
+      EXPECT_TRUE(r.U >= izh::kUMin && r.U <= izh::kUMax) << n;
+      o.v = r.v, o.U = r.U, o.x_prev = r.x_prev;
+    }
+    EXPECT_EQ(bad, 0);
+    EXPECT_EQ(got, want);
+    EXPECT_GT(want.size(), 20u);
+  }
+}
+
+// (4) Bound: the handshake timing exactly (14 edges), asserted in every
+// update() above; here: an in_valid held high while busy is not accepted
+// (the results are those of the first operands, and the second operands
+// are taken only after E+14, at E+15), and back-to-back updates run at one
+// per 15 clocks, each with its own exact result.
+TEST(IzhikevichLayerRtl, HandshakeTimingAndBackToBack) {
+  std::mt19937 g(11);
+  Unit u;
+  const IzhikevichConfig c = random_config(g, true);
+  u.configure(c);
+  std::uniform_int_distribution<int32_t> any(INT32_MIN, INT32_MAX), uu(izh::kUMin, izh::kUMax);
+  std::uniform_int_distribution<int32_t> vs(izh::kVMin, izh::kVPeak - 1);
+  std::vector<Operands> ops;
+  for (int i = 0; i < 50; ++i) ops.push_back(Operands{any(g), any(g), vs(g), uu(g)});
+  // in_valid high throughout, the operands changing every clock while busy.
+  size_t next = 0;
+  uint64_t accepted_at = 0;
+  u.drive(ops[0]);
+  u.m.in_valid = 1;
+  while (next < ops.size()) {
+    const bool accept = u.m.in_valid && u.m.in_ready;
+    if (accept) u.drive(ops[next]);
+    u.tick();
+    if (accept) {
+      if (next > 0) {
+        EXPECT_EQ(u.cycle - accepted_at, uint64_t(kLatency + 1)) << next;
+      }
+      accepted_at = u.cycle;
+      EXPECT_FALSE(u.m.in_ready);
+      EXPECT_FALSE(u.m.out_valid);
+      ++next;
+    } else {
+      u.drive(Operands{any(g), any(g), vs(g), uu(g)});  // ignored: busy
+      const uint64_t k = u.cycle - accepted_at;
+      EXPECT_EQ(u.m.out_valid != 0, k == uint64_t(kLatency)) << k;
+      EXPECT_EQ(u.m.in_ready != 0, k == uint64_t(kLatency)) << k;
+      if (k == uint64_t(kLatency)) {
+        EXPECT_EQ(u.out(), golden(c, ops[next - 1])) << next - 1;
+      }
+    }
+  }
+  u.m.in_valid = 0;
+  for (int k = 0; k < kLatency; ++k) u.tick();
+  ASSERT_TRUE(u.m.out_valid);
+  EXPECT_EQ(u.out(), golden(c, ops.back()));
+  // Idle: the results hold, whatever the inputs do.
+  const Result held = u.out();
+  for (int k = 0; k < 20; ++k) {
+    u.drive(Operands{any(g), any(g), vs(g), uu(g)});
+    u.tick();
+    EXPECT_EQ(u.out(), held);
+    EXPECT_TRUE(u.m.in_ready && u.m.out_valid);
+  }
+}
+
+// (5) Bound: exact. Configuration B written word by word while an update
+// with A is in flight (writes before edges E+1 .. E+14, all 15 words, in
+// both orders) does not change that update (result = golden with A); the
+// next update uses B entirely. A write at the accepting edge E itself
+// also applies from the next update on.
+TEST(IzhikevichLayerRtl, ConfigWrittenWhileBusyAppliesToTheNextUpdate) {
+  std::mt19937 g(5);
+  Unit u;
+  std::uniform_int_distribution<int32_t> any(INT32_MIN, INT32_MAX), uu(izh::kUMin, izh::kUMax);
+  std::uniform_int_distribution<int32_t> vs(izh::kVMin, izh::kVPeak - 1);
+  long changed = 0;
+  for (int n = 0; n < 400; ++n) {
+    const IzhikevichConfig a = random_config(g, n % 2), b = random_config(g, n % 3 == 0);
+    u.configure(a);
+    auto wb = config_words(b);
+    if (n % 2) std::reverse(wb.begin(), wb.end());
+    const Operands o{any(g), any(g), vs(g), uu(g)};
+    // Words 0..13 of B before edges E+1..E+14, the last one at the accept edge.
+    u.drive(o);
+    u.m.cfg_we = 1, u.m.cfg_addr = uint8_t(wb[14].first), u.m.cfg_data = wb[14].second;
+    Result r = u.update(o, [&](int k) {
+      u.m.cfg_we = 1, u.m.cfg_addr = uint8_t(wb[size_t(k - 1)].first);
+      u.m.cfg_data = wb[size_t(k - 1)].second;
+    });
+    u.m.cfg_we = 0;
+    EXPECT_EQ(r, golden(a, o)) << n;
+    const Operands o2{any(g), any(g), vs(g), uu(g)};
+    r = u.update(o2);
+    EXPECT_EQ(r, golden(b, o2)) << n;
+    changed += !(golden(a, o2) == golden(b, o2));
+  }
+  EXPECT_GT(changed, 300);  // B's result differs from A's: the check can fail
+}
+
+// (6) Bound: the reset state exactly: out_valid 1, in_ready 1, outputs 0;
+// also from the middle of an update, which is abandoned.
+TEST(IzhikevichLayerRtl, ResetState) {
+  std::mt19937 g(1);
+  Unit u;
+  auto check = [&u] {
+    EXPECT_TRUE(u.m.out_valid);
+    EXPECT_TRUE(u.m.in_ready);
+    EXPECT_EQ(u.out(), Result{});
+  };
+  check();
+  const IzhikevichConfig c = random_config(g, true);
+  u.configure(c);
+  const Operands o{123456789, -5, izh::kVPeak - 1, izh::kUMax};
+  EXPECT_FALSE(u.update(o) == Result{});  // the outputs really move
+  u.drive(o);
+  u.m.in_valid = 1;
+  u.tick();
+  u.m.in_valid = 0;
+  for (int k = 0; k < 5; ++k) u.tick();
+  ASSERT_FALSE(u.m.out_valid);
+  u.reset();
+  check();
+  for (int k = 0; k < 20; ++k) {
+    u.tick();
+    check();
+  }
+}
+
+}  // namespace
