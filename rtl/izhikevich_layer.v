@@ -120,69 +120,103 @@ module izhikevich_layer (
   wire      go = in_valid && !busy;
   assign in_ready = !busy;
 
-  // Copy of the words used after the handshake edge.
+  // Copy, at the handshake, of the words used after it (the others are
+  // consumed at that edge: C into vacc, v_reset and u_jump into out_v/out_u).
   reg [15:0] k_m2, k_m3, k_m4, k_gain;
-  reg [5:0]  k_fu, k_s2, k_s3, k_s4, k_nj, k_xsh;
-  reg        k_ic;
+  reg [5:0]  k_xsh, k_fu, k_s4, k_s3, k_nj, k_s2;
   always @(posedge clk)
     if (go) begin
       k_m2 <= c_m2; k_m3 <= c_m3; k_m4 <= c_m4; k_gain <= c_gain;
-      k_fu <= c_fu; k_s2 <= c_s2; k_s3 <= c_s3; k_s4 <= c_s4; k_xsh <= c_xsh;
-      k_nj <= 6'd15 + c_gsr - c_gsl;
-      k_ic <= c_ic;
+      k_xsh <= c_xsh; k_fu <= c_fu; k_s4 <= c_s4; k_s2 <= c_s2;
+      k_s3 <= c_s3 + 6'd15;                // c3v = rnd((p << 15) >> (s3 + 15))
+      k_nj <= 6'd15 + c_gsr - c_gsl;       // J = rnd((p << 15) >> (15 + gsr - gsl))
     end
 
-  // ---- multiplier: p = ma * mb, registered --------------------------------
-  reg  [31:0] v_r, u_r, xp_r;
-  reg  [15:0] wh, vh, xs;
-  reg  [30:0] sq;                    // sq = wh^2 + rnd(wh wl >> 14) (< 2^30 in the domain)
+  // ---- registers ------------------------------------------------------------
+  reg  [15:0] wh, vh, xs;            // multiplier operands: w[30:15], rnd(v >> 14), sat16(..)
+  reg  [14:0] wl;                    // w[14:0] = v[14:0] (62.5 mV = 8000 2^15)
+  reg  [30:0] sq;                    // wh^2 + rnd(wh wl >> 14) (< 2^30 in the domain)
+  reg         sq_c;                  // its rounding carry, added with wh^2
+  reg  signed [31:0] p;              // the product
+  reg  signed [46:0] y;              // round-shift input / product accumulator
+  reg  signed [46:0] q;              // floor(y >> n) ...
+  reg         qc;                    // ... and the rounding carry: rnd = q + qc
+  reg  signed [34:0] vacc;           // v' = v + C - U22 + J + c2w2
+  reg  signed [46:0] uacc;           // U, then U - c4U + c3v
+
+  // ---- multiplier: p = ma * mb, registered ----------------------------------
   reg  [15:0] ma, mb;
-  reg  signed [31:0] p;
-  reg  signed [34:0] vacc;           // v' = v + c2w2 + C - U22 + J
-  reg  signed [46:0] uacc;           // U + c3v - c4U
   always @* begin
     case (step)
-      4'd1: begin ma = wh; mb = {1'b0, v_r[14:0]}; end
-      4'd2: begin ma = k_m3; mb = vh; end
+      4'd0: begin ma = wh; mb = {1'b0, wl}; end
+      4'd1: begin ma = k_m4; mb = uacc[30:15]; end
+      4'd2: begin ma = k_m4; mb = {1'b0, uacc[14:0]}; end
       4'd3: begin ma = wh; mb = wh; end
-      4'd4: begin ma = k_gain; mb = xs; end
-      4'd5: begin ma = k_m2; mb = sq[30:15]; end
-      4'd6: begin ma = k_m2; mb = {1'b0, sq[14:0]}; end
-      4'd7: begin ma = k_m4; mb = u_r[30:15]; end
-      default: begin ma = k_m4; mb = {1'b0, u_r[14:0]}; end
+      4'd4: begin ma = k_m3; mb = vh; end
+      4'd5: begin ma = k_gain; mb = xs; end
+      4'd6: begin ma = k_m2; mb = sq[30:15]; end
+      default: begin ma = k_m2; mb = {1'b0, sq[14:0]}; end
     endcase
   end
   always @(posedge clk) p <= $signed(ma) * $signed(mb);
+  wire signed [46:0] p47 = {{15{p[31]}}, p};
+  wire signed [46:0] p15 = {p, 15'd0};             // |p| <= 2^30: no loss
 
-  // ---- round-shift unit: r = rnd(y >> sn), registered ----------------------
-  reg  signed [46:0] y, r;
+  // ---- round-shift unit: (q, qc) = floor(y >> sn), bit sn-1 of y ------------
   reg  [5:0] sn;
   always @* begin
     case (step)
-      4'd1: sn = k_xsh;
-      4'd2: sn = k_fu;
-      4'd4: sn = k_s3;
-      4'd6: sn = k_nj;
-      4'd8: sn = k_s2;
-      default: sn = k_s4;
+      4'd0: sn = k_xsh;
+      4'd1: sn = k_fu;
+      4'd4: sn = k_s4;
+      4'd6: sn = k_s3;
+      4'd7: sn = k_nj;
+      default: sn = k_s2;
     endcase
   end
   wire signed [47:0] sh = $signed({y, 1'b0}) >>> sn;
-  always @(posedge clk) r <= sh[47:1] + {46'd0, sh[0]};
+  always @(posedge clk) {q, qc} <= sh;
 
-  // ---- helpers ---------------------------------------------------------------
-  wire signed [46:0] p47 = {{15{p[31]}}, p};
-  wire signed [46:0] p15 = {p, 15'd0};              // p 2^15 (|p| <= 2^30: no loss)
-  wire signed [32:0] dx = $signed({y[31], y[31:0]}) - $signed({xp_r[31], xp_r});
-  wire [31:0] drive = dx[32] ? 32'd0 : (dx[31] ? 32'h7fffffff : dx[31:0]);
-  wire [15:0] xs_sat = (r[46:15] == {32{r[46]}}) ? r[15:0] : {r[46], {15{!r[46]}}};
-  wire [31:0] j_sat = (r[46:31] == {16{r[46]}}) ? r[31:0] : {r[46], {31{!r[46]}}};
-  wire [17:0] t14 = p[31:14] + {17'd0, p[13]};     // rnd(wh wl >> 14), |wh wl| < 2^30
-  wire signed [34:0] sum_add = $signed({{3{r[31]}}, r[31:0]});
-  wire signed [34:0] j_add = $signed({{3{j_sat[31]}}, j_sat});
+  // Saturations of rnd = q + qc: above when q >= MAX (q = MAX rounds up or
+  // stays), below when q < MIN (q = MIN - 1 rounding up gives MIN itself).
+  wire xs_hi = !q[46] && (q[46:15] != 0 || &q[14:0]);
+  wire xs_lo = q[46] && !(&q[46:15]);
+  wire j_hi = !q[46] && (q[46:31] != 0 || &q[30:0]);
+  wire j_lo = q[46] && !(&q[46:31]);
+  // c2w2 = int32(rnd): q[31:0] = 2^31 - 1 rounding up wraps to -2^31.
+  wire c2_wrap = q[31] || (&q[30:0] && qc);
+
+  // ---- vacc += addend + cin (one adder; the carry-in enters below bit 0) ------
+  reg  [34:0] v_add;
+  reg         v_cin;
+  always @* begin
+    v_cin = qc;
+    case (step)
+      4'd2: begin v_add = ~{{3{q[31]}}, q[31:0]}; v_cin = !qc; end  // - U22 (fits int32)
+      4'd8: begin                                                    // + sat32(J)
+        v_add = j_hi ? 35'h07fffffff : j_lo ? 35'h780000000 : {{3{q[31]}}, q[31:0]};
+        v_cin = qc && !j_hi && !j_lo;
+      end
+      default: v_add = {{3{c2_wrap}}, q[31:0]};                     // + c2w2
+    endcase
+    if (go) begin v_add = {{3{c_const[31]}}, c_const}; v_cin = 1'b0; end
+  end
+  wire [35:0] v_sum = {go ? {{3{in_v[31]}}, in_v} : vacc, 1'b1} + {v_add, v_cin};
+
+  // ---- uacc: U - c4U + c3v, then sat(.) + (spike ? u_jump : 0) ----------------
   wire [31:0] u_sat = (uacc[46:30] == {17{uacc[46]}}) ? uacc[31:0]
                                                        : {{2{uacc[46]}}, {30{!uacc[46]}}};
   wire spike = vacc >= V_PEAK;
+  wire [46:0] u_base = step == 4'd11 ? {{15{u_sat[31]}}, u_sat} : uacc;
+  wire [46:0] u_add = step == 4'd5 ? ~q : step == 4'd7 ? q
+                    : spike ? {{15{out_u[31]}}, out_u} : 47'd0;
+  wire        u_cin = step == 4'd5 ? !qc : step == 4'd7 && qc;
+  wire [47:0] u_sum = {u_base, 1'b1} + {u_add, u_cin};
+  wire unused_lsb = &{1'b0, v_sum[0], u_sum[0]};   // the carry-in positions
+
+  // ---- input: drive = ic ? clamp(x - x_prev, 0, 2^31 - 1) : x ---------------
+  wire [32:0] dx = {in_x[31], in_x} - {in_x_prev[31], in_x_prev};
+  wire [31:0] drive = !c_ic ? in_x : dx[32] ? 32'd0 : dx[31] ? 32'h7fffffff : dx[31:0];
 
   always @(posedge clk) begin
     if (rst) begin
@@ -191,32 +225,32 @@ module izhikevich_layer (
       out_v <= 32'd0; out_u <= 32'd0; out_x_prev <= 32'd0;
     end else if (go) begin
       busy <= 1'b1; step <= 4'd0; out_valid <= 1'b0;
-      v_r <= in_v; u_r <= in_u; xp_r <= in_x_prev;
-      y <= {{15{in_x[31]}}, in_x};
-      vacc <= {{3{c_const[31]}}, c_const};
+      y <= {{15{drive[31]}}, drive};
+      wh <= in_v[30:15] + W_OFF_H;
+      vh <= in_v[29:14] + {15'd0, in_v[13]};
+      wl <= in_v[14:0];
+      uacc <= {{15{in_u[31]}}, in_u};
+      vacc <= v_sum[35:1];                         // v + C
       out_v <= c_vreset;                           // the spike's v
       out_u <= c_ujump;                            // kd, added on a spike
       out_x_prev <= c_ic ? in_x : in_x_prev;
     end else if (busy) begin
       step <= step + 4'd1;
       case (step)
-        4'd0: begin
-          if (k_ic) y <= {15'd0, drive};
-          wh <= v_r[30:15] + W_OFF_H;
-          vh <= v_r[29:14] + {15'd0, v_r[13]};
+        4'd0: y <= {{15{uacc[31]}}, uacc[31:0]};
+        4'd1: begin
+          xs <= xs_hi ? 16'h7fff : xs_lo ? 16'h8000 : q[15:0] + {15'd0, qc};
+          sq <= {{13{p[31]}}, p[31:14]}; sq_c <= p[13];
         end
-        4'd1: y <= {{15{u_r[31]}}, u_r};
-        4'd2: begin xs <= xs_sat; sq <= {{13{t14[17]}}, t14}; end
-        4'd3: begin y <= p47; vacc <= vacc - sum_add; end
-        4'd4: begin sq <= sq + p[30:0]; vacc <= vacc + $signed({{3{v_r[31]}}, v_r}); end
-        4'd5: begin y <= p15; uacc <= $signed({{15{u_r[31]}}, u_r}) + r; end
+        4'd2: begin y <= p15; vacc <= v_sum[35:1]; end
+        4'd3: y <= y + p47;
+        4'd4: sq <= sq + p[30:0] + {30'd0, sq_c};
+        4'd5: begin y <= p15; uacc <= u_sum[47:1]; end
         4'd6: y <= p15;
-        4'd7: begin y <= y + p47; vacc <= vacc + j_add; end
-        4'd8: y <= p15;
-        4'd9: begin y <= y + p47; vacc <= vacc + sum_add; end
-        4'd11: uacc <= uacc - r;
-        4'd12: uacc <= $signed({{15{u_sat[31]}}, u_sat})
-                       + (spike ? $signed({{15{out_u[31]}}, out_u}) : 47'sd0);
+        4'd7: begin y <= p15; uacc <= u_sum[47:1]; end
+        4'd8: begin y <= y + p47; vacc <= v_sum[35:1]; end
+        4'd10: vacc <= v_sum[35:1];
+        4'd11: uacc <= u_sum[47:1];
         4'd13: begin
           busy <= 1'b0; out_valid <= 1'b1; out_spike <= spike;
           out_u <= u_sat;

@@ -237,6 +237,50 @@ TEST(IzhikevichLayerRtl, ExtremeOperandsAndConfigsMatchHls) {
   EXPECT_GT(quiet, 1000);
 }
 
+// (3b) Bound: exact, at the points where a rounding carry meets a
+// saturation or truncation (random operands hit them with probability
+// ~2^-16 or less): xs = sat16(rnd(x >> x_shift)) for x around +-2^(15 +
+// x_shift), every x_shift, seen through J = xs (gain 1) in v; and c2w2 =
+// int32(rnd(m2 sq >> s2)) where the rounded value is exactly 2^31 (wraps to
+// INT32_MIN), found by scanning w for square_term() == INT32_MIN.
+TEST(IzhikevichLayerRtl, RoundingCarriesAtSaturationAndWrapEdges) {
+  Unit u;
+  IzhikevichConfig c;
+  c.gain = 1, c.gain_shift = 0, c.u_frac = 22, c.v_reset = 0;
+  const int32_t v0 = -(int32_t(60) << izh::kFrac);
+  long n = 0;
+  for (int xsh = 0; xsh <= 16; ++xsh) {
+    c.x_shift = uint8_t(xsh);
+    u.configure(c);
+    for (const int64_t k : {32766, 32767, 32768, -32767, -32768, -32769})
+      for (int64_t d = -2; d <= 2; ++d)
+        for (const int64_t half : {int64_t(0), xsh ? (int64_t(1) << (xsh - 1)) : 0}) {
+          const int64_t x = (k << xsh) + d + half;
+          if (x < INT32_MIN || x > INT32_MAX) continue;
+          const Operands o{int32_t(x), 0, v0, 0};
+          EXPECT_EQ(u.update(o), golden(c, o)) << "x_shift " << xsh << " x " << x;
+          ++n;
+        }
+  }
+  EXPECT_GT(n, 900);
+  // m2 sq = 2^32 - 1 (s2 = 1: q = 2^31 - 1 with a rounding carry) and
+  // m2 sq = 2^32 (q = 2^31): wh = 4104, 4096 and the wl that hit.
+  long wraps = 0;
+  for (const auto& [m2, wh] : {std::pair<int16_t, int32_t>{255, 4104}, {256, 4096}}) {
+    c = IzhikevichConfig{};
+    c.m2 = m2, c.s2 = 1, c.u_frac = 22, c.v_reset = 0;
+    u.configure(c);
+    for (int32_t wl = 0; wl < 32768; ++wl) {
+      const int32_t v = (wh << 15) + wl - izh::kWOffset;
+      if (izh::square_term(c, v) != INT32_MIN) continue;
+      const Operands o{0, 0, v, 0};
+      EXPECT_EQ(u.update(o), golden(c, o)) << "m2 " << m2 << " v " << v;
+      ++wraps;
+    }
+  }
+  EXPECT_GE(wraps, 2);
+}
+
 // (2) Bound: exact, and identical spike trains. One neuron of a realistic
 // layer (make_izhikevich_config, 35 kHz steps) fed back its own state by the
 // test, next to IzhikevichLayer<1> (the class itself, x_prev included), 1 s
