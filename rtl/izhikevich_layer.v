@@ -6,61 +6,67 @@
 // J Q9.22), the rounding rnd(y >> n) = floor((y + 2^(n-1)) / 2^n) and the
 // saturations (xs int16, J int32, v >= V_MIN, U in [-2^30, 2^30)).
 //
-// Datapath: ONE signed 16x16 multiplier with a registered product p (SB_MAC16
-// / MULT18X18D) and ONE round-shift unit r <= rnd(y >> n) on a 47-bit y,
-// n = 0..63 (the count fields' low 6 bits): bit 0 of {y, 0} >>> n is bit
-// n-1 of y, the rounding carry, so rnd = ({y,0} >>> n)[47:1] + bit 0; for
-// n >= 48 this gives 0 as in the C++ (|y| < 2^46 < 2^(n-1)). y doubles as the
-// accumulator of the split products (m * s with s = sh 2^15 + sl).
-// Schedule (s0 = the clock after the handshake edge; MUL at sK: p is ready
-// in sK+1; SH at sK: r is ready in sK+1):
-//   s0  drive = ic ? clamp(x - x_prev, 0, 2^31-1) : x; wh = (v + 62.5 mV) >> 15,
-//       vh = rnd(v >> 14) (fixed shifts: adders, not the shifter)
-//   s1  MUL wh*wl             SH xs' = rnd(drive >> x_shift)      y = U
-//   s2  MUL m3*vh             SH U22 = rnd(U >> (FU-22))          xs = sat16(r), sq = rnd(p >> 14)
-//   s3  MUL wh*wh             y = m3*vh                           vacc -= U22
-//   s4  MUL xs*gain           SH c3v = rnd(y >> s3)               sq += p; vacc += v
-//   s5  MUL m2*sqh            y = p << 15                         uacc = U + c3v
-//   s6  MUL m2*sql            SH J' = rnd(y >> (15 + gsr - gsl)) y = p << 15
-//   s7  MUL m4*Uh             y += p                              vacc += sat32(J')
-//   s8  MUL m4*Ul             SH c2w2 = rnd(y >> s2)              y = p << 15
-//   s9                        y += p                              vacc += int32(c2w2)
-//   s10                       SH c4U = rnd(y >> s4)
-//   s11 uacc -= c4U
-//   s12 spike = vacc >= V_PEAK; uacc = sat_u(uacc) + (spike ? u_jump : 0)
-//   s13 out_v = spike ? v_reset : max(vacc, V_MIN), out_u = sat_u(uacc), out_spike
-// The input gain shift is one right shift: (p << gsl) >> gsr = (p << 15) >>
-// (15 - gsl + gsr), exact for gsl <= 15 (gain_shift >= -15) as the low 15
-// bits of p << 15 are 0, and the two roundings coincide. vacc starts as the
-// constant C; out_v and out_u hold v_reset and u_jump while busy (out_valid
-// is 0 then), so only the 16 bits used after the handshake edge are copied.
+// Datapath: ONE signed 16x16 multiplier, product registered (p), and ONE
+// round-shift unit: {q, qc} <= {y, 0} >>> n on a 47-bit y, n = 0..63 (the
+// count fields' low 6 bits), so q = floor(y / 2^n) and qc = bit n-1 of y,
+// the rounding carry: rnd = q + qc, added as the carry-in of the adder that
+// consumes it (n >= 48 gives q + qc = 0, as the C++ does for |y| < 2^46).
+// y doubles as the accumulator of the split products m (sh 2^15 + sl).
+// Shifts of a product p by a count c use y = p 2^15 and c + 15 (exact: the
+// low 15 bits are 0), which turns the gain's left shift into a right shift:
+// J = rnd((p 2^15) >> (15 + gsr - gsl)) for gsl <= 15 (gain_shift >= -15).
+// Schedule; E = the handshake edge, sK = the clock after edge E+K; a MUL in
+// sK gives p in sK+1, a SH in sK gives {q, qc} in sK+1:
+//   E   from the ports and words: y = ic ? clamp(x - x_prev, 0, 2^31-1) : x,
+//       wh = (v + 62.5 mV)[30:15], wl = v[14:0], vh = rnd(v >> 14), uacc = U,
+//       vacc = v + C, out_v = v_reset, out_u = u_jump, out_x_prev; the
+//       other words are copied (writes while busy touch only the copies'
+//       sources)
+//   s0  MUL wh*wl    SH xs' = y >> x_shift        y = U
+//   s1  MUL m4*Uh    SH U22 = y >> (FU-22)        xs = sat16(xs'), sq = p >> 14
+//   s2  MUL m4*Ul    y = p 2^15                   vacc -= U22
+//   s3  MUL wh*wh    y += p
+//   s4  MUL m3*vh    SH c4U = y >> s4             sq += p (sq = wh^2 + rnd(wh wl >> 14))
+//   s5  MUL xs*gain  y = p 2^15                   uacc -= c4U
+//   s6  MUL m2*sqh   SH c3v = y >> (s3 + 15)      y = p 2^15
+//   s7  MUL m2*sql   SH J = y >> (15 + gsr - gsl) y = p 2^15, uacc += c3v
+//   s8  y += p       vacc += sat32(J)
+//   s9  SH c2w2 = y >> s2
+//   s10 vacc += int32(c2w2)                       (vacc = v' complete)
+//   s11 spike = vacc >= V_PEAK; uacc = sat_u(uacc) + (spike ? u_jump : 0)
+//   s12 (pad to 14)
+//   s13 out_v = spike ? v_reset : max(vacc, V_MIN), out_u = sat_u(uacc),
+//       out_spike, out_valid = in_ready = 1 (edge E+14)
 //
-// Widths (why nothing wraps, for ANY 32-bit x, x_prev, v, U and any config):
-//   the multiplier's operands are 16-bit, so |p| <= 2^30; y = p 2^15 + p'
-//   < 2^45 + 2^30 < 2^46: 47 bits signed (C++: int64). vacc = v + c2w2 + C -
-//   U22 + J, five int32 terms: |vacc| < 5 2^31 < 2^34: 35 bits (int64).
-//   uacc = U + c3v - c4U: |U| <= 2^31, |c3v| <= 2^30, |c4U| <= 2^45 + 2^30:
-//   47 bits (int64); then sat(.) + u_jump < 2^32: fits too.
-//   Operand fields (as the engine's lt/mpy take them): wh = w[30:15],
-//   vh = low 16 bits of rnd(v >> 14), sqh = sq[30:15], Uh = U[30:15]. They
-//   equal the C++ values (U >> 15 etc.) whenever those fit int16:
-//   v in [-2^29 - 2^13, 2^29 - 2^13) (the vh bound; four times the stored
-//   range [V_MIN, V_PEAK), v_reset included) and U in [-2^30, 2^30) (its
-//   saturation range). Outside that the C++ itself overflows int32 (w^2,
-//   m3 * vh: undefined behaviour), so this is the domain of the equivalence;
-//   the unit's own outputs never leave it.
+// Widths (the C++'s int64 intermediates; why nothing wraps, for ANY 32-bit
+// x, x_prev, v, U and any config): the operands are 16-bit, so |p| <= 2^30;
+// y = p 2^15 + p' < 2^45 + 2^30 < 2^46: 47 bits signed. vacc = v + C - U22
+// + J + c2w2, five int32 terms: |vacc| < 5 2^31 < 2^34: 35 bits. uacc =
+// U - c4U + c3v: |U| <= 2^31, |c4U| <= 2^45 + 2^30, |c3v| <= 2^30: 47 bits;
+// then sat_u(.) + u_jump < 2^32. c2w2 is truncated to int32 as in the C++
+// (square_term returns int32), including a rounding carry into bit 31.
+// Operand fields as the engine's lt/mpy take them: wh = w[30:15], vh = the
+// low 16 bits of rnd(v >> 14), sqh = sq[30:15], Uh = U[30:15]. They equal
+// the C++'s values whenever those fit int16: v in [-2^29 - 2^13, 2^29 -
+// 2^13) (the vh bound; it holds the stored range [V_MIN, V_PEAK) and every
+// v_reset) and U in [-2^30, 2^30) (its saturation range). Beyond that the
+// C++ itself overflows int32 (w^2, m3 vh: undefined behaviour), so that is
+// the domain of the equivalence; the unit's outputs never leave it.
 //
-// Timing: an input accepted at edge E (in_valid && in_ready; in_ready = idle)
-// drops in_ready and out_valid at E; the results are registered at edge E+14,
-// where out_valid and in_ready rise: one update per 15 clocks back to back.
-// Configuration: cfg_we writes a word any time; the words are copied at the
-// handshake edge (a write at that very edge applies to the next update), so
-// writes while busy never touch the update in flight.
+// Timing: an input accepted at edge E (in_valid && in_ready; in_ready =
+// idle) drops in_ready and out_valid at E; results, out_valid and in_ready
+// come at edge E+14: back to back, one update per 15 clocks. The results
+// hold until the next accepted input (out_v, out_u are scratch while busy).
+// The ports are used at E through the adders above: drive them from
+// registers. Configuration: cfg_we writes a word any time; a write at E or
+// while busy applies from the next update.
 //
-// Resources (unit alone, Yosys 0.23 / yowasp nextpnr-ecp5): see the end of
-// this comment block in the commit history; figures:
-//   iCE40 (synth_ice40 -dsp): TBD
-//   ECP5  (synth_ecp5):       TBD
+// Resources (the unit alone; yosys 0.23 synth_ice40 -dsp -abc9 as
+// scripts/synth_ice40.sh; yowasp yosys synth_ecp5 / nextpnr-ecp5 --85k
+// out of context): iCE40 1515 SB_LUT4, 678 SB_DFF*, 268 SB_CARRY, 1 SB_MAC16
+// (of which the 47-bit round-shift unit is ~335 LUT4); ECP5 1516 LUT4 (1832
+// TRELLIS_COMB placed), 710 FF, 1 MULT18X18D, Fmax 83-85 MHz (seeds 1-3).
+// Of the flip-flops, 203 hold the configuration and 100 its copy.
 module izhikevich_layer (
     input  wire        clk,
     input  wire        rst,
@@ -177,12 +183,12 @@ module izhikevich_layer (
   wire signed [47:0] sh = $signed({y, 1'b0}) >>> sn;
   always @(posedge clk) {q, qc} <= sh;
 
-  // Saturations of rnd = q + qc: above when q >= MAX (q = MAX rounds up or
-  // stays), below when q < MIN (q = MIN - 1 rounding up gives MIN itself).
-  wire xs_hi = !q[46] && (q[46:15] != 0 || &q[14:0]);
-  wire xs_lo = q[46] && !(&q[46:15]);
-  wire j_hi = !q[46] && (q[46:31] != 0 || &q[30:0]);
-  wire j_lo = q[46] && !(&q[46:31]);
+  // Saturations of rnd = q + qc to int16 (xs) and int32 (J): out of range
+  // when q is (q = MAX rounding up also overflows; q = MIN - 1 rounding up
+  // gives MIN, which the saturation gives too); the bound's low bits are all
+  // !sign, its high bits the sign.
+  wire xs_ovf = q[46:15] != {32{q[46]}} || (!q[46] && &q[14:0] && qc);
+  wire j_ovf = q[46:31] != {16{q[46]}} || (!q[46] && &q[30:0] && qc);
   // c2w2 = int32(rnd): q[31:0] = 2^31 - 1 rounding up wraps to -2^31.
   wire c2_wrap = q[31] || (&q[30:0] && qc);
 
@@ -194,8 +200,8 @@ module izhikevich_layer (
     case (step)
       4'd2: begin v_add = ~{{3{q[31]}}, q[31:0]}; v_cin = !qc; end  // - U22 (fits int32)
       4'd8: begin                                                    // + sat32(J)
-        v_add = j_hi ? 35'h07fffffff : j_lo ? 35'h780000000 : {{3{q[31]}}, q[31:0]};
-        v_cin = qc && !j_hi && !j_lo;
+        v_add = j_ovf ? {{4{q[46]}}, {31{!q[46]}}} : {{3{q[31]}}, q[31:0]};
+        v_cin = qc && !j_ovf;
       end
       default: v_add = {{3{c2_wrap}}, q[31:0]};                     // + c2w2
     endcase
@@ -239,7 +245,7 @@ module izhikevich_layer (
       case (step)
         4'd0: y <= {{15{uacc[31]}}, uacc[31:0]};
         4'd1: begin
-          xs <= xs_hi ? 16'h7fff : xs_lo ? 16'h8000 : q[15:0] + {15'd0, qc};
+          xs <= xs_ovf ? {q[46], {15{!q[46]}}} : q[15:0] + {15'd0, qc};
           sq <= {{13{p[31]}}, p[31:14]}; sq_c <= p[13];
         end
         4'd2: begin y <= p15; vacc <= v_sum[35:1]; end

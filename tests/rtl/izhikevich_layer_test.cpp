@@ -10,7 +10,7 @@
 // undefined behaviour, so there is nothing to compare with). It contains
 // the stored ranges (v in [V_MIN, V_PEAK), v_reset; U saturated), and
 // Realistic checks that the outputs never leave them.
-// Timing: every update asserts the 14-edge handshake (Update below).
+// Timing: every update asserts the 14-edge handshake (Unit::update).
 #include <gtest/gtest.h>
 
 #include <algorithm>
