@@ -38,12 +38,25 @@ enum DtmfIoPort : uint16_t {
   kIoFrameOvr = 0x209,   // r: frames lost because the engine was busy
   kIoSdftBusy = 0x20A,   // r: a DFT carrier write is pending
   kIoCmdOvf = 0x20B,     // r: command frames dropped: FIFO full
+  kIoIzSpike = 0x20C,    // r: neuron unit: 1 when the last update spiked
+  kIoIzV = 0x20D,        // r: neuron unit: v after the last update; w: v operand
+  kIoIzU = 0x20E,        // r: neuron unit: U after the last update; w: U operand
+  kIoIzXPrev = 0x20F,    // r: neuron unit: x_prev after the last update
   kIoOutByte = 0x200,    // w: one byte to the output FIFO
   kIoFrameDone = 0x201,  // w: release the frame buffer
   kIoCmdPop = 0x202,     // w: drop the command FIFO head byte
   kIoSdftK = 0x203,      // w: carrier index of the next DFT write, bit 8 = last
   kIoSdftInc = 0x204,    // w: its phase increment (starts the write)
   kIoClear = 0x205,      // w: clear the hardware counters
+  kIoIzX = 0x206,        // w: neuron unit: the input x operand
+  kIoIzGo = 0x207,       // w: neuron unit: the x_prev operand; starts the update
+  kIoIzCfg = 0x220,      // w: neuron unit: constant word w of the layer block at 0x220 + w
+};
+// Engine events (the `wait` mask bits) of rtl/dtmf_top.v.
+enum DtmfEvent : uint16_t {
+  kEvFramePending = 1,
+  kEvCmdAvail = 2,
+  kEvIzDone = 4,  // the neuron unit holds the results of its last update
 };
 
 constexpr int kNeuronBlock = 20;  // words of constants per layer (NCS)
@@ -104,6 +117,73 @@ inline bool apply_neuron_param(IzhikevichConfig& c, int param, int64_t v) {
   return true;
 }
 
+// Clocks of one update of the neuron unit (rtl/izhikevich_layer.v): an
+// update started by the write in clock c holds its results, and raises
+// kEvIzDone, from clock c + kIzhikevichUnitClocks on.
+constexpr int kIzhikevichUnitClocks = 14;
+
+// rtl/dtmf_top.v's neuron unit ports (NEURON_UNIT = 1) as the engine sees
+// them, for the C++ models of the top (its IO objects): constant words as
+// the microcode keeps them in DMEM, operands, and the update of
+// hls/izhikevich_layer.h (IzhikevichLayer::update for one neuron) when the
+// last operand, x_prev, is written.
+struct IzhikevichUnitPort {
+  bool present = false;  // the plan's neuron_unit: without it the ports are not decoded
+  uint32_t cfg[32] = {};
+  int32_t x = 0, v = 0, u = 0;
+  bool spike = false;
+  int32_t out_v = 0, out_u = 0, out_x_prev = 0;
+  uint64_t done_clock = 0;
+
+  // The layer's constants from the words (shift counts: the low 6 bits, as
+  // the engine's shifts take them; the gain shifts: left when word 14 is set).
+  IzhikevichConfig config() const {
+    IzhikevichConfig c;
+    c.v_reset = int32_t(cfg[2]), c.u_jump = int32_t(cfg[3]);
+    c.u_frac = uint8_t(22 + (cfg[4] & 63)), c.c_const = int32_t(cfg[5]);
+    c.m2 = int16_t(cfg[6]), c.s2 = uint8_t(cfg[7] & 63);
+    c.m3 = int16_t(cfg[8]), c.s3 = uint8_t(cfg[9] & 63);
+    c.m4 = int16_t(cfg[10]), c.s4 = uint8_t(cfg[11] & 63);
+    c.gain = int16_t(cfg[12]);
+    c.gain_shift = int8_t((cfg[14] & 63) != 0 ? -int(cfg[14] & 63) : int(cfg[13] & 63));
+    c.x_shift = uint8_t(cfg[15] & 63), c.input_change = cfg[16] != 0;
+    return c;
+  }
+  // An IO write at `clock`; false when `a` is not a unit port.
+  bool write(uint16_t a, uint32_t d, uint64_t clock) {
+    if (!present) return false;
+    if ((a & 0xFFE0) == kIoIzCfg) return cfg[a & 31] = d, true;
+    switch (a) {
+      case kIoIzX: x = int32_t(d); return true;
+      case kIoIzV: v = int32_t(d); return true;
+      case kIoIzU: u = int32_t(d); return true;
+      case kIoIzGo: {
+        IzhikevichLayer<1> one(config());
+        one.set_state(0, v, u, int32_t(d));
+        spike = one.update(0, x);
+        out_v = one.v(0), out_u = one.U(0), out_x_prev = one.x_prev(0);
+        done_clock = clock + kIzhikevichUnitClocks;
+        return true;
+      }
+      default: return false;
+    }
+  }
+  // An IO read; false when `a` is not a unit port.
+  bool read(uint16_t a, uint32_t& d) const {
+    if (!present) return false;
+    switch (a) {
+      case kIoIzSpike: d = spike ? 1u : 0u; return true;
+      case kIoIzV: d = uint32_t(out_v); return true;
+      case kIoIzU: d = uint32_t(out_u); return true;
+      case kIoIzXPrev: d = uint32_t(out_x_prev); return true;
+      default: return false;
+    }
+  }
+  uint16_t events(uint64_t clock) const {
+    return present && clock >= done_clock ? kEvIzDone : 0;
+  }
+};
+
 struct EngineImage {
   std::vector<uint32_t> krom;
   std::vector<std::pair<std::string, int64_t>> symbols;
@@ -159,15 +239,17 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // ---- state ----
   const int lk = p.lookback * K;
   alloc("PHASE", 2 * K), alloc("HIST", lk), alloc("HEAD", 1), alloc("REM", K);
-  alloc("PEND", T), alloc("SITE", T), alloc("MAG", K), alloc("ROOT", K), alloc("G", T);
-  alloc("NS", 6 * T), alloc("S0", T), alloc("S1", T), alloc("X2IN", T);
+  alloc("PL", K), alloc("NPL", 1), alloc("SITE", T), alloc("MAG", K), alloc("ROOT", K);
+  alloc("G", T), alloc("X2IN", T);  // layer inputs: neuron_unit needs X2IN = G + T
+  alloc("NS", 6 * T), alloc("S0", T), alloc("S1", T);  // and S1 = S0 + T
+  alloc("XPAD", (R + 2) * (C + 2));  // synapse_weights' sums, with a margin
   alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 9);
   alloc("AMPC", 3), alloc("SEL", 3), alloc("SEND", 3);  // frame counts per stream (amp, tax, status)
   for (const char* n :
        {"VT", "TPASS", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "PKTDROP",
         "ACC", "REJ", "LRT", "LRR", "LRS", "CTYPE", "CSEQ", "CLEN", "PT", "PTT", "PLEN", "TLO",
-        "TMP", "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TP", "TR", "TCL",
-        "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TNB", "TD", "TB", "TB2", "NX", "ND", "NXS",
+        "TMP", "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
+        "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "NX", "ND", "NXS",
         "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NC4", "NUN"})
     alloc(n, 1);
   im.dend = at;
@@ -194,9 +276,6 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
     sym(n, int64_t(im.krom.size()));
     for (int i = 0; i < count; ++i) put(f(i));
   };
-  table("KC_DR", [](int d) { return d / 3 - 1; }, 9);
-  table("KC_DC", [](int d) { return d % 3 - 1; }, 9);
-  table("KC_DOFF", [C](int d) { return (d / 3 - 1) * C + (d % 3 - 1); }, 9);
   table("KC_NLO", [](int q) { return neuron_params()[q].lo; }, 16);
   table("KC_NHI", [](int q) { return neuron_params()[q].hi; }, 16);
   table("KC_NOFF", [](int q) { return neuron_params()[q].word; }, 16);
@@ -223,6 +302,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   sym("K", K), sym("KS", ks), sym("R", R), sym("C", C), sym("T", T), sym("DIM", dim);
   sym("STEP", p.step), sym("MAXSPK", p.max_spikes), sym("LK", lk), sym("NCS", kNeuronBlock);
   sym("DEMIX", demix), sym("GHOST", p.spec.ghost), sym("NEURONS", p.spec.spikes);
+  sym("NEURON_UNIT", p.spec.neuron_unit), sym("EV_IZ_DONE", kEvIzDone);
   sym("CF", 14), sym("TW", 10), sym("QUART", kQ);
   sym("SHL_Q", p.mag_shift == 0 ? 2 : 0), sym("SHR_Q", p.mag_shift == 0 ? 0 : 2 * p.mag_shift - 2);
   sym("GRND", p.taxel.recip_shift + 14);
@@ -234,7 +314,9 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
            {"IO_SDFT_BUSY", kIoSdftBusy}, {"IO_CMD_OVF", kIoCmdOvf},
            {"IO_OUT_BYTE", kIoOutByte}, {"IO_FRAME_DONE", kIoFrameDone},
            {"IO_CMD_POP", kIoCmdPop},  {"IO_SDFT_K", kIoSdftK},     {"IO_SDFT_INC", kIoSdftInc},
-           {"IO_CLEAR", kIoClear}})
+           {"IO_CLEAR", kIoClear},     {"IO_IZ_X", kIoIzX},         {"IO_IZ_V", kIoIzV},
+           {"IO_IZ_U", kIoIzU},        {"IO_IZ_GO", kIoIzGo},       {"IO_IZ_CFG", kIoIzCfg},
+           {"IO_IZ_SPIKE", kIoIzSpike}, {"IO_IZ_XPREV", kIoIzXPrev}})
     sym(n, v);
   return im;
 }
@@ -261,6 +343,7 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
           {"OUT_DEPTH", i(p.out_depth)},
           {"ENGINE_FAST_SHIFT", i(p.spec.engine_fast_shift ? 1 : 0)},
           {"SDFT_LANES", i(p.spec.sdft_lanes)},
+          {"NEURON_UNIT", i(p.spec.neuron_unit ? 1 : 0)},
           {"UCODE_HEX", "\"" + ucode_hex + "\""},
           {"KROM_HEX", "\"" + krom_hex + "\""}};
 }

@@ -60,6 +60,12 @@ struct DtmfTopSpec {
   // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS): the board flow
   // picks them (host/fpga/flow.cpp choose_core_clock); 1 is sdft_bank.
   int sdft_lanes = 1;
+  // The hardware neuron unit (rtl/izhikevich_layer.v, NEURON_UNIT): the
+  // engine hands it each neuron update (14 clocks, overlapped: 40 engine
+  // clocks a neuron) instead of running the izhikevich_layer routine (190
+  // to 230 clocks); the same packets, where the board flow puts it
+  // (host/fpga/board.h).
+  bool neuron_unit = false;
 };
 
 // A Verilog parameter override: value in Verilog syntax (e.g. "16'd35").

@@ -221,8 +221,15 @@ class IzhikevichLayer {
     return spike;
   }
 
+  // Neuron i's state, for a caller that keeps it elsewhere (the neuron
+  // unit's port model: the state lives in the engine's DMEM).
+  void set_state(int i, int32_t v, int32_t U, int32_t x_prev) {
+    v_[i] = v, U_[i] = U, x_prev_[i] = x_prev;
+  }
+
   int32_t v(int i) const { return v_[i]; }   // Q9.22 mV
   int32_t U(int i) const { return U_[i]; }   // Q.FU, k u
+  int32_t x_prev(int i) const { return x_prev_[i]; }
   const IzhikevichConfig& config() const { return cfg_; }
 
  private:

@@ -8,7 +8,8 @@
 //   once the window is full; double-buffered) -> frame_engine, microcode
 //   rtl/ucode/dtmf_chain.fe: carrier_demix, carrier_magnitude,
 //   taxel_reconstruct, ghost_filter, izhikevich_layer x 2 (receptors, then the
-//   3x3-weighted layer), synapse_weights, spike_encoder, packets, commands ->
+//   3x3-weighted layer; with NEURON_UNIT on the hardware unit
+//   rtl/izhikevich_layer.v), synapse_weights, spike_encoder, packets, commands ->
 //   byte_fifo -> link_framer -> uart_tx --> host (with EXT_LINK: byte_fifo ->
 //   pkt_*, into rtl/mixed_top.v's shared link)
 //   host --> uart_rx -> cmd_decoder (COBS, CRC, length) -> frame_engine
@@ -62,7 +63,12 @@ module dtmf_top #(
     // 6 KS + 2 clocks with 1 lane, 10 + 2 (KS - 1) + max(0, 6 - 2 L)
     // (ceil(KS / L) - 1) with L >= 2 (frame_capture writes a token in 2
     // clocks; hls/sdft_bank.h's sdft_lanes_interval). 1 on the UP5K.
-    parameter integer SDFT_LANES = 1
+    parameter integer SDFT_LANES = 1,
+    // 1: the hardware neuron unit (rtl/izhikevich_layer.v): the microcode
+    // hands it each neuron update (14 clocks; 40 engine clocks a neuron,
+    // overlapped) instead of running the izhikevich_layer routine (190-230
+    // clocks); the same packets. The board flow decides (host/fpga/board.h).
+    parameter integer NEURON_UNIT = 0
 ) (
     input  wire clk,
     input  wire rst_n,       // active low (button); a power-on reset is built in
@@ -80,7 +86,8 @@ module dtmf_top #(
         OUT_DEPTH < 512 || OUT_DEPTH > 32768 || (OUT_DEPTH & (OUT_DEPTH - 1)) != 0 ||
         (EXT_LINK != 0 && EXT_LINK != 1) || (HALL_CMDS != 0 && HALL_CMDS != 1) ||
         (ENGINE_FAST_SHIFT != 0 && ENGINE_FAST_SHIFT != 1) ||
-        SDFT_LANES < 1 || SDFT_LANES > 16 || SDFT_LANES > KS) begin : g_bad_params
+        SDFT_LANES < 1 || SDFT_LANES > 16 || SDFT_LANES > KS ||
+        (NEURON_UNIT != 0 && NEURON_UNIT != 1)) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -103,6 +110,11 @@ module dtmf_top #(
   wire        wr_sdk = io_we && io_waddr == 16'h0203;
   wire        wr_sdinc = io_we && io_waddr == 16'h0204;
   wire        wr_clear = io_we && io_waddr == 16'h0205;
+  wire        wr_iz_x = io_we && io_waddr == 16'h0206;
+  wire        wr_iz_go = io_we && io_waddr == 16'h0207;  // the x_prev operand
+  wire        wr_iz_v = io_we && io_waddr == 16'h020D;
+  wire        wr_iz_u = io_we && io_waddr == 16'h020E;
+  wire        wr_iz_cfg = io_we && io_waddr[15:5] == 11'h011;  // 0x220 + word
 
   // ---------------- carrier table writes to the DFT ---------------------
   reg [7:0]  cfg_k;
@@ -224,8 +236,41 @@ module dtmf_top #(
     end
   endgenerate
 
+  // ---------------- the neuron unit (NEURON_UNIT) ------------------------
+  // Operands are written one by one (x, v, U); the x_prev write hands all
+  // four over and starts the update. The microcode waits for iz_done
+  // before it reads the results or starts the next, so in_ready is always
+  // 1 at the start.
+  wire        iz_done, iz_spike;
+  wire [31:0] iz_v, iz_u, iz_x_prev;
+  generate
+    if (NEURON_UNIT != 0) begin : g_neuron_unit
+      reg [31:0] op_x, op_v, op_u;
+      always @(posedge clk) begin
+        if (wr_iz_x) op_x <= io_wdata;
+        if (wr_iz_v) op_v <= io_wdata;
+        if (wr_iz_u) op_u <= io_wdata;
+      end
+      wire in_ready_unused;
+      izhikevich_layer u_neuron (
+          .clk(clk), .rst(rst), .cfg_we(wr_iz_cfg), .cfg_addr(io_waddr[4:0]),
+          .cfg_data(io_wdata), .in_valid(wr_iz_go), .in_ready(in_ready_unused),
+          .in_x(op_x), .in_x_prev(io_wdata), .in_v(op_v), .in_u(op_u),
+          .out_valid(iz_done), .out_spike(iz_spike), .out_v(iz_v), .out_u(iz_u),
+          .out_x_prev(iz_x_prev));
+      wire unused_neuron = in_ready_unused;
+    end else begin : g_no_neuron_unit
+      assign iz_done = 1'b0;
+      assign iz_spike = 1'b0;
+      assign iz_v = 32'd0;
+      assign iz_u = 32'd0;
+      assign iz_x_prev = 32'd0;
+      wire unused_neuron = ^{wr_iz_x, wr_iz_go, wr_iz_v, wr_iz_u, wr_iz_cfg};
+    end
+  endgenerate
+
   // ---------------- the frame engine -------------------------------------
-  wire [15:0] events = {14'd0, cmd_avail, frame_pending};
+  wire [15:0] events = {13'd0, iz_done, cmd_avail, frame_pending};
   frame_engine #(.IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX),
                  .KROM_HEX(KROM_HEX), .FAST_SHIFT(ENGINE_FAST_SHIFT)) u_eng (
       .clk(clk), .rst(rst), .io_raddr(io_raddr), .io_re(io_re), .io_waddr(io_waddr), .io_rdata(io_rdata),
@@ -234,7 +279,7 @@ module dtmf_top #(
   // Registered reads (the engine samples one clock after io_re). Reads have
   // no side effects, so the register loads every clock (no enable from the
   // engine's decode), and the address is decoded partially: bit 9 picks
-  // the frame buffer (0x000-0x0FF) or the registers (0x200-0x20B, bits
+  // the frame buffer (0x000-0x0FF) or the registers (0x200-0x20F, bits
   // 3:0); the microcode uses only these addresses (hls/dtmf_engine_config.h).
   // Both keep the path IMEM -> ea adder -> this register short.
   always @(posedge clk) begin
@@ -252,7 +297,10 @@ module dtmf_top #(
       4'h9: io_reg <= {16'd0, frame_overruns};
       4'hA: io_reg <= {31'd0, cfg_valid};
       4'hB: io_reg <= {16'd0, cmd_overflows};
-      default: io_reg <= 32'd0;
+      4'hC: io_reg <= {31'd0, iz_spike};
+      4'hD: io_reg <= iz_v;
+      4'hE: io_reg <= iz_u;
+      default: io_reg <= iz_x_prev;
     endcase
   end
   wire unused_io = ^{io_re, io_raddr[15:10], io_raddr[8]};  // partial decode

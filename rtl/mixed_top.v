@@ -43,6 +43,7 @@ module mixed_top #(
     parameter UCODE_HEX = "",
     parameter KROM_HEX = "",
     parameter integer SDFT_LANES = 1,
+    parameter integer NEURON_UNIT = 0,
     // hall_top
     parameter integer SCL_HZ = 400_000,
     parameter integer NB = 2,
@@ -99,7 +100,7 @@ module mixed_top #(
       .CLK_HZ(CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .BAUD(BAUD), .KS(KS), .N(N), .ACC_W(ACC_W),
       .STEP(STEP), .IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .OUT_DEPTH(OUT_DEPTH),
       .ENGINE_FAST_SHIFT(ENGINE_FAST_SHIFT), .UCODE_HEX(UCODE_HEX), .KROM_HEX(KROM_HEX), .EXT_LINK(1),
-      .HALL_CMDS(DELTAS != 0 ? 1 : 0), .SDFT_LANES(SDFT_LANES)
+      .HALL_CMDS(DELTAS != 0 ? 1 : 0), .SDFT_LANES(SDFT_LANES), .NEURON_UNIT(NEURON_UNIT)
   ) u_dtmf (
       .clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk), .adc_sdata(adc_sdata),
       .uart_txd(), .uart_rxd(uart_rxd), .pkt_valid(pv[0]), .pkt_ready(pr[0]), .pkt_data(pd[7:0]));

@@ -69,9 +69,10 @@ struct EngineCycleModel::Impl {
     const auto words = hls::dtmf_ucode_words(im);
     if (im.dend > (1 << Widest::DW) || im.krom.size() > (size_t(1) << Widest::KW))
       throw std::invalid_argument("engine model: the plan's DMEM/KROM exceed DW 15 / KW 12");
-    if (p.spec.engine_fast_shift)  // its clocks would be counted for the other engine
-      throw std::invalid_argument("engine model: counts the bit-serial shifter only "
-                                  "(engine_fast_shift must be false)");
+    if (p.spec.engine_fast_shift || p.spec.neuron_unit)  // clocks of another build
+      throw std::invalid_argument("engine model: counts the UP5K build only: the bit-serial "
+                                  "shifter, no neuron unit (engine_fast_shift and neuron_unit "
+                                  "must be false)");
     eng.load_program(words.data(), uint32_t(words.size()));
     eng.load_krom(im.krom.data(), uint32_t(im.krom.size()));
     eng.reset();

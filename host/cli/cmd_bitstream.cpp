@@ -50,6 +50,7 @@ struct BitstreamArgs {
   std::string engine_load = "scene";
   bool engine_load_given = false;  // a Hall-only scene has no engine to load
   std::string engine_shifter;      // "serial", "barrel"; empty: the board's
+  std::string neurons;             // "engine", "unit"; empty: the board's
   bool scale_table = false;
   eskin::fpga::ScaleSelection scale;  // --targets, --rates, --sizes
 };
@@ -118,6 +119,9 @@ int run_bitstream(const BitstreamArgs& a) {
   if (!a.engine_shifter.empty() && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
     throw std::invalid_argument("--engine-shifter: " + scene_path +
                                 " has no skin, so no frame engine to build");
+  if (!a.neurons.empty() && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
+    throw std::invalid_argument("--neurons: " + scene_path +
+                                " has no skin, so no neuron layers to build");
   eskin::fpga::FlowOptions opt;
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/" + board.name : a.out;
@@ -126,6 +130,7 @@ int run_bitstream(const BitstreamArgs& a) {
   opt.load = a.engine_load == "stress" ? eskin::fpga::LoadPolicy::Stress
                                        : eskin::fpga::LoadPolicy::Scene;
   opt.fast_shift = a.engine_shifter.empty() ? -1 : a.engine_shifter == "barrel" ? 1 : 0;
+  opt.neuron_unit = a.neurons.empty() ? -1 : a.neurons == "unit" ? 1 : 0;
   // A clock the board cannot make is named before anything runs.
   if (opt.clk_hz > 0 && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
     eskin::fpga::choose_hall_clock(board, opt.clk_hz);
@@ -186,6 +191,13 @@ std::function<int()> setup_bitstream(CLI::App& app) {
                   "barrel (any shift in one clock: fewer engine clocks a frame, ~1000 "
                   "logic cells more); default: the board's (icebreaker serial, ulx3s barrel)")
       ->check(CLI::IsMember({"serial", "barrel"}));
+  sub->add_option("--neurons", args->neurons,
+                  "Where the Izhikevich neuron updates run: engine (the frame engine's "
+                  "microcode, no extra logic) or unit (the hardware neuron unit, "
+                  "rtl/izhikevich_layer.v: 40 engine clocks a neuron instead of 190-230); default: "
+                  "the board's (ulx3s unit; icebreaker the unit only when the engine alone "
+                  "would need a clock above 18 MHz)")
+      ->check(CLI::IsMember({"engine", "unit"}));
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");
   sub->add_option("--sizes", args->scale.sizes,

@@ -12,6 +12,8 @@
 namespace eskin::fpga {
 
 enum class Family { Ice40, Ecp5 };
+// When a board's DTMF core gets the hardware neuron unit (rtl/izhikevich_layer.v).
+enum class NeuronUnit { Never, WhenNeeded, Always };
 
 struct Board {
   std::string name;         // "icebreaker", "ulx3s"
@@ -36,6 +38,11 @@ struct Board {
   // left for a second window. ULX3S 3: 3 of the ECP5's 28 (25F) or 156
   // (85F) multipliers, a few of its 56 or 208 DP16KDs.
   int max_sdft_lanes = 1;
+  // The hardware neuron unit (DtmfTopSpec::neuron_unit, rtl/izhikevich_layer.v):
+  // always on the ECP5s (their logic is cheap); on the UP5K only when the
+  // engine alone would need a clock above the board's default (its logic
+  // cells are scarce: the default scene builds without it).
+  NeuronUnit neuron_unit = NeuronUnit::Never;
 };
 
 // "icebreaker" or "ulx3s"; device_override ("25k", "85k"; empty: the

@@ -31,7 +31,7 @@ struct EngineMax {
 
 // rtl/dtmf_top.v's IO ports as the microcode sees them: the frame buffer,
 // the command FIFO, an output FIFO that is always empty (OUT_DEPTH free), counters at 0, a
-// DFT that takes carrier writes at once.
+// DFT that takes carrier writes at once, the neuron unit when the plan has one.
 struct LoadIo {
   std::vector<int32_t> frame;
   int out_depth = 512;  // the plan's OUT_DEPTH
@@ -41,9 +41,11 @@ struct LoadIo {
   std::deque<uint8_t> cmd;
   int cfg_k = 0;
   bool cfg_last = false;
+  hls::IzhikevichUnitPort neuron;
 
   uint32_t io_read(uint16_t a, uint64_t) {
     if (a < 0x200) return a < frame.size() ? uint32_t(frame[a]) : 0u;
+    if (uint32_t d = 0; neuron.read(a, d)) return d;
     switch (a) {
       case hls::kIoFrameT: case hls::kIoAdcT: return t;
       case hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);
@@ -53,6 +55,7 @@ struct LoadIo {
     }
   }
   void io_write(uint16_t a, uint32_t d, uint64_t clock) {
+    if (neuron.write(a, d, clock)) return;
     switch (a) {
       case hls::kIoFrameDone: pending = false, done = true, done_clock = clock; break;
       case hls::kIoCmdPop: if (!cmd.empty()) cmd.pop_front(); break;
@@ -61,8 +64,9 @@ struct LoadIo {
       default: break;
     }
   }
-  uint16_t events(uint64_t) const {
-    return uint16_t((pending ? 1 : 0) | (cmd.empty() ? 0 : 2));
+  uint16_t events(uint64_t clock) const {
+    return uint16_t((pending ? hls::kEvFramePending : 0) | (cmd.empty() ? 0 : hls::kEvCmdAvail) |
+                    neuron.events(clock));
   }
 };
 
@@ -95,6 +99,7 @@ class LoadRun {
     eng_->reset();
     io_.frame.assign(size_t(2 * p.ks), 0);
     io_.out_depth = p.out_depth;
+    io_.neuron.present = p.spec.neuron_unit;
     limit_ = 4000 * uint64_t(p.T + p.K) + 1000000;  // far above any frame, below a hang
     run_until(64 * uint64_t(im_.dend + im_.krom.size()) + 100000,
               [&] { return io_.adc_on && at_wait(); }, "its first wait");

@@ -85,21 +85,37 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
 }
 
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
-                            long clk_hz, int fast_shift) {
+                            long clk_hz, int fast_shift, int neuron_unit) {
   CoreClock c;
   hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
-  // Before the load: the shifter sets the engine's clocks.
-  spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
-  c.plan = hls::make_dtmf_top_plan(spec);
   // The scene's samples as the top takes them: 12-bit codes minus 2048.
   std::vector<int32_t> x;
   sim::WorldModel world(scene);
   for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
-  c.load = measure_engine_load(c.plan, x);
-  c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
-                             ? c.load.stress_total() : c.load.scene_clocks);
-  c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
-  c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
+  // The shifter and the neuron unit set the engine's clocks, so they come
+  // before the load; the load sets the DFT lanes and the slowest clock.
+  auto plan_with = [&](bool unit) {
+    spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
+    spec.neuron_unit = unit;
+    c.plan = hls::make_dtmf_top_plan(spec);
+    c.load = measure_engine_load(c.plan, x);
+    c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
+                               ? c.load.stress_total() : c.load.scene_clocks);
+    c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
+    c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
+  };
+  if (neuron_unit >= 0) {
+    plan_with(neuron_unit != 0);
+  } else if (b.neuron_unit == NeuronUnit::WhenNeeded) {
+    plan_with(false);  // the unit only where it lets a clock above the default come down
+    if (c.core_min_hz > b.default_clk_hz) {
+      const CoreClock without = c;
+      plan_with(true);
+      if (c.core_min_hz >= without.core_min_hz) c = without;
+    }
+  } else {
+    plan_with(b.neuron_unit == NeuronUnit::Always);
+  }
   auto budget_at = [&](const Clocking& k) {
     c.plan.spec.clk_hz = k.clk_hz;
     c.plan.spec.baud = k.baud;
@@ -118,7 +134,8 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
 
 bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
                     FlowReport& r, Clocking& clk, std::vector<hls::VerilogParam>& params) {
-  CoreClock cc = choose_core_clock(b, scene, opt.load, opt.clk_hz, opt.fast_shift);
+  CoreClock cc = choose_core_clock(b, scene, opt.load, opt.clk_hz, opt.fast_shift,
+                                   opt.neuron_unit);
   const hls::DtmfTopPlan& plan = cc.plan;
   clk = cc.clocking;
   r.step = plan.step;

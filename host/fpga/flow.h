@@ -36,6 +36,7 @@ struct FlowOptions {
   long clk_hz = 0;         // 0: the slowest board clock (not below the board's
                            // default) at which the core keeps up
   int fast_shift = -1;     // the engine's barrel shifter: 1 on, 0 off, -1 the board's
+  int neuron_unit = -1;    // the hardware neuron unit: 1 on, 0 off, -1 the board's
 };
 
 struct Resource {
@@ -112,9 +113,11 @@ struct CoreClock {
   hls::DtmfTopClockBudget budget;
 };
 // fast_shift: the engine's barrel shifter, 1 on, 0 off, -1 the board's
-// (Board::engine_fast_shift).
+// (Board::engine_fast_shift); neuron_unit likewise (Board::neuron_unit;
+// WhenNeeded: on when the load without it needs a clock above the board's
+// default).
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
-                            long clk_hz = 0, int fast_shift = -1);
+                            long clk_hz = 0, int fast_shift = -1, int neuron_unit = -1);
 
 // Builds the scene's core (scene_core) on board `b`: for a skin the plan,
 // the engine's load (engine_load.h), the clock, the microcode and constant

@@ -38,6 +38,7 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
     routines.push_back({{"routine", name}, {"clocks", clocks}});
   j["engine"] = {{"policy", r.policy == LoadPolicy::Stress ? "stress" : "scene"},
                  {"fast_shift", r.spec.engine_fast_shift},
+                 {"neuron_unit", r.spec.neuron_unit},
                  {"required_clocks", r.engine_clocks},
                  {"scene_longest_frame_clocks", r.load.scene_clocks},
                  {"scene_frames", r.load.scene_frames},
@@ -70,7 +71,8 @@ std::string dtmf_table(const FlowReport& r) {
       "skin {}x{}, {} carriers, window {}, {:g} S/s, step {}\n"
       "clock {} MHz (the skin's core needs at least {} MHz), UART {:g} Mbaud\n"
       "DFT: {} lane{}, {} clocks per sample of the {}\n"
-      "frame engine ({} shifter), clocks of the {} a frame has (STEP x {} per sample):\n"
+      "frame engine ({} shifter, neurons on {}), clocks of the {} a frame has (STEP x {} per "
+      "sample):\n"
       "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
       "  stress longest frame  {:>9} ({:.0f} %, {})\n"
       "  + longest command     {:>9} ({:.0f} %, {})\n"
@@ -79,6 +81,7 @@ std::string dtmf_table(const FlowReport& r) {
       r.step, mhz(double(r.spec.clk_hz)), mhz(double(r.core_min_hz)),
       double(r.spec.baud) / 1e6, r.spec.sdft_lanes, r.spec.sdft_lanes == 1 ? "" : "s",
       r.budget.sdft_clocks, r.budget.period, r.spec.engine_fast_shift ? "barrel" : "bit-serial",
+      r.spec.neuron_unit ? "the neuron unit" : "the engine",
       r.budget.frame_clocks, r.budget.period, r.load.scene_clocks,
       100.0 * double(r.load.scene_clocks) / frame, r.load.scene_frames, r.load.stress_clocks,
       100.0 * double(r.load.stress_clocks) / frame, r.load.stress_case, r.load.stress_total(),

@@ -114,6 +114,40 @@ TEST(BitstreamCli, EngineShifterIsTheUsersOrTheBoards) {
                        "skin, so no frame engine to build"), std::string::npos) << r.out;
 }
 
+// --neurons reaches the plan (the report's engine.neuron_unit, and its
+// table), and without it the board decides: the ULX3S has the neuron unit;
+// the iCEBreaker not here, where it would not lower the clock (the ADC's
+// 1 MS/s sets it). As above, no tool runs.
+TEST(BitstreamCli, NeuronsAreTheUsersOrTheBoards) {
+  const fs::path d = tmpdir();
+  const std::string scene = one_msps_scene(d).string();
+  struct Case { std::string args; const char* json, *table; };
+  const Case cases[] = {
+      {"--board icebreaker --clk-mhz 18", "\"neuron_unit\": false", "neurons on the engine"},
+      {"--board icebreaker --clk-mhz 18 --neurons unit", "\"neuron_unit\": true",
+       "neurons on the neuron unit"},
+      {"--board ulx3s --clk-mhz 30", "\"neuron_unit\": true", "neurons on the neuron unit"},
+      {"--board ulx3s --clk-mhz 30 --neurons engine", "\"neuron_unit\": false",
+       "neurons on the engine"},
+  };
+  int i = 0;
+  for (const auto& c : cases) {
+    const fs::path out = d / ("out" + std::to_string(i++));
+    const Result r = sh(c.args + " --scene " + scene + " --out " + out.string());
+    EXPECT_EQ(r.status, 1) << c.args << "\n" << r.out;
+    EXPECT_FALSE(fs::exists(out / "yosys.log")) << c.args;
+    EXPECT_NE(slurp(out / "bitstream_report.json").find(c.json), std::string::npos) << c.args;
+    EXPECT_NE(slurp(out / "bitstream_report.txt").find(c.table), std::string::npos) << c.args;
+  }
+  Result r = sh("--board ulx3s --neurons fpga");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--neurons"), std::string::npos) << r.out;
+  r = sh("--board icebreaker --neurons unit --scene " ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("--neurons: " ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml has no skin, "
+                       "so no neuron layers to build"), std::string::npos) << r.out;
+}
+
 TEST(BitstreamCli, MissingEcp5ToolsNameTheBootstrapStep) {
   const fs::path d = tmpdir();
   const Result r = sh("ESKIN_VENV", "/nonexistent/venv", "--board ulx3s --out " + (d / "out").string());

@@ -221,11 +221,12 @@ namespace {
 // lower; the 6x6 skin, whose bit-serial engine needs about 40 000 clocks a
 // millisecond, must then be carried by the ULX3S at 45 MHz or less (its
 // Fmax is about 43 MHz: docs/scale_table.csv) — at most 34 000 clocks.
+// (The ULX3S's neuron unit is off here: the shifter alone is measured.)
 TEST(CoreClock, Ulx3sEngineHasTheBarrelShifterIcebreakerNot) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const auto sc = scale_scene(base, 6, 35000.0);
   const CoreClock ice = choose_core_clock(find_board("icebreaker"), sc, LoadPolicy::Stress);
-  const CoreClock ecp = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress);
+  const CoreClock ecp = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress, 0, -1, 0);
   EXPECT_FALSE(ice.plan.spec.engine_fast_shift);
   EXPECT_TRUE(ecp.plan.spec.engine_fast_shift);
   std::printf("6x6 at 35 kS/s, engine clocks per frame (stress + command): bit-serial %ld, "
@@ -237,6 +238,61 @@ TEST(CoreClock, Ulx3sEngineHasTheBarrelShifterIcebreakerNot) {
   EXPECT_EQ(param(eskin::hls::dtmf_top_params(ecp.plan, eskin::hls::dtmf_engine_image(ecp.plan), "", ""),
                   "ENGINE_FAST_SHIFT"),
             "1");
+}
+
+// The ULX3S always has the neuron unit. Bound: an 8x8 35 kS/s skin (128
+// neurons) under the stress signals with the barrel shifter either way; the izhikevich_layer routine and its loop take at least 172
+// clocks a neuron and the unit's loop 40 (tests/hls/dtmf_ucode_test.cpp),
+// so the unit saves at least 128 x 132 = 16 896 clocks a frame; then
+// the 8x8 skin, about 53 000 clocks a millisecond on the engine alone,
+// fits a 45 MHz ULX3S clock (45 000 clocks: its Fmax is about 43 MHz).
+TEST(CoreClock, Ulx3sHasTheNeuronUnit) {
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const auto sc = scale_scene(base, 8, 35000.0);
+  const CoreClock ice = choose_core_clock(find_board("icebreaker"), sc, LoadPolicy::Stress, 0, 1, 0);
+  const CoreClock engine = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress, 0, -1, 0);
+  const CoreClock unit = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress);
+  EXPECT_FALSE(ice.plan.spec.neuron_unit);
+  EXPECT_FALSE(engine.plan.spec.neuron_unit);
+  EXPECT_TRUE(unit.plan.spec.neuron_unit);
+  std::printf("8x8 at 35 kS/s, barrel shifter, longest stress frame: neurons on the engine %llu "
+              "clocks, on the unit %llu; minimum clocks %.1f / %.1f MHz\n",
+              (unsigned long long)engine.load.stress_clocks,
+              (unsigned long long)unit.load.stress_clocks, engine.core_min_hz / 1e6,
+              unit.core_min_hz / 1e6);
+  EXPECT_LE(unit.load.stress_clocks + 128 * 132, engine.load.stress_clocks);
+  EXPECT_EQ(ice.load.stress_clocks, engine.load.stress_clocks);  // the same engine
+  EXPECT_LE(unit.engine_clocks, 45000);
+  EXPECT_EQ(param(eskin::hls::dtmf_top_params(unit.plan, eskin::hls::dtmf_engine_image(unit.plan), "", ""),
+                  "NEURON_UNIT"),
+            "1");
+}
+
+// The UP5K takes the neuron unit only when its engine alone needs a clock
+// above the board's 18 MHz: not for the default scene (whose bitstream stays
+// as it was), but for a 6x6 35 kS/s skin under the stress signals, whose
+// bit-serial engine needs about 35 000 clocks a millisecond alone; with the
+// unit (72 neurons, at least 132 clocks fewer each: above) it needs under
+// 18 000, so the flow picks the 18 MHz default clock (the UP5K reaches
+// about 21: docs/scale_table.csv). `--neurons engine` (0) keeps it off.
+TEST(CoreClock, IcebreakerTakesTheNeuronUnitWhenItsDefaultClockIsTooSlow) {
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const Board ice = find_board("icebreaker");
+  const CoreClock dflt = choose_core_clock(ice, base, LoadPolicy::Stress);
+  EXPECT_FALSE(dflt.plan.spec.neuron_unit);
+  EXPECT_EQ(dflt.clocking.clk_hz, ice.default_clk_hz);
+  const auto sc = scale_scene(base, 6, 35000.0);
+  const CoreClock off = choose_core_clock(ice, sc, LoadPolicy::Stress, 0, -1, 0);
+  const CoreClock on = choose_core_clock(ice, sc, LoadPolicy::Stress);
+  std::printf("6x6 at 35 kS/s on the UP5K: %ld engine clocks a frame without the unit (%.1f MHz), "
+              "%ld with it (%.1f MHz)\n", off.engine_clocks, off.core_min_hz / 1e6,
+              on.engine_clocks, on.core_min_hz / 1e6);
+  EXPECT_FALSE(off.plan.spec.neuron_unit);
+  EXPECT_GT(off.core_min_hz, ice.default_clk_hz);
+  EXPECT_TRUE(on.plan.spec.neuron_unit);
+  EXPECT_FALSE(on.plan.spec.engine_fast_shift);
+  EXPECT_LE(on.engine_clocks + 72 * 132, off.engine_clocks);
+  EXPECT_EQ(on.clocking.clk_hz, ice.default_clk_hz);
 }
 
 }  // namespace

@@ -52,6 +52,7 @@ class TopModel {
     cfg_inc_.assign(size_t(plan.ks), 0);
     io_.inc = &cfg_inc_;
     io_.out_depth = plan.out_depth;
+    io_.neuron.present = plan.spec.neuron_unit;
     // Boot until the first carrier table reaches the DFT (the ADC starts then).
     eng_->run(io_, 2000000, [this](const auto&) { return io_.adc_on; });
   }
@@ -100,7 +101,7 @@ class TopModel {
             uint32_t(b[i + 4]) << 24;
       const size_t n = size_t(b[i + 5]) | size_t(b[i + 6]) << 8;
       if (i + 7 + n > b.size()) break;
-      p.payload.assign(b.begin() + long(i + 7), b.begin() + long(i + 7 + n));
+      p.payload = std::vector<uint8_t>(b.begin() + long(i + 7), b.begin() + long(i + 7 + n));
       v.push_back(std::move(p));
       i += 7 + n;
     }
@@ -139,8 +140,10 @@ class TopModel {
     std::vector<uint32_t>* inc = nullptr;
     int ks = 0;
     size_t sdft_loads = 0;
+    eskin::hls::IzhikevichUnitPort neuron;  // the plan's neuron unit (NEURON_UNIT)
     uint32_t io_read(uint16_t a, uint64_t) {
       if (a < 0x200) return uint32_t(a < 2 * KS_MAX ? frame[a] : 0);
+      if (uint32_t d = 0; neuron.read(a, d)) return d;
       switch (a) {
         case eskin::hls::kIoFrameT: return frame_t;
         case eskin::hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);
@@ -152,6 +155,7 @@ class TopModel {
       }
     }
     void io_write(uint16_t a, uint32_t d, uint64_t clock) {
+      if (neuron.write(a, d, clock)) return;
       switch (a) {
         case eskin::hls::kIoOutByte: out.push_back(uint8_t(d)); break;
         case eskin::hls::kIoFrameDone:
@@ -175,7 +179,9 @@ class TopModel {
         default: break;
       }
     }
-    uint16_t events(uint64_t) const { return uint16_t((pending ? 1 : 0) | (cmd.empty() ? 0 : 2)); }
+    uint16_t events(uint64_t clock) const {
+      return uint16_t((pending ? 1 : 0) | (cmd.empty() ? 0 : 2) | neuron.events(clock));
+    }
   };
 
   eskin::hls::DtmfTopPlan plan_;

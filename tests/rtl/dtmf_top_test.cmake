@@ -10,12 +10,15 @@
 #           its 20 DFT channels in 3 lanes (rtl/sdft_lanes.v);
 #  s10fast: the same scene at 72 MHz with the engine's barrel shifter
 #           (ENGINE_FAST_SHIFT, the ECP5 builds'): ~66 000 clocks a frame,
-#           where the bit-serial engine's ~90 000 would not fit 72 000.
+#           where the bit-serial engine's ~90 000 would not fit 72 000;
+#  s10unit: the same scene at 42 MHz with the barrel shifter and the
+#           neuron unit (NEURON_UNIT, rtl/izhikevich_layer.v; the ULX3S
+#           builds' engine), where the barrel shifter alone would not fit.
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
 set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
   -GSTEP=70 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=8 -GOUT_DEPTH=2048 -GENGINE_FAST_SHIFT=0
-  -GSDFT_LANES=3)
+  -GSDFT_LANES=3 -GNEURON_UNIT=0)
 set(eskin_default_args ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/neuroskin2.krom.hex\")
 eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10}
@@ -27,11 +30,19 @@ list(TRANSFORM dtmf_s10fast REPLACE "^-GENGINE_FAST_SHIFT=.*" "-GENGINE_FAST_SHI
 eskin_verilate(${exe} Vdtmf_top_s10fast ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10fast}
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_fast.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10_fast.krom.hex\")
+set(dtmf_s10unit ${dtmf_s10fast})
+list(TRANSFORM dtmf_s10unit REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=42000000")
+list(TRANSFORM dtmf_s10unit REPLACE "^-GNEURON_UNIT=.*" "-GNEURON_UNIT=1")
+eskin_verilate(${exe} Vdtmf_top_s10unit ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10unit}
+  -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_unit.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/staggered10x10_unit.krom.hex\")
 string(JOIN " " dtmf_default_str ${dtmf_default})
 string(JOIN " " dtmf_s10_str ${dtmf_s10})
 string(JOIN " " dtmf_s10fast_str ${dtmf_s10fast})
+string(JOIN " " dtmf_s10unit_str ${dtmf_s10unit})
 target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=${ESKIN_DTMF_TOP_CLK_HZ}
   DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000
-  DTMF_TOP_S10FAST_PARAMS="${dtmf_s10fast_str}" DTMF_TOP_S10FAST_CLK_HZ=72000000)
+  DTMF_TOP_S10FAST_PARAMS="${dtmf_s10fast_str}" DTMF_TOP_S10FAST_CLK_HZ=72000000
+  DTMF_TOP_S10UNIT_PARAMS="${dtmf_s10unit_str}" DTMF_TOP_S10UNIT_CLK_HZ=42000000)
 target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode eskin_fpga)

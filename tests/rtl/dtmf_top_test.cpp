@@ -27,6 +27,8 @@
 #include "Vdtmf_top_s10___024root.h"
 #include "Vdtmf_top_s10fast.h"
 #include "Vdtmf_top_s10fast___024root.h"
+#include "Vdtmf_top_s10unit.h"
+#include "Vdtmf_top_s10unit___024root.h"
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_top_config.h"
@@ -51,13 +53,16 @@ struct Build {
   std::string scene, name, params;
   long clk_hz;
   int sdft_lanes;
-  bool fast_shift = false;  // the engine's barrel shifter (ENGINE_FAST_SHIFT)
+  bool fast_shift = false;   // the engine's barrel shifter (ENGINE_FAST_SHIFT)
+  bool neuron_unit = false;  // the hardware neuron unit (NEURON_UNIT)
 };
 const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ, 1};
 const Build kS10{"scenes/staggered10x10.yaml", "staggered10x10", DTMF_TOP_S10_PARAMS,
                  DTMF_TOP_S10_CLK_HZ, 3};
 const Build kS10Fast{"scenes/staggered10x10.yaml", "staggered10x10_fast", DTMF_TOP_S10FAST_PARAMS,
                      DTMF_TOP_S10FAST_CLK_HZ, 3, true};
+const Build kS10Unit{"scenes/staggered10x10.yaml", "staggered10x10_unit", DTMF_TOP_S10UNIT_PARAMS,
+                     DTMF_TOP_S10UNIT_CLK_HZ, 3, true, true};
 
 struct BuildSetup {
   eskin::sim::Scene scene;
@@ -75,6 +80,7 @@ BuildSetup prepare(const Build& b) {
   eskin::hls::DtmfTopSpec spec = eskin::sim::dtmf_top_spec(s.scene, b.clk_hz);
   spec.sdft_lanes = b.sdft_lanes;
   spec.engine_fast_shift = b.fast_shift;
+  spec.neuron_unit = b.neuron_unit;
   s.plan = eskin::hls::make_dtmf_top_plan(spec);
   std::filesystem::create_directories(DTMF_TOP_DIR);
   const auto params = eskin::hls::write_dtmf_top_build(s.plan, DTMF_TOP_DIR, b.name);
@@ -421,6 +427,32 @@ TEST(DtmfTop, Staggered10x10At72MHzWithTheBarrelShifter) {
   EXPECT_GT(long(slow_load.scene_clocks), frame);
   EXPECT_LT(long(fast_load.scene_clocks), frame);
   scene_test<Vdtmf_top_s10fast, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Fast, s);
+}
+
+// The neuron unit (rtl/izhikevich_layer.v; the ULX3S builds' engine, with
+// the barrel shifter): the same packets, and a clock the engine could not
+// keep up with on its own. Bound: the scene's longest frame on the
+// instruction-set model (the unit's port: hls::IzhikevichUnitPort, 14
+// clocks an update) must exceed a frame's clocks at 42 MHz (STEP x 600)
+// without the unit and fit with it; then the Verilated top, whose unit is
+// the RTL, runs the scene with no frame overrun and every packet equal to
+// the chain's (scene_test).
+TEST(DtmfTop, Staggered10x10At42MHzWithTheNeuronUnit) {
+  const BuildSetup s = prepare(kS10Unit);
+  std::vector<int32_t> x;
+  for (uint16_t c : s.codes12) x.push_back(int32_t(c) - 2048);
+  auto engine = s.plan;
+  engine.spec.neuron_unit = false;
+  const long frame = long(s.plan.step) * std::lround(double(kS10Unit.clk_hz) / s.plan.spec.sample_hz);
+  const auto unit_load = eskin::fpga::measure_engine_load(s.plan, x);
+  const auto engine_load = eskin::fpga::measure_engine_load(engine, x);
+  std::printf("staggered10x10, longest scene frame (barrel shifter): %llu clocks with the neurons "
+              "on the engine, %llu on the neuron unit; a frame at 42 MHz has %ld\n",
+              (unsigned long long)engine_load.scene_clocks,
+              (unsigned long long)unit_load.scene_clocks, frame);
+  EXPECT_GT(long(engine_load.scene_clocks), frame);
+  EXPECT_LT(long(unit_load.scene_clocks), frame);
+  scene_test<Vdtmf_top_s10unit, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Unit, s);
 }
 
 }  // namespace
