@@ -241,7 +241,8 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   alloc("PHASE", 2 * K), alloc("HIST", lk), alloc("HEAD", 1), alloc("REM", K);
   alloc("PL", K), alloc("NPL", 1), alloc("SITE", T), alloc("MAG", K), alloc("ROOT", K);
   alloc("G", T), alloc("X2IN", T);  // layer inputs: neuron_unit needs X2IN = G + T
-  alloc("NS", 6 * T), alloc("S0", T), alloc("S1", T);  // and S1 = S0 + T
+  alloc("NV", 2 * T), alloc("NU", 2 * T), alloc("NXP", 2 * T);  // neuron l T + i
+  alloc("S0", T), alloc("S1", T);  // and S1 = S0 + T
   alloc("XPAD", (R + 2) * (C + 2));  // synapse_weights' sums, with a margin
   alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 9);
   alloc("AMPC", 3), alloc("SEL", 3), alloc("SEND", 3);  // frame counts per stream (amp, tax, status)
@@ -249,7 +250,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
        {"VT", "TPASS", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "PKTDROP",
         "ACC", "REJ", "LRT", "LRR", "LRS", "CTYPE", "CSEQ", "CLEN", "PT", "PTT", "PLEN", "TLO",
         "TMP", "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
-        "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "NX", "ND", "NXS",
+        "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "SEB", "NX", "ND", "NXS",
         "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NC4", "NUN"})
     alloc(n, 1);
   im.dend = at;

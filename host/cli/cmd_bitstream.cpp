@@ -194,7 +194,7 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--neurons", args->neurons,
                   "Where the Izhikevich neuron updates run: engine (the frame engine's "
                   "microcode, no extra logic) or unit (the hardware neuron unit, "
-                  "rtl/izhikevich_layer.v: 40 engine clocks a neuron instead of 190-230); default: "
+                  "rtl/izhikevich_layer.v: 38 engine clocks a neuron instead of 190-230); default: "
                   "the board's (ulx3s unit; icebreaker the unit only when the engine alone "
                   "would need a clock above 18 MHz)")
       ->check(CLI::IsMember({"engine", "unit"}));

@@ -84,10 +84,10 @@ TEST(DtmfUcode, Staggered10x10EqualsTheChain) {
 // spikes are in them), on both scenes. Bound on the clocks: the
 // izhikevich_layer routine runs at least 77 instructions per neuron (154
 // clocks, more with its shifts) plus its loop's 9 (18 clocks); nu_layer's
-// loop 19 instructions and a wait, 40 clocks: its operands go out while
+// loop 18 instructions and a wait, 38 clocks: its operands go out while
 // the unit computes the neuron before, so the wait ends at once (2
-// clocks). At least 132 clocks fewer per neuron: the 10x10 scene updates
-// 200 neurons every frame, so its longest frame is at least 26 400 clocks
+// clocks). At least 134 clocks fewer per neuron: the 10x10 scene updates
+// 200 neurons every frame, so its longest frame is at least 26 800 clocks
 // shorter (20 000 asserted, for the other routines' variation).
 TEST(DtmfUcode, NeuronUnitGivesTheSamePacketsInFewerClocks) {
   using S3 = hls::DtmfChainSizes<3, 3, 32>;
