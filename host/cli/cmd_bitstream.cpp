@@ -195,8 +195,8 @@ std::function<int()> setup_bitstream(CLI::App& app) {
                   "Where the Izhikevich neuron updates run: engine (the frame engine's "
                   "microcode, no extra logic) or unit (the hardware neuron unit, "
                   "rtl/izhikevich_layer.v: 38 engine clocks a neuron instead of 190-230); default: "
-                  "the board's (ulx3s unit; icebreaker the unit only when the engine alone "
-                  "would need a clock above 18 MHz)")
+                  "the board's (icebreaker engine: the unit does not fit the UP5K beside the "
+                  "rest; ulx3s unit)")
       ->check(CLI::IsMember({"engine", "unit"}));
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");

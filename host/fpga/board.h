@@ -12,8 +12,6 @@
 namespace eskin::fpga {
 
 enum class Family { Ice40, Ecp5 };
-// When a board's DTMF core gets the hardware neuron unit (rtl/izhikevich_layer.v).
-enum class NeuronUnit { Never, WhenNeeded, Always };
 
 struct Board {
   std::string name;         // "icebreaker", "ulx3s"
@@ -39,10 +37,10 @@ struct Board {
   // (85F) multipliers, a few of its 56 or 208 DP16KDs.
   int max_sdft_lanes = 1;
   // The hardware neuron unit (DtmfTopSpec::neuron_unit, rtl/izhikevich_layer.v):
-  // always on the ECP5s (their logic is cheap); on the UP5K only when the
-  // engine alone would need a clock above the board's default (its logic
-  // cells are scarce: the default scene builds without it).
-  NeuronUnit neuron_unit = NeuronUnit::Never;
+  // on the ECP5s, whose logic is cheap; off on the UP5K, where it takes
+  // about 1950 logic cells and does not fit beside the rest (a 6x6 skin
+  // with it: 5609 / 5280 LC).
+  bool neuron_unit = false;
 };
 
 // "icebreaker" or "ulx3s"; device_override ("25k", "85k"; empty: the

@@ -88,34 +88,19 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
                             long clk_hz, int fast_shift, int neuron_unit) {
   CoreClock c;
   hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
+  // Before the load: the shifter and the neuron unit set the engine's clocks.
+  spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
+  spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
+  c.plan = hls::make_dtmf_top_plan(spec);
   // The scene's samples as the top takes them: 12-bit codes minus 2048.
   std::vector<int32_t> x;
   sim::WorldModel world(scene);
   for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
-  // The shifter and the neuron unit set the engine's clocks, so they come
-  // before the load; the load sets the DFT lanes and the slowest clock.
-  auto plan_with = [&](bool unit) {
-    spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
-    spec.neuron_unit = unit;
-    c.plan = hls::make_dtmf_top_plan(spec);
-    c.load = measure_engine_load(c.plan, x);
-    c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
-                               ? c.load.stress_total() : c.load.scene_clocks);
-    c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
-    c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
-  };
-  if (neuron_unit >= 0) {
-    plan_with(neuron_unit != 0);
-  } else if (b.neuron_unit == NeuronUnit::WhenNeeded) {
-    plan_with(false);  // the unit only where it lets a clock above the default come down
-    if (c.core_min_hz > b.default_clk_hz) {
-      const CoreClock without = c;
-      plan_with(true);
-      if (c.core_min_hz >= without.core_min_hz) c = without;
-    }
-  } else {
-    plan_with(b.neuron_unit == NeuronUnit::Always);
-  }
+  c.load = measure_engine_load(c.plan, x);
+  c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
+                             ? c.load.stress_total() : c.load.scene_clocks);
+  c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
+  c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   auto budget_at = [&](const Clocking& k) {
     c.plan.spec.clk_hz = k.clk_hz;
     c.plan.spec.baud = k.baud;

@@ -113,9 +113,7 @@ struct CoreClock {
   hls::DtmfTopClockBudget budget;
 };
 // fast_shift: the engine's barrel shifter, 1 on, 0 off, -1 the board's
-// (Board::engine_fast_shift); neuron_unit likewise (Board::neuron_unit;
-// WhenNeeded: on when the load without it needs a clock above the board's
-// default).
+// (Board::engine_fast_shift); neuron_unit likewise (Board::neuron_unit).
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
                             long clk_hz = 0, int fast_shift = -1, int neuron_unit = -1);
 

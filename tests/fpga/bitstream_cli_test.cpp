@@ -115,9 +115,8 @@ TEST(BitstreamCli, EngineShifterIsTheUsersOrTheBoards) {
 }
 
 // --neurons reaches the plan (the report's engine.neuron_unit, and its
-// table), and without it the board decides: the ULX3S has the neuron unit;
-// the iCEBreaker not here, where it would not lower the clock (the ADC's
-// 1 MS/s sets it). As above, no tool runs.
+// table), and without it the board decides: the ULX3S has the neuron unit,
+// the iCEBreaker not. As above, no tool runs.
 TEST(BitstreamCli, NeuronsAreTheUsersOrTheBoards) {
   const fs::path d = tmpdir();
   const std::string scene = one_msps_scene(d).string();

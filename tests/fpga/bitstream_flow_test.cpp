@@ -240,17 +240,18 @@ TEST(CoreClock, Ulx3sEngineHasTheBarrelShifterIcebreakerNot) {
             "1");
 }
 
-// The ULX3S always has the neuron unit. Bound: an 8x8 35 kS/s skin (128
-// neurons) under the stress signals, with the barrel shifter either way;
+// The neuron unit is the ULX3S's, not the UP5K's (where it does not fit
+// beside the rest). Bound: an 8x8 35 kS/s skin (128 neurons) under the
+// stress signals, with the barrel shifter either way;
 // the izhikevich_layer routine and its loop take at least 172 clocks a
 // neuron and the unit's loop 38 (tests/hls/dtmf_ucode_test.cpp), so the
 // unit saves at least 128 x 134 = 17 152 clocks a frame. The engine alone
 // needs about 40 000 (a 45 MHz clock, above the ULX3S's reach of about 43
 // MHz); with the unit the ULX3S's 30 MHz default carries it (30 000).
-TEST(CoreClock, Ulx3sHasTheNeuronUnit) {
+TEST(CoreClock, Ulx3sHasTheNeuronUnitIcebreakerNot) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const auto sc = scale_scene(base, 8, 35000.0);
-  const CoreClock ice = choose_core_clock(find_board("icebreaker"), sc, LoadPolicy::Stress, 0, 1, 0);
+  const CoreClock ice = choose_core_clock(find_board("icebreaker"), sc, LoadPolicy::Stress, 0, 1);
   const CoreClock engine = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress, 0, -1, 0);
   const CoreClock unit = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress);
   EXPECT_FALSE(ice.plan.spec.neuron_unit);
@@ -270,31 +271,5 @@ TEST(CoreClock, Ulx3sHasTheNeuronUnit) {
             "1");
 }
 
-// The UP5K takes the neuron unit only when its engine alone needs a clock
-// above the board's 18 MHz: not for the default scene (whose bitstream stays
-// as it was), but for a 6x6 35 kS/s skin under the stress signals, whose
-// bit-serial engine needs about 35 000 clocks a millisecond alone; with the
-// unit (72 neurons, at least 134 clocks fewer each: above) it needs under
-// 18 000, so the flow picks the 18 MHz default clock (the UP5K reaches
-// about 21: docs/scale_table.csv). `--neurons engine` (0) keeps it off.
-TEST(CoreClock, IcebreakerTakesTheNeuronUnitWhenItsDefaultClockIsTooSlow) {
-  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  const Board ice = find_board("icebreaker");
-  const CoreClock dflt = choose_core_clock(ice, base, LoadPolicy::Stress);
-  EXPECT_FALSE(dflt.plan.spec.neuron_unit);
-  EXPECT_EQ(dflt.clocking.clk_hz, ice.default_clk_hz);
-  const auto sc = scale_scene(base, 6, 35000.0);
-  const CoreClock off = choose_core_clock(ice, sc, LoadPolicy::Stress, 0, -1, 0);
-  const CoreClock on = choose_core_clock(ice, sc, LoadPolicy::Stress);
-  std::printf("6x6 at 35 kS/s on the UP5K: %ld engine clocks a frame without the unit (%.1f MHz), "
-              "%ld with it (%.1f MHz)\n", off.engine_clocks, off.core_min_hz / 1e6,
-              on.engine_clocks, on.core_min_hz / 1e6);
-  EXPECT_FALSE(off.plan.spec.neuron_unit);
-  EXPECT_GT(off.core_min_hz, ice.default_clk_hz);
-  EXPECT_TRUE(on.plan.spec.neuron_unit);
-  EXPECT_FALSE(on.plan.spec.engine_fast_shift);
-  EXPECT_LE(on.engine_clocks + 72 * 134, off.engine_clocks);
-  EXPECT_EQ(on.clocking.clk_hz, ice.default_clk_hz);
-}
 
 }  // namespace
