@@ -46,10 +46,17 @@
 // cycles after the previous one (II = 38 for K = 6, 194 for K = 32; at
 // 12 MHz and 35 kHz there are 342 cycles per sample).
 //
-// Resources (Yosys 0.23 synth_ice40 -dsp; nextpnr-ice40 UP5K with a small
-// pin wrapper, 12 MHz needed): K_MAX 6, N 32: 510 LUT4, 231 FF, 1 SB_MAC16,
-// 10 SB_RAM40_4K, 718 LC placed, Fmax 38.6 MHz. K_MAX 32, N 128 (16x16
-// skin): 516 LUT4, 241 FF, 1 SB_MAC16, 10 SB_RAM40_4K, 728 LC, 37.3 MHz.
+// Resources, iCE40 (scripts/synth_ice40.sh sdft_bank [--param K_MAX=32
+// --param N=128], Yosys 0.23 synth_ice40 -dsp): K_MAX 6, N 32: 486 LUT4,
+// 227 FF, 1 SB_MAC16 (ice40_dsp folds the product register into it),
+// 10 SB_RAM40_4K; K_MAX 32, N 128 (16x16 skin): 502 LUT4, 237 FF, 1 SB_MAC16,
+// 10 SB_RAM40_4K (unpipelined, same flow: 490 / 231 and 504 / 241).
+// ECP5-85F out of context (scripts/synth_ecp5.sh sdft_bank --pnr --freq 50,
+// seed 1): 333 LUT4, 367 FF, 73 CCU2C, 36 DPR16X4, 1 MULT18X18D, 1 DP16KD,
+// Fmax 72.5 MHz (unpipelined: 43.4 MHz); its critical path is now ROM
+// clock-to-out (5.6 ns) -> |c| LUT -> multiplier (3.9 ns) -> prod_q, 13.8 ns.
+// In the ULX3S DTMF top (`eskin bitstream --board ulx3s`) the top's Fmax
+// went from 44.6 to 50.3 MHz, the critical path moving to frame_engine.
 //
 // Configuration: write the increments through cfg (valid/ready, accepted in
 // IDLE), one carrier per token, cfg_k < K_MAX; the token with cfg_last sets
