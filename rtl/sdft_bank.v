@@ -6,32 +6,57 @@
 //   acc_k += R(x[n] * C(th)) - R(x[n-N] * C(th - N inc))      (re)
 //   acc_k += R(x[n] * -S(th)) - R(x[n-N] * -S(th - N inc))    (im)
 //
-// Datapath: one signed XW x CW multiplier (one SB_MAC16 for XW, CW <= 16)
-// used four times per carrier, one quarter-sine ROM read per cycle, all state
-// in block RAM: window buffer N x XW, phase and increment K x 32, sums
-// K x ACC_W (re and im). The ROM is filled at elaboration by qsin(), the
-// same integer function as sdft_quarter_sine() in the HLS header.
+// Datapath: one signed (XW+1) x CW multiplier (one SB_MAC16 / MULT18X18D
+// for XW < 16, CW <= 16) used four times per carrier, one quarter-sine ROM
+// read per cycle, all state in block RAM: window buffer N x XW, phase and
+// increment K x 32, sums K x ACC_W (re and im). The ROM is filled at
+// elaboration by qsin(), the same integer function as sdft_quarter_sine()
+// in the HLS header. Three register stages per term, so that no path runs
+// from the ROM through the multiplier into the sums (on ECP5 that path was
+// the whole DTMF top's critical one, ~22.4 ns: 5.6 ns block RAM clock-to-out,
+// coefficient negation, 3.9 ns multiplier, rounding adder, sum adder):
+//   issue: phase -> ROM address (ROM registered: rom_q, full_q, neg_q)
+//   mul:   rom_q -> |c| (one LUT) x (+-x) -> prod_q; the coefficient's sign
+//          is moved to the sample (x * -m = (-x) * m: -x_new, -x_old are
+//          registered in OLD and C1), so the ROM reaches the multiplier
+//          through a single LUT
+//   acc:   sum +- R(prod_q), one adder for re and im, R's rounding bit as
+//          its carry-in: R(p) = (p >>> SH) + p[SH-1]
 //
 // Schedule per sample (state: cycles):
-//   IDLE  in_ready = 1 (configured, no cfg_valid); handshake latches x[n]
-//   OLD   1: x[n-N] <- window[wp]; window[wp] <- x[n]; read carrier 0
-//   C1..C6 per carrier, 6 cycles:
-//     C1 latch phase/inc/sums; ROM <- cos(th)
-//     C2 th_old = th - N inc; ROM <- -sin(th);   re += R(x[n] C)
-//     C3 ROM <- cos(th_old);                      im += R(x[n] -S)
-//     C4 ROM <- -sin(th_old);                     re -= R(x[n-N] C)
-//     C5                                          im -= R(x[n-N] -S)
+//   IDLE  in_ready = 1 (configured, no cfg_valid); handshake latches x[n];
+//         carrier 0 is read (k = 0 in IDLE)
+//   OLD   1: x[n-N] <- window[wp]; window[wp] <- x[n]; -x[n]; issue
+//         cos(th_0); th_old_0 = th_0 - N inc_0 (OLD plays the previous
+//         carrier's C6 for carrier 0)
+//   C1..C6 per carrier k, 6 cycles (issue / multiply / accumulate):
+//     C1 issue -sin(th); mul x[n] C(th); latch th + inc and the sums; -x[n-N]
+//     C2 issue cos(th_old); mul x[n] -S(th);        re += R(x[n] C)
+//     C3 issue -sin(th_old); mul x[n-N] C(th_old);  im += R(x[n] -S)
+//     C4                     mul x[n-N] -S(th_old); re -= R(x[n-N] C)
+//     C5 read carrier k+1                          im -= R(x[n-N] -S)
 //     C6 write back th + inc and the sums, load the output register (waits
-//        here while a previous token is not taken); read the next carrier
+//        here while a previous token is not taken); read carrier k+1, issue
+//        its cos(th) and compute its th_old (repeated while waiting: the
+//        reads and the issue are idempotent, nothing else is in flight)
+// The pipelining overlaps carrier k+1's first lookup with carrier k's C6
+// (and carrier 0's with OLD), so the cycle count is the unpipelined one.
 // Timing without back-pressure: token k is valid 8 + 6 k cycles after the
 // input handshake cycle (latency 8); the next sample is accepted 6 K + 2
 // cycles after the previous one (II = 38 for K = 6, 194 for K = 32; at
 // 12 MHz and 35 kHz there are 342 cycles per sample).
 //
-// Resources (Yosys 0.23 synth_ice40 -dsp; nextpnr-ice40 UP5K with a small
-// pin wrapper, 12 MHz needed): K_MAX 6, N 32: 510 LUT4, 231 FF, 1 SB_MAC16,
-// 10 SB_RAM40_4K, 718 LC placed, Fmax 38.6 MHz. K_MAX 32, N 128 (16x16
-// skin): 516 LUT4, 241 FF, 1 SB_MAC16, 10 SB_RAM40_4K, 728 LC, 37.3 MHz.
+// Resources, iCE40 (scripts/synth_ice40.sh sdft_bank [--param K_MAX=32
+// --param N=128], Yosys 0.23 synth_ice40 -dsp): K_MAX 6, N 32: 486 LUT4,
+// 227 FF, 1 SB_MAC16 (ice40_dsp folds the product register into it),
+// 10 SB_RAM40_4K; K_MAX 32, N 128 (16x16 skin): 502 LUT4, 237 FF, 1 SB_MAC16,
+// 10 SB_RAM40_4K (unpipelined, same flow: 490 / 231 and 504 / 241).
+// ECP5-85F out of context (scripts/synth_ecp5.sh sdft_bank --pnr --freq 50,
+// seed 1): 333 LUT4, 367 FF, 73 CCU2C, 36 DPR16X4, 1 MULT18X18D, 1 DP16KD,
+// Fmax 72.5 MHz (unpipelined: 43.4 MHz); its critical path is now ROM
+// clock-to-out (5.6 ns) -> |c| LUT -> multiplier (3.9 ns) -> prod_q, 13.8 ns.
+// In the ULX3S DTMF top (`eskin bitstream --board ulx3s`) the top's Fmax
+// went from 44.6 to 50.3 MHz, the critical path moving to frame_engine.
 //
 // Configuration: write the increments through cfg (valid/ready, accepted in
 // IDLE), one carrier per token, cfg_k < K_MAX; the token with cfg_last sets
@@ -97,7 +122,6 @@ module sdft_bank #(
   localparam [CB-1:0] CLR_LAST = CLR_M1[CB-1:0];
   localparam signed [63:0] Q64 = {32'd0, Q[31:0]};
   localparam integer SH = CW - 1 - FB;                      // term shift >= 1
-  localparam [PW-1:0] HALF = {{(PW - 1){1'b0}}, 1'b1} << (SH - 1);  // 2^(SH-1)
 
   localparam [3:0] S_CLEAR = 4'd0, S_IDLE = 4'd1, S_OLD = 4'd2, S_C1 = 4'd3,
                    S_C2 = 4'd4, S_C3 = 4'd5, S_C4 = 4'd6, S_C5 = 4'd7, S_C6 = 4'd8;
@@ -162,7 +186,8 @@ module sdft_bank #(
   reg [ACC_W-1:0] re_q, im_q;
 
   reg [XW-1:0] x_new, x_old;
-  reg [31:0] ph_r, inc_r, pho_r;
+  reg [XW:0] xn_new, xn_old;        // -x_new, -x_old (XW + 1 bits: -(-2^(XW-1)))
+  reg [31:0] ph_r, pho_r;           // ph_r: th + inc (write-back), pho_r: th_old
   reg [ACC_W-1:0] re_r, im_r;
 
   wire in_fire = in_valid && in_ready;
@@ -173,11 +198,15 @@ module sdft_bank #(
   /* verilator lint_on UNUSEDSIGNAL */
   wire advance = (state == S_C6) && out_free;
 
-  wire [KB-1:0] ra = (state == S_C6) ? k + 1'b1 : k;  // next carrier in C6
+  // Read address: carrier k + 1 from C5 on, so that its phase, increment and
+  // sums are in the *_q registers in C6 (its first sine lookup is issued
+  // there) and still in C1 (latched). k is 0 in IDLE and OLD: carrier 0 is
+  // read there. C5 and C6 read k + 1 while C6 writes k (k + 1 != k: KD >= 2).
+  wire [KB-1:0] ra = (state == S_C5 || state == S_C6) ? k + 1'b1 : k;
   wire clearing = state == S_CLEAR;
   wire st_we = clearing || advance;  // phase and sums
   wire [KB-1:0] st_wa = clearing ? clr_cnt[KB-1:0] : k;
-  wire [31:0] ph_wd = clearing ? 32'd0 : ph_r + inc_r;
+  wire [31:0] ph_wd = clearing ? 32'd0 : ph_r;
   wire [ACC_W-1:0] re_wd = clearing ? {ACC_W{1'b0}} : re_r;
   wire [ACC_W-1:0] im_wd = clearing ? {ACC_W{1'b0}} : im_r;
   wire win_we = (clearing && clr_cnt < N_CB) || state == S_OLD;
@@ -205,21 +234,16 @@ module sdft_bank #(
     im_q <= im_mem[ra];
   end
 
-  // ---- sine lookup: issue (address) one cycle, value the next ----
+  // ---- sine lookup: issue (address) one cycle, ROM value the next ----
+  // Issue slots of a carrier: cos(th) in the previous carrier's C6 (OLD for
+  // carrier 0), -sin(th) in C1 (th from ph_q in both), cos(th_old) in C2,
+  // -sin(th_old) in C3 (from pho_r).
+  wire lk_sin = state == S_C1 || state == S_C3;
   /* verilator lint_off UNUSEDSIGNAL */
-  reg [31:0] lk_ph;  // only the top TW+1 bits select the table entry
-  reg lk_cos, lk_neg;
-  always @(*) begin
-    case (state)
-      S_C1: begin lk_ph = ph_q; lk_cos = 1'b1; lk_neg = 1'b0; end
-      S_C2: begin lk_ph = ph_r; lk_cos = 1'b0; lk_neg = 1'b1; end
-      S_C3: begin lk_ph = pho_r; lk_cos = 1'b1; lk_neg = 1'b0; end
-      default: begin lk_ph = pho_r; lk_cos = 1'b0; lk_neg = 1'b1; end
-    endcase
-  end
+  wire [31:0] lk_ph = (state == S_C2 || state == S_C3) ? pho_r : ph_q;  // top TW+1 bits used
   wire [TW:0] lk_top = lk_ph[31:31-TW] + 1'b1;  // round half up to TW bits
   /* verilator lint_on UNUSEDSIGNAL */
-  wire [TW-1:0] lk_idx = lk_cos ? lk_top[TW:1] + QUARTER : lk_top[TW:1];
+  wire [TW-1:0] lk_idx = lk_sin ? lk_top[TW:1] : lk_top[TW:1] + QUARTER;
   wire [QB-1:0] lk_o = lk_idx[QB-1:0];
   wire lk_mirror = lk_idx[TW-2];                 // quadrants 1 and 3
   wire [QB-1:0] rom_a = lk_mirror ? -lk_o : lk_o;
@@ -228,18 +252,48 @@ module sdft_bank #(
   always @(posedge clk) begin
     rom_q <= rom[rom_a];
     full_q <= lk_mirror && lk_o == {QB{1'b0}};  // sin(pi/2) = A, not in ROM
-    neg_q <= lk_idx[TW-1] ^ lk_neg;
+    neg_q <= lk_idx[TW-1] ^ lk_sin;             // quadrants 2, 3; -sin
   end
-  wire [CW-1:0] mag = full_q ? AMP : {1'b0, rom_q};
-  wire [CW-1:0] coef = neg_q ? -mag : mag;
 
-  // ---- the one multiplier, rounded term R(x * c) ----
-  wire use_old = state == S_C4 || state == S_C5;
-  wire signed [XW-1:0] mul_x = use_old ? x_old : x_new;
-  wire signed [CW-1:0] mul_c = coef;
-  wire signed [PW-1:0] prod = mul_x * mul_c;
-  wire [PW-1:0] prod_r = prod + HALF;
-  wire [ACC_W-1:0] term = {{(ACC_W - PW + SH){prod_r[PW-1]}}, prod_r[PW-1:SH]};
+  // th_old = th - N inc for the carrier whose cos(th) is issued now (C6 /
+  // OLD: its phase and increment are in ph_q and inc_q); used from C2 on.
+  always @(posedge clk)
+    if (state == S_OLD || state == S_C6) pho_r <= ph_q - times_n(inc_q);
+
+  // ---- the one multiplier, registered product (the cycle after the ROM) ----
+  // The ROM output (a block RAM read, ~5.6 ns clock-to-out on ECP5) feeds the
+  // multiplier through one LUT only: the coefficient's sign is applied to
+  // the sample instead (x * -m = (-x) * m, the same integer product), from
+  // -x registers precomputed in OLD and C1. The product is registered and
+  // accumulated one cycle later, so ROM -> multiplier and product ->
+  // accumulator are separate register-to-register paths. Multiplies: C1
+  // x_new C(th), C2 x_new -S(th), C3 x_old C(th_old), C4 x_old -S(th_old).
+  wire use_old = state == S_C3 || state == S_C4;
+  wire [XW:0] x_pos = use_old ? {x_old[XW-1], x_old} : {x_new[XW-1], x_new};
+  wire [XW:0] x_neg = use_old ? xn_old : xn_new;
+  wire signed [XW:0] mul_x = neg_q ? x_neg : x_pos;
+  wire signed [CW-1:0] mul_m = full_q ? AMP : {1'b0, rom_q};  // |coefficient|
+  wire signed [PW-1:0] prod = mul_x * mul_m;  // |prod| < 2^(PW-2): no wrap
+  /* verilator lint_off UNUSEDSIGNAL */
+  reg [PW-1:0] prod_q;  // bits below SH-1 do not reach the term
+  /* verilator lint_on UNUSEDSIGNAL */
+  always @(posedge clk) prod_q <= prod;
+
+  // ---- accumulate: one adder, acc +- R(p) with R(p) = (p >>> SH) + p[SH-1]
+  // ((p + 2^(SH-1)) >> SH carries into bit SH exactly when p[SH-1] is set),
+  // the rounding bit entering as the carry-in; subtraction adds ~(p >>> SH)
+  // and the complement of the rounding bit: a - (h + r) = a + ~h + 1 - r.
+  // C2 re += , C3 im += , C4 re -= , C5 im -= .
+  wire acc_im = state == S_C3 || state == S_C5;
+  wire acc_sub = state == S_C4 || state == S_C5;
+  wire [ACC_W-1:0] t_hi = {{(ACC_W - PW + SH){prod_q[PW-1]}}, prod_q[PW-1:SH]};
+  wire [ACC_W-1:0] acc_a = acc_im ? im_r : re_r;
+  wire [ACC_W-1:0] acc_b = acc_sub ? ~t_hi : t_hi;
+  wire acc_cin = prod_q[SH-1] ^ acc_sub;
+  /* verilator lint_off UNUSEDSIGNAL */
+  wire [ACC_W:0] acc_s = {acc_a, 1'b1} + {acc_b, acc_cin};  // bit 0: the carry-in
+  /* verilator lint_on UNUSEDSIGNAL */
+  wire [ACC_W-1:0] acc_sum = acc_s[ACC_W:1];
 
   // ---- control ----
   assign cfg_ready = state == S_IDLE;
@@ -268,42 +322,41 @@ module sdft_bank #(
             state <= S_CLEAR;
           end else if (in_fire) begin
             x_new <= in_x;
-            k <= {KB{1'b0}};
             state <= S_OLD;
           end
         end
         S_OLD: begin
           x_old <= win_q;
+          xn_new <= -{x_new[XW-1], x_new};
           wp <= (wp == WP_LAST) ? {NB{1'b0}} : wp + 1'b1;
           state <= S_C1;
         end
         S_C1: begin
-          ph_r <= ph_q;
-          inc_r <= inc_q;
+          ph_r <= ph_q + inc_q;  // the phase of the next sample, written in C6
           re_r <= re_q;
           im_r <= im_q;
+          xn_old <= -{x_old[XW-1], x_old};
           state <= S_C2;
         end
         S_C2: begin
-          pho_r <= ph_r - times_n(inc_r);
-          re_r <= re_r + term;
+          re_r <= acc_sum;
           state <= S_C3;
         end
         S_C3: begin
-          im_r <= im_r + term;
+          im_r <= acc_sum;
           state <= S_C4;
         end
         S_C4: begin
-          re_r <= re_r - term;
+          re_r <= acc_sum;
           state <= S_C5;
         end
         S_C5: begin
-          im_r <= im_r - term;
+          im_r <= acc_sum;
           state <= S_C6;
         end
         S_C6: begin
           if (out_free) begin
-            k <= k + 1'b1;
+            k <= (k == klast) ? {KB{1'b0}} : k + 1'b1;  // 0 in IDLE: read carrier 0
             state <= (k == klast) ? S_IDLE : S_C1;
           end
         end

@@ -54,15 +54,19 @@
 // hls/sdft_bank.h's sdft_lanes_interval() is this formula; the test
 // (tests/rtl/sdft_lanes_test.cpp) asserts it clock for clock.
 //
-// Resources (K_MAX 9, N 32, XW 12, ACC_W 18; Yosys 0.70 synth_ecp5):
+// Resources (K_MAX 9, N 32, XW 12, ACC_W 18; Yosys 0.70 synth_ecp5; measured
+// before sdft_bank's pipelining, which moved its size by a few LUTs and FFs):
 //   1 lane:   301 LUT4,  97 CCU2C,  320 FF, 32 DPR16X4, 1 MULT18X18D, 1 DP16KD
 //   2 lanes:  733 LUT4, 198 CCU2C,  764 FF, 64 DPR16X4, 2 MULT18X18D, 2 DP16KD
 //   3 lanes: 1112 LUT4, 299 CCU2C, 1106 FF, 96 DPR16X4, 3 MULT18X18D, 3 DP16KD
 // (merger and routing: 130 / 210 LUT4 beyond the lanes). Yosys 0.23
 // synth_ice40, 2 lanes: 1000 LUT4, 2 SB_MAC16, 20 SB_RAM40_4K. Placed in
-// dtmf_top (4x4 skin, 1 MS/s, 2 lanes, ECP5-85F, nextpnr seed 1): 4448
-// TRELLIS_COMB, 3 MULT18X18D, 11 DP16KD, Fmax 43.5 MHz at 40 MHz (the path
-// is a lane's own: sine ROM -> multiplier -> sum, as in sdft_bank).
+// dtmf_top (4x4 skin, 1 MS/s, 2 lanes, with the neuron unit, ECP5-85F,
+// nextpnr seed 1; `eskin bitstream --scale-table --targets ecp5-85k --rates
+// 1000000 --sizes 4`): 6980 TRELLIS_COMB, 4 MULT18X18D, 11 DP16KD, Fmax
+// 49.6 MHz at 40 MHz; the critical path is frame_engine's (the lanes' sine
+// ROM -> multiplier -> sum path, 43.5 MHz before, is cut by sdft_bank's
+// product register).
 module sdft_lanes #(
     parameter integer K_MAX = 6,
     parameter integer N = 32,

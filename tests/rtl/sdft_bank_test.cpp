@@ -11,7 +11,8 @@
 // Timing (header of rtl/sdft_bank.v): with in_valid and out_ready always
 // high, token k of a sample is taken 8 + 6 k cycles after that sample's
 // input handshake (latency 8) and samples are accepted every 6 K + 2 cycles
-// (II) — asserted exactly.
+// (II) — asserted exactly, also for one carrier (K = 1: II 8, carrier 0's
+// state read back the clock after its write-back).
 // Two parameter sets: the default (K_MAX 6, N 32, XW 13, CW 16, TW 10,
 // ACC_W 24) and an odd one built by sdft_bank_test.cmake (K_MAX 8 with 5
 // carriers, N 48 — not a power of two —, XW 12, CW 12, TW 8, FB 2 term
@@ -201,6 +202,21 @@ void check_timing(const std::vector<double>& freqs, int xw) {
 TEST(SdftBankRtl, LatencyAndInitiationInterval) {
   check_timing<Default>(kThesis, 13);
   check_timing<Odd>(kOdd, 12);
+}
+
+// One carrier (K = 1), the tightest case of the pipelined schedule: carrier
+// 0's phase and sums are written back in C6 and read again in the very next
+// clock (IDLE, the next handshake at full rate), where its first sine lookup
+// is issued in OLD from that read. Bound: bit-exact tokens (the read after
+// write must see the new values) and, at full rate, exactly II = 6 K + 2 = 8
+// and latency 8; then with gaps and back-pressure (stalls in C6 repeat the
+// next carrier's lookup), and after a reconfiguration from 6 carriers to 1.
+TEST(SdftBankRtl, OneCarrierBackToBack) {
+  check_timing<Default>({3000}, 13);
+  check_timing<Odd>({9000}, 12);
+  auto h = std::make_unique<Default>();
+  h->run({{kThesis, random_samples(13, 3000, 6)}, {{3000}, random_samples(13, 20000, 7)}}, 0.9,
+         0.6, 15);
 }
 
 }  // namespace
