@@ -11,6 +11,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/system/cli_run.h"
 
@@ -81,20 +82,20 @@ TEST(BitstreamCli, ClockTooSlowForTheSampleRateFailsBeforeTheTools) {
   EXPECT_NE(json.find("\"core_min_hz\": 45000000"), std::string::npos) << json;
 }
 
-// --engine-shifter reaches the plan (the report's engine.fast_shift), and
-// without it the board decides: the ULX3S's engine has the barrel shifter,
-// the iCEBreaker's not. The 1 MS/s scene fails its clock budget at these
-// clocks, so the report is written before any tool runs.
-TEST(BitstreamCli, EngineShifterIsTheUsersOrTheBoards) {
+// One engine option (`option VALUE`) on the command line: each case's
+// arguments on the 1 MS/s scene, which fails its clock budget at these
+// clocks, so the report is written before any tool runs; it must say
+// `json` in the JSON and `table` in the table. Then a bad value, and a
+// Hall-only scene (no skin, so no `what`): both refused, naming the option.
+struct ChoiceCase {
+  std::string args;
+  const char* json;
+  const char* table;
+};
+void expect_engine_choice(const std::string& option, const std::vector<ChoiceCase>& cases,
+                          const std::string& good_value, const std::string& what) {
   const fs::path d = tmpdir();
   const std::string scene = one_msps_scene(d).string();
-  struct Case { std::string args; const char* want; };
-  const Case cases[] = {
-      {"--board icebreaker --clk-mhz 18", "\"fast_shift\": false"},
-      {"--board icebreaker --clk-mhz 18 --engine-shifter barrel", "\"fast_shift\": true"},
-      {"--board ulx3s --clk-mhz 30", "\"fast_shift\": true"},
-      {"--board ulx3s --clk-mhz 30 --engine-shifter serial", "\"fast_shift\": false"},
-  };
   int i = 0;
   for (const auto& c : cases) {
     const fs::path out = d / ("out" + std::to_string(i++));
@@ -102,49 +103,47 @@ TEST(BitstreamCli, EngineShifterIsTheUsersOrTheBoards) {
     EXPECT_EQ(r.status, 1) << c.args << "\n" << r.out;
     EXPECT_FALSE(fs::exists(out / "yosys.log")) << c.args;
     const std::string json = slurp(out / "bitstream_report.json");
-    EXPECT_NE(json.find(c.want), std::string::npos) << c.args << "\n" << json;
+    EXPECT_NE(json.find(c.json), std::string::npos) << c.args << "\n" << json;
+    EXPECT_NE(slurp(out / "bitstream_report.txt").find(c.table), std::string::npos) << c.args;
   }
-  Result r = sh("--board ulx3s --engine-shifter fast");
+  Result r = sh("--board ulx3s " + option + " no_such_value");
   EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.out.find("--engine-shifter"), std::string::npos) << r.out;
-  r = sh("--board icebreaker --engine-shifter barrel --scene " ESKIN_SOURCE_DIR
-         "/scenes/hall_002_magtac.yaml");
+  EXPECT_NE(r.out.find(option), std::string::npos) << r.out;
+  const std::string hall = ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml";
+  r = sh("--board icebreaker " + option + " " + good_value + " --scene " + hall);
   EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.out.find("--engine-shifter: " ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml has no "
-                       "skin, so no frame engine to build"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(option + ": " + hall + " has no skin, so no " + what), std::string::npos)
+      << r.out;
+}
+
+// --engine-shifter reaches the plan (the report's engine.fast_shift, and
+// its table), and without it the board decides: the ULX3S's engine has the
+// barrel shifter, the iCEBreaker's not.
+TEST(BitstreamCli, EngineShifterIsTheUsersOrTheBoards) {
+  expect_engine_choice(
+      "--engine-shifter",
+      {{"--board icebreaker --clk-mhz 18", "\"fast_shift\": false", "bit-serial shifter"},
+       {"--board icebreaker --clk-mhz 18 --engine-shifter barrel", "\"fast_shift\": true",
+        "barrel shifter"},
+       {"--board ulx3s --clk-mhz 30", "\"fast_shift\": true", "barrel shifter"},
+       {"--board ulx3s --clk-mhz 30 --engine-shifter serial", "\"fast_shift\": false",
+        "bit-serial shifter"}},
+      "barrel", "frame engine to build");
 }
 
 // --neurons reaches the plan (the report's engine.neuron_unit, and its
 // table), and without it the board decides: the ULX3S has the neuron unit,
-// the iCEBreaker not. As above, no tool runs.
+// the iCEBreaker not.
 TEST(BitstreamCli, NeuronsAreTheUsersOrTheBoards) {
-  const fs::path d = tmpdir();
-  const std::string scene = one_msps_scene(d).string();
-  struct Case { std::string args; const char* json, *table; };
-  const Case cases[] = {
-      {"--board icebreaker --clk-mhz 18", "\"neuron_unit\": false", "neurons on the engine"},
-      {"--board icebreaker --clk-mhz 18 --neurons unit", "\"neuron_unit\": true",
-       "neurons on the neuron unit"},
-      {"--board ulx3s --clk-mhz 30", "\"neuron_unit\": true", "neurons on the neuron unit"},
-      {"--board ulx3s --clk-mhz 30 --neurons engine", "\"neuron_unit\": false",
-       "neurons on the engine"},
-  };
-  int i = 0;
-  for (const auto& c : cases) {
-    const fs::path out = d / ("out" + std::to_string(i++));
-    const Result r = sh(c.args + " --scene " + scene + " --out " + out.string());
-    EXPECT_EQ(r.status, 1) << c.args << "\n" << r.out;
-    EXPECT_FALSE(fs::exists(out / "yosys.log")) << c.args;
-    EXPECT_NE(slurp(out / "bitstream_report.json").find(c.json), std::string::npos) << c.args;
-    EXPECT_NE(slurp(out / "bitstream_report.txt").find(c.table), std::string::npos) << c.args;
-  }
-  Result r = sh("--board ulx3s --neurons fpga");
-  EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.out.find("--neurons"), std::string::npos) << r.out;
-  r = sh("--board icebreaker --neurons unit --scene " ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml");
-  EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.out.find("--neurons: " ESKIN_SOURCE_DIR "/scenes/hall_002_magtac.yaml has no skin, "
-                       "so no neuron layers to build"), std::string::npos) << r.out;
+  expect_engine_choice(
+      "--neurons",
+      {{"--board icebreaker --clk-mhz 18", "\"neuron_unit\": false", "neurons on the engine"},
+       {"--board icebreaker --clk-mhz 18 --neurons unit", "\"neuron_unit\": true",
+        "neurons on the neuron unit"},
+       {"--board ulx3s --clk-mhz 30", "\"neuron_unit\": true", "neurons on the neuron unit"},
+       {"--board ulx3s --clk-mhz 30 --neurons engine", "\"neuron_unit\": false",
+        "neurons on the engine"}},
+      "unit", "neuron layers to build");
 }
 
 TEST(BitstreamCli, MissingEcp5ToolsNameTheBootstrapStep) {

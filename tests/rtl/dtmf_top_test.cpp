@@ -405,6 +405,24 @@ TEST(DtmfTop, Staggered10x10MatchesTheChainAndTheTruth) {
   scene_test<Vdtmf_top_s10, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10, prepare(kS10));
 }
 
+// The scene's longest frame on the instruction-set model (engine_load)
+// for the build's plan and for `without`, the same plan without one engine
+// feature: it must exceed a frame's clocks at the build's clock without
+// the feature and fit with it.
+void expect_fits_only_with(const Build& b, const BuildSetup& s,
+                           const eskin::hls::DtmfTopPlan& without, const char* feature) {
+  std::vector<int32_t> x;
+  for (uint16_t c : s.codes12) x.push_back(int32_t(c) - 2048);
+  const long frame = long(s.plan.step) * std::lround(double(b.clk_hz) / s.plan.spec.sample_hz);
+  const auto with_load = eskin::fpga::measure_engine_load(s.plan, x);
+  const auto without_load = eskin::fpga::measure_engine_load(without, x);
+  std::printf("%s, longest scene frame: %llu clocks without %s, %llu with it; a frame at %g MHz "
+              "has %ld\n", b.name.c_str(), (unsigned long long)without_load.scene_clocks, feature,
+              (unsigned long long)with_load.scene_clocks, double(b.clk_hz) / 1e6, frame);
+  EXPECT_GT(long(without_load.scene_clocks), frame);
+  EXPECT_LT(long(with_load.scene_clocks), frame);
+}
+
 // The barrel shifter (the ECP5 builds' engine): the same packets, and a
 // clock the bit-serial engine could not keep up with. Bound: the scene's
 // longest frame, measured on the instruction-set model for each engine,
@@ -413,19 +431,9 @@ TEST(DtmfTop, Staggered10x10MatchesTheChainAndTheTruth) {
 // overrun and every packet equal to the chain's (scene_test).
 TEST(DtmfTop, Staggered10x10At72MHzWithTheBarrelShifter) {
   const BuildSetup s = prepare(kS10Fast);
-  std::vector<int32_t> x;
-  for (uint16_t c : s.codes12) x.push_back(int32_t(c) - 2048);
   auto slow = s.plan;
   slow.spec.engine_fast_shift = false;
-  const long frame = long(s.plan.step) * std::lround(double(kS10Fast.clk_hz) / s.plan.spec.sample_hz);
-  const auto fast_load = eskin::fpga::measure_engine_load(s.plan, x);
-  const auto slow_load = eskin::fpga::measure_engine_load(slow, x);
-  std::printf("staggered10x10, longest scene frame: %llu clocks bit-serial, %llu with the barrel "
-              "shifter; a frame at 72 MHz has %ld\n",
-              (unsigned long long)slow_load.scene_clocks, (unsigned long long)fast_load.scene_clocks,
-              frame);
-  EXPECT_GT(long(slow_load.scene_clocks), frame);
-  EXPECT_LT(long(fast_load.scene_clocks), frame);
+  expect_fits_only_with(kS10Fast, s, slow, "the barrel shifter");
   scene_test<Vdtmf_top_s10fast, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Fast, s);
 }
 
@@ -439,19 +447,9 @@ TEST(DtmfTop, Staggered10x10At72MHzWithTheBarrelShifter) {
 // the chain's (scene_test).
 TEST(DtmfTop, Staggered10x10At42MHzWithTheNeuronUnit) {
   const BuildSetup s = prepare(kS10Unit);
-  std::vector<int32_t> x;
-  for (uint16_t c : s.codes12) x.push_back(int32_t(c) - 2048);
   auto engine = s.plan;
   engine.spec.neuron_unit = false;
-  const long frame = long(s.plan.step) * std::lround(double(kS10Unit.clk_hz) / s.plan.spec.sample_hz);
-  const auto unit_load = eskin::fpga::measure_engine_load(s.plan, x);
-  const auto engine_load = eskin::fpga::measure_engine_load(engine, x);
-  std::printf("staggered10x10, longest scene frame (barrel shifter): %llu clocks with the neurons "
-              "on the engine, %llu on the neuron unit; a frame at 42 MHz has %ld\n",
-              (unsigned long long)engine_load.scene_clocks,
-              (unsigned long long)unit_load.scene_clocks, frame);
-  EXPECT_GT(long(engine_load.scene_clocks), frame);
-  EXPECT_LT(long(unit_load.scene_clocks), frame);
+  expect_fits_only_with(kS10Unit, s, engine, "the neuron unit");
   scene_test<Vdtmf_top_s10unit, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Unit, s);
 }
 
