@@ -108,6 +108,7 @@ class TopModel {
     return v;
   }
   uint64_t max_frame_clocks() const { return io_.max_frame; }
+  uint32_t frames_done() const { return io_.frames_done; }  // frames the engine released
   uint32_t frame_overruns() const { return io_.frame_overruns; }
   size_t sdft_loads() const { return io_.sdft_loads; }
   const eskin::hls::EngineImage& image() const { return im_; }
@@ -130,7 +131,7 @@ class TopModel {
     Bank bank;
     bool adc_on = false, pending = false, refill = false;
     int32_t frame[2 * KS_MAX] = {};
-    uint32_t frame_t = 0, adc_t = 0, frame_overruns = 0;
+    uint32_t frame_t = 0, adc_t = 0, frame_overruns = 0, frames_done = 0;
     uint64_t frame_start = 0, max_frame = 0;
     std::vector<uint8_t> out;
     std::deque<uint8_t> cmd;
@@ -161,6 +162,7 @@ class TopModel {
         case eskin::hls::kIoFrameDone:
           pending = false;
           max_frame = std::max<uint64_t>(max_frame, clock - frame_start);
+          ++frames_done;
           break;
         case eskin::hls::kIoCmdPop: if (!cmd.empty()) cmd.pop_front(); break;
         case eskin::hls::kIoSdftK: cfg_k = int(d & 0xFF), cfg_last = (d >> 8) & 1; break;

@@ -137,4 +137,68 @@ TEST(DtmfUcode, RandomCarriersOn5x7EqualTheChain) {
   }
 }
 
+// SET_NEURON at run time reaches the neuron unit: the unit's constants are
+// the DMEM words the command changes, copied to it at every layer. The
+// default scene with the unit (and, for reference, without), four
+// changes at frames 60-240 (layer 1's gain, layer 0's input mode, which
+// switches the unit between x and x - x_prev, layer 0's v_reset, layer 1's
+// x_shift), each sent to the engine once it has released that frame and
+// applied to the chain before the next one. Exact: every data packet
+// equals the chain's, so each change was applied, at once, to its layer.
+TEST(DtmfUcode, SetNeuronAtRunTimeReachesTheNeuronUnit) {
+  using S = hls::DtmfChainSizes<3, 3, 32>;
+  const sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  sim::WorldModel world(sc);
+  std::vector<uint16_t> codes;
+  for (int c : world.all_codes()) codes.push_back(uint16_t(c << (12 - sc.skin.adc.bits)));
+  for (bool unit : {true, false}) {
+    auto spec = sim::dtmf_top_spec(sc, hls::kDtmfTopClkHz);
+    spec.neuron_unit = unit;
+    const auto plan = hls::make_dtmf_top_plan(spec);
+    struct Change { uint32_t after_frame; int layer, param; int32_t value; };
+    const Change changes[] = {
+        {60, 1, 2, plan.neuron[1].gain / 2},
+        {120, 0, 13, plan.neuron[0].input_change ? 0 : 1},
+        {180, 0, 0, -60 * (int32_t(1) << 22)},  // -60 mV, Q9.22
+        {240, 1, 4, plan.neuron[1].x_shift + 1},
+    };
+    const long period = std::lround(double(hls::kDtmfTopClkHz) / sc.skin.adc.rate_hz);
+    dtmf_model::TopModel<S> top(plan, period);
+    auto chain = std::make_unique<hls::DtmfChain<S>>(hls::chain_config<S>(plan));
+    std::vector<dtmf_model::Packet> want;
+    hls::DtmfChain<S>::Packet pk[hls::DtmfChain<S>::kMaxPackets];
+    size_t sent = 0, applied = 0;
+    for (size_t n = 0; n < codes.size(); ++n) {
+      if (sent < std::size(changes) && top.frames_done() >= changes[sent].after_frame) {
+        const Change& c = changes[sent++];
+        const uint32_t v = uint32_t(c.value);
+        top.command({0x83, uint8_t(sent), 5, 0, uint8_t(c.layer << 4 | c.param), uint8_t(v),
+                     uint8_t(v >> 8), uint8_t(v >> 16), uint8_t(v >> 24)});
+      }
+      if (applied < std::size(changes) && chain->frames() >= changes[applied].after_frame) {
+        const Change& c = changes[applied++];
+        auto cfg = chain->neuron_config(c.layer);
+        ASSERT_TRUE(hls::apply_neuron_param(cfg, c.param, c.value));
+        chain->set_neuron(c.layer, cfg);
+      }
+      top.sample(codes[n]);
+      const int np = chain->push(codes[n], uint32_t(n), pk);
+      for (int i = 0; i < np; ++i)
+        want.push_back({pk[i].type, pk[i].t, {pk[i].payload, pk[i].payload + pk[i].len}});
+    }
+    EXPECT_EQ(sent, std::size(changes));
+    EXPECT_EQ(applied, std::size(changes));
+    std::vector<dtmf_model::Packet> got;
+    for (const auto& p : top.packets())
+      if (p.type != hls::kDtmfStatus) got.push_back(p);
+    EXPECT_GT(want.size(), 1000u);
+    EXPECT_GE(got.size() + 4, want.size());
+    const size_t m = std::min(got.size(), want.size());
+    size_t same = 0;
+    while (same < m && got[same] == want[same]) ++same;
+    EXPECT_EQ(same, m) << (unit ? "unit" : "engine") << ": packet " << same << " differs (type "
+                       << int(want[same].type) << ")";
+  }
+}
+
 }  // namespace
