@@ -60,21 +60,14 @@ std::ostream& operator<<(std::ostream& s, const Result& r) {
            << "}";
 }
 
-// Golden for one neuron in an arbitrary state: IzhikevichLayer::update's
-// input stage (it keeps x_prev privately, so it cannot be put into an
-// arbitrary state; Realistic runs the class itself in both modes), then
-// izhikevich_update.
+// Golden for one neuron in an arbitrary state: IzhikevichLayer::update
+// from that state (set_state), both input modes.
 Result golden(const IzhikevichConfig& c, const Operands& o) {
+  eskin::hls::IzhikevichLayer<1> one(c);
+  one.set_state(0, o.v, o.U, o.x_prev);
   Result r;
-  int32_t drive = o.x;
-  r.x_prev = o.x_prev;
-  if (c.input_change) {
-    const int64_t d = int64_t(o.x) - o.x_prev;
-    drive = d > 0 ? int32_t(d > INT32_MAX ? INT32_MAX : d) : 0;
-    r.x_prev = o.x;
-  }
-  r.v = o.v, r.U = o.U;
-  r.spike = eskin::hls::izhikevich_update(c, r.v, r.U, drive);
+  r.spike = one.update(0, o.x);
+  r.v = one.v(0), r.U = one.U(0), r.x_prev = one.x_prev(0);
   return r;
 }
 
