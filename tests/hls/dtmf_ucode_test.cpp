@@ -1,10 +1,11 @@
 // The DTMF microcode (rtl/ucode/dtmf_chain.fe) on the frame engine's
 // instruction-set model, inside a clocked model of the top's IO
 // (tests/hls/dtmf_top_model.h), against hls/dtmf_chain.h: every data packet
-// equal, byte for byte, on the default scene and the staggered 10x10 scene;
-// the engine finishes every frame inside its frame period (no frame lost),
-// with the clock counts printed. With the neuron unit (NEURON_UNIT: its
-// ports modelled by hls::IzhikevichUnitPort) the same packets in fewer clocks.
+// equal, byte for byte, on the default scene, the staggered 10x10 scene and
+// a 5x7 skin under random carriers; the engine finishes every frame inside
+// its frame period (no frame lost), with the clock counts printed. With the
+// neuron unit (NEURON_UNIT: its ports modelled by hls::IzhikevichUnitPort)
+// the same packets in fewer clocks, SET_NEURON at run time included.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -52,7 +53,8 @@ uint64_t compare_codes(const std::string& what, const hls::DtmfTopPlan& plan, lo
   const size_t n = std::min(got.size(), want.size());
   size_t same = 0;
   while (same < n && got[same] == want[same]) ++same;
-  EXPECT_EQ(same, n) << what << ": packet " << same << " differs (type " << int(want[same].type) << ")";
+  EXPECT_EQ(same, n) << what << ": packet " << same << " differs (type "
+                     << int(want[same].type) << ")";
   std::printf("%s%s: %zu packets equal; the engine's longest frame %llu clocks of %ld available\n",
               what.c_str(), plan.spec.neuron_unit ? " with the neuron unit" : "", same,
               (unsigned long long)top.max_frame_clocks(), period * plan.step);
