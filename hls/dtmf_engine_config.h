@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <stdexcept>
@@ -117,6 +118,14 @@ inline bool apply_neuron_param(IzhikevichConfig& c, int param, int64_t v) {
   return true;
 }
 
+// A layer's constant block as the microcode keeps it in DMEM (NC + NCS l)
+// and the neuron unit takes it (words 2..16): the words of neuron_params().
+inline std::array<int64_t, kNeuronBlock> neuron_block(const IzhikevichConfig& n) {
+  return {n.v_init, n.u_init, n.v_reset, n.u_jump, n.u_frac - 22, n.c_const, n.m2, n.s2, n.m3,
+          n.s3, n.m4, n.s4, n.gain, n.gain_shift > 0 ? n.gain_shift : 0,
+          n.gain_shift < 0 ? -n.gain_shift : 0, n.x_shift, n.input_change ? 1 : 0, 0, 0, 0};
+}
+
 // Clocks of one update of the neuron unit (rtl/izhikevich_layer.v): an
 // update started by the write in clock c holds its results, and raises
 // kEvIzDone, from clock c + kIzhikevichUnitClocks on.
@@ -135,8 +144,9 @@ struct IzhikevichUnitPort {
   int32_t out_v = 0, out_u = 0, out_x_prev = 0;
   uint64_t done_clock = 0;
 
-  // The layer's constants from the words (shift counts: the low 6 bits, as
-  // the engine's shifts take them; the gain shifts: left when word 14 is set).
+  // The layer's constants from the words (neuron_block's inverse; shift
+  // counts: the low 6 bits, as the engine's shifts take them; the gain
+  // shifts: left when word 14 is set).
   IzhikevichConfig config() const {
     IzhikevichConfig c;
     c.v_reset = int32_t(cfg[2]), c.u_jump = int32_t(cfg[3]);
@@ -210,15 +220,8 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
 
   // ---- configuration (initial values, in KROM order = DMEM order) ----
   alloc("NC", 2 * kNeuronBlock);
-  for (int l = 0; l < 2; ++l) {
-    const IzhikevichConfig& n = p.neuron[l];
-    const int64_t w[kNeuronBlock] = {n.v_init, n.u_init, n.v_reset, n.u_jump, n.u_frac - 22,
-                                     n.c_const, n.m2, n.s2, n.m3, n.s3, n.m4, n.s4, n.gain,
-                                     n.gain_shift > 0 ? n.gain_shift : 0,
-                                     n.gain_shift < 0 ? -n.gain_shift : 0, n.x_shift,
-                                     n.input_change ? 1 : 0, 0, 0, 0};
-    for (int64_t v : w) put(v);
-  }
+  for (int l = 0; l < 2; ++l)
+    for (int64_t v : neuron_block(p.neuron[l])) put(v);
   alloc("MASK", 1), put(p.mask);
   alloc("DECIM", 3), put(p.decim_amp), put(p.decim_tax), put(1000);
   alloc("THR", 4), put(p.sparse_min), put(p.ghost.onset), put(p.ghost.release),

@@ -22,6 +22,7 @@
 
 #include "Vizhikevich_layer.h"
 #include "clocked_dut.h"
+#include "hls/dtmf_engine_config.h"
 #include "hls/izhikevich_layer.h"
 #include "hls/izhikevich_layer_config.h"
 
@@ -30,18 +31,18 @@ namespace {
 using eskin::hls::IzhikevichConfig;
 namespace izh = eskin::hls::izh;
 
-constexpr int kLatency = 14;                                  // edges, handshake to results
+// Edges from the handshake to the results: the clocks the top's C++ models
+// count for an update (hls::IzhikevichUnitPort).
+constexpr int kLatency = eskin::hls::kIzhikevichUnitClocks;
 constexpr int32_t kVLo = -(int32_t(1) << 29) - (1 << 13);     // domain of v (see above)
 constexpr int32_t kVHi = (int32_t(1) << 29) - (1 << 13);      // exclusive
 
-// The layer's constant block as the engine's DMEM holds it (the words of
-// dtmf_engine_image(), hls/dtmf_engine_config.h), words 2..16.
+// The layer's constant block as the engine's DMEM holds it
+// (hls::neuron_block), words 2..16.
 std::vector<std::pair<int, uint32_t>> config_words(const IzhikevichConfig& c) {
-  const int64_t w[] = {c.v_reset, c.u_jump, c.u_frac - 22, c.c_const, c.m2, c.s2, c.m3, c.s3,
-                       c.m4, c.s4, c.gain, c.gain_shift > 0 ? c.gain_shift : 0,
-                       c.gain_shift < 0 ? -c.gain_shift : 0, c.x_shift, c.input_change ? 1 : 0};
+  const auto w = eskin::hls::neuron_block(c);
   std::vector<std::pair<int, uint32_t>> out;
-  for (int i = 0; i < 15; ++i) out.emplace_back(i + 2, uint32_t(w[i]));
+  for (int i = 2; i <= 16; ++i) out.emplace_back(i, uint32_t(w[size_t(i)]));
   return out;
 }
 
