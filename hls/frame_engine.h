@@ -21,6 +21,15 @@
 // instruction (the data is used in the clock after), io_we and io_waddr in its cycle B,
 // and events in each clock of a `wait`'s cycle B (the wait ends at the end of
 // the first clock whose events match its mask).
+//
+// Overlap (docs/frame_engine.md, "Timing"): an instruction's cycle A runs in
+// the last B clock of the one before, unless that would break the order of
+// a shared resource, so most instructions cost their B clocks only. Cycle A
+// waits one clock (a bubble) when it reads A (a jump on A, tax, sqrt,
+// sqrtr: A is still being written), reads DMEM right after `st` (one DMEM
+// port) or reads IO right after `out` (the write lands at the same edge),
+// and it never overlaps a `wait` or a shift whose count operand is 0 (their
+// last clock is known only in that clock).
 #pragma once
 
 #include <cstdint>
@@ -104,7 +113,8 @@ struct FrameEngineNullIo {
 struct FrameEngineRetired {
   uint32_t pc = 0;          // its address
   uint32_t word = 0;        // its encoding
-  uint32_t clocks = 0;      // clocks it took
+  uint32_t clocks = 0;      // clocks it took (from the previous one's last clock)
+  uint64_t a_clock = 0;     // the clock of its cycle A
   bool stored = false;      // `st`: DMEM[st_addr] = st_data
   uint32_t st_addr = 0;
   uint32_t st_data = 0;
@@ -145,6 +155,7 @@ class FrameEngine {
     for (auto& x : x_) x = 0;
     for (auto& s : stack_) s = 0;
     waiting_ = false;
+    overlap_ok_ = prev_st_ = prev_out_ = false;
     last_ = FrameEngineRetired{};
   }
 
@@ -220,16 +231,22 @@ class FrameEngine {
   uint32_t execute(IO& io, uint32_t w, uint64_t limit) {
     const uint32_t cls = fe::cls_of(w), fn = fe::fn_of(w), xi = fe::x_of(w);
     const uint32_t addr = fe::addr_of(w);
-    const uint64_t c0 = clocks_;
+    const uint64_t start = clocks_;
+    const uint64_t c0 = overlaps(w) ? clocks_ - 1 : clocks_;  // cycle A
+    last_.a_clock = c0;
+    prev_st_ = cls == fe::kMem && fn == fe::kSt;
+    prev_out_ = cls == fe::kMem && fn == fe::kOut;
+    overlap_ok_ = true;
     const uint32_t pc1 = (pc_ + 1) & (kImemWords - 1);
     pc_ = pc1;  // end of cycle A; control flow may change it
-    uint32_t clk = 2;
+    uint32_t clk = 2;  // cycle A and the B clocks
     if (cls == fe::kCtl && fn == fe::kWait) {
       wait_mask_ = uint16_t(addr);
       waiting_ = true;
-      clocks_ = c0 + 1;  // cycle A
+      overlap_ok_ = false;
+      clocks_ = c0 + 1;
       wait_clocks(io, limit);
-      return uint32_t(clocks_ - c0);
+      return uint32_t(clocks_ - start);
     } else if (cls == fe::kCtl) {
       clk = control(fn, xi, fe::field_of(w), addr, pc1);
     } else {
@@ -288,7 +305,17 @@ class FrameEngine {
       }
     }
     clocks_ = c0 + clk;
-    return clk;
+    return uint32_t(clocks_ - start);
+  }
+
+  // Whether w's cycle A runs in the last B clock of the instruction before.
+  bool overlaps(uint32_t w) const {
+    const uint32_t cls = fe::cls_of(w), fn = fe::fn_of(w);
+    const bool reads = cls == fe::kMem && fn <= fe::kRnd;
+    const bool reads_a = cls == fe::kCtl && ((fn == fe::kJ && (fe::field_of(w) & 3u) != 0) ||
+                                             fn == fe::kTax || fn == fe::kSqrt || fn == fe::kSqrtr);
+    return overlap_ok_ && !reads_a && !(prev_st_ && reads && fe::space_of(w) == fe::kDmem) &&
+           !(prev_out_ && reads && fe::space_of(w) == fe::kIo);
   }
 
   // shl/shr/rnd by n: one bit per clock (FAST_SHIFT: all n bits in one
@@ -296,7 +323,10 @@ class FrameEngine {
   // clock to load; rnd adds one clock for the rounding carry. n = 0 leaves
   // A alone in 2 clocks.
   uint32_t shift(uint32_t fn, uint32_t n, bool imm_count) {
-    if (n == 0) return 2;
+    if (n == 0) {
+      overlap_ok_ = imm_count;  // a loaded count of 0 ends B in the loading clock
+      return 2;
+    }
     const uint32_t base = imm_count ? 1 : 2, steps = FAST_SHIFT ? 1 : n;
     if (fn == fe::kShl) {
       a_ = n >= 48 ? 0 : wrap48(int64_t(uint64_t(a_) << n));
@@ -377,6 +407,9 @@ class FrameEngine {
   uint64_t clocks_ = 0;
   bool waiting_ = false;
   uint16_t wait_mask_ = 0;
+  // The last instruction's end: may the next cycle A overlap its last B
+  // clock, and was it `st` / `out` (overlaps()).
+  bool overlap_ok_ = false, prev_st_ = false, prev_out_ = false;
   FrameEngineRetired last_;
 };
 

@@ -14,8 +14,15 @@
 //            the immediate, P, ea, the shifted A or the root) meets A in the
 //            adder (A + y + cin) and the logic unit (~y, A & y, A | y,
 //            A ^ y); A, T, P, DMEM (st) and IO (out) are written at the end
-//            of B, and the next instruction is fetched. shl/shr/rnd,
-//            sqrt/sqrtr and wait stay in B for more clocks (docs: timing).
+//            of B. shl/shr/rnd, min/max, sqrt/sqrtr and wait stay in B for
+//            more clocks (docs: timing).
+// Overlap: the next instruction's cycle A runs in the current one's last B
+// clock (a_go), and cycle A fetches the one after it, so most instructions
+// take one clock. A waits for a clock of its own when it reads A (j on a
+// condition, tax, sqrt/sqrtr), reads DMEM after `st` (one port: SPRAM) or
+// IO after `out`, and after a B whose last clock is known only in it (wait,
+// a loaded shift count of 0). The B clock is "last" by flip-flops only
+// (b_last), so no B-clock result reaches cycle A's enables.
 // Memories: IMEM 2^IW x 32 ROM ($readmemh UCODE_HEX), KROM 2^KW x 32 ROM
 // (KROM_INIT, word k at [32k +: 32]), DMEM 2^DW x 32 single-port RAM, not
 // initialised: EBR for DW <= 9, SPRAM for DW >= 10 (ram_style "huge": two
@@ -82,7 +89,8 @@ module frame_engine #(
   reg  [IW-1:0] stk0, stk1;            // return stack: stk0 on top
 
   // ---- sequencing state --------------------------------------------------------
-  reg          ph;                     // 0: cycle A, 1: cycle B
+  reg          bact;                   // a B clock runs in this clock
+  wire         a_go;                   // cycle A runs in this clock
   reg  [5:0]   cnt;                    // shift / sqrt steps left
   reg          rbit;                   // last bit shifted out (rnd)
   reg  [25:0]  rem;                    // sqrt partial remainder
@@ -104,6 +112,7 @@ module frame_engine #(
   reg u_left;                          // shift direction (shl, sqrt)
   reg u_latch;                         // this clock loads the shift count from y
   reg u_shift, u_rnd, u_sq, u_wait;    // the instruction in B
+  reg u_sqr;                           // ... is sqrtr (IR holds the next one)
   reg u_bar;                           // FAST_SHIFT: this clock shifts A by cnt at once
 
   wire [1:0]  cls = ir[31:30];
@@ -137,7 +146,7 @@ module frame_engine #(
   reg  [1:0]  cls_b;
   reg  [25:0] irb;                     // IR[25:0] (IR[29:26], the function, is decoded in A)
   reg  [15:0] eab;
-  always @(posedge clk) if (!ph) {cls_b, irb, eab} <= {ir[31:30], ir[25:0], ea};
+  always @(posedge clk) if (a_go) {cls_b, irb, eab} <= {ir[31:30], ir[25:0], ea};
   wire [1:0] space_b = irb[25:24];
   reg  [15:0] xv_b;                    // X of the instruction in B (txa)
   always @* begin
@@ -166,18 +175,20 @@ module frame_engine #(
   end
 
   // One address for both ports so the SPRAM (single-ported) can hold it:
-  // B writes at its registered ea, A reads at the decoded one.
-  wire [DW-1:0] dmem_a = ph ? eab[DW-1:0] : ea[DW-1:0];
+  // B writes at its registered ea, A reads at the decoded one (never in the
+  // same clock: a DMEM read after `st` waits, see a_go).
+  wire st_b = bact && u_st;
+  wire [DW-1:0] dmem_a = st_b ? eab[DW-1:0] : ea[DW-1:0];
   always @(posedge clk) begin
-    if (ph && u_st) dmem[dmem_a] <= acc[31:0];
-    else if (!ph) dq <= dmem[dmem_a];
+    if (st_b) dmem[dmem_a] <= acc[31:0];
+    else if (a_go) dq <= dmem[dmem_a];
   end
-  always @(posedge clk) if (!ph) kq <= krom[ea[KW-1:0]];
+  always @(posedge clk) if (a_go) kq <= krom[ea[KW-1:0]];
 
   assign io_raddr = ea;
   assign io_waddr = eab;
-  assign io_re = !ph && memop && space == 2'd2 && fn <= F_RND;
-  assign io_we = ph && u_out;
+  assign io_re = a_go && io_rd;
+  assign io_we = bact && u_out;
   assign io_wdata = acc[31:0];
 
   // ---- operand ----------------------------------------------------------------
@@ -248,7 +259,7 @@ module frame_engine #(
       keep_r <= (u_min && a_lt_m) || (u_max && !a_lt_m);
       m_r <= m;
     end
-  wire acc_we = ph && (u_we || (u_put && !keep_r));
+  wire acc_we = bact && (u_we || (u_put && !keep_r));
   wire [47:0] acc_d = u_use_s ? s[47:0] : u_put ? m_r : lg;
 
   // ---- square root of 4 A: one root digit per two clocks -------------------
@@ -274,13 +285,14 @@ module frame_engine #(
     endcase
   end
   wire [15:0] xdec = xv - 16'd1;
+  wire xdec_nz = xv != 16'd1;
   wire [IW-1:0] pc1 = pc + 1'b1;
   wire [IW-1:0] target = addr[IW-1:0];
 
   // Next PC and X, at the end of cycle A.
   wire call_op = ctl && fn == K_CALL;
   wire ret_op = ctl && fn == K_RET;
-  wire jump = (ctl && fn == K_J && (ctaken ^ fld[2])) || (ctl && fn == K_DJNZ && xdec != 16'd0) ||
+  wire jump = (ctl && fn == K_J && (ctaken ^ fld[2])) || (ctl && fn == K_DJNZ && xdec_nz) ||
               call_op;
   wire [IW-1:0] pc_next = jump ? target : ret_op ? stk0 : pc1;
   wire x_we = ctl && (fn == K_DJNZ || fn == K_LDX || fn == K_ADDX || fn == K_TAX);
@@ -291,7 +303,7 @@ module frame_engine #(
     if (rst) begin
       stk0 <= {IW{1'b0}};
       stk1 <= {IW{1'b0}};
-    end else if (!ph && (call_op || ret_op)) begin
+    end else if (a_go && (call_op || ret_op)) begin
       stk0 <= call_op ? pc1 : stk1;
       if (call_op) stk1 <= stk0;
     end
@@ -307,20 +319,37 @@ module frame_engine #(
     else if (u_wait) done = |(events & irb[15:0]);
     else done = !(u_min || u_max);
   end
+  // done, where it is known from flip-flops alone (never for a wait or the
+  // clock that loads a shift count): the next cycle A may run in this clock.
+  reg b_last;
+  always @* begin
+    if (u_latch || u_wait || u_min || u_max) b_last = 1'b0;
+    else if (u_step) b_last = u_shift && !u_rnd && last_step;
+    else if (u_bar) b_last = !u_rnd;
+    else b_last = 1'b1;
+  end
+
+  // ---- when cycle A runs --------------------------------------------------------
+  wire io_rd = memop && space == 2'd2 && fn <= F_RND;
+  wire dm_rd = memop && space == 2'd0 && fn <= F_RND;
+  wire reads_a = ctl && ((fn == K_J && fld[1:0] != 2'd0) || fn == K_TAX || fn == K_SQRT || fn == K_SQRTR);
+  wire hazard = reads_a || (u_st && dm_rd) || (u_out && io_rd);
+  assign a_go = !rst && (!bact || (b_last && !hazard));
 
   // T and P. P has no reset of its own, so that it stays the SB_MAC16's
   // output register: reset clears T, and a second reset clock writes
   // P = 0 * y = 0 (reset must last at least two clocks).
   always @(posedge clk) begin
     if (rst) t <= 16'd0;
-    else if (ph && u_lt) t <= y[15:0];
+    else if (bact && u_lt) t <= y[15:0];
   end
   always @(posedge clk) begin
-    if (rst || (ph && u_mpy)) p <= $signed({{16{t[15]}}, t}) * $signed({{16{y[15]}}, y[15:0]});
+    if (rst || (bact && u_mpy)) p <= $signed({{16{t[15]}}, t}) * $signed({{16{y[15]}}, y[15:0]});
   end
 
-  // Fetch: the IMEM read port's register is IR; IMEM[0] is read during reset.
-  always @(posedge clk) if (rst || (ph && done)) ir <= imem[rst ? {IW{1'b0}} : pc];
+  // Fetch: the IMEM read port's register is IR; cycle A reads the next
+  // instruction at the PC it chooses; IMEM[0] is read during reset.
+  always @(posedge clk) if (rst || a_go) ir <= imem[rst ? {IW{1'b0}} : pc_next];
 
   // Decoded controls of B's first clock.
   wire alu_op = !ctl && fn <= F_XOR;
@@ -333,21 +362,21 @@ module frame_engine #(
   wire sel_w = reads_m && cls != C_IMM;  // the operand is a field of w
 
   // Square root registers: cleared at the end of cycle A of sqrt/sqrtr.
-  wire sq_clear = rst || (!ph && sq_op);
+  wire sq_clear = rst || (a_go && sq_op);
   always @(posedge clk) begin
     if (sq_clear) begin
       rem <= 26'd0;
       root <= 25'd0;
-    end else if (ph && u_sq && u_step) begin
+    end else if (bact && u_sq && u_step) begin
       rem <= (cnt[0] && dig) ? dif[25:0] : rsh[25:0];
       if (cnt[0]) root <= {root[23:0], dig};
     end
   end
-  always @(posedge clk) if (!ph) sqneg <= acc[47];
+  always @(posedge clk) if (a_go) sqneg <= acc[47];
 
   always @(posedge clk) begin
     if (rst) begin
-      ph <= 1'b0; pc <= {IW{1'b0}}; acc <= 48'd0;
+      bact <= 1'b0; pc <= {IW{1'b0}}; acc <= 48'd0;
       x1 <= 16'd0; x2 <= 16'd0; x3 <= 16'd0;
       cnt <= 6'd0; rbit <= 1'b0;
       {u_sel_i, u_sel_x, u_sel_q, u_step} <= 4'd0;
@@ -356,82 +385,88 @@ module frame_engine #(
       {u_lt, u_mpy, u_st, u_out, u_left, u_latch, u_shift, u_rnd, u_sq, u_wait} <= 10'd0;
       u_put <= 1'b0;
       u_bar <= 1'b0;
-    end else if (!ph) begin
-      // ---- end of cycle A: control flow, X, the controls of B
-      ph <= 1'b1;
-      pc <= pc_next;
-      if (x_we && xs == 2'd1) x1 <= xval;
-      if (x_we && xs == 2'd2) x2 <= xval;
-      if (x_we && xs == 2'd3) x3 <= xval;
-      rbit <= 1'b0;
-      cnt <= sq_op ? SQ_STEPS : ir[5:0];
-      u_f_lo <= sel_w && fld != 3'd4 && fld != 3'd6;
-      u_f_mid <= sel_w && fld != 3'd4 && fld != 3'd6 && fld != 3'd7;
-      u_f_15 <= sel_w && fld <= 3'd3;
-      u_f_hi <= sel_w && fld <= 3'd1;
-      u_f_h <= sel_w && fld == 3'd4;
-      u_f_h15 <= sel_w && fld == 3'd6;
-      u_e15 <= sel_w && fld == 3'd2;
-      u_e31 <= sel_w && (fld == 3'd4 || fld == 3'd6);
-      u_e31t <= sel_w && (fld == 3'd0 || fld == 3'd4 || fld == 3'd6);
-      u_sel_i <= reads_m && cls == C_IMM;
-      u_sel_x <= txa_op;
-      u_sel_q <= 1'b0;
-      u_step <= (imm_steps && !fast) || sq_op;
-      u_bar <= imm_steps && fast;
-      u_sub <= (alu_op && (fn == F_LD || fn == F_SUB || fn == F_MIN || fn == F_MAX)) ||
-               imm_steps || sq_op || txa_op;
-      u_lop <= (alu_op && fn[2]) ? fn[1:0] : 2'd0;
-      u_use_s <= alu_op && (fn == F_ADD || fn == F_SUB);
-      u_we <= (alu_op && fn != F_MIN && fn != F_MAX) || imm_steps || sq_op || txa_op;
-      u_min <= alu_op && fn == F_MIN;
-      u_max <= alu_op && fn == F_MAX;
-      u_put <= 1'b0;
-      u_cin_r <= 1'b0;
-      u_cin_q <= 1'b0;
-      u_lt <= !ctl && fn == F_LT;
-      u_mpy <= !ctl && fn == F_MPY;
-      u_st <= memop && fn == F_ST;
-      u_out <= memop && fn == F_OUT;
-      u_left <= (!ctl && fn == F_SHL) || sq_op;
-      u_latch <= shift_op && cls != C_IMM;
-      u_shift <= shift_op;
-      u_rnd <= !ctl && fn == F_RND;
-      u_sq <= sq_op;
-      u_wait <= ctl && fn == K_WAIT;
+      u_sqr <= 1'b0;
     end else begin
-      // ---- end of a clock of cycle B
-      if (done) ph <= 1'b0;
-      if (acc_we) acc <= acc_d;
-      if (u_min || u_max) begin          // compared: the write follows
-        u_min <= 1'b0;
-        u_max <= 1'b0;
-        u_put <= 1'b1;
+      if (bact) begin
+        // ---- end of a clock of cycle B
+        if (done) bact <= 1'b0;
+        if (acc_we) acc <= acc_d;
+        if (u_min || u_max) begin          // compared: the write follows
+          u_min <= 1'b0;
+          u_max <= 1'b0;
+          u_put <= 1'b1;
+        end
+        if (u_step) begin
+          cnt <= cnt - 6'd1;
+          rbit <= acc[0];
+        end
+        if (u_bar) rbit <= bar_r[0];
+        // Controls of the next B clock of a multi-clock instruction.
+        if (u_latch) begin                 // count loaded: steps follow
+          cnt <= y[5:0];
+          u_sel_i <= 1'b0;
+          {u_f_lo, u_f_mid, u_f_15, u_f_hi, u_f_h, u_f_h15, u_e15, u_e31, u_e31t} <= 9'd0;
+          u_latch <= 1'b0;
+          u_step <= !fast;
+          u_bar <= fast;
+          u_sub <= 1'b1;
+          u_we <= 1'b1;
+        end
+        if ((u_step && last_step && (u_rnd || u_sq)) || (u_bar && u_rnd)) begin  // final clock: A + y + cin
+          u_step <= 1'b0;
+          u_bar <= 1'b0;
+          u_sub <= 1'b0;
+          u_use_s <= 1'b1;
+          u_sel_q <= u_sq;
+          u_cin_r <= u_rnd;
+          u_cin_q <= u_sqr;
+        end
       end
-      if (u_step) begin
-        cnt <= cnt - 6'd1;
-        rbit <= acc[0];
-      end
-      if (u_bar) rbit <= bar_r[0];
-      // Controls of the next B clock of a multi-clock instruction.
-      if (u_latch) begin                 // count loaded: steps follow
-        cnt <= y[5:0];
-        u_sel_i <= 1'b0;
-        {u_f_lo, u_f_mid, u_f_15, u_f_hi, u_f_h, u_f_h15, u_e15, u_e31, u_e31t} <= 9'd0;
-        u_latch <= 1'b0;
-        u_step <= !fast;
-        u_bar <= fast;
-        u_sub <= 1'b1;
-        u_we <= 1'b1;
-      end
-      if ((u_step && last_step && (u_rnd || u_sq)) || (u_bar && u_rnd)) begin  // final clock: A + y + cin
-        u_step <= 1'b0;
-        u_bar <= 1'b0;
-        u_sub <= 1'b0;
-        u_use_s <= 1'b1;
-        u_sel_q <= u_sq;
-        u_cin_r <= u_rnd;
-        u_cin_q <= u_sq && fn == K_SQRTR;
+      // Cycle A last, so that its controls replace those of a B clock that ends.
+      if (a_go) begin
+        // ---- end of cycle A: control flow, X, the controls of B
+        bact <= 1'b1;
+        pc <= pc_next;
+        if (x_we && xs == 2'd1) x1 <= xval;
+        if (x_we && xs == 2'd2) x2 <= xval;
+        if (x_we && xs == 2'd3) x3 <= xval;
+        rbit <= 1'b0;
+        cnt <= sq_op ? SQ_STEPS : ir[5:0];
+        u_f_lo <= sel_w && fld != 3'd4 && fld != 3'd6;
+        u_f_mid <= sel_w && fld != 3'd4 && fld != 3'd6 && fld != 3'd7;
+        u_f_15 <= sel_w && fld <= 3'd3;
+        u_f_hi <= sel_w && fld <= 3'd1;
+        u_f_h <= sel_w && fld == 3'd4;
+        u_f_h15 <= sel_w && fld == 3'd6;
+        u_e15 <= sel_w && fld == 3'd2;
+        u_e31 <= sel_w && (fld == 3'd4 || fld == 3'd6);
+        u_e31t <= sel_w && (fld == 3'd0 || fld == 3'd4 || fld == 3'd6);
+        u_sel_i <= reads_m && cls == C_IMM;
+        u_sel_x <= txa_op;
+        u_sel_q <= 1'b0;
+        u_step <= (imm_steps && !fast) || sq_op;
+        u_bar <= imm_steps && fast;
+        u_sub <= (alu_op && (fn == F_LD || fn == F_SUB || fn == F_MIN || fn == F_MAX)) ||
+                 imm_steps || sq_op || txa_op;
+        u_lop <= (alu_op && fn[2]) ? fn[1:0] : 2'd0;
+        u_use_s <= alu_op && (fn == F_ADD || fn == F_SUB);
+        u_we <= (alu_op && fn != F_MIN && fn != F_MAX) || imm_steps || sq_op || txa_op;
+        u_min <= alu_op && fn == F_MIN;
+        u_max <= alu_op && fn == F_MAX;
+        u_put <= 1'b0;
+        u_cin_r <= 1'b0;
+        u_cin_q <= 1'b0;
+        u_lt <= !ctl && fn == F_LT;
+        u_mpy <= !ctl && fn == F_MPY;
+        u_st <= memop && fn == F_ST;
+        u_out <= memop && fn == F_OUT;
+        u_left <= (!ctl && fn == F_SHL) || sq_op;
+        u_latch <= shift_op && cls != C_IMM;
+        u_shift <= shift_op;
+        u_rnd <= !ctl && fn == F_RND;
+        u_sq <= sq_op;
+        u_wait <= ctl && fn == K_WAIT;
+        u_sqr <= ctl && fn == K_SQRTR;
       end
     end
   end

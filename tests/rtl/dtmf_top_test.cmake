@@ -6,12 +6,12 @@
 #  default: scenes/neuroskin2.yaml at 18 MHz (the iCE40 UP5K build: 12 MHz
 #           oscillator x 3/2 by the PLL);
 #  s10:     scenes/staggered10x10.yaml at 96 MHz (100 taxels, two neuron
-#           layers each: the engine needs ~80 000 clocks per 1 ms frame),
+#           layers each: the engine needs ~45 000 clocks per 1 ms frame),
 #           its 20 DFT channels in 3 lanes (rtl/sdft_lanes.v);
-#  s10fast: the same scene at 72 MHz with the engine's barrel shifter
-#           (ENGINE_FAST_SHIFT, the ECP5 builds'): ~66 000 clocks a frame,
-#           where the bit-serial engine's ~90 000 would not fit 72 000;
-#  s10unit: the same scene at 42 MHz with the barrel shifter and the
+#  s10fast: the same scene at 48 MHz with the engine's barrel shifter
+#           (ENGINE_FAST_SHIFT, the ECP5 builds'): ~35 000 clocks a frame,
+#           where the bit-serial engine's ~59 000 would not fit 48 000;
+#  s10unit: the same scene at 24 MHz with the barrel shifter and the
 #           neuron unit (NEURON_UNIT, rtl/izhikevich_layer.v; the ULX3S
 #           builds' engine), where the barrel shifter alone would not fit.
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
@@ -25,13 +25,13 @@ eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top 
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10.krom.hex\")
 set(dtmf_s10fast ${dtmf_s10})
-list(TRANSFORM dtmf_s10fast REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=72000000")
+list(TRANSFORM dtmf_s10fast REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=48000000")
 list(TRANSFORM dtmf_s10fast REPLACE "^-GENGINE_FAST_SHIFT=.*" "-GENGINE_FAST_SHIFT=1")
 eskin_verilate(${exe} Vdtmf_top_s10fast ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10fast}
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_fast.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10_fast.krom.hex\")
 set(dtmf_s10unit ${dtmf_s10fast})
-list(TRANSFORM dtmf_s10unit REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=42000000")
+list(TRANSFORM dtmf_s10unit REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=24000000")
 list(TRANSFORM dtmf_s10unit REPLACE "^-GNEURON_UNIT=.*" "-GNEURON_UNIT=1")
 eskin_verilate(${exe} Vdtmf_top_s10unit ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10unit}
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_unit.ucode.hex\"
@@ -43,6 +43,6 @@ string(JOIN " " dtmf_s10unit_str ${dtmf_s10unit})
 target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=${ESKIN_DTMF_TOP_CLK_HZ}
   DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000
-  DTMF_TOP_S10FAST_PARAMS="${dtmf_s10fast_str}" DTMF_TOP_S10FAST_CLK_HZ=72000000
-  DTMF_TOP_S10UNIT_PARAMS="${dtmf_s10unit_str}" DTMF_TOP_S10UNIT_CLK_HZ=42000000)
+  DTMF_TOP_S10FAST_PARAMS="${dtmf_s10fast_str}" DTMF_TOP_S10FAST_CLK_HZ=48000000
+  DTMF_TOP_S10UNIT_PARAMS="${dtmf_s10unit_str}" DTMF_TOP_S10UNIT_CLK_HZ=24000000)
 target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode eskin_fpga)

@@ -426,10 +426,10 @@ void expect_fits_only_with(const Build& b, const BuildSetup& s,
 // The barrel shifter (the ECP5 builds' engine): the same packets, and a
 // clock the bit-serial engine could not keep up with. Bound: the scene's
 // longest frame, measured on the instruction-set model for each engine,
-// must exceed a frame's clocks at 72 MHz (STEP x 1029) without the shifter
+// must exceed a frame's clocks at 48 MHz (STEP x 686) without the shifter
 // and fit with it; then the Verilated top runs the scene with no frame
 // overrun and every packet equal to the chain's (scene_test).
-TEST(DtmfTop, Staggered10x10At72MHzWithTheBarrelShifter) {
+TEST(DtmfTop, Staggered10x10At48MHzWithTheBarrelShifter) {
   const BuildSetup s = prepare(kS10Fast);
   auto slow = s.plan;
   slow.spec.engine_fast_shift = false;
@@ -441,11 +441,11 @@ TEST(DtmfTop, Staggered10x10At72MHzWithTheBarrelShifter) {
 // the barrel shifter): the same packets, and a clock the engine could not
 // keep up with on its own. Bound: the scene's longest frame on the
 // instruction-set model (the unit's port: hls::IzhikevichUnitPort, 14
-// clocks an update) must exceed a frame's clocks at 42 MHz (STEP x 600)
+// clocks an update) must exceed a frame's clocks at 24 MHz (STEP x 343)
 // without the unit and fit with it; then the Verilated top, whose unit is
 // the RTL, runs the scene with no frame overrun and every packet equal to
 // the chain's (scene_test).
-TEST(DtmfTop, Staggered10x10At42MHzWithTheNeuronUnit) {
+TEST(DtmfTop, Staggered10x10At24MHzWithTheNeuronUnit) {
   const BuildSetup s = prepare(kS10Unit);
   auto engine = s.plan;
   engine.spec.neuron_unit = false;

@@ -35,6 +35,7 @@ module frame_engine_tb #(
     output wire [31:0] bd_rdata,       // mem[bd_addr], combinational
     // state after the last rising edge
     output wire        retire,         // the instruction in B ends at the next edge
+    output wire        a_go,           // a cycle A ends at the next edge
     output wire        dm_we,          // `st` writes DMEM at the next edge
     output wire [15:0] dm_addr,
     output wire [31:0] dm_data,
@@ -65,9 +66,10 @@ module frame_engine_tb #(
 
   assign bd_rdata = bd_mem == 2'd0 ? u.imem[bd_addr[IW-1:0]] :
                     bd_mem == 2'd1 ? u.krom[bd_addr[KW-1:0]] : u.dmem[bd_addr[DW-1:0]];
-  assign retire = u.ph && u.done;
-  assign dm_we = u.ph && u.u_st;
-  assign dm_addr = u.ea;
+  assign retire = u.bact && u.done;
+  assign a_go = u.a_go;
+  assign dm_we = u.bact && u.u_st;
+  assign dm_addr = u.eab;
   assign dm_data = u.acc[31:0];
   assign pc = u.pc;
   assign acc = u.acc;
