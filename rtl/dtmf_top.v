@@ -65,9 +65,9 @@ module dtmf_top #(
     // clocks; hls/sdft_bank.h's sdft_lanes_interval). 1 on the UP5K.
     parameter integer SDFT_LANES = 1,
     // 1: the hardware neuron unit (rtl/izhikevich_layer.v): the microcode
-    // hands it each neuron update (14 clocks; 38 engine clocks a neuron,
-    // overlapped) instead of running the izhikevich_layer routine (190-230
-    // clocks); the same packets. The board flow decides (host/fpga/board.h).
+    // hands it each neuron update (14 clocks; 27 engine clocks a neuron,
+    // overlapped) instead of running the izhikevich_layer routine (about
+    // 120 clocks with the barrel shifter, 210 without); the same packets. The board flow decides (host/fpga/board.h).
     parameter integer NEURON_UNIT = 0
 ) (
     input  wire clk,

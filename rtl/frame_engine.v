@@ -223,9 +223,12 @@ module frame_engine #(
   wire [48:0] bar_r = $signed({acc, 1'b0}) >>> cnt;
   wire [47:0] bar_l = acc << cnt;
   wire [47:0] bar = u_left ? bar_l : bar_r[48:1];
+  // The barrel's result goes straight to A (acc_d), not through m and the
+  // adder: a shift clock adds nothing, and the path barrel -> adder -> A,
+  // false but seen by the timing analysis, was the UP5K's critical path.
   wire [47:0] m = fv | ({48{u_sel_i}} & {{22{irb[25]}}, irb[25:0]}) |
                   ({48{u_sel_x}} & {32'd0, xv_b}) | ({48{u_step}} & sha) |
-                  ({48{u_bar}} & bar) | ({48{u_sel_q}} & {24'd0, root[24:1]});
+                  ({48{u_sel_q}} & {24'd0, root[24:1]});
 
   // ---- ALU: s = A + y + cin, lg = ~y / A & y / A | y / A ^ y ----------------
   // u_sub = 1 also where A takes m through the logic unit (lg = ~y = m).
@@ -260,7 +263,7 @@ module frame_engine #(
       m_r <= m;
     end
   wire acc_we = bact && (u_we || (u_put && !keep_r));
-  wire [47:0] acc_d = u_use_s ? s[47:0] : u_put ? m_r : lg;
+  wire [47:0] acc_d = u_bar ? bar : u_use_s ? s[47:0] : u_put ? m_r : lg;
 
   // ---- square root of 4 A: one root digit per two clocks -------------------
   // cnt = 50..1: A shifts left and its top bit enters rem (two zero bits

@@ -107,7 +107,32 @@ int run_scale_table(const BitstreamArgs& a) {
   return 0;
 }
 
+// Options of one build and options of the scale table are refused in the
+// other mode rather than ignored.
+void check_mode_options(const BitstreamArgs& a) {
+  if (a.scale_table) {
+    const std::pair<bool, const char*> single[] = {
+        {!a.board.empty(), "--board"},          {!a.device.empty(), "--device"},
+        {a.clk_mhz > 0, "--clk-mhz"},           {a.engine_load_given, "--engine-load"},
+        {!a.engine_shifter.empty(), "--engine-shifter"}, {!a.neurons.empty(), "--neurons"}};
+    for (const auto& [given, name] : single)
+      if (given)
+        throw std::invalid_argument(
+            std::string("--scale-table: ") + name +
+            " does not apply: the table builds each target on its own board with that board's "
+            "engine, at the slowest clock each skin needs under the stress load (choose targets "
+            "with --targets)");
+  } else {
+    const std::pair<bool, const char*> table[] = {{!a.scale.sizes.empty(), "--sizes"},
+                                                  {!a.scale.targets.empty(), "--targets"},
+                                                  {!a.scale.rates.empty(), "--rates"}};
+    for (const auto& [given, name] : table)
+      if (given) throw std::invalid_argument(std::string(name) + ": only with --scale-table");
+  }
+}
+
 int run_bitstream(const BitstreamArgs& a) {
+  check_mode_options(a);
   if (a.scale_table) return run_scale_table(a);
   if (a.board.empty()) throw std::invalid_argument("--board: required (icebreaker or ulx3s)");
   const auto board = eskin::fpga::find_board(a.board, a.device);
@@ -194,7 +219,8 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--neurons", args->neurons,
                   "Where the Izhikevich neuron updates run: engine (the frame engine's "
                   "microcode, no extra logic) or unit (the hardware neuron unit, "
-                  "rtl/izhikevich_layer.v: 38 engine clocks a neuron instead of 190-230); default: "
+                  "rtl/izhikevich_layer.v: 27 engine clocks a neuron instead of about 120 with the "
+                  "barrel shifter or 210 without); default: "
                   "the board's (icebreaker engine: the unit does not fit the UP5K beside the "
                   "rest; ulx3s unit)")
       ->check(CLI::IsMember({"engine", "unit"}));

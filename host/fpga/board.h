@@ -41,6 +41,11 @@ struct Board {
   // about 1950 logic cells and does not fit beside the rest (a 6x6 skin
   // with it: 5609 / 5280 LC).
   bool neuron_unit = false;
+  // The barrel shifter where engine_fast_shift is off: on when the core
+  // would need a clock above default_clk_hz and the shifter lowers that
+  // need (choose_core_clock). The UP5K: its ~650 logic cells fit beside a
+  // 6x6 skin (4241 / 5280 LC) and take it from 25.1 MHz to 15.8.
+  bool engine_fast_shift_when_needed = false;
 };
 
 // "icebreaker" or "ulx3s"; device_override ("25k", "85k"; empty: the

@@ -91,14 +91,28 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
   // Before the load: the shifter and the neuron unit set the engine's clocks.
   spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
   spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
-  c.plan = hls::make_dtmf_top_plan(spec);
   // The scene's samples as the top takes them: 12-bit codes minus 2048.
   std::vector<int32_t> x;
   sim::WorldModel world(scene);
   for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
-  c.load = measure_engine_load(c.plan, x);
-  c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
-                             ? c.load.stress_total() : c.load.scene_clocks);
+  auto load_with = [&](const hls::DtmfTopSpec& s) {
+    c.plan = hls::make_dtmf_top_plan(s);
+    c.load = measure_engine_load(c.plan, x);
+    c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
+                               ? c.load.stress_total() : c.load.scene_clocks);
+  };
+  load_with(spec);
+  // The board's "when needed" shifter: when the core needs more than the
+  // board's default clock and the shifter lowers that need (the engine is
+  // what limits it, not the ADC or the DFT).
+  const long serial_min = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
+  if (fast_shift < 0 && !spec.engine_fast_shift && b.engine_fast_shift_when_needed &&
+      serial_min > b.default_clk_hz) {
+    auto barrel = spec;
+    barrel.engine_fast_shift = true;
+    load_with(barrel);
+    if (hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks) >= serial_min) load_with(spec);
+  }
   c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
   c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   auto budget_at = [&](const Clocking& k) {

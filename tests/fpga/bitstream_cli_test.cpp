@@ -118,7 +118,8 @@ void expect_engine_choice(const std::string& option, const std::vector<ChoiceCas
 
 // --engine-shifter reaches the plan (the report's engine.fast_shift, and
 // its table), and without it the board decides: the ULX3S's engine has the
-// barrel shifter, the iCEBreaker's not.
+// barrel shifter, the iCEBreaker's only where it lowers the clock the core
+// needs (not here: the 1 MS/s ADC sets it).
 TEST(BitstreamCli, EngineShifterIsTheUsersOrTheBoards) {
   expect_engine_choice(
       "--engine-shifter",
@@ -206,6 +207,24 @@ TEST(BitstreamCli, DtmfOnlyOptionsAreRefusedForHallScenes) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("--scale-table: the table is of DTMF skins"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("has Hall sensors too"), std::string::npos) << r.out;
+}
+
+// One build's options and the scale table's are refused in the other mode,
+// before anything runs, rather than ignored.
+TEST(BitstreamCli, OptionsOfTheOtherModeAreRefused) {
+  for (const char* opt : {"--board ulx3s", "--device 25k", "--clk-mhz 30", "--engine-load stress",
+                          "--engine-shifter barrel", "--neurons unit"}) {
+    const Result r = sh(std::string("--scale-table --targets up5k --sizes 2 ") + opt);
+    EXPECT_NE(r.status, 0) << opt;
+    const std::string name = std::string(opt).substr(0, std::string(opt).find(' '));
+    EXPECT_NE(r.out.find("--scale-table: " + name + " does not apply"), std::string::npos) << r.out;
+  }
+  for (const char* opt : {"--sizes 4", "--targets up5k", "--rates 35000"}) {
+    const Result r = sh(std::string("--board icebreaker ") + opt);
+    EXPECT_NE(r.status, 0) << opt;
+    const std::string name = std::string(opt).substr(0, std::string(opt).find(' '));
+    EXPECT_NE(r.out.find(name + ": only with --scale-table"), std::string::npos) << r.out;
+  }
 }
 
 TEST(BitstreamCli, BadOptionsAreNamed) {

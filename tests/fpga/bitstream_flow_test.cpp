@@ -214,28 +214,39 @@ TEST(ScaleTable, CsvRoundTripAndFitHint) {
 
 namespace {
 
-// The engine's barrel shifter is the ECP5 board's, not the UP5K's (whose
-// LCs are scarce). Bound: the same 6x6 35 kS/s skin under the same stress
-// signals needs fewer engine clocks with it (every shift of n > 1 bits
-// saves n - 1 clocks and nothing gets slower), so its minimum core clock is
-// lower; the 6x6 skin, whose bit-serial engine needs about 34 000 clocks a
-// millisecond (above the UP5K's reach: 36 MHz), must then be carried by
-// the ULX3S's 30 MHz default clock — at most 30 000 clocks. (The neuron
-// unit is off on both: the shifter alone is measured.)
-TEST(CoreClock, Ulx3sEngineHasTheBarrelShifterIcebreakerNot) {
+// The engine's barrel shifter is the ECP5 board's always, and the UP5K's
+// (whose LCs are scarce) only when its bit-serial engine would need more
+// than the board's 18 MHz default. Bound: the same skin under the same
+// stress signals needs fewer engine clocks with the shifter (every shift
+// of n > 1 bits saves n - 1 clocks and nothing gets slower), so its minimum
+// core clock is lower. A 4x4 35 kS/s skin's bit-serial engine fits 18 MHz
+// (about 13 000 clocks a millisecond), so the UP5K keeps the serial one; a
+// 6x6's needs about 25 000 (25 MHz, above the UP5K's reach of about 21), so
+// the UP5K takes the shifter, and the 6x6 must then fit its 18 MHz (at most
+// 18 000 clocks). The user's choice (fast_shift 0) stands. (The neuron unit
+// is off throughout: the shifter alone is measured.)
+TEST(CoreClock, BarrelShifterOnTheUlx3sAndOnTheUp5kWhenNeeded) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const auto ice_board = find_board("icebreaker");
+  const auto ice4 = choose_core_clock(ice_board, scale_scene(base, 4, 35000.0), LoadPolicy::Stress, 0, -1, 0);
+  EXPECT_FALSE(ice4.plan.spec.engine_fast_shift);
+  EXPECT_LE(ice4.core_min_hz, ice_board.default_clk_hz);
   const auto sc = scale_scene(base, 6, 35000.0);
-  const CoreClock ice = choose_core_clock(find_board("icebreaker"), sc, LoadPolicy::Stress, 0, -1, 0);
+  const CoreClock serial = choose_core_clock(ice_board, sc, LoadPolicy::Stress, 0, 0, 0);
+  const CoreClock ice = choose_core_clock(ice_board, sc, LoadPolicy::Stress, 0, -1, 0);
   const CoreClock ecp = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress, 0, -1, 0);
-  EXPECT_FALSE(ice.plan.spec.engine_fast_shift);
+  EXPECT_FALSE(serial.plan.spec.engine_fast_shift);
+  EXPECT_TRUE(ice.plan.spec.engine_fast_shift);
   EXPECT_TRUE(ecp.plan.spec.engine_fast_shift);
   std::printf("6x6 at 35 kS/s, engine clocks per frame (stress + command): bit-serial %ld, "
               "barrel %ld; minimum clocks %.1f / %.1f MHz\n",
-              ice.engine_clocks, ecp.engine_clocks, ice.core_min_hz / 1e6, ecp.core_min_hz / 1e6);
-  EXPECT_LT(ecp.engine_clocks, ice.engine_clocks);
-  EXPECT_LE(ecp.engine_clocks, 30000);
-  EXPECT_LT(ecp.core_min_hz, ice.core_min_hz);
-  EXPECT_EQ(param(eskin::hls::dtmf_top_params(ecp.plan, eskin::hls::dtmf_engine_image(ecp.plan), "", ""),
+              serial.engine_clocks, ice.engine_clocks, serial.core_min_hz / 1e6, ice.core_min_hz / 1e6);
+  EXPECT_GT(serial.core_min_hz, ice_board.default_clk_hz);
+  EXPECT_LT(ice.engine_clocks, serial.engine_clocks);
+  EXPECT_LE(ice.engine_clocks, 18000);
+  EXPECT_EQ(ice.clocking.clk_hz, ice_board.default_clk_hz);
+  EXPECT_EQ(ecp.engine_clocks, ice.engine_clocks);  // the same engine
+  EXPECT_EQ(param(eskin::hls::dtmf_top_params(ice.plan, eskin::hls::dtmf_engine_image(ice.plan), "", ""),
                   "ENGINE_FAST_SHIFT"),
             "1");
 }
