@@ -51,12 +51,16 @@ module adc_ad7476 #(
   // The AD7476A's limits (header): f_SCLK = CLK_HZ / (2 H) <= 20 MHz,
   // t2 = H clocks >= 10 ns, tQUIET = (PERIOD - 31 H) clocks >= 86 ns and
   // tACQ = (PERIOD - 28 H) clocks >= 250 ns (ceil(CLK_HZ * t) clocks; kHz
-  // keeps the products in 32 bits).
+  // and the clock counts clamped at 2000, which is more than 250 ns below
+  // 8 GHz, keep the products in 32 bits: unclamped, 80 MHz at 35 kS/s,
+  // PERIOD 2286, overflowed and was refused).
   localparam integer CLK_KHZ = CLK_HZ / 1000;
+  localparam integer QUIET = PERIOD - 31 * SCLK_DIV > 2000 ? 2000 : PERIOD - 31 * SCLK_DIV;
+  localparam integer ACQ = PERIOD - 28 * SCLK_DIV > 2000 ? 2000 : PERIOD - 28 * SCLK_DIV;
   generate
     if (NCH < 1 || SCLK_DIV < 1 || SAMPLE_HZ < 1 || CLK_HZ > 40_000_000 * SCLK_DIV ||
-        SCLK_DIV * 100_000 < CLK_KHZ || (PERIOD - 31 * SCLK_DIV) * 1_000_000 < CLK_KHZ * 86 ||
-        (PERIOD - 28 * SCLK_DIV) * 1_000_000 < CLK_KHZ * 250) begin : g_bad_params
+        SCLK_DIV * 100_000 < CLK_KHZ || QUIET * 1_000_000 < CLK_KHZ * 86 ||
+        ACQ * 1_000_000 < CLK_KHZ * 250) begin : g_bad_params
       adc_ad7476_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate

@@ -214,7 +214,8 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--engine-shifter", args->engine_shifter,
                   "The frame engine's shifter: serial (one bit per clock, the smallest) or "
                   "barrel (any shift in one clock: fewer engine clocks a frame, ~1000 "
-                  "logic cells more); default: the board's (icebreaker serial, ulx3s barrel)")
+                  "logic cells more); default: the board's (ulx3s barrel; icebreaker serial unless "
+                  "the core needs more than 18 MHz and the shifter lowers that)")
       ->check(CLI::IsMember({"serial", "barrel"}));
   sub->add_option("--neurons", args->neurons,
                   "Where the Izhikevich neuron updates run: engine (the frame engine's "
