@@ -51,7 +51,7 @@
 // G = 1: II = 6 R + 4 + (K - 1) mod LANES while LANES <= 6 (K = 9, 2
 // lanes: 34 clocks, against 56 for sdft_bank), K + 9 from 6 lanes on: the
 // merger's one token a clock, so more than 6 lanes cannot go faster (hence
-// at most 6 in dtmf_top, host/fpga/board.cpp; K = 25, a 12x12 skin: 34).
+// at most 6 in dtmf_top, host/fpga/board.cpp; K = 24, a 12x12 skin: 33).
 // G = 2: II = 2 K + 8 from 3 lanes on.
 // hls/sdft_bank.h's sdft_lanes_interval() is this formula; the test
 // (tests/rtl/sdft_lanes_test.cpp) asserts it clock for clock.

@@ -4,7 +4,7 @@
 // `last`, t counting the samples taken), for tests/rtl/dft_capture_test.cpp.
 // The merged token stream is brought out (tok_*) to watch its pace.
 module dft_capture_tb #(
-    parameter integer KS = 25,
+    parameter integer KS = 24,
     parameter integer N = 64,
     parameter integer ACC_W = 19,
     parameter integer STEP = 3,

@@ -18,9 +18,9 @@
 //    and no frame is lost (overruns 0): the capture stores a token per
 //    clock and judges the last one in its own clock, and the engine here
 //    reads a frame in 2 K + 2 clocks, less than STEP x II.
-// Builds (dft_capture_test.cmake): default 6 lanes, KS 25, N 64, ACC_W 19
-// (a 12x12 skin's DFT at 1 MS/s: 24 carriers and DC; II = K + 9 = 34 for
-// K = 25, inside the 40 clocks of a 40 MHz core); l1: one lane, KS 7,
+// Builds (dft_capture_test.cmake): default 6 lanes, KS 24, N 64, ACC_W 19
+// (a 12x12 skin's DFT at 1 MS/s: 24 carriers; II = K + 9 = 33 for K = 24,
+// inside the 40 clocks of a 40 MHz core); l1: one lane, KS 7,
 // N 32, ACC_W 18 (the default 3x3 top's DFT). STEP 3 in both.
 #include <gtest/gtest.h>
 
@@ -48,7 +48,7 @@ struct Build {
   using Bank = eskin::hls::SdftBank<KS, N, 12, 16, 10, ACC_W>;
   static constexpr int kKs = KS, kN = N, kAccW = ACC_W, kLanes = LANES, kStep = 3;
 };
-using L6 = Build<Vdft_capture_tb, 25, 64, 19, 6>;
+using L6 = Build<Vdft_capture_tb, 24, 64, 19, 6>;
 using L1 = Build<Vdft_capture_tb_l1, 7, 32, 18, 1>;
 
 struct Result {
