@@ -228,7 +228,9 @@ TEST(FrameCapture, TokenEveryClockWhileTheEngineReads) {
     b.m->done = releasing;
     b.m->clk = 0;
     b.m->eval();
-    if (tok) EXPECT_TRUE(b.m->tok_ready) << "sample " << s << " token " << j;
+    if (tok) {
+      EXPECT_TRUE(b.m->tok_ready) << "sample " << s << " token " << j;
+    }
     b.tick();
     if (reading) {
       got.push_back(int32_t(b.m->rd_data));  // the word asked for one clock ago
