@@ -268,13 +268,13 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    <= 20 MHz at any clock); the AD7476A needs (period - 28 H) clocks >=
 //    250 ns of acquisition (tACQ) and (period - 31 H) clocks >= 86 ns of
 //    quiet time (t8 + tQUIET).
-//  - the DFT: samples at least sdft_clocks apart: 6 KS + 3 with one lane
-//    (sdft_bank's II is 6 KS + 2, but a handshake in the clock of the last
-//    token would have frame_capture judge that token by the next sample:
-//    FrameCapture.ExactPaceInTheClockOfTheLastTokenLosesFrames), and
-//    sdft_lanes_interval(KS, L, 2) with L >= 2 lanes (rtl/sdft_lanes.v
-//    takes the next sample the clock after the last token; frame_capture
-//    takes a token every 2 clocks, so 2 KS + 8 from 3 lanes on).
+//  - the DFT: samples at least sdft_clocks apart: sdft_lanes_interval(KS,
+//    L, 1), the lanes' II with a consumer that takes a token every clock
+//    (rtl/frame_capture.v: it stores and judges each token in its own
+//    clock). One lane: sdft_bank's 6 KS + 2, the next sample's handshake in
+//    the clock of the last token; L >= 2 lanes: 10 + (KS - 1) + max(0, 6 -
+//    L) (ceil(KS / L) - 1), KS + 9 from 6 lanes on (rtl/sdft_lanes.v).
+//    tests/rtl/dft_capture_test.cpp runs the two modules at this pace.
 //  - frame_engine: frame_capture loses a frame unless the engine has
 //    released the previous one when it is complete, so the engine's longest
 //    frame plus the longest command it may have started just before that
@@ -297,9 +297,9 @@ struct DtmfTopClockBudget {
 
 // Clocks from one sample's handshake into the DFT to the next that
 // rtl/dtmf_top.v needs: the DFT's II with frame_capture, the consumer,
-// taking 2 clocks per token; one clock more with one lane (above).
+// taking a token every clock (above).
 inline long dtmf_top_sdft_clocks(int ks, int lanes) {
-  return long(sdft_lanes_interval(ks, lanes, 2)) + (lanes <= 1 ? 1 : 0);
+  return long(sdft_lanes_interval(ks, lanes, 1));
 }
 
 inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_hz,
@@ -330,7 +330,7 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
     b.problems.push_back(s + at());
   }
   if (b.period < b.sdft_clocks)
-    b.problems.push_back((lanes == 1 ? std::string("sdft_bank: needs 6 KS + 3 = ")
+    b.problems.push_back((lanes == 1 ? std::string("sdft_bank: needs 6 KS + 2 = ")
                                      : "sdft_lanes (" + n(lanes) + " lanes of KS = " + n(p.ks) +
                                            " channels): needs ") +
                          n(b.sdft_clocks) + " clocks per sample, the sample period is " +

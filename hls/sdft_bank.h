@@ -60,10 +60,10 @@ namespace eskin::hls {
 // handshake to the next one's, input always valid, K channels over `lanes`
 // sdft_bank lanes, the consumer taking a token whenever one is valid and
 // then needing `take_clocks` clocks before the next (1: out_ready always
-// high; 2: rtl/frame_capture.v). One lane is sdft_bank: 6 K + 2 (it offers
-// a token every 6 clocks, so any consumer up to 6 clocks per token keeps
-// up). The derivation is in the RTL's header; tests/rtl/sdft_lanes_test.cpp
-// checks it clock for clock.
+// high, as rtl/frame_capture.v keeps it; 2 or more: a slower consumer).
+// One lane is sdft_bank: 6 K + 2 (it offers a token every 6 clocks, so any
+// consumer up to 6 clocks per token keeps up). The derivation is in the
+// RTL's header; tests/rtl/sdft_lanes_test.cpp checks it clock for clock.
 constexpr int64_t sdft_lanes_interval(int64_t k, int64_t lanes, int64_t take_clocks = 1) {
   if (lanes <= 1) return 6 * k + 2;
   const int64_t wait = 6 - take_clocks * lanes;  // idle clocks per row boundary

@@ -60,9 +60,10 @@ module dtmf_top #(
     // every other type, so an unknown type is still rejected here, once.
     parameter integer HALL_CMDS = 0,
     // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS): a sample takes
-    // 6 KS + 2 clocks with 1 lane, 10 + 2 (KS - 1) + max(0, 6 - 2 L)
-    // (ceil(KS / L) - 1) with L >= 2 (frame_capture writes a token in 2
-    // clocks; hls/sdft_bank.h's sdft_lanes_interval). 1 on the UP5K.
+    // 6 KS + 2 clocks with 1 lane, 10 + (KS - 1) + max(0, 6 - L)
+    // (ceil(KS / L) - 1) with L >= 2, KS + 9 from 6 lanes on (frame_capture
+    // takes a token every clock; hls/sdft_bank.h's sdft_lanes_interval).
+    // 1 on the UP5K.
     parameter integer SDFT_LANES = 1,
     // 1: the hardware neuron unit (rtl/izhikevich_layer.v): the microcode
     // hands it each neuron update (14 clocks; 27 engine clocks a neuron,

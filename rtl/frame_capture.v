@@ -10,16 +10,21 @@
 // The decision is taken at the sample's handshake into sdft_bank
 // (smp_fire, with its counter smp_t); that sample's KS tokens follow.
 //
-// Buffer: 2 banks x 2 KS words (re at 2k, im at 2k + 1, sign-extended to
-// 32 bits). Tokens of a frame go to the bank the engine is not reading.
+// Buffer: 2 banks x KS entries of {im, re} (2 W bits), one entry written
+// per token, in the token's clock: tok_ready is always high, so the stream
+// may offer a token every clock (sdft_lanes from 6 lanes on does:
+// rtl/sdft_lanes.v, G = 1). The engine sees 32-bit words, re at 2k and im
+// at 2k + 1, sign-extended: it reads rd_data one clock after rd_addr (the
+// entry's read is registered, and so is the half it picks). Tokens of a
+// frame go to the bank the engine is not reading.
 // When the frame's last token is written: if the engine has released its
-// bank (no frame pending), the banks swap and `pending` rises with
-// frame_t = the sample's t; else the frame is lost and `overruns` counts it
-// (16-bit, saturating; cleared by `clear`). The engine reads rd_data one
-// clock after rd_addr (registered), and releases with `done`.
-// Each token is written in two clocks (re, then im): tok_ready is low in the
-// second; sdft_bank emits at most one token per 6 clocks (sdft_lanes with
-// 3 or more lanes is held to this pace: rtl/sdft_lanes.v).
+// bank (no frame pending, or `done` in that clock), the banks swap and
+// `pending` rises with frame_t = the sample's t; else the frame is lost and
+// `overruns` counts it (16-bit, saturating; cleared by `clear`). The engine
+// releases with `done`.
+// The last token is stored and judged in its own clock, so the next
+// sample's handshake may come in that same clock (sdft_bank's tightest
+// pace, 6 KS + 2): cur_frame changes only after it.
 module frame_capture #(
     parameter integer KS = 7,      // tokens per sample (carriers + DC channel)
     parameter integer W = 18,      // signed token width (sdft_bank ACC_W)
@@ -37,20 +42,18 @@ module frame_capture #(
     input  wire [W-1:0] tok_re,
     input  wire [W-1:0] tok_im,
     input  wire [7:0]   rd_addr,    // 2k (re) or 2k + 1 (im) of the engine's bank
-    output reg  [31:0]  rd_data,
+    output wire [31:0]  rd_data,
     output reg          pending,
     output reg  [31:0]  frame_t,
     input  wire         done,
     input  wire         clear,      // zero `overruns`
     output reg  [15:0]  overruns
 );
-  localparam integer AW = $clog2(2 * KS) + 1;  // bank bit + word address
   localparam integer FW = $clog2(N + 1);
   localparam integer PW = (STEP > 1) ? $clog2(STEP) : 1;
   localparam integer STEP_M1_I = STEP - 1;
   localparam [FW-1:0] N_F = N[FW-1:0];
   localparam [PW-1:0] STEP_M1 = STEP_M1_I[PW-1:0];
-  localparam [AW-2:0] TWO = 2;
   generate
     if (KS < 1 || 2 * KS > 256 || W < 2 || W > 32 || N < 2 || STEP < 1) begin : g_bad_params
       frame_capture_illegal_parameters u_stop ();  // no such module: stops elaboration
@@ -84,33 +87,30 @@ module frame_capture #(
   end
 
   // ---- buffer ----
-  reg [31:0] mem [0:(1 << AW) - 1];
-  reg        eb;             // bank the engine reads
-  reg [AW-2:0] widx;         // 2k of the next token
-  reg        im_pend, im_last;
-  reg [31:0] im_word;
-  assign tok_ready = !im_pend;
-  wire tok_fire = tok_valid && !im_pend;
-  wire [31:0] re_word = {{(32 - W){tok_re[W-1]}}, tok_re};
-  wire we = cur_frame && (tok_fire || im_pend);
-  wire [AW-1:0] waddr = {!eb, tok_fire ? widx : widx + 1'b1};
+  localparam integer TB = (KS > 1) ? $clog2(KS) : 1;  // token index bits
+  reg [2*W-1:0] mem [0:(1 << (TB + 1)) - 1];          // {bank, k}: {im, re}
+  reg          eb;           // bank the engine reads
+  reg [TB-1:0] widx;         // k of the next token
+  reg [2*W-1:0] rd_word;
+  reg          rd_im;        // the read asked for im (odd address)
+  assign tok_ready = 1'b1;
+  wire tok_fire = tok_valid;
   /* verilator lint_off UNUSEDSIGNAL */
-  wire [7:0] ra = rd_addr;  // low AW-1 bits used (2 KS <= 256 words)
+  wire [7:0] ra = rd_addr;   // bits 0..TB used (2 KS <= 256 words)
   /* verilator lint_on UNUSEDSIGNAL */
-  wire [31:0] wdata = tok_fire ? re_word : im_word;
+  wire [W-1:0] rd_half = rd_im ? rd_word[2*W-1:W] : rd_word[W-1:0];
+  assign rd_data = {{(32 - W){rd_half[W-1]}}, rd_half};
 
   always @(posedge clk) begin
-    if (we) mem[waddr] <= wdata;
-    rd_data <= mem[{eb, ra[AW-2:0]}];
+    if (cur_frame && tok_fire) mem[{!eb, widx}] <= {tok_im, tok_re};
+    rd_word <= mem[{eb, ra[TB:1]}];
+    rd_im <= ra[0];
   end
 
   always @(posedge clk) begin
     if (rst) begin
       eb <= 1'b0;
-      widx <= {(AW - 1){1'b0}};
-      im_pend <= 1'b0;
-      im_last <= 1'b0;
-      im_word <= 32'd0;
+      widx <= {TB{1'b0}};
       pending <= 1'b0;
       frame_t <= 32'd0;
       overruns <= 16'd0;
@@ -118,13 +118,8 @@ module frame_capture #(
       if (clear) overruns <= 16'd0;
       if (done) pending <= 1'b0;
       if (tok_fire) begin
-        im_pend <= 1'b1;
-        im_last <= tok_last;
-        im_word <= {{(32 - W){tok_im[W-1]}}, tok_im};
-      end else if (im_pend) begin
-        im_pend <= 1'b0;
-        widx <= im_last ? {(AW - 1){1'b0}} : widx + TWO;
-        if (im_last && cur_frame) begin
+        widx <= tok_last ? {TB{1'b0}} : widx + 1'b1;
+        if (tok_last && cur_frame) begin
           if (!pending || done) begin
             eb <= !eb;
             pending <= 1'b1;

@@ -38,7 +38,8 @@
 // local token j is valid at t + 8 + 6 j (sdft_bank) unless its output
 // register is still full at its C6 (t + 7 + 6 j). The consumer takes a
 // token whenever out_valid and then needs G clocks before the next (G = 1:
-// out_ready always high; G = 2: frame_capture, which writes re then im).
+// out_ready always high, as rtl/frame_capture.v keeps it in dtmf_top;
+// G = 2: a consumer that stores a token in two clocks).
 // With R = ceil(K / LANES) rows, global token k is taken at
 //   t + 9 + G k + max(0, 6 - G LANES) floor(k / LANES)
 // (the merger holds each token one clock, then one every G clocks; when
@@ -48,9 +49,10 @@
 // next sample is accepted the clock after the last token, so
 //   II = 10 + G (K - 1) + max(0, 6 - G LANES) (ceil(K / LANES) - 1).
 // G = 1: II = 6 R + 4 + (K - 1) mod LANES while LANES <= 6 (K = 9, 2
-// lanes: 34 clocks, against 56 for sdft_bank), K + 9 from 6 lanes on.
-// G = 2: II = 2 K + 8 from 3 lanes on: more lanes cannot go faster than
-// frame_capture (hence at most 3 lanes in dtmf_top, host/fpga/board.cpp).
+// lanes: 34 clocks, against 56 for sdft_bank), K + 9 from 6 lanes on: the
+// merger's one token a clock, so more than 6 lanes cannot go faster (hence
+// at most 6 in dtmf_top, host/fpga/board.cpp; K = 24, a 12x12 skin: 33).
+// G = 2: II = 2 K + 8 from 3 lanes on.
 // hls/sdft_bank.h's sdft_lanes_interval() is this formula; the test
 // (tests/rtl/sdft_lanes_test.cpp) asserts it clock for clock.
 //

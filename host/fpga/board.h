@@ -30,11 +30,14 @@ struct Board {
   // default scene keeps its 18 MHz clock either way.
   bool engine_fast_shift = false;
   // The most parallel DFT lanes (rtl/sdft_lanes.v) the flow may give
-  // dtmf_top: each costs a multiplier and block RAM, and beyond 3 none
-  // shortens a sample (frame_capture takes a token every 2 clocks: 3 lanes
-  // already reach its 2 KS + 8). iCEBreaker 1: the UP5K has no block RAM
-  // left for a second window. ULX3S 3: 3 of the ECP5's 28 (25F) or 156
-  // (85F) multipliers, a few of its 56 or 208 DP16KDs.
+  // dtmf_top: each costs a multiplier, a block RAM and logic, and beyond 6
+  // none shortens a sample (frame_capture takes a token every clock; the
+  // lanes' merger then gives one a clock: KS + 9 from 6 lanes on).
+  // iCEBreaker 1: the UP5K has no block RAM left for a second window.
+  // ULX3S 6: 6 of the ECP5's 28 (25F) or 156 (85F) multipliers, 6 of its
+  // 56 or 208 DP16KDs; a lane of a 12x12 skin (K_MAX 24, N 64) is about
+  // 390 LUT4, 75 CCU2C, 38 DPR16X4 and 360 FF (Yosys 0.23), about 1100
+  // TRELLIS_COMB placed (12x12 at 1 MS/s, 3 -> 5 lanes: 7665 -> 9900).
   int max_sdft_lanes = 1;
   // The hardware neuron unit (DtmfTopSpec::neuron_unit, rtl/izhikevich_layer.v):
   // on the ECP5s, whose logic is cheap; off on the UP5K, where it takes

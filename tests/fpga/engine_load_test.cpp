@@ -61,7 +61,7 @@ TEST(EngineLoad, SceneFigureIsTheTopModelsAndStressBoundsIt) {
 
 // The budget at a clock: the default plan at 18 MHz has 514 clocks per
 // sample (round(18e6 / 35e3)), SCLK_DIV 1, STEP 35: 17 990 clocks a frame;
-// 6 KS + 3 = 45 for the DFT (7 channels with demixing). At 12 MHz the frame
+// 6 KS + 2 = 44 for the DFT (7 channels with demixing). At 12 MHz the frame
 // has 35 x 343 = 12 005 clocks, fewer than the engine needs.
 TEST(ClockBudget, DefaultPlanAt18And12MHz) {
   const sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
@@ -69,7 +69,7 @@ TEST(ClockBudget, DefaultPlanAt18And12MHz) {
   const auto b18 = hls::dtmf_top_clock_budget(plan, 18000000, 16900);
   EXPECT_EQ(b18.period, 514);
   EXPECT_EQ(b18.sclk_div, 1);
-  EXPECT_EQ(b18.sdft_clocks, 45);
+  EXPECT_EQ(b18.sdft_clocks, 44);
   EXPECT_EQ(b18.frame_clocks, 17990);
   EXPECT_TRUE(b18.ok()) << b18.problems.front();
   const auto b12 = hls::dtmf_top_clock_budget(plan, 12000000, 16900);
@@ -83,10 +83,10 @@ TEST(ClockBudget, DefaultPlanAt18And12MHz) {
   EXPECT_EQ(hls::dtmf_top_min_clock_hz(plan, 16900), 16900000);
 }
 
-// At 1 MS/s (a 3x3 skin on bin centres: 6 channels, 39 DFT clocks) the
+// At 1 MS/s (a 3x3 skin on bin centres: 6 channels, 38 DFT clocks) the
 // AD7476A leaves a narrow band: the acquisition time (period - 28 H clocks
 // >= 250 ns) needs clk >= 28 / 750 ns = 37.3 MHz with H = 1, the DFT
-// 39 MHz, and H = ceil(clk / 40 MHz) doubles above 40 MHz, which leaves
+// 38 MHz, and H = ceil(clk / 40 MHz) doubles above 40 MHz, which leaves
 // (42 - 56) clocks: nothing.
 TEST(ClockBudget, OneMegasampleBandOfTheAdc) {
   const auto base = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
@@ -99,13 +99,13 @@ TEST(ClockBudget, OneMegasampleBandOfTheAdc) {
   ASSERT_EQ(at36.problems.size(), 2u);
   EXPECT_NE(at36.problems[0].find("adc_ad7476: a sample period of 36 clocks leaves 222 ns"),
             std::string::npos) << at36.problems[0];
-  EXPECT_NE(at36.problems[1].find("sdft_bank: needs 6 KS + 3 = 39 clocks per sample, the sample "
+  EXPECT_NE(at36.problems[1].find("sdft_bank: needs 6 KS + 2 = 38 clocks per sample, the sample "
                                   "period is 36"),
             std::string::npos) << at36.problems[1];
   const auto at42 = hls::dtmf_top_clock_budget(plan, 42000000, 0);
   ASSERT_EQ(at42.problems.size(), 1u);
   EXPECT_NE(at42.problems[0].find("at SCLK_DIV 2"), std::string::npos) << at42.problems[0];
-  EXPECT_EQ(hls::dtmf_top_min_clock_hz(plan, 0), 39000000);
+  EXPECT_EQ(hls::dtmf_top_min_clock_hz(plan, 0), 38000000);
   // 2 MS/s: 500 ns per sample minus 250 ns of acquisition is less than the
   // 28 SCLK half periods (>= 700 ns at 20 MHz) of a conversion.
   auto fast = plan;

@@ -15,7 +15,8 @@
 // it).
 // Timing (header of rtl/sdft_lanes.v): with in_valid always high, the
 // consumer taking every token offered and then needing G clocks (1: out_ready
-// always high; 2: frame_capture), token k of a sample is taken
+// always high, as rtl/frame_capture.v keeps it; 2: a consumer that stores a
+// token in two clocks), token k of a sample is taken
 //   9 + G k + max(0, 6 - G LANES) floor(k / LANES)
 // clocks after the sample's handshake, and samples are accepted every
 //   II = 10 + G (K - 1) + max(0, 6 - G LANES) (ceil(K / LANES) - 1)
@@ -276,14 +277,16 @@ TEST(SdftLanesRtl, LatencyAndInitiationIntervalThreeLanes) { check_timing_all<L3
 TEST(SdftLanesRtl, LatencyAndInitiationIntervalEightLanes) { check_timing_all<L8>(20); }
 TEST(SdftLanesRtl, LatencyAndInitiationIntervalOneLane) { check_timing_all<L1>(6); }
 
-// The figures the header quotes: a 4x4 skin's 9 channels in 2 lanes,
-// 3 channels beyond the frame_capture bound.
+// The figures the header quotes: a 4x4 skin's 9 channels in 2 lanes, a
+// 12x12 skin's 24 in 6 (G = 1: K + 9, the merger's token a clock), and
+// the G = 2 bound 2 K + 8 from 3 lanes on.
 TEST(SdftLanesRtl, QuotedIntervals) {
   EXPECT_EQ(eskin::hls::sdft_lanes_interval(9, 1), 56);
   EXPECT_EQ(eskin::hls::sdft_lanes_interval(9, 2), 34);
+  EXPECT_EQ(eskin::hls::sdft_lanes_interval(24, 6), 24 + 9);
+  EXPECT_EQ(eskin::hls::sdft_lanes_interval(20, 8), 20 + 9);
   EXPECT_EQ(eskin::hls::sdft_lanes_interval(9, 3, 2), 2 * 9 + 8);
   EXPECT_EQ(eskin::hls::sdft_lanes_interval(9, 8, 2), 2 * 9 + 8);
-  EXPECT_EQ(eskin::hls::sdft_lanes_interval(20, 8), 20 + 9);
 }
 
 }  // namespace

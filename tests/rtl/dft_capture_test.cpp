@@ -1,0 +1,183 @@
+// rtl/sdft_lanes.v into rtl/frame_capture.v as rtl/dtmf_top.v wires them
+// (tests/rtl/dft_capture_tb.v), a sample offered every clock, for every
+// K = 1..KS of the build, the frame engine's side reading each frame as
+// soon as it is pending. Bounds, all exact:
+//  * pace: the capture takes every token in the clock it is offered
+//    (tok_ready high whenever tok_valid), so the merger runs at G = 1 and
+//    samples are taken every
+//      II = 6 K + 2 with 1 lane (sdft_bank: the next handshake comes in
+//           the clock of the last token),
+//      II = 10 + (K - 1) + max(0, 6 - L) (ceil(K / L) - 1) with L >= 2
+//    clocks (rtl/sdft_lanes.v's header, coded here from its statement with
+//    G = 1); that is the budget's hls::dtmf_top_sdft_clocks(K, L), so the
+//    budget asks the RTL's own pace, not a clock more or less;
+//  * frames at that pace: every sample the frame rule picks (coded from
+//    hls/dtmf_chain.h, tests/rtl/frame_rule.h) becomes a frame, in order,
+//    whose 2 K words are that sample's tokens from the HLS kernel
+//    (hls/sdft_bank.h: re at 2k, im at 2k + 1, sign-extended), with its t,
+//    and no frame is lost (overruns 0): the capture stores a token per
+//    clock and judges the last one in its own clock, and the engine here
+//    reads a frame in 2 K + 2 clocks, less than STEP x II.
+// Builds (dft_capture_test.cmake): default 6 lanes, KS 24, N 64, ACC_W 19
+// (a 12x12 skin's DFT at 1 MS/s: 24 carriers; II = K + 9 = 33 for K = 24,
+// inside the 40 clocks of a 40 MHz core); l1: one lane, KS 7,
+// N 32, ACC_W 18 (the default 3x3 top's DFT). STEP 3 in both.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "Vdft_capture_tb.h"
+#include "Vdft_capture_tb_l1.h"
+#include "frame_rule.h"
+#include "hls/dtmf_top_config.h"
+#include "hls/sdft_bank.h"
+#include "sdft_port.h"
+
+namespace {
+
+using eskin::hls::SdftBankToken;
+
+template <class V, int KS, int N, int ACC_W, int LANES>
+struct Build {
+  using Model = V;
+  using Bank = eskin::hls::SdftBank<KS, N, 12, 16, 10, ACC_W>;
+  static constexpr int kKs = KS, kN = N, kAccW = ACC_W, kLanes = LANES, kStep = 3;
+};
+using L6 = Build<Vdft_capture_tb, 24, 64, 19, 6>;
+using L1 = Build<Vdft_capture_tb_l1, 7, 32, 18, 1>;
+
+struct Result {
+  std::vector<uint64_t> in_cycle;  // each sample's handshake
+  size_t frames_want = 0, frames_read = 0, tokens_refused = 0;
+  uint32_t overruns = 0;
+};
+
+// K channels with random increments, then `n` random samples offered every
+// clock; the engine reads each pending frame word by word and releases it.
+template <class B>
+void run(int k, size_t n, uint64_t seed, Result& r) {
+  auto m = std::make_unique<typename B::Model>();
+  uint64_t cycle = 0;
+  auto tick = [&] {
+    m->clk = 0;
+    m->eval();
+    m->clk = 1;
+    m->eval();
+    ++cycle;
+  };
+  m->rst = 1;
+  m->in_valid = m->cfg_valid = m->done = m->clear = 0;
+  m->rd_addr = 0;
+  for (int i = 0; i < 3; ++i) tick();
+  m->rst = 0;
+
+  std::mt19937_64 rng(seed);
+  typename B::Bank::Config cfg;
+  cfg.carriers = k;
+  for (int c = 0; c < k; ++c) {
+    cfg.inc[c] = uint32_t(rng());
+    m->cfg_valid = 1;
+    m->cfg_k = uint8_t(c);
+    m->cfg_inc = cfg.inc[c];
+    m->cfg_last = c == k - 1;
+    for (bool fire = false; !fire;) {
+      m->clk = 0;
+      m->eval();
+      fire = m->cfg_ready;
+      tick();
+    }
+  }
+  m->cfg_valid = 0;
+  auto bank = std::make_unique<typename B::Bank>();
+  ASSERT_TRUE(bank->configure(cfg));
+
+  const auto xs = sdft_port::random_samples(12, n, seed + 1);
+  frame_rule::FrameRule rule(B::kN, B::kStep);
+  struct Want {
+    uint32_t t;
+    std::vector<int32_t> words;
+  };
+  std::deque<Want> want;
+  SdftBankToken toks[B::kKs];
+  size_t next = 0;
+  int word = -1;  // the engine's next word to read; -1: idle
+  std::vector<int32_t> got;
+  for (uint64_t end = ~uint64_t(0); cycle < end;) {
+    m->in_valid = next < n;
+    m->in_x = next < n ? uint16_t(xs[next] & 0xFFF) : 0;
+    m->done = 0;
+    if (word < 0 && m->pending) {  // a frame handed over: read it
+      ASSERT_FALSE(want.empty()) << "K " << k << ": a frame the rule does not pick";
+      ASSERT_EQ(m->frame_t, want.front().t) << "K " << k << ": the pending frame's t";
+      word = 0;
+    }
+    if (word >= 0 && word < 2 * k) m->rd_addr = uint8_t(word);
+    if (word == 2 * k) m->done = 1;  // every word read: release the frame
+    m->clk = 0;
+    m->eval();
+    r.tokens_refused += m->tok_valid && !m->tok_ready;
+    const bool in_fire = m->in_valid && m->in_ready;
+    const bool reading = word >= 0 && word < 2 * k;
+    const bool releasing = word == 2 * k;
+    if (in_fire) {
+      r.in_cycle.push_back(cycle);
+      ASSERT_EQ(bank->push(xs[next], toks), k);
+      if (rule.next()) {
+        Want w{uint32_t(next), {}};
+        for (int j = 0; j < k; ++j) w.words.insert(w.words.end(), {toks[j].re, toks[j].im});
+        want.push_back(std::move(w));
+        ++r.frames_want;
+      }
+      if (++next == n) end = cycle + 400;  // the last frame's tokens and read
+    }
+    tick();
+    if (reading) {
+      got.push_back(int32_t(m->rd_data));  // the word asked for one clock ago
+      ++word;
+    } else if (releasing) {
+      const Want& w = want.front();
+      EXPECT_EQ(got, w.words) << "K " << k << ": frame of sample " << w.t;
+      ++r.frames_read;
+      want.pop_front();
+      got.clear();
+      word = -1;
+    }
+  }
+  r.overruns = m->overruns;
+}
+
+template <class B>
+void check_pace_and_frames() {
+  const int L = B::kLanes;
+  for (int k = 1; k <= B::kKs; ++k) {
+    const int wait = std::max(0, 6 - L);  // idle clocks per row boundary at G = 1
+    const int64_t ii = L == 1 ? 6 * k + 2 : 10 + (k - 1) + wait * ((k + L - 1) / L - 1);
+    ASSERT_EQ(ii, eskin::hls::dtmf_top_sdft_clocks(k, L)) << "K " << k << ": the budget's figure";
+    Result r;
+    const size_t n = size_t(B::kN) + 12 * B::kStep;
+    run<B>(k, n, uint64_t(100 + k), r);
+    if (::testing::Test::HasFatalFailure()) return;
+    ASSERT_EQ(r.in_cycle.size(), n);
+    for (size_t s = 1; s < n; ++s)
+      ASSERT_EQ(int64_t(r.in_cycle[s] - r.in_cycle[s - 1]), ii) << "K " << k << " sample " << s;
+    EXPECT_EQ(r.tokens_refused, 0u) << "K " << k;
+    EXPECT_EQ(r.frames_want, 13u) << "K " << k;  // samples N - 1 + 3 j, j = 0..12
+    EXPECT_EQ(r.frames_read, r.frames_want) << "K " << k;
+    EXPECT_EQ(r.overruns, 0u) << "K " << k;
+  }
+}
+
+TEST(DftCapture, SixLanesTakeASampleEveryKPlus9ClocksAndKeepEveryFrame) {
+  check_pace_and_frames<L6>();
+}
+
+TEST(DftCapture, OneLaneTakesASampleEvery6KPlus2ClocksAndKeepsEveryFrame) {
+  check_pace_and_frames<L1>();
+}
+
+}  // namespace
