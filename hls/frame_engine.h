@@ -321,7 +321,7 @@ class FrameEngine {
   // shl/shr/rnd by n: one bit per clock (FAST_SHIFT: all n bits in one
   // clock); an immediate count is known in cycle A, another takes one B
   // clock to load; rnd adds one clock for the rounding carry. n = 0 leaves
-  // A alone in 2 clocks.
+  // A alone in one B clock. The clocks returned include cycle A.
   uint32_t shift(uint32_t fn, uint32_t n, bool imm_count) {
     if (n == 0) {
       overlap_ok_ = imm_count;  // a loaded count of 0 ends B in the loading clock

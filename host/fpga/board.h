@@ -26,8 +26,9 @@ struct Board {
   std::string hall_wrapper;    // rtl/<hall_wrapper>.v: hall_top or mixed_top
   bool hall_osc_clock = false; // the Hall wrapper can run on the oscillator itself (PLL = 0)
   // The frame engine's barrel shifter (DtmfTopSpec::engine_fast_shift): on
-  // where its ~1000 logic cells are cheap (the ECP5s), off on the UP5K, whose
-  // default scene keeps its 18 MHz clock either way.
+  // where its ~1000 logic cells are cheap (the ECP5s); off on the UP5K, whose
+  // default scene keeps its 18 MHz clock either way (but see
+  // engine_fast_shift_when_needed).
   bool engine_fast_shift = false;
   // The most parallel DFT lanes (rtl/sdft_lanes.v) the flow may give
   // dtmf_top: each costs a multiplier, a block RAM and logic, and beyond 6
@@ -46,8 +47,8 @@ struct Board {
   bool neuron_unit = false;
   // The barrel shifter where engine_fast_shift is off: on when the core
   // would need a clock above default_clk_hz and the shifter lowers that
-  // need (choose_core_clock). The UP5K: its ~650 logic cells fit beside a
-  // 6x6 skin (4241 / 5280 LC) and take it from 25.1 MHz to 15.8.
+  // need (choose_core_clock). The UP5K: its ~600 logic cells fit beside a
+  // 6x6 skin (4182 / 5280 LC) and take it from 25.1 MHz to 15.8.
   bool engine_fast_shift_when_needed = false;
 };
 
