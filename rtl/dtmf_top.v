@@ -68,7 +68,8 @@ module dtmf_top #(
     // 1: the hardware neuron unit (rtl/izhikevich_layer.v): the microcode
     // hands it each neuron update (14 clocks; 27 engine clocks a neuron,
     // overlapped) instead of running the izhikevich_layer routine (about
-    // 120 clocks with the barrel shifter, 210 without); the same packets. The board flow decides (host/fpga/board.h).
+    // 120 clocks with the barrel shifter, 210 without); the same packets.
+    // The board flow decides (host/fpga/board.h).
     parameter integer NEURON_UNIT = 0
 ) (
     input  wire clk,

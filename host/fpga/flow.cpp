@@ -108,10 +108,11 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
   const long serial_min = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   if (fast_shift < 0 && !spec.engine_fast_shift && b.engine_fast_shift_when_needed &&
       serial_min > b.default_clk_hz) {
+    const CoreClock serial = c;  // kept, so the serial load is not measured twice
     auto barrel = spec;
     barrel.engine_fast_shift = true;
     load_with(barrel);
-    if (hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks) >= serial_min) load_with(spec);
+    if (hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks) >= serial_min) c = serial;
   }
   c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
   c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
