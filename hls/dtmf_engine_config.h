@@ -127,8 +127,9 @@ inline std::array<int64_t, kNeuronBlock> neuron_block(const IzhikevichConfig& n)
 }
 
 // Clocks of one update of the neuron unit (rtl/izhikevich_layer.v): an
-// update started by the write in clock c holds its results, and raises
-// kEvIzDone, from clock c + kIzhikevichUnitClocks on.
+// update started by the write in clock c shows its results, and raises
+// kEvIzDone, from clock c + kIzhikevichUnitClocks on; until then the ports
+// show the previous update's results, and a start is ignored (busy).
 constexpr int kIzhikevichUnitClocks = 14;
 
 // rtl/dtmf_top.v's neuron unit ports (NEURON_UNIT = 1) as the engine sees
@@ -140,8 +141,11 @@ struct IzhikevichUnitPort {
   bool present = false;  // the plan's neuron_unit: without it the ports are not decoded
   uint32_t cfg[32] = {};
   int32_t x = 0, v = 0, u = 0;
-  bool spike = false;
-  int32_t out_v = 0, out_u = 0, out_x_prev = 0;
+  struct Results {
+    bool spike = false;
+    int32_t v = 0, u = 0, x_prev = 0;
+  };
+  Results shown, next;  // the ports until done_clock, and from it on
   uint64_t done_clock = 0;
 
   // The layer's constants from the words (neuron_block's inverse; shift
@@ -168,24 +172,28 @@ struct IzhikevichUnitPort {
       case kIoIzV: v = int32_t(d); return true;
       case kIoIzU: u = int32_t(d); return true;
       case kIoIzGo: {
+        if (clock < done_clock) return true;  // busy: the unit ignores it
+        shown = next;
         IzhikevichLayer<1> one(config());
         one.set_state(0, v, u, int32_t(d));
-        spike = one.update(0, x);
-        out_v = one.v(0), out_u = one.U(0), out_x_prev = one.x_prev(0);
+        next.spike = one.update(0, x);
+        next.v = one.v(0), next.u = one.U(0), next.x_prev = one.x_prev(0);
         done_clock = clock + kIzhikevichUnitClocks;
         return true;
       }
       default: return false;
     }
   }
-  // An IO read; false when `a` is not a unit port.
-  bool read(uint16_t a, uint32_t& d) const {
+  // An IO read in `clock` (the engine's cycle A); false when `a` is not a
+  // unit port.
+  bool read(uint16_t a, uint32_t& d, uint64_t clock) const {
     if (!present) return false;
+    const Results& r = clock >= done_clock ? next : shown;
     switch (a) {
-      case kIoIzSpike: d = spike ? 1u : 0u; return true;
-      case kIoIzV: d = uint32_t(out_v); return true;
-      case kIoIzU: d = uint32_t(out_u); return true;
-      case kIoIzXPrev: d = uint32_t(out_x_prev); return true;
+      case kIoIzSpike: d = r.spike ? 1u : 0u; return true;
+      case kIoIzV: d = uint32_t(r.v); return true;
+      case kIoIzU: d = uint32_t(r.u); return true;
+      case kIoIzXPrev: d = uint32_t(r.x_prev); return true;
       default: return false;
     }
   }
@@ -272,7 +280,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   kc("KC_UMAX", izh::kUMax), kc("KC_VMIN", izh::kVMin), kc("KC_VPEAK", izh::kVPeak);
   kc("KC_WOFF", izh::kWOffset), kc("KC_RECIP", p.taxel.recip), kc("KC_C", C);
   kc("KC_NCS", kNeuronBlock), kc("KC_LAYER1", 1 << 16), kc("KC_MASKRES", 0xE0);
-  kc("KC_NCOEF", dim * dim);
+  kc("KC_NCOEF", dim * dim), kc("KC_STEP", p.step);
   constexpr int kQ = 1 << (10 - 2);  // quarter table of CarrierDemix<..., TW = 10>
   kc("KC_QM1", kQ - 1);
   kc("KC_SINEQ", demix ? p.demix.qsin[size_t(kQ)] : 0);

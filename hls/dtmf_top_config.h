@@ -61,7 +61,7 @@ struct DtmfTopSpec {
   // picks them (host/fpga/flow.cpp choose_core_clock); 1 is sdft_bank.
   int sdft_lanes = 1;
   // The hardware neuron unit (rtl/izhikevich_layer.v, NEURON_UNIT): the
-  // engine hands it each neuron update (14 clocks, overlapped: 27 engine
+  // engine hands it each neuron update (14 clocks, overlapped: 20 engine
   // clocks a neuron) instead of running the izhikevich_layer routine
   // (about 120 clocks with the barrel shifter, 210 without); the same
   // packets, where the board flow puts it
@@ -155,6 +155,10 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
   if (p.step < 1)
     throw std::invalid_argument("frame_ms: expected at least one sample per frame, got " +
                                 std::to_string(s.frame_ms) + " ms");
+  if (p.step > 32767)  // the microcode forms STEP x inc on the 16 x 16 multiplier
+    throw std::invalid_argument("frame_ms: expected at most 32767 samples per frame, got " +
+                                std::to_string(p.step) + " (" + std::to_string(s.frame_ms) +
+                                " ms at " + std::to_string(s.sample_hz) + " Hz)");
   const double frame_ms = 1000.0 * p.step / s.sample_hz;
   // Carriers (+ the DC channel last when demixing).
   p.ks = s.demix ? p.K + 1 : p.K;
@@ -272,8 +276,8 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    L, 1), the lanes' II with a consumer that takes a token every clock
 //    (rtl/frame_capture.v: it stores and judges each token in its own
 //    clock). One lane: sdft_bank's 6 KS + 2, the next sample's handshake in
-//    the clock of the last token; L >= 2 lanes: 10 + (KS - 1) + max(0, 6 -
-//    L) (ceil(KS / L) - 1), KS + 9 from 6 lanes on (rtl/sdft_lanes.v).
+//    the clock of the last token; L >= 2 lanes: 9 + (KS - 1) + max(0, 6 -
+//    L) (ceil(KS / L) - 1), KS + 8 from 6 lanes on (rtl/sdft_lanes.v).
 //    tests/rtl/dft_capture_test.cpp runs the two modules at this pace.
 //  - frame_engine: frame_capture loses a frame unless the engine has
 //    released the previous one when it is complete, so the engine's longest

@@ -67,7 +67,7 @@ namespace eskin::hls {
 constexpr int64_t sdft_lanes_interval(int64_t k, int64_t lanes, int64_t take_clocks = 1) {
   if (lanes <= 1) return 6 * k + 2;
   const int64_t wait = 6 - take_clocks * lanes;  // idle clocks per row boundary
-  return 10 + take_clocks * (k - 1) + (wait > 0 ? wait : 0) * ((k + lanes - 1) / lanes - 1);
+  return 9 + take_clocks * (k - 1) + (wait > 0 ? wait : 0) * ((k + lanes - 1) / lanes - 1);
 }
 
 constexpr int sdft_ceil_log2(int64_t v) {

@@ -60,13 +60,13 @@ module dtmf_top #(
     // every other type, so an unknown type is still rejected here, once.
     parameter integer HALL_CMDS = 0,
     // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS): a sample takes
-    // 6 KS + 2 clocks with 1 lane, 10 + (KS - 1) + max(0, 6 - L)
-    // (ceil(KS / L) - 1) with L >= 2, KS + 9 from 6 lanes on (frame_capture
+    // 6 KS + 2 clocks with 1 lane, 9 + (KS - 1) + max(0, 6 - L)
+    // (ceil(KS / L) - 1) with L >= 2, KS + 8 from 6 lanes on (frame_capture
     // takes a token every clock; hls/sdft_bank.h's sdft_lanes_interval).
     // 1 on the UP5K.
     parameter integer SDFT_LANES = 1,
     // 1: the hardware neuron unit (rtl/izhikevich_layer.v): the microcode
-    // hands it each neuron update (14 clocks; 27 engine clocks a neuron,
+    // hands it each neuron update (14 clocks; 20 engine clocks a neuron,
     // overlapped) instead of running the izhikevich_layer routine (about
     // 120 clocks with the barrel shifter, 210 without); the same packets.
     // The board flow decides (host/fpga/board.h).
@@ -241,8 +241,9 @@ module dtmf_top #(
   // ---------------- the neuron unit (NEURON_UNIT) ------------------------
   // Operands are written one by one (x, v, U); the x_prev write hands all
   // four over and starts the update. The microcode waits for iz_done
-  // before it reads the results or starts the next, so in_ready is always
-  // 1 at the start.
+  // before it starts the next, so in_ready is always 1 at the start, and
+  // reads a neuron's results while the next one runs (the unit shows them
+  // until the next one's replace them).
   wire        iz_done, iz_spike;
   wire [31:0] iz_v, iz_u, iz_x_prev;
   generate

@@ -19,9 +19,8 @@
 // sK gives p in sK+1, a SH in sK gives {q, qc} in sK+1:
 //   E   from the ports and words: y = ic ? clamp(x - x_prev, 0, 2^31-1) : x,
 //       wh = (v + 62.5 mV)[30:15], wl = v[14:0], vh = rnd(v >> 14), uacc = U,
-//       vacc = v + C, out_v = v_reset, out_u = u_jump, out_x_prev; the
-//       other words are copied (writes while busy touch only the copies'
-//       sources)
+//       vacc = v + C, x_prev' = ic ? x : x_prev; the other words are
+//       copied (writes while busy touch only the copies' sources)
 //   s0  MUL wh*wl    SH xs' = y >> x_shift        y = U
 //   s1  MUL m4*Uh    SH U22 = y >> (FU-22)        xs = sat16(xs'), sq = p >> 14
 //   s2  MUL m4*Ul    y = p 2^15                   vacc -= U22
@@ -36,7 +35,7 @@
 //   s11 spike = vacc >= V_PEAK; uacc = sat_u(uacc) + (spike ? u_jump : 0)
 //   s12 (pad to 14)
 //   s13 out_v = spike ? v_reset : max(vacc, V_MIN), out_u = sat_u(uacc),
-//       out_spike, out_valid = in_ready = 1 (edge E+14)
+//       out_x_prev = x_prev', out_spike, out_valid = in_ready = 1 (edge E+14)
 //
 // Widths (the C++'s int64 intermediates; why nothing wraps, for ANY 32-bit
 // x, x_prev, v, U and any config): the operands are 16-bit, so |p| <= 2^30;
@@ -56,7 +55,9 @@
 // Timing: an input accepted at edge E (in_valid && in_ready; in_ready =
 // idle) drops in_ready and out_valid at E; results, out_valid and in_ready
 // come at edge E+14: back to back, one update per 15 clocks. The results
-// hold until the next accepted input (out_v, out_u are scratch while busy).
+// hold until the next update's replace them at its edge E+14, so the
+// engine may read one neuron's results while the unit computes the next
+// (the microcode's nu_layer does).
 // The ports are used at E through the adders above: drive them from
 // registers. Configuration: cfg_we writes a word any time; a write at E or
 // while busy applies from the next update.
@@ -66,7 +67,9 @@
 // out of context): iCE40 1515 SB_LUT4, 678 SB_DFF*, 268 SB_CARRY, 1 SB_MAC16
 // (of which the 47-bit round-shift unit is ~335 LUT4); ECP5 1516 LUT4 (1832
 // TRELLIS_COMB placed), 710 FF, 1 MULT18X18D, Fmax 83-85 MHz (seeds 1-3).
-// Of the flip-flops, 203 hold the configuration and 100 its copy.
+// Of the flip-flops, 203 hold the configuration and 100 its copy. (Before
+// the results held through the next update: 96 flip-flops since, the
+// copies of v_reset, u_jump and the next x_prev.)
 module izhikevich_layer (
     input  wire        clk,
     input  wire        rst,
@@ -126,12 +129,15 @@ module izhikevich_layer (
   wire      go = in_valid && !busy;
   assign in_ready = !busy;
 
-  // Copy, at the handshake, of the words used after it (the others are
-  // consumed at that edge: C into vacc, v_reset and u_jump into out_v/out_u).
+  // Copy, at the handshake, of the words used after it (C is consumed at
+  // that edge, into vacc), and of the update's x_prev result: the outputs
+  // keep the previous update's results until edge E+14.
+  reg [31:0] k_vreset, k_ujump, k_xprev;
   reg [15:0] k_m2, k_m3, k_m4, k_gain;
   reg [5:0]  k_xsh, k_fu, k_s4, k_s3, k_nj, k_s2;
   always @(posedge clk)
     if (go) begin
+      k_vreset <= c_vreset; k_ujump <= c_ujump; k_xprev <= c_ic ? in_x : in_x_prev;
       k_m2 <= c_m2; k_m3 <= c_m3; k_m4 <= c_m4; k_gain <= c_gain;
       k_xsh <= c_xsh; k_fu <= c_fu; k_s4 <= c_s4; k_s2 <= c_s2;
       k_s3 <= c_s3 + 6'd15;                // c3v = rnd((p << 15) >> (s3 + 15))
@@ -215,7 +221,7 @@ module izhikevich_layer (
   wire spike = vacc >= V_PEAK;
   wire [46:0] u_base = step == 4'd11 ? {{15{u_sat[31]}}, u_sat} : uacc;
   wire [46:0] u_add = step == 4'd5 ? ~q : step == 4'd7 ? q
-                    : spike ? {{15{out_u[31]}}, out_u} : 47'd0;
+                    : spike ? {{15{k_ujump[31]}}, k_ujump} : 47'd0;
   wire        u_cin = step == 4'd5 ? !qc : step == 4'd7 && qc;
   wire [47:0] u_sum = {u_base, 1'b1} + {u_add, u_cin};
   wire unused_lsb = &{1'b0, v_sum[0], u_sum[0]};   // the carry-in positions
@@ -237,9 +243,6 @@ module izhikevich_layer (
       wl <= in_v[14:0];
       uacc <= {{15{in_u[31]}}, in_u};
       vacc <= v_sum[35:1];                         // v + C
-      out_v <= c_vreset;                           // the spike's v
-      out_u <= c_ujump;                            // kd, added on a spike
-      out_x_prev <= c_ic ? in_x : in_x_prev;
     end else if (busy) begin
       step <= step + 4'd1;
       case (step)
@@ -260,7 +263,8 @@ module izhikevich_layer (
         4'd13: begin
           busy <= 1'b0; out_valid <= 1'b1; out_spike <= spike;
           out_u <= u_sat;
-          if (!spike) out_v <= vacc < V_MIN ? V_MIN[31:0] : vacc[31:0];
+          out_v <= spike ? k_vreset : vacc < V_MIN ? V_MIN[31:0] : vacc[31:0];
+          out_x_prev <= k_xprev;
         end
         default: ;
       endcase

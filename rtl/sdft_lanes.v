@@ -15,9 +15,11 @@
 // copy of the N-sample window (sdft_bank keeps it).
 //  - Samples: accepted when every active lane is ready (a lane is active
 //    when it has a channel, l < K) and the previous sample's last token was
-//    taken from out_*; broadcast to the active lanes. Waiting for the last
-//    token keeps sdft_bank's order for rtl/frame_capture.v: all tokens of a
-//    sample leave before the next sample's handshake.
+//    taken from out_* or is taken in this clock (out_ready reaches in_ready
+//    combinationally); broadcast to the active lanes. Waiting for the last
+//    token keeps sdft_bank's order for rtl/frame_capture.v: every token of
+//    a sample has left by the next sample's handshake, the last one at the
+//    latest in its clock (frame_capture stores and judges it there).
 //  - Configuration (accepted when every lane is idle and no token is in
 //    flight): a token without cfg_last goes to lane cfg_k mod LANES as
 //    local cfg_k / LANES, and that lane remembers it (index and increment)
@@ -46,13 +48,14 @@
 // G LANES < 6 a row waits for the lanes' next row, 6 - G LANES idle
 // clocks per row boundary; when G LANES >= 6 the lanes' next row is always
 // ready before the merger gets to it, so the stream never pauses). The
-// next sample is accepted the clock after the last token, so
-//   II = 10 + G (K - 1) + max(0, 6 - G LANES) (ceil(K / LANES) - 1).
-// G = 1: II = 6 R + 4 + (K - 1) mod LANES while LANES <= 6 (K = 9, 2
-// lanes: 34 clocks, against 56 for sdft_bank), K + 9 from 6 lanes on: the
+// next sample is accepted in the clock the last token is taken, so
+//   II = 9 + G (K - 1) + max(0, 6 - G LANES) (ceil(K / LANES) - 1).
+// G = 1: II = 6 R + 3 + (K - 1) mod LANES while LANES <= 6 (K = 9, 2
+// lanes: 33 clocks, against 56 for sdft_bank), K + 8 from 6 lanes on: the
 // merger's one token a clock, so more than 6 lanes cannot go faster (hence
-// at most 6 in dtmf_top, host/fpga/board.cpp; K = 24, a 12x12 skin: 33).
-// G = 2: II = 2 K + 8 from 3 lanes on.
+// at most 6 in dtmf_top, host/fpga/board.cpp; K = 24, a 12x12 skin: 32;
+// K = 32, a 16x16 skin: 40, one sample a microsecond at 40 MHz).
+// G = 2: II = 2 K + 7 from 3 lanes on.
 // hls/sdft_bank.h's sdft_lanes_interval() is this formula; the test
 // (tests/rtl/sdft_lanes_test.cpp) asserts it clock for clock.
 //
@@ -139,7 +142,12 @@ module sdft_lanes #(
       wire cfg_fire = cfg_valid && cfg_ready;
       wire in_fire = in_valid && in_ready;
       assign cfg_ready = (&l_cfg_ready) && !busy;
-      assign in_ready = configured && !busy && !cfg_valid && (&(l_in_ready | ~act));
+      // The last token leaving the merger in this clock frees it for the
+      // next sample in the same clock (the lanes are idle by then: each went
+      // idle when its last token entered its own output register).
+      wire last_leaving = m_valid && m_last && out_ready;
+      assign in_ready = configured && (!busy || last_leaving) && !cfg_valid &&
+                        (&(l_in_ready | ~act));
 
       // ---- merger state
       reg [LB-1:0] sel;

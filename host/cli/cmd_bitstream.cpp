@@ -220,7 +220,7 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--neurons", args->neurons,
                   "Where the Izhikevich neuron updates run: engine (the frame engine's "
                   "microcode, no extra logic) or unit (the hardware neuron unit, "
-                  "rtl/izhikevich_layer.v: 27 engine clocks a neuron instead of about 120 with the "
+                  "rtl/izhikevich_layer.v: 20 engine clocks a neuron instead of about 120 with the "
                   "barrel shifter or 210 without); default: "
                   "the board's (icebreaker engine: the unit does not fit the UP5K beside the "
                   "rest; ulx3s unit)")

@@ -33,7 +33,7 @@ struct Board {
   // The most parallel DFT lanes (rtl/sdft_lanes.v) the flow may give
   // dtmf_top: each costs a multiplier, a block RAM and logic, and beyond 6
   // none shortens a sample (frame_capture takes a token every clock; the
-  // lanes' merger then gives one a clock: KS + 9 from 6 lanes on).
+  // lanes' merger then gives one a clock: KS + 8 from 6 lanes on).
   // iCEBreaker 1: the UP5K has no block RAM left for a second window.
   // ULX3S 6: 6 of the ECP5's 28 (25F) or 156 (85F) multipliers, 6 of its
   // 56 or 208 DP16KDs; a lane of a 12x12 skin (K_MAX 24, N 64) is about

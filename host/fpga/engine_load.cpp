@@ -43,9 +43,9 @@ struct LoadIo {
   bool cfg_last = false;
   hls::IzhikevichUnitPort neuron;
 
-  uint32_t io_read(uint16_t a, uint64_t) {
+  uint32_t io_read(uint16_t a, uint64_t clock) {
     if (a < 0x200) return a < frame.size() ? uint32_t(frame[a]) : 0u;
-    if (uint32_t d = 0; neuron.read(a, d)) return d;
+    if (uint32_t d = 0; neuron.read(a, d, clock)) return d;
     switch (a) {
       case hls::kIoFrameT: case hls::kIoAdcT: return t;
       case hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);

@@ -29,19 +29,20 @@ std::string param(const std::vector<hls::VerilogParam>& ps, const std::string& n
 }
 
 // dtmf_top's DFT clocks per sample (frame_capture takes a token every
-// clock): 1 lane sdft_bank's 6 KS + 2; L >= 2 lanes 10 + (KS - 1) +
-// (6 - L) (ceil(KS / L) - 1) up to 6 lanes, KS + 9 from 6 lanes on (the
-// merger's token a clock).
+// clock): 1 lane sdft_bank's 6 KS + 2; L >= 2 lanes 9 + (KS - 1) +
+// (6 - L) (ceil(KS / L) - 1) up to 6 lanes, KS + 8 from 6 lanes on (the
+// merger's token a clock; the next sample in the clock of the last token).
 TEST(SdftLanesPlan, ClocksPerSampleAtEachLaneCount) {
   EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 1), 50);
-  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 2), 10 + 7 + 4 * 3);
-  EXPECT_EQ(hls::dtmf_top_sdft_clocks(9, 2), 10 + 8 + 4 * 4);
-  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 3), 10 + 7 + 3 * 2);
-  EXPECT_EQ(hls::dtmf_top_sdft_clocks(24, 5), 10 + 23 + 1 * 4);
-  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 6), 8 + 9);
-  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 8), 8 + 9);
-  EXPECT_EQ(hls::dtmf_top_sdft_clocks(24, 6), 24 + 9);
-  EXPECT_EQ(hls::dtmf_top_sdft_clocks(24, 16), 24 + 9);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 2), 9 + 7 + 4 * 3);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(9, 2), 9 + 8 + 4 * 4);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 3), 9 + 7 + 3 * 2);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(24, 5), 9 + 23 + 1 * 4);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 6), 8 + 8);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(8, 8), 8 + 8);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(24, 6), 24 + 8);
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(32, 6), 40);  // 16x16 at 1 MS/s: 40 MHz
+  EXPECT_EQ(hls::dtmf_top_sdft_clocks(24, 16), 24 + 8);
 }
 
 // The spec's lanes reach the Verilog parameters, the budget and its
@@ -54,10 +55,10 @@ TEST(SdftLanesPlan, LanesInTheParametersAndTheBudget) {
   EXPECT_EQ(param(hls::dtmf_top_params(plan, hls::dtmf_engine_image(plan), "", ""), "SDFT_LANES"),
             "2");
   const auto at25 = hls::dtmf_top_clock_budget(plan, 25000000, 0);
-  EXPECT_EQ(at25.sdft_clocks, 29);
+  EXPECT_EQ(at25.sdft_clocks, 28);  // 9 + 7 + 4 x 3
   bool named = false;
   for (const auto& p : at25.problems)
-    named = named || p.find("sdft_lanes (2 lanes of KS = 8 channels): needs 29 clocks per "
+    named = named || p.find("sdft_lanes (2 lanes of KS = 8 channels): needs 28 clocks per "
                             "sample, the sample period is 25") != std::string::npos;
   EXPECT_TRUE(named) << "no DFT problem at 25 MHz";
   EXPECT_EQ(hls::dtmf_top_min_clock_hz(plan, 0), hls::dtmf_top_min_clock_hz_without_dft(plan, 0));
@@ -69,7 +70,7 @@ TEST(SdftLanesPlan, LanesInTheParametersAndTheBudget) {
 
 // A 4x4 skin at 1 MS/s on the ULX3S: one lane would need 50 MHz, outside
 // the AD7476A's band at SCLK_DIV 1 (37.3..40 MHz, docs/bitstream.md); two
-// lanes need 29, below the ADC's 37.3, and are the fewest that do. The
+// lanes need 28, below the ADC's 37.3, and are the fewest that do. The
 // clock is then in that band, and every budget holds there.
 TEST(SdftLanesPlan, FourByFourAtOneMegasampleTakesLanesOnTheUlx3s) {
   const auto sc = fpga::scale_scene(base(), 4, 1e6);

@@ -142,9 +142,9 @@ class TopModel {
     int ks = 0;
     size_t sdft_loads = 0;
     eskin::hls::IzhikevichUnitPort neuron;  // the plan's neuron unit (NEURON_UNIT)
-    uint32_t io_read(uint16_t a, uint64_t) {
+    uint32_t io_read(uint16_t a, uint64_t clock) {
       if (a < 0x200) return uint32_t(a < 2 * KS_MAX ? frame[a] : 0);
-      if (uint32_t d = 0; neuron.read(a, d)) return d;
+      if (uint32_t d = 0; neuron.read(a, d, clock)) return d;
       switch (a) {
         case eskin::hls::kIoFrameT: return frame_t;
         case eskin::hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);

@@ -7,7 +7,8 @@
 //    samples are taken every
 //      II = 6 K + 2 with 1 lane (sdft_bank: the next handshake comes in
 //           the clock of the last token),
-//      II = 10 + (K - 1) + max(0, 6 - L) (ceil(K / L) - 1) with L >= 2
+//      II = 9 + (K - 1) + max(0, 6 - L) (ceil(K / L) - 1) with L >= 2
+//           (the next handshake in the clock of the last token too)
 //    clocks (rtl/sdft_lanes.v's header, coded here from its statement with
 //    G = 1); that is the budget's hls::dtmf_top_sdft_clocks(K, L), so the
 //    budget asks the RTL's own pace, not a clock more or less;
@@ -19,7 +20,7 @@
 //    clock and judges the last one in its own clock, and the engine here
 //    reads a frame in 2 K + 2 clocks, less than STEP x II.
 // Builds (dft_capture_test.cmake): default 6 lanes, KS 24, N 64, ACC_W 19
-// (a 12x12 skin's DFT at 1 MS/s: 24 carriers; II = K + 9 = 33 for K = 24,
+// (a 12x12 skin's DFT at 1 MS/s: 24 carriers; II = K + 8 = 32 for K = 24,
 // inside the 40 clocks of a 40 MHz core); l1: one lane, KS 7,
 // N 32, ACC_W 18 (the default 3x3 top's DFT). STEP 3 in both.
 #include <gtest/gtest.h>
@@ -156,7 +157,7 @@ void check_pace_and_frames() {
   const int L = B::kLanes;
   for (int k = 1; k <= B::kKs; ++k) {
     const int wait = std::max(0, 6 - L);  // idle clocks per row boundary at G = 1
-    const int64_t ii = L == 1 ? 6 * k + 2 : 10 + (k - 1) + wait * ((k + L - 1) / L - 1);
+    const int64_t ii = L == 1 ? 6 * k + 2 : 9 + (k - 1) + wait * ((k + L - 1) / L - 1);
     ASSERT_EQ(ii, eskin::hls::dtmf_top_sdft_clocks(k, L)) << "K " << k << ": the budget's figure";
     Result r;
     const size_t n = size_t(B::kN) + 12 * B::kStep;

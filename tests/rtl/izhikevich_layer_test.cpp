@@ -10,7 +10,8 @@
 // undefined behaviour, so there is nothing to compare with). It contains
 // the stored ranges (v in [V_MIN, V_PEAK), v_reset; U saturated), and
 // Realistic checks that the outputs never leave them.
-// Timing: every update asserts the 14-edge handshake (Unit::update).
+// Timing: every update asserts the 14-edge handshake (Unit::update), and
+// that the outputs keep the previous update's results until then.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -98,10 +99,13 @@ struct Unit : ClockedDut<Vizhikevich_layer> {
   }
   // One update; `during(k)` runs before edge E+k (k = 1..14) to test writes
   // while busy. Asserts the timing: idle before, busy (in_ready = 0,
-  // out_valid = 0) right after edges E .. E+13, done right after E+14.
+  // out_valid = 0) right after edges E .. E+13, done right after E+14; and
+  // that the previous results hold while busy (the microcode reads them
+  // while the unit computes the next neuron).
   template <class F>
   Result update(const Operands& o, F during) {
     EXPECT_TRUE(m.in_ready && m.out_valid);
+    const Result before = out();
     drive(o);
     m.in_valid = 1;
     tick();  // E
@@ -109,6 +113,7 @@ struct Unit : ClockedDut<Vizhikevich_layer> {
     for (int k = 1; k <= kLatency; ++k) {
       EXPECT_FALSE(m.in_ready) << "after edge E+" << k - 1;
       EXPECT_FALSE(m.out_valid) << "after edge E+" << k - 1;
+      EXPECT_EQ(out(), before) << "the previous results, after edge E+" << k - 1;
       during(k);
       tick();
     }
@@ -336,6 +341,7 @@ TEST(IzhikevichLayerRtl, HandshakeTimingAndBackToBack) {
   // in_valid high throughout, the operands changing every clock while busy.
   size_t next = 0;
   uint64_t accepted_at = 0;
+  Result shown = u.out();  // what the outputs hold: the last finished update's
   u.drive(ops[0]);
   u.m.in_valid = 1;
   while (next < ops.size()) {
@@ -357,6 +363,9 @@ TEST(IzhikevichLayerRtl, HandshakeTimingAndBackToBack) {
       EXPECT_EQ(u.m.in_ready != 0, k == uint64_t(kLatency)) << k;
       if (k == uint64_t(kLatency)) {
         EXPECT_EQ(u.out(), golden(c, ops[next - 1])) << next - 1;
+        shown = u.out();
+      } else {
+        EXPECT_EQ(u.out(), shown) << "busy with " << next - 1 << ": the previous results hold";
       }
     }
   }
