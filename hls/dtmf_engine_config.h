@@ -262,7 +262,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
         "ACC", "REJ", "LRT", "LRR", "LRS", "CTYPE", "CSEQ", "CLEN", "PT", "PTT", "PLEN", "TLO",
         "TMP", "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
         "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "SEB", "NX", "ND", "NXS",
-        "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NC4", "NUN"})
+        "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NUN"})
     alloc(n, 1);
   im.dend = at;
   sym("DEND", at);

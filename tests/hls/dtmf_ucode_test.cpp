@@ -149,15 +149,17 @@ TEST(DtmfUcode, RandomCarriersOn5x7EqualTheChain) {
   }
 }
 
-// SET_NEURON at run time reaches the neuron unit: the unit's constants are
-// the DMEM words the command changes, copied to it at every layer. The
-// default scene with the unit (and, for reference, without), four
-// changes at frames 60-240 (layer 1's gain, layer 0's input mode, which
-// switches the unit between x and x - x_prev, layer 0's v_reset, layer 1's
-// x_shift), each sent to the engine once it has released that frame and
-// applied to the chain before the next one. Exact: every data packet
-// equals the chain's, so each change was applied, at once, to its layer.
-TEST(DtmfUcode, SetNeuronAtRunTimeReachesTheNeuronUnit) {
+// SET_NEURON changes sent to the top model at run time, each once the
+// engine has released frame `after_frame`, and applied to the chain before
+// the next one; the default scene with the neuron unit and without. Exact:
+// every data packet equals the chain's.
+struct NeuronChange {
+  uint32_t after_frame;
+  int layer, param;
+  int32_t value;
+};
+template <class Changes>
+void expect_neuron_changes_equal_the_chain(Changes changes_of) {
   using S = hls::DtmfChainSizes<3, 3, 32>;
   const sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   sim::WorldModel world(sc);
@@ -167,13 +169,7 @@ TEST(DtmfUcode, SetNeuronAtRunTimeReachesTheNeuronUnit) {
     auto spec = sim::dtmf_top_spec(sc, hls::kDtmfTopClkHz);
     spec.neuron_unit = unit;
     const auto plan = hls::make_dtmf_top_plan(spec);
-    struct Change { uint32_t after_frame; int layer, param; int32_t value; };
-    const Change changes[] = {
-        {60, 1, 2, plan.neuron[1].gain / 2},
-        {120, 0, 13, plan.neuron[0].input_change ? 0 : 1},
-        {180, 0, 0, -60 * (int32_t(1) << 22)},  // -60 mV, Q9.22
-        {240, 1, 4, plan.neuron[1].x_shift + 1},
-    };
+    const std::vector<NeuronChange> changes = changes_of(plan);
     const long period = std::lround(double(hls::kDtmfTopClkHz) / sc.skin.adc.rate_hz);
     dtmf_model::TopModel<S> top(plan, period);
     auto chain = std::make_unique<hls::DtmfChain<S>>(hls::chain_config<S>(plan));
@@ -181,14 +177,14 @@ TEST(DtmfUcode, SetNeuronAtRunTimeReachesTheNeuronUnit) {
     hls::DtmfChain<S>::Packet pk[hls::DtmfChain<S>::kMaxPackets];
     size_t sent = 0, applied = 0;
     for (size_t n = 0; n < codes.size(); ++n) {
-      if (sent < std::size(changes) && top.frames_done() >= changes[sent].after_frame) {
-        const Change& c = changes[sent++];
+      if (sent < changes.size() && top.frames_done() >= changes[sent].after_frame) {
+        const NeuronChange& c = changes[sent++];
         const uint32_t v = uint32_t(c.value);
         top.command({0x83, uint8_t(sent), 5, 0, uint8_t(c.layer << 4 | c.param), uint8_t(v),
                      uint8_t(v >> 8), uint8_t(v >> 16), uint8_t(v >> 24)});
       }
-      if (applied < std::size(changes) && chain->frames() >= changes[applied].after_frame) {
-        const Change& c = changes[applied++];
+      if (applied < changes.size() && chain->frames() >= changes[applied].after_frame) {
+        const NeuronChange& c = changes[applied++];
         auto cfg = chain->neuron_config(c.layer);
         ASSERT_TRUE(hls::apply_neuron_param(cfg, c.param, c.value));
         chain->set_neuron(c.layer, cfg);
@@ -198,8 +194,8 @@ TEST(DtmfUcode, SetNeuronAtRunTimeReachesTheNeuronUnit) {
       for (int i = 0; i < np; ++i)
         want.push_back({pk[i].type, pk[i].t, {pk[i].payload, pk[i].payload + pk[i].len}});
     }
-    EXPECT_EQ(sent, std::size(changes));
-    EXPECT_EQ(applied, std::size(changes));
+    EXPECT_EQ(sent, changes.size());
+    EXPECT_EQ(applied, changes.size());
     std::vector<dtmf_model::Packet> got;
     for (const auto& p : top.packets())
       if (p.type != hls::kDtmfStatus) got.push_back(p);
@@ -211,6 +207,39 @@ TEST(DtmfUcode, SetNeuronAtRunTimeReachesTheNeuronUnit) {
     EXPECT_EQ(same, m) << (unit ? "unit" : "engine") << ": packet " << same << " differs (type "
                        << int(want[same].type) << ")";
   }
+}
+
+// SET_NEURON at run time reaches the neuron unit: the unit's constants are
+// the DMEM words the command changes, copied to it at every layer. Four
+// changes at frames 60-240 (layer 1's gain, layer 0's input mode, which
+// switches the unit between x and x - x_prev, layer 0's v_reset, layer 1's
+// x_shift); each was applied, at once, to its layer.
+TEST(DtmfUcode, SetNeuronAtRunTimeReachesTheNeuronUnit) {
+  expect_neuron_changes_equal_the_chain([](const hls::DtmfTopPlan& plan) {
+    return std::vector<NeuronChange>{
+        {60, 1, 2, plan.neuron[1].gain / 2},
+        {120, 0, 13, plan.neuron[0].input_change ? 0 : 1},
+        {180, 0, 0, -60 * (int32_t(1) << 22)},  // -60 mV, Q9.22
+        {240, 1, 4, plan.neuron[1].x_shift + 1},
+    };
+  });
+}
+
+// c4 U at its widest: s4 = 0 and m4 = -32768 (both in SET_NEURON's
+// range), so c4 U = m4 U reaches 2^45 once U saturates at 2^30; the chain
+// (int64) and the unit (47 bits) keep it whole, and so must the
+// izhikevich_layer routine (it once kept the low 32 bits: at U = 2^30 the
+// term vanished). Also a large u_jump, which drives U to its bounds.
+TEST(DtmfUcode, WideRecoveryTermEqualsTheChain) {
+  expect_neuron_changes_equal_the_chain([](const hls::DtmfTopPlan&) {
+    return std::vector<NeuronChange>{
+        {40, 0, 11, 0},                                // s4
+        {41, 0, 10, -32768},                           // m4
+        {42, 0, 1, (int32_t(1) << 30) - 1},            // u_jump
+        {43, 1, 11, 0},
+        {44, 1, 10, 32767},
+    };
+  });
 }
 
 // SET_CARRIER_INC's frame increment (FINC, the carrier demixer's phase
