@@ -60,9 +60,14 @@
 //
 // Configuration: write the increments through cfg (valid/ready, accepted in
 // IDLE), one carrier per token, cfg_k < K_MAX; the token with cfg_last sets
-// K = cfg_k + 1 and clears the window, phases and sums (max(N, 2^KB) cycles
-// in CLEAR), as SdftBank::configure() does. Until the first cfg_last no
-// sample is accepted.
+// K = cfg_k + 1 and clears the window, phases and sums, as
+// SdftBank::configure() does. Until the first cfg_last no sample is
+// accepted. The clear takes no clock (a sample may come in the next one):
+// the memories are not written; instead, until every carrier has been
+// updated once (`fresh`), phases and sums read as 0, and until N samples
+// have entered (`nfill`), the sample leaving the window reads as 0. So the
+// ADC loses nothing at a carrier reload even when a sample period is
+// shorter than the window (at 1 MS/s and 40 MHz: 40 clocks, N = 128).
 module sdft_bank #(
     parameter integer K_MAX = 6,
     parameter integer N = 32,
@@ -107,27 +112,24 @@ module sdft_bank #(
   localparam integer NB = (N > 1) ? $clog2(N) : 1;          // window address
   localparam integer QB = TW - 2;                           // ROM address
   localparam integer Q = 1 << QB;
-  localparam integer CLR = (N > KD) ? N : KD;               // CLEAR cycles
-  localparam integer CB = $clog2(CLR + 1);
   localparam integer PW = XW + CW;                          // product width
   localparam [CW-1:0] AMP = {1'b0, {(CW - 1){1'b1}}};       // A = 2^(CW-1)-1
   localparam [TW-1:0] QUARTER = {2'b01, {QB{1'b0}}};        // Q as TW bits
   // Plain Verilog (no SV casts): modules found by `hierarchy -libdir` are
   // read without -sv. Sized copies of the integer parameters:
   localparam integer N_M1 = N - 1;
-  localparam integer CLR_M1 = CLR - 1;
   localparam [31:0] N32 = N;
   localparam [NB-1:0] WP_LAST = N_M1[NB-1:0];
-  localparam [CB-1:0] N_CB = N32[CB-1:0];
-  localparam [CB-1:0] CLR_LAST = CLR_M1[CB-1:0];
+  localparam [NB:0] N_FILL = N32[NB:0];
   localparam signed [63:0] Q64 = {32'd0, Q[31:0]};
   localparam integer SH = CW - 1 - FB;                      // term shift >= 1
 
-  localparam [3:0] S_CLEAR = 4'd0, S_IDLE = 4'd1, S_OLD = 4'd2, S_C1 = 4'd3,
+  localparam [3:0] S_IDLE = 4'd1, S_OLD = 4'd2, S_C1 = 4'd3,
                    S_C2 = 4'd4, S_C3 = 4'd5, S_C4 = 4'd6, S_C5 = 4'd7, S_C6 = 4'd8;
   reg [3:0] state;
-  reg [CB-1:0] clr_cnt;
   reg configured;
+  reg fresh;          // since the clear, not every carrier was updated yet
+  reg [NB:0] nfill;   // samples since the clear, up to N
   reg [KB-1:0] k, klast;
   reg [NB-1:0] wp;
 
@@ -174,8 +176,8 @@ module sdft_bank #(
   // ---- memories (one write port, one registered read port each) ----
   // no_rw_check: no read result is used from a cycle that writes the same
   // address (window: OLD writes wp after x_old was latched; state: C6 writes
-  // k while reading k + 1; CLEAR and config writes precede the reads in C1),
-  // so Yosys needs no collision bypass logic.
+  // k while reading k + 1; config writes precede the reads in C1), so Yosys
+  // needs no collision bypass logic.
   (* no_rw_check *) reg [XW-1:0] win [0:N-1];
   (* no_rw_check *) reg [31:0] inc_mem [0:KD-1];
   (* no_rw_check *) reg [31:0] ph_mem [0:KD-1];
@@ -203,35 +205,27 @@ module sdft_bank #(
   // there) and still in C1 (latched). k is 0 in IDLE and OLD: carrier 0 is
   // read there. C5 and C6 read k + 1 while C6 writes k (k + 1 != k: KD >= 2).
   wire [KB-1:0] ra = (state == S_C5 || state == S_C6) ? k + 1'b1 : k;
-  wire clearing = state == S_CLEAR;
-  wire st_we = clearing || advance;  // phase and sums
-  wire [KB-1:0] st_wa = clearing ? clr_cnt[KB-1:0] : k;
-  wire [31:0] ph_wd = clearing ? 32'd0 : ph_r;
-  wire [ACC_W-1:0] re_wd = clearing ? {ACC_W{1'b0}} : re_r;
-  wire [ACC_W-1:0] im_wd = clearing ? {ACC_W{1'b0}} : im_r;
-  wire win_we = (clearing && clr_cnt < N_CB) || state == S_OLD;
-  wire [NB-1:0] win_wa = clearing ? clr_cnt[NB-1:0] : wp;
-  wire [XW-1:0] win_wd = clearing ? {XW{1'b0}} : x_new;
-
   always @(posedge clk) begin
-    if (win_we) win[win_wa] <= win_wd;
+    if (state == S_OLD) win[wp] <= x_new;
     win_q <= win[wp];
   end
   always @(posedge clk) begin
     if (cfg_fire) inc_mem[cfg_k[KB-1:0]] <= cfg_inc;
     inc_q <= inc_mem[ra];
   end
+  // Phases and sums read as 0 while `fresh` (the clear): the read register
+  // is reset instead of loaded.
   always @(posedge clk) begin
-    if (st_we) ph_mem[st_wa] <= ph_wd;
-    ph_q <= ph_mem[ra];
+    if (advance) ph_mem[k] <= ph_r;
+    ph_q <= fresh ? 32'd0 : ph_mem[ra];
   end
   always @(posedge clk) begin
-    if (st_we) re_mem[st_wa] <= re_wd;
-    re_q <= re_mem[ra];
+    if (advance) re_mem[k] <= re_r;
+    re_q <= fresh ? {ACC_W{1'b0}} : re_mem[ra];
   end
   always @(posedge clk) begin
-    if (st_we) im_mem[st_wa] <= im_wd;
-    im_q <= im_mem[ra];
+    if (advance) im_mem[k] <= im_r;
+    im_q <= fresh ? {ACC_W{1'b0}} : im_mem[ra];
   end
 
   // ---- sine lookup: issue (address) one cycle, ROM value the next ----
@@ -301,32 +295,30 @@ module sdft_bank #(
 
   always @(posedge clk) begin
     if (rst) begin
-      state <= S_CLEAR;
-      clr_cnt <= {CB{1'b0}};
+      state <= S_IDLE;
+      fresh <= 1'b1;
+      nfill <= {(NB + 1){1'b0}};
       configured <= 1'b0;
       klast <= {KB{1'b0}};
       k <= {KB{1'b0}};
       wp <= {NB{1'b0}};
     end else begin
       case (state)
-        S_CLEAR: begin
-          clr_cnt <= clr_cnt + 1'b1;
-          if (clr_cnt == CLR_LAST) state <= S_IDLE;
-        end
         S_IDLE: begin
           if (cfg_fire && cfg_last) begin
             klast <= cfg_k[KB-1:0];
             configured <= 1'b1;
             wp <= {NB{1'b0}};
-            clr_cnt <= {CB{1'b0}};
-            state <= S_CLEAR;
+            fresh <= 1'b1;
+            nfill <= {(NB + 1){1'b0}};
           end else if (in_fire) begin
             x_new <= in_x;
             state <= S_OLD;
           end
         end
         S_OLD: begin
-          x_old <= win_q;
+          x_old <= nfill == N_FILL ? win_q : {XW{1'b0}};  // x[n-N], 0 for n < N
+          if (nfill != N_FILL) nfill <= nfill + 1'b1;
           xn_new <= -{x_new[XW-1], x_new};
           wp <= (wp == WP_LAST) ? {NB{1'b0}} : wp + 1'b1;
           state <= S_C1;
@@ -358,9 +350,10 @@ module sdft_bank #(
           if (out_free) begin
             k <= (k == klast) ? {KB{1'b0}} : k + 1'b1;  // 0 in IDLE: read carrier 0
             state <= (k == klast) ? S_IDLE : S_C1;
+            if (k == klast) fresh <= 1'b0;
           end
         end
-        default: state <= S_CLEAR;
+        default: state <= S_IDLE;
       endcase
     end
   end

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "dtmf_top_model.h"
+#include "random_carriers.h"
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_top_config.h"
 #include "sim/dtmf_top_spec.h"
@@ -127,22 +128,11 @@ TEST(DtmfUcode, RandomCarriersOn5x7EqualTheChain) {
   const long clk_hz = 96000000;
   auto spec = sim::dtmf_top_spec(sc, clk_hz);
   const long period = std::lround(double(clk_hz) / spec.sample_hz);
-  // Carrier k at 0 or 1.2 full carriers (the taxel rule's range), phases
-  // fixed, a small offset, as the 12-bit ADC rounds and clips.
-  std::mt19937 rng(7);
-  std::bernoulli_distribution coin(0.5);
+  // Carrier k at 0 or 1.2 full carriers (the taxel rule's range).
   const double full = spec.full_carrier_lsb * std::ldexp(1.0, 12 - spec.adc_bits);
-  std::vector<double> level(12, 0.0);
-  std::vector<uint16_t> codes;
   const int step = int(std::lround(spec.frame_ms * spec.sample_hz / 1000.0));
-  for (int m = 0; m < 600 * step; ++m) {
-    if (m % (3 * step) == 0)
-      for (auto& l : level) l = coin(rng) ? 1.2 : 0.0;
-    double v = 17.0;
-    for (int k = 0; k < 12; ++k)
-      v += level[size_t(k)] * full * std::cos(2 * M_PI * std::fmod(f[size_t(k)] / spec.sample_hz * m, 1.0) + 0.7 * k);
-    codes.push_back(uint16_t(std::clamp(std::lround(v), -2048L, 2047L) + 2048));
-  }
+  const auto codes = dtmf_stimulus::random_carrier_codes(f, spec.sample_hz, full, 600 * step,
+                                                         3 * step, 7);
   for (bool unit : {false, true}) {
     spec.neuron_unit = unit;
     compare_codes<S>("random carriers, 5x7", hls::make_dtmf_top_plan(spec), period, codes);
