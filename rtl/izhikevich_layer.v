@@ -64,12 +64,13 @@
 //
 // Resources (the unit alone; yosys 0.23 synth_ice40 -dsp -abc9 as
 // scripts/synth_ice40.sh; yowasp yosys synth_ecp5 / nextpnr-ecp5 --85k
-// out of context): iCE40 1515 SB_LUT4, 678 SB_DFF*, 268 SB_CARRY, 1 SB_MAC16
-// (of which the 47-bit round-shift unit is ~335 LUT4); ECP5 1516 LUT4 (1832
-// TRELLIS_COMB placed), 710 FF, 1 MULT18X18D, Fmax 83-85 MHz (seeds 1-3).
-// Of the flip-flops, 203 hold the configuration and 100 its copy. (Before
-// the results held through the next update: 96 flip-flops since, the
-// copies of v_reset, u_jump and the next x_prev.)
+// out of context): iCE40 1448 SB_LUT4, 774 flip-flops, 1 SB_MAC16 (of
+// which the 47-bit round-shift unit is ~335 LUT4); of the flip-flops, 203
+// hold the configuration, 100 its copy and 96 the copies of v_reset,
+// u_jump and the next x_prev, which let the results hold through the next
+// update (before that: 1515 LUT4, 678 flip-flops). ECP5, before that
+// change: 1516 LUT4 (1832 TRELLIS_COMB placed), 710 FF, 1 MULT18X18D,
+// Fmax 83-85 MHz (seeds 1-3).
 module izhikevich_layer (
     input  wire        clk,
     input  wire        rst,

@@ -47,10 +47,11 @@
 // 12 MHz and 35 kHz there are 342 cycles per sample).
 //
 // Resources, iCE40 (scripts/synth_ice40.sh sdft_bank [--param K_MAX=32
-// --param N=128], Yosys 0.23 synth_ice40 -dsp): K_MAX 6, N 32: 486 LUT4,
-// 227 FF, 1 SB_MAC16 (ice40_dsp folds the product register into it),
-// 10 SB_RAM40_4K; K_MAX 32, N 128 (16x16 skin): 502 LUT4, 237 FF, 1 SB_MAC16,
-// 10 SB_RAM40_4K (unpipelined, same flow: 490 / 231 and 504 / 241).
+// --param N=128], Yosys 0.23 synth_ice40 -dsp): K_MAX 6, N 32: 418 LUT4,
+// 228 FF, 1 SB_MAC16 (ice40_dsp folds the product register into it),
+// 10 SB_RAM40_4K; K_MAX 32, N 128 (16x16 skin): 428 LUT4, 238 FF, 1 SB_MAC16,
+// 10 SB_RAM40_4K (with the CLEAR state before the lazy clear: 486 / 227
+// and 502 / 237; unpipelined: 490 / 231 and 504 / 241).
 // ECP5-85F out of context (scripts/synth_ecp5.sh sdft_bank --pnr --freq 50,
 // seed 1): 333 LUT4, 367 FF, 73 CCU2C, 36 DPR16X4, 1 MULT18X18D, 1 DP16KD,
 // Fmax 72.5 MHz (unpipelined: 43.4 MHz); its critical path is now ROM
