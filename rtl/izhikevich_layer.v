@@ -68,9 +68,11 @@
 // which the 47-bit round-shift unit is ~335 LUT4); of the flip-flops, 203
 // hold the configuration, 100 its copy and 96 the copies of v_reset,
 // u_jump and the next x_prev, which let the results hold through the next
-// update (before that: 1515 LUT4, 678 flip-flops). ECP5, before that
-// change: 1516 LUT4 (1832 TRELLIS_COMB placed), 710 FF, 1 MULT18X18D,
-// Fmax 83-85 MHz (seeds 1-3).
+// update (before that: 1515 LUT4, 678 flip-flops). ECP5
+// (scripts/synth_ecp5.sh izhikevich_layer --pnr --freq 50 --device 85k):
+// 1318 LUT4 (1634 placed), 806 FF, 1 MULT18X18D, Fmax 84.8 / 87.7 /
+// 86.2 MHz at seeds 1-3 (before: 1516 LUT4, 1832 placed, 710 FF,
+// 83-85 MHz).
 module izhikevich_layer (
     input  wire        clk,
     input  wire        rst,
