@@ -79,6 +79,7 @@ struct BuildSetup {
   eskin::hls::DtmfTopPlan plan;
   std::vector<uint16_t> codes12;
   int cpb = 0;
+  eskin::fpga::CoreClock chosen;  // scale builds: the ULX3S flow's choice the plan comes from
 };
 
 // The plan of a build; writes its microcode and constants where the
@@ -88,14 +89,17 @@ BuildSetup prepare(const Build& b) {
   BuildSetup s;
   s.scene = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/" + b.scene);
   if (b.scale_n > 0) s.scene = eskin::fpga::scale_scene(s.scene, b.scale_n, b.scale_fs);
-  eskin::hls::DtmfTopSpec spec = eskin::sim::dtmf_top_spec(s.scene, b.clk_hz);
-  spec.sdft_lanes = b.sdft_lanes;
-  spec.engine_fast_shift = b.fast_shift;
-  spec.neuron_unit = b.neuron_unit;
-  if (b.scale_n > 0)  // as the scale table builds it: the ULX3S flow's plan (clock, baud, ...)
-    spec = eskin::fpga::choose_core_clock(eskin::fpga::find_board("ulx3s", "85k"), s.scene,
-                                          eskin::fpga::LoadPolicy::Stress)
-               .plan.spec;
+  eskin::hls::DtmfTopSpec spec;
+  if (b.scale_n > 0) {  // as the scale table builds it: the ULX3S flow's plan (clock, baud, ...)
+    s.chosen = eskin::fpga::choose_core_clock(eskin::fpga::find_board("ulx3s", "85k"), s.scene,
+                                              eskin::fpga::LoadPolicy::Stress);
+    spec = s.chosen.plan.spec;
+  } else {
+    spec = eskin::sim::dtmf_top_spec(s.scene, b.clk_hz);
+    spec.sdft_lanes = b.sdft_lanes;
+    spec.engine_fast_shift = b.fast_shift;
+    spec.neuron_unit = b.neuron_unit;
+  }
   s.plan = eskin::hls::make_dtmf_top_plan(spec);
   std::filesystem::create_directories(DTMF_TOP_DIR);
   const auto params = eskin::hls::write_dtmf_top_build(s.plan, DTMF_TOP_DIR, b.name);
@@ -510,9 +514,8 @@ TEST(DtmfTop, Staggered10x10At24MHzWithTheNeuronUnit) {
 // so at most one sample is lost, before the reload's last write (so no
 // frame sees it), and counted (adc_overruns <= floor(2 KS / 40) = 1).
 TEST(DtmfTop, ScaleTable16x16AtOneMegasampleOnTheEcp5Core) {
-  const BuildSetup s0 = prepare(kS16M);
-  const auto chosen = eskin::fpga::choose_core_clock(eskin::fpga::find_board("ulx3s", "85k"),
-                                                     s0.scene, eskin::fpga::LoadPolicy::Stress);
+  BuildSetup s = prepare(kS16M);
+  const auto& chosen = s.chosen;
   ASSERT_TRUE(chosen.budget.ok()) << chosen.budget.problems.front();
   EXPECT_EQ(chosen.clocking.clk_hz, kS16M.clk_hz);
   EXPECT_EQ(chosen.plan.spec.sdft_lanes, kS16M.sdft_lanes);
@@ -521,7 +524,6 @@ TEST(DtmfTop, ScaleTable16x16AtOneMegasampleOnTheEcp5Core) {
   EXPECT_EQ(chosen.budget.sdft_clocks, 40);
   EXPECT_EQ(chosen.budget.period, 40);
   EXPECT_LE(chosen.engine_clocks, chosen.budget.frame_clocks);
-  BuildSetup s = s0;
   const auto& sp = s.plan.spec;
   const double full = sp.full_carrier_lsb * std::ldexp(1.0, 12 - sp.adc_bits);
   std::vector<double> f(s.scene.skin.row_freq_hz);
@@ -544,7 +546,7 @@ TEST(DtmfTop, ScaleTable16x16AtOneMegasampleOnTheEcp5Core) {
     b.tick();
     if (!sent && b.frames_done >= 12 && !b.sending()) b.send(cmd), sent = true;
   }
-  expect_clean_run(b, enc, 1, 2 * s.plan.ks / 40);
+  expect_clean_run(b, enc, 1, int(2 * s.plan.ks / chosen.budget.period));
   ASSERT_EQ(b.carrier_loads.size(), 2u);  // boot + the SET_CARRIER_INC
   reload.at = b.carrier_load_samples[1];
   ASSERT_GT(reload.at, size_t(s.plan.N + 11 * s.plan.step));  // after the 12th frame
