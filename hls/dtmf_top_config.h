@@ -272,13 +272,23 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    <= 20 MHz at any clock); the AD7476A needs (period - 28 H) clocks >=
 //    250 ns of acquisition (tACQ) and (period - 31 H) clocks >= 86 ns of
 //    quiet time (t8 + tQUIET).
-//  - the DFT: samples at least sdft_clocks apart: sdft_lanes_interval(KS,
-//    L, 1), the lanes' II with a consumer that takes a token every clock
-//    (rtl/frame_capture.v: it stores and judges each token in its own
-//    clock). One lane: sdft_bank's 6 KS + 2, the next sample's handshake in
-//    the clock of the last token; L >= 2 lanes: 9 + (KS - 1) + max(0, 6 -
-//    L) (ceil(KS / L) - 1), KS + 8 from 6 lanes on (rtl/sdft_lanes.v).
-//    tests/rtl/dft_capture_test.cpp runs the two modules at this pace.
+//  - the DFT: a frame's sample (one in STEP) takes F = sdft_lanes_interval(
+//    KS, L, 1) clocks to the next handshake, the lanes' II with a consumer
+//    that takes a token every clock (rtl/frame_capture.v: it stores and
+//    judges each token in its own clock). One lane: sdft_bank's 6 KS + 2,
+//    the next sample's handshake in the clock of the last token; L >= 2
+//    lanes: 9 + (KS - 1) + max(0, 6 - L) (ceil(KS / L) - 1), KS + 8 from 6
+//    lanes on (rtl/sdft_lanes.v). Every other sample gives no tokens (dtmf_top
+//    skips them) and takes S = sdft_skip_interval(KS, L) = 6 ceil(KS / L)
+//    + 2. The ADC converts every period P clocks whatever the DFT does and
+//    holds one sample: it loses one when the previous is not taken by the
+//    next conversion, so a sample may wait up to P clocks. With S <= P a
+//    frame's sample that takes F > P delays the next by F - P, and each
+//    sample after it makes up P - S. No sample is lost when
+//      S <= P,  F <= 2 P  and  F - P <= (STEP - 1)(P - S)
+//    (the delay is back to 0 by the next frame's sample; STEP = 1: F <= P):
+//    dtmf_top_sdft_min_period. tests/rtl/dft_capture_test.cpp runs the two
+//    modules at these paces, and at a 32x32 skin's 1 MS/s.
 //  - frame_engine: frame_capture loses a frame unless the engine has
 //    released the previous one when it is complete, so the engine's longest
 //    frame plus the longest command it may have started just before that
@@ -292,7 +302,9 @@ struct DtmfTopClockBudget {
   long clk_hz = 0;
   long period = 0;         // clocks per ADC sample
   long sclk_div = 0;       // H
-  long sdft_clocks = 0;    // the DFT's II: dtmf_top_sdft_clocks()
+  long sdft_clocks = 0;    // a frame sample's II: dtmf_top_sdft_clocks()
+  long sdft_skip_clocks = 0;  // any other sample's: dtmf_top_sdft_skip_clocks()
+  long sdft_min_period = 0;   // what those need of the period: dtmf_top_sdft_min_period()
   long frame_clocks = 0;   // STEP x period: the engine's time per frame
   long engine_clocks = 0;  // what the engine needs of it
   std::vector<std::string> problems;  // empty: the top keeps up
@@ -300,10 +312,22 @@ struct DtmfTopClockBudget {
 };
 
 // Clocks from one sample's handshake into the DFT to the next that
-// rtl/dtmf_top.v needs: the DFT's II with frame_capture, the consumer,
-// taking a token every clock (above).
+// rtl/dtmf_top.v needs: a frame's sample, the DFT's II with frame_capture,
+// the consumer, taking a token every clock (above) ...
 inline long dtmf_top_sdft_clocks(int ks, int lanes) {
   return long(sdft_lanes_interval(ks, lanes, 1));
+}
+// ... and every other sample, whose tokens the top skips.
+inline long dtmf_top_sdft_skip_clocks(int ks, int lanes) {
+  return long(sdft_skip_interval(ks, lanes));
+}
+// The shortest sample period (clocks) at which the ADC loses no sample to
+// the DFT (above): the least P with S <= P, F <= 2 P and STEP P >= F +
+// (STEP - 1) S.
+inline long dtmf_top_sdft_min_period(int ks, int lanes, long step) {
+  const long f = dtmf_top_sdft_clocks(ks, lanes), sk = dtmf_top_sdft_skip_clocks(ks, lanes);
+  if (step <= 1) return f;
+  return std::max({sk, (f + 1) / 2, (f + (step - 1) * sk + step - 1) / step});
 }
 
 inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_hz,
@@ -315,6 +339,8 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
   b.sclk_div = (clk_hz + 39999999) / 40000000;
   const int lanes = p.spec.sdft_lanes;
   b.sdft_clocks = dtmf_top_sdft_clocks(p.ks, lanes);
+  b.sdft_skip_clocks = dtmf_top_sdft_skip_clocks(p.ks, lanes);
+  b.sdft_min_period = dtmf_top_sdft_min_period(p.ks, lanes, p.step);
   b.frame_clocks = long(p.step) * b.period;
   b.engine_clocks = engine_clocks;
   auto at = [&] {
@@ -333,12 +359,15 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
                   b.period, acq, quiet, b.sclk_div);
     b.problems.push_back(s + at());
   }
-  if (b.period < b.sdft_clocks)
-    b.problems.push_back((lanes == 1 ? std::string("sdft_bank: needs 6 KS + 2 = ")
-                                     : "sdft_lanes (" + n(lanes) + " lanes of KS = " + n(p.ks) +
-                                           " channels): needs ") +
-                         n(b.sdft_clocks) + " clocks per sample, the sample period is " +
-                         n(b.period) + at());
+  if (b.period < b.sdft_min_period)
+    b.problems.push_back(
+        (lanes == 1 ? std::string("sdft_bank: needs 6 KS + 2 = ") + n(b.sdft_clocks) +
+                          " clocks per sample"
+                    : "sdft_lanes (" + n(lanes) + " lanes of KS = " + n(p.ks) + " channels): a " +
+                          "frame's sample takes " + n(b.sdft_clocks) + " clocks, the others " +
+                          n(b.sdft_skip_clocks) + "; with STEP " + n(p.step) +
+                          " that needs a sample period of " + n(b.sdft_min_period) + " clocks") +
+        ", the sample period is " + n(b.period) + at());
   if (engine_clocks > b.frame_clocks)
     b.problems.push_back("frame_engine: its longest frame and command take " + n(engine_clocks) +
                          " clocks, a frame is STEP x period = " + n(p.step) + " x " +
@@ -372,7 +401,8 @@ inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_
 inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
   const long other = dtmf_top_min_clock_hz_without_dft(p, engine_clocks);
   if (other == 0) return 0;
-  const double dft = p.spec.sample_hz * double(dtmf_top_sdft_clocks(p.ks, p.spec.sdft_lanes));
+  const double dft =
+      p.spec.sample_hz * double(dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step));
   return std::max(other, long(std::ceil(dft)));
 }
 

@@ -70,6 +70,13 @@ constexpr int64_t sdft_lanes_interval(int64_t k, int64_t lanes, int64_t take_clo
   return 9 + take_clocks * (k - 1) + (wait > 0 ? wait : 0) * ((k + lanes - 1) / lanes - 1);
 }
 
+// rtl/sdft_lanes.v's interval after a skipped sample (in_skip: computed,
+// no tokens): the fullest lane's 6 ceil(K / lanes) + 2 clocks, whatever the
+// consumer (one lane: sdft_bank's 6 K + 2, as with tokens).
+constexpr int64_t sdft_skip_interval(int64_t k, int64_t lanes) {
+  return 6 * ((k + (lanes > 1 ? lanes : 1) - 1) / (lanes > 1 ? lanes : 1)) + 2;
+}
+
 constexpr int sdft_ceil_log2(int64_t v) {
   int b = 0;
   while ((int64_t(1) << b) < v) ++b;

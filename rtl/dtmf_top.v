@@ -4,8 +4,9 @@
 //
 //   AD7476A --SPI--> adc_ad7476 -> x = code - 2048 -> sdft_lanes (KS channels:
 //   the carriers, + DC when demixing; SDFT_LANES sdft_bank lanes, 1: sdft_bank
-//   itself) -> frame_capture (every STEP-th sample
-//   once the window is full; double-buffered) -> frame_engine, microcode
+//   itself; tokens only for the samples frame_capture keeps) -> frame_capture
+//   (every STEP-th sample once the window is full; double-buffered) ->
+//   frame_engine, microcode
 //   rtl/ucode/dtmf_chain.fe: carrier_demix, carrier_magnitude,
 //   taxel_reconstruct, ghost_filter, izhikevich_layer x 2 (receptors, then the
 //   3x3-weighted layer; with NEURON_UNIT on the hardware unit
@@ -59,11 +60,13 @@ module dtmf_top #(
     // same line (rtl/mixed_top.v): this top's decoder drops them, and keeps
     // every other type, so an unknown type is still rejected here, once.
     parameter integer HALL_CMDS = 0,
-    // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS): a sample takes
-    // 6 KS + 2 clocks with 1 lane, 9 + (KS - 1) + max(0, 6 - L)
+    // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS). A frame's
+    // sample takes 6 KS + 2 clocks with 1 lane, 9 + (KS - 1) + max(0, 6 - L)
     // (ceil(KS / L) - 1) with L >= 2, KS + 8 from 6 lanes on (frame_capture
-    // takes a token every clock; hls/sdft_bank.h's sdft_lanes_interval).
-    // 1 on the UP5K.
+    // takes a token every clock; hls/sdft_bank.h's sdft_lanes_interval);
+    // every other sample gives no tokens and takes 6 ceil(KS / L) + 2
+    // (sdft_skip_interval). hls/dtmf_top_config.h's budget says when the
+    // ADC keeps up. 1 on the UP5K.
     parameter integer SDFT_LANES = 1,
     // 1: the hardware neuron unit (rtl/izhikevich_layer.v): the microcode
     // hands it each neuron update (14 clocks; 20 engine clocks a neuron,
@@ -160,19 +163,20 @@ module dtmf_top #(
   wire [11:0] x = {~adc_code[11], adc_code[10:0]};  // code - 2048
   wire sdft_fire = adc_valid && sdft_in_ready;
   wire sd_valid, sd_last, sd_ready;
+  wire smp_frame;  // frame_capture: the sample entering now is a frame
   wire [7:0] sd_k;
   wire [ACC_W-1:0] sd_re, sd_im;
   sdft_lanes #(.K_MAX(KS), .N(N), .XW(12), .CW(16), .TW(10), .ACC_W(ACC_W), .K_W(8),
                .LANES(SDFT_LANES)) u_sdft (
       .clk(clk), .rst(rst), .in_valid(adc_valid), .in_ready(sdft_in_ready), .in_x(x),
-      .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k), .cfg_inc(cfg_inc),
+      .in_skip(!smp_frame), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k), .cfg_inc(cfg_inc),
       .cfg_last(cfg_last), .out_valid(sd_valid), .out_ready(sd_ready), .out_k(sd_k),
       .out_re(sd_re), .out_im(sd_im), .out_last(sd_last));
   wire frame_pending;
   wire [31:0] frame_t;
   wire [15:0] frame_overruns;
   frame_capture #(.KS(KS), .W(ACC_W), .N(N), .STEP(STEP)) u_cap (
-      .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(sdft_fire), .smp_t(adc_t),
+      .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(sdft_fire), .smp_t(adc_t), .smp_frame(smp_frame),
       .tok_valid(sd_valid), .tok_ready(sd_ready), .tok_last(sd_last), .tok_re(sd_re),
       .tok_im(sd_im), .rd_addr(io_raddr[7:0]), .rd_data(cap_data), .pending(frame_pending),
       .frame_t(frame_t), .done(wr_done), .clear(wr_clear), .overruns(frame_overruns));

@@ -9,6 +9,10 @@
 //   filled == N: phase = (phase + 1) mod STEP; a frame when phase == 0.
 // The decision is taken at the sample's handshake into sdft_bank
 // (smp_fire, with its counter smp_t); that sample's KS tokens follow.
+// smp_frame is that decision for a sample entering now (from registers
+// only): dtmf_top skips the DFT's tokens of every other sample
+// (rtl/sdft_lanes.v, in_skip = !smp_frame), and tokens of a sample that is
+// not a frame, should they come, are not stored.
 //
 // Buffer: 2 banks x KS entries of {im, re} (2 W bits), one entry written
 // per token, in the token's clock: tok_ready is always high, so the stream
@@ -36,6 +40,8 @@ module frame_capture #(
     input  wire         clr,        // the DFT window was cleared (carrier reload)
     input  wire         smp_fire,   // a sample entered sdft_bank
     input  wire [31:0]  smp_t,
+    output wire         smp_frame,  // a sample entering now would be a frame
+
     input  wire         tok_valid,
     output wire         tok_ready,
     input  wire         tok_last,
@@ -65,6 +71,7 @@ module frame_capture #(
   reg [PW-1:0] phase;
   reg          cur_frame;   // the sample whose tokens arrive now is a frame
   reg [31:0]   cur_t;
+  assign smp_frame = (filled != N_F) ? (filled + 1'b1 == N_F) : (phase == STEP_M1);
   always @(posedge clk) begin
     if (rst || clr) begin
       filled <= {FW{1'b0}};
@@ -75,13 +82,12 @@ module frame_capture #(
       end
     end else if (smp_fire) begin
       cur_t <= smp_t;
+      cur_frame <= smp_frame;
       if (filled != N_F) begin
         filled <= filled + 1'b1;
         phase <= {PW{1'b0}};
-        cur_frame <= (filled + 1'b1 == N_F);
       end else begin
         phase <= (phase == STEP_M1) ? {PW{1'b0}} : phase + 1'b1;
-        cur_frame <= (phase == STEP_M1);
       end
     end
   end

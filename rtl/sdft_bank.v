@@ -45,6 +45,13 @@
 // input handshake cycle (latency 8); the next sample is accepted 6 K + 2
 // cycles after the previous one (II = 38 for K = 6, 194 for K = 32; at
 // 12 MHz and 35 kHz there are 342 cycles per sample).
+// Skipped samples (in_skip, taken with in_x): the window, phases and sums
+// advance as for any sample, but no token comes out and C6 never waits for
+// the output register, so such a sample takes 6 K + 2 cycles whatever the
+// consumer does (a token of the previous sample still in the register is
+// kept until taken). rtl/frame_capture.v keeps only the frames' samples,
+// every STEP-th: dtmf_top skips the others, so that only those samples
+// pay for the token stream (in rtl/sdft_lanes.v, the merger's K clocks).
 //
 // Resources, iCE40 (scripts/synth_ice40.sh sdft_bank [--param K_MAX=32
 // --param N=128], Yosys 0.23 synth_ice40 -dsp): K_MAX 6, N 32: 418 LUT4,
@@ -84,6 +91,7 @@ module sdft_bank #(
     input  wire             in_valid,
     output wire             in_ready,
     input  wire [XW-1:0]    in_x,       // signed sample (code - mid)
+    input  wire             in_skip,    // with in_x: this sample's tokens are not wanted
     input  wire             cfg_valid,
     output wire             cfg_ready,
     /* verilator lint_off UNUSEDSIGNAL */
@@ -133,6 +141,7 @@ module sdft_bank #(
   reg [NB:0] nfill;   // samples since the clear, up to N
   reg [KB-1:0] k, klast;
   reg [NB-1:0] wp;
+  reg skip;           // the sample being computed gives no tokens (in_skip)
 
   // Quarter-sine ROM value i: the integer Taylor series of
   // sdft_quarter_sine() (Q.30, eight terms, truncating division).
@@ -199,7 +208,10 @@ module sdft_bank #(
   /* verilator lint_off UNUSEDSIGNAL */
   wire [K_W+KB-1:0] k_ext = {{K_W{1'b0}}, k};  // k zero-extended to K_W bits
   /* verilator lint_on UNUSEDSIGNAL */
-  wire advance = (state == S_C6) && out_free;
+  // C6 writes a carrier back and moves on when its token has a place in the
+  // output register, or at once when the sample gives no tokens.
+  wire c6_go = out_free || skip;
+  wire advance = (state == S_C6) && c6_go;
 
   // Read address: carrier k + 1 from C5 on, so that its phase, increment and
   // sums are in the *_q registers in C6 (its first sine lookup is issued
@@ -314,6 +326,7 @@ module sdft_bank #(
             nfill <= {(NB + 1){1'b0}};
           end else if (in_fire) begin
             x_new <= in_x;
+            skip <= in_skip;
             state <= S_OLD;
           end
         end
@@ -348,7 +361,7 @@ module sdft_bank #(
           state <= S_C6;
         end
         S_C6: begin
-          if (out_free) begin
+          if (c6_go) begin
             k <= (k == klast) ? {KB{1'b0}} : k + 1'b1;  // 0 in IDLE: read carrier 0
             state <= (k == klast) ? S_IDLE : S_C1;
             if (k == klast) fresh <= 1'b0;
@@ -362,7 +375,7 @@ module sdft_bank #(
   always @(posedge clk) begin
     if (rst) begin
       out_valid <= 1'b0;
-    end else if (advance) begin
+    end else if (advance && !skip) begin
       out_valid <= 1'b1;
       out_k <= k_ext[K_W-1:0];
       out_re <= re_r;

@@ -56,8 +56,19 @@
 // at most 6 in dtmf_top, host/fpga/board.cpp; K = 24, a 12x12 skin: 32;
 // K = 32, a 16x16 skin: 40, one sample a microsecond at 40 MHz).
 // G = 2: II = 2 K + 7 from 3 lanes on.
-// hls/sdft_bank.h's sdft_lanes_interval() is this formula; the test
-// (tests/rtl/sdft_lanes_test.cpp) asserts it clock for clock.
+// Skipped samples (in_skip, taken with in_x): every active lane computes
+// the sample but gives no token, and the merger has nothing to do; the
+// next sample is accepted when the fullest lane is idle again:
+//   II_skip = 6 ceil(K / LANES) + 2   (LANES = 1: sdft_bank's 6 K + 2).
+// After a sample with tokens the next one still waits for its last token
+// (II above). rtl/dtmf_top.v skips every sample but the frames' (one in
+// STEP), so the merger's K + 8 is paid once a frame and the other samples
+// go at the lanes' pace: more than 6 lanes do shorten those (K = 64, a
+// 32x32 skin, in 11 lanes: 38 clocks; its frame samples take 72, which the
+// ADC's one-sample hold absorbs, hls/dtmf_top_config.h's budget).
+// hls/sdft_bank.h's sdft_lanes_interval() and sdft_skip_interval() are
+// these formulas; the test (tests/rtl/sdft_lanes_test.cpp) asserts them
+// clock for clock.
 //
 // Resources (K_MAX 9, N 32, XW 12, ACC_W 18; Yosys 0.70 synth_ecp5; measured
 // before sdft_bank's pipelining, which moved its size by a few LUTs and FFs):
@@ -88,6 +99,7 @@ module sdft_lanes #(
     input  wire             in_valid,
     output wire             in_ready,
     input  wire [XW-1:0]    in_x,       // signed sample (code - mid)
+    input  wire             in_skip,    // with in_x: no tokens for this sample
     input  wire             cfg_valid,
     output wire             cfg_ready,
     input  wire [K_W-1:0]   cfg_k,      // cfg_k < K_MAX
@@ -111,8 +123,8 @@ module sdft_lanes #(
       sdft_bank #(.K_MAX(K_MAX), .N(N), .XW(XW), .CW(CW), .TW(TW), .ACC_W(ACC_W), .FB(FB),
                   .K_W(K_W)) u_bank (
           .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .in_x(in_x),
-          .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k), .cfg_inc(cfg_inc),
-          .cfg_last(cfg_last), .out_valid(out_valid), .out_ready(out_ready), .out_k(out_k),
+          .in_skip(in_skip), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k),
+          .cfg_inc(cfg_inc), .cfg_last(cfg_last), .out_valid(out_valid), .out_ready(out_ready), .out_k(out_k),
           .out_re(out_re), .out_im(out_im), .out_last(out_last));
     end else if (LANES >= 2) begin : g_lanes
       localparam integer KL = (K_MAX + LANES - 1) / LANES;      // channels per lane
@@ -134,7 +146,7 @@ module sdft_lanes #(
       wire [LB-1:0] c_lane = c_lane_w[LB-1:0];
       wire [JB-1:0] c_idx = c_idx_w[JB-1:0];
 
-      reg busy;        // a sample's tokens are not all out yet
+      reg busy;        // a sample's tokens are not all out yet (never for a skipped one)
       reg configured;  // a cfg_last was taken
       wire [LANES-1:0] act;                 // lane l has a channel (l < K)
       wire [LANES-1:0] l_in_ready, l_cfg_ready, l_out_valid, l_take;
@@ -211,7 +223,7 @@ module sdft_lanes #(
         sdft_bank #(.K_MAX(KL), .N(N), .XW(XW), .CW(CW), .TW(TW), .ACC_W(ACC_W), .FB(FB),
                     .K_W(K_W)) u_bank (
             .clk(clk), .rst(rst), .in_valid(in_fire && act[l]), .in_ready(l_in_ready[l]),
-            .in_x(in_x), .cfg_valid(b_cfg_valid), .cfg_ready(l_cfg_ready[l]),
+            .in_x(in_x), .in_skip(in_skip), .cfg_valid(b_cfg_valid), .cfg_ready(l_cfg_ready[l]),
             .cfg_k({{(K_W - JB){1'b0}}, b_idx}), .cfg_inc(resend ? rem_inc : cfg_inc),
             .cfg_last(cfg_last),
             .out_valid(l_out_valid[l]), .out_ready(l_take[l] && m_free), .out_k(),
@@ -232,7 +244,7 @@ module sdft_lanes #(
             configured <= 1'b1;
             klast <= cfg_k;
           end
-          if (in_fire) busy <= 1'b1;
+          if (in_fire) busy <= !in_skip;  // a skipped sample sends no token
           else if (m_valid && out_ready && m_last) busy <= 1'b0;
           if (take) begin
             m_valid <= 1'b1;

@@ -31,14 +31,17 @@ struct Board {
   // engine_fast_shift_when_needed).
   bool engine_fast_shift = false;
   // The most parallel DFT lanes (rtl/sdft_lanes.v) the flow may give
-  // dtmf_top: each costs a multiplier, a block RAM and logic, and beyond 6
-  // none shortens a sample (frame_capture takes a token every clock; the
-  // lanes' merger then gives one a clock: KS + 8 from 6 lanes on).
+  // dtmf_top: each costs a multiplier, a block RAM and logic. A frame's
+  // sample gets no shorter beyond 6 (the merger gives a token a clock:
+  // KS + 8), but the other samples, which give no tokens, take
+  // 6 ceil(KS / L) + 2 (hls/dtmf_top_config.h's budget), so a 32x32 skin
+  // (KS 64) at 1 MS/s and 40 MHz needs 11.
   // iCEBreaker 1: the UP5K has no block RAM left for a second window.
-  // ULX3S 6: 6 of the ECP5's 28 (25F) or 156 (85F) multipliers, 6 of its
-  // 56 or 208 DP16KDs; a lane of a 12x12 skin (K_MAX 24, N 64) is about
-  // 390 LUT4, 75 CCU2C, 38 DPR16X4 and 360 FF (Yosys 0.23), about 1100
-  // TRELLIS_COMB placed (12x12 at 1 MS/s, 3 -> 5 lanes: 7665 -> 9900).
+  // ULX3S 16 (rtl/sdft_lanes.v's most): of the ECP5's 28 (25F) or 156 (85F)
+  // multipliers and 56 or 208 DP16KDs; a lane of a 12x12 skin (K_MAX 24,
+  // N 64) is about 390 LUT4, 75 CCU2C, 38 DPR16X4 and 360 FF (Yosys 0.23),
+  // about 1100 TRELLIS_COMB placed (12x12 at 1 MS/s, 3 -> 5 lanes: 7665 ->
+  // 9900).
   int max_sdft_lanes = 1;
   // The hardware neuron unit (DtmfTopSpec::neuron_unit, rtl/izhikevich_layer.v):
   // on the ECP5s, whose logic is cheap; off on the UP5K, where it takes

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -76,10 +77,19 @@ std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text) {
 
 int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks) {
   const long other = hls::dtmf_top_min_clock_hz_without_dft(plan, engine_clocks);
+  if (other == 0) return 1;
+  // The board clock the rest would get (its clocks come in steps: a lane
+  // that saves less than a step saves nothing), and its sample period.
+  long clk = std::max(other, b.default_clk_hz);
+  for (const auto& k : board_clocks(b))
+    if (k.clk_hz >= clk) {
+      clk = k.clk_hz;
+      break;
+    }
+  const long period = std::lround(double(clk) / plan.spec.sample_hz);
   const int most = std::min({b.max_sdft_lanes, 16, plan.ks});
   int lanes = 1;
-  while (other > 0 && lanes < most &&
-         plan.spec.sample_hz * double(hls::dtmf_top_sdft_clocks(plan.ks, lanes)) > double(other))
+  while (lanes < most && hls::dtmf_top_sdft_min_period(plan.ks, lanes, plan.step) > period)
     ++lanes;
   return lanes;
 }

@@ -92,7 +92,8 @@ struct FlowReport {
 
 // The DFT lanes (rtl/sdft_lanes.v) for a plan on board `b`: the fewest, up
 // to the board's max_sdft_lanes, with which the DFT needs no faster clock
-// than the ADC and the engine (engine_clocks) already do; the board's most
+// than the board clock the ADC and the engine (engine_clocks) already need
+// (hls::dtmf_top_sdft_min_period at its sample period); the board's most
 // when none does (the budget then names the DFT). 1 when the ADC cannot
 // convert at the rate at all.
 int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks);

@@ -9,9 +9,12 @@
 //           the clock of the last token),
 //      II = 9 + (K - 1) + max(0, 6 - L) (ceil(K / L) - 1) with L >= 2
 //           (the next handshake in the clock of the last token too)
-//    clocks (rtl/sdft_lanes.v's header, coded here from its statement with
-//    G = 1); that is the budget's hls::dtmf_top_sdft_clocks(K, L), so the
-//    budget asks the RTL's own pace, not a clock more or less;
+//    clocks after a frame's sample (rtl/sdft_lanes.v's header, coded here
+//    from its statement with G = 1), and II_skip = 6 ceil(K / L) + 2 after
+//    any other, whose tokens the top skips (frame_capture's smp_frame);
+//    those are the budget's hls::dtmf_top_sdft_clocks(K, L) and
+//    dtmf_top_sdft_skip_clocks(K, L), so the budget asks the RTL's own
+//    pace, not a clock more or less; only the frames' tokens come out;
 //  * frames at that pace: every sample the frame rule picks (coded from
 //    hls/dtmf_chain.h, tests/rtl/frame_rule.h) becomes a frame, in order,
 //    whose 2 K words are that sample's tokens from the HLS kernel
@@ -22,7 +25,8 @@
 // Builds (dft_capture_test.cmake): default 6 lanes, KS 24, N 64, ACC_W 19
 // (a 12x12 skin's DFT at 1 MS/s: 24 carriers; II = K + 8 = 32 for K = 24,
 // inside the 40 clocks of a 40 MHz core); l1: one lane, KS 7,
-// N 32, ACC_W 18 (the default 3x3 top's DFT). STEP 3 in both.
+// N 32, ACC_W 18 (the default 3x3 top's DFT). STEP 3 in both. s32: the
+// ADC's pace at a 32x32 skin's 1 MS/s (its test states its bounds).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,6 +38,7 @@
 
 #include "Vdft_capture_tb.h"
 #include "Vdft_capture_tb_l1.h"
+#include "Vdft_capture_tb_s32.h"
 #include "frame_rule.h"
 #include "hls/dtmf_top_config.h"
 #include "hls/sdft_bank.h"
@@ -43,25 +48,34 @@ namespace {
 
 using eskin::hls::SdftBankToken;
 
-template <class V, int KS, int N, int ACC_W, int LANES>
+template <class V, int KS, int N, int ACC_W, int LANES, int STEP = 3>
 struct Build {
   using Model = V;
   using Bank = eskin::hls::SdftBank<KS, N, 12, 16, 10, ACC_W>;
-  static constexpr int kKs = KS, kN = N, kAccW = ACC_W, kLanes = LANES, kStep = 3;
+  static constexpr int kKs = KS, kN = N, kAccW = ACC_W, kLanes = LANES, kStep = STEP;
 };
 using L6 = Build<Vdft_capture_tb, 24, 64, 19, 6>;
 using L1 = Build<Vdft_capture_tb_l1, 7, 32, 18, 1>;
+using S32 = Build<Vdft_capture_tb_s32, 64, 128, 20, 11, 1000>;
 
 struct Result {
   std::vector<uint64_t> in_cycle;  // each sample's handshake
-  size_t frames_want = 0, frames_read = 0, tokens_refused = 0;
+  std::vector<bool> frame;         // each sample is a frame's
+  size_t frames_want = 0, frames_read = 0, tokens_refused = 0, tokens = 0;
   uint32_t overruns = 0;
+  // ADC pace (period > 0): samples lost (the previous one not taken by the
+  // next conversion) and the longest a sample waited for the DFT.
+  size_t adc_lost = 0;
+  uint64_t max_wait = 0;
 };
 
 // K channels with random increments, then `n` random samples offered every
-// clock; the engine reads each pending frame word by word and releases it.
+// clock (period 0), or as adc_ad7476 offers them (period > 0: a
+// conversion every `period` clocks, held until taken; one that finds the
+// previous still held replaces it, a lost sample); the engine reads each
+// pending frame word by word and releases it.
 template <class B>
-void run(int k, size_t n, uint64_t seed, Result& r) {
+void run(int k, size_t n, uint64_t seed, Result& r, uint64_t period = 0) {
   auto m = std::make_unique<typename B::Model>();
   uint64_t cycle = 0;
   auto tick = [&] {
@@ -108,8 +122,19 @@ void run(int k, size_t n, uint64_t seed, Result& r) {
   size_t next = 0;
   int word = -1;  // the engine's next word to read; -1: idle
   std::vector<int32_t> got;
+  const uint64_t start = cycle;
+  bool held = period == 0;  // the ADC holds sample `next` (offered every clock without a pace)
+  uint64_t held_since = start;
+  uint64_t last_fire = cycle;
   for (uint64_t end = ~uint64_t(0); cycle < end;) {
-    m->in_valid = next < n;
+    ASSERT_LT(cycle - last_fire, 2000u) << "K " << k << ": stalled at sample " << next;
+    if (period > 0 && next < n && (cycle - start) % period == 0 &&
+        (cycle - start) / period >= next) {  // a conversion completes
+      if (held) ++r.adc_lost;  // the previous one was not taken
+      held = true;
+      held_since = cycle;
+    }
+    m->in_valid = next < n && held;
     m->in_x = next < n ? uint16_t(xs[next] & 0xFFF) : 0;
     m->done = 0;
     if (word < 0 && m->pending) {  // a frame handed over: read it
@@ -125,16 +150,22 @@ void run(int k, size_t n, uint64_t seed, Result& r) {
     const bool in_fire = m->in_valid && m->in_ready;
     const bool reading = word >= 0 && word < 2 * k;
     const bool releasing = word == 2 * k;
+    r.tokens += m->tok_valid && m->tok_ready;
     if (in_fire) {
+      last_fire = cycle;
       r.in_cycle.push_back(cycle);
+      r.max_wait = std::max(r.max_wait, cycle - held_since);
+      held = period == 0;
       ASSERT_EQ(bank->push(xs[next], toks), k);
+      r.frame.push_back(false);
       if (rule.next()) {
+        r.frame.back() = true;
         Want w{uint32_t(next), {}};
         for (int j = 0; j < k; ++j) w.words.insert(w.words.end(), {toks[j].re, toks[j].im});
         want.push_back(std::move(w));
         ++r.frames_want;
       }
-      if (++next == n) end = cycle + 400;  // the last frame's tokens and read
+      if (++next == n) end = cycle + 400 + 2 * uint64_t(k);  // the last frame's tokens and read
     }
     tick();
     if (reading) {
@@ -158,16 +189,20 @@ void check_pace_and_frames() {
   for (int k = 1; k <= B::kKs; ++k) {
     const int wait = std::max(0, 6 - L);  // idle clocks per row boundary at G = 1
     const int64_t ii = L == 1 ? 6 * k + 2 : 9 + (k - 1) + wait * ((k + L - 1) / L - 1);
+    const int64_t ii_skip = 6 * ((k + L - 1) / L) + 2;  // a sample that is no frame's
     ASSERT_EQ(ii, eskin::hls::dtmf_top_sdft_clocks(k, L)) << "K " << k << ": the budget's figure";
+    ASSERT_EQ(ii_skip, eskin::hls::dtmf_top_sdft_skip_clocks(k, L)) << "K " << k;
     Result r;
     const size_t n = size_t(B::kN) + 12 * B::kStep;
     run<B>(k, n, uint64_t(100 + k), r);
     if (::testing::Test::HasFatalFailure()) return;
     ASSERT_EQ(r.in_cycle.size(), n);
     for (size_t s = 1; s < n; ++s)
-      ASSERT_EQ(int64_t(r.in_cycle[s] - r.in_cycle[s - 1]), ii) << "K " << k << " sample " << s;
+      ASSERT_EQ(int64_t(r.in_cycle[s] - r.in_cycle[s - 1]), r.frame[s - 1] ? ii : ii_skip)
+          << "K " << k << " sample " << s;
     EXPECT_EQ(r.tokens_refused, 0u) << "K " << k;
     EXPECT_EQ(r.frames_want, 13u) << "K " << k;  // samples N - 1 + 3 j, j = 0..12
+    EXPECT_EQ(r.tokens, 13u * size_t(k)) << "K " << k << ": tokens only for the frames";
     EXPECT_EQ(r.frames_read, r.frames_want) << "K " << k;
     EXPECT_EQ(r.overruns, 0u) << "K " << k;
   }
@@ -179,6 +214,37 @@ TEST(DftCapture, SixLanesTakeASampleEveryKPlus9ClocksAndKeepEveryFrame) {
 
 TEST(DftCapture, OneLaneTakesASampleEvery6KPlus2ClocksAndKeepsEveryFrame) {
   check_pace_and_frames<L1>();
+}
+
+// A 32x32 skin's DFT (64 carriers, N 128) at 1 MS/s on a 40 MHz core: 11
+// lanes, the ADC's pace (a conversion every 40 clocks, one held). A frame's
+// sample takes F = 64 + 8 = 72 clocks and every other one S = 6 ceil(64 /
+// 11) + 2 = 38 (both asserted clock for clock above at smaller builds), so
+// the budget's P >= S, F <= 2 P and F - P <= (STEP - 1)(P - S) hold (39 <=
+// 40) and no sample may be lost: the sample after a frame's waits exactly F
+// - P = 32 clocks (it comes P after the frame's, which the DFT took at
+// once), and each later one 2 clocks less, back to 0 long before the next
+// frame. Three frames, every word equal to the kernel's.
+TEST(DftCapture, ThirtyTwoByThirtyTwoAtOneMegasampleInElevenLanesLosesNoSample) {
+  constexpr int k = 64;
+  const uint64_t period = 40;
+  ASSERT_EQ(eskin::hls::dtmf_top_sdft_clocks(k, S32::kLanes), 72);
+  ASSERT_EQ(eskin::hls::dtmf_top_sdft_skip_clocks(k, S32::kLanes), 38);
+  ASSERT_LE(eskin::hls::dtmf_top_sdft_min_period(k, S32::kLanes, S32::kStep), long(period));
+  ASSERT_GT(eskin::hls::dtmf_top_sdft_min_period(k, S32::kLanes - 1, S32::kStep), long(period))
+      << "10 lanes would do";
+  Result r;
+  const size_t n = size_t(S32::kN) + 2 * S32::kStep + 1;  // frames at N - 1 + 1000 j, j = 0..2
+  run<S32>(k, n, 7, r, period);
+  if (::testing::Test::HasFatalFailure()) return;
+  EXPECT_EQ(r.adc_lost, 0u);
+  EXPECT_EQ(r.max_wait, 72u - period);
+  ASSERT_EQ(r.in_cycle.size(), n);
+  EXPECT_EQ(r.frames_want, 3u);
+  EXPECT_EQ(r.frames_read, 3u);
+  EXPECT_EQ(r.tokens, 3u * k);
+  EXPECT_EQ(r.tokens_refused, 0u);
+  EXPECT_EQ(r.overruns, 0u);
 }
 
 }  // namespace

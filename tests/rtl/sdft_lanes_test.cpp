@@ -13,6 +13,9 @@
 // reordered or extra) and, for LANES >= 2, that every token of a sample
 // was taken by the next sample's handshake, the last one at the latest in
 // that clock (rtl/frame_capture.v stores and judges it in its clock).
+// Skipped samples (in_skip): they move the state as any sample (the model
+// is pushed every sample) and give no token; the random runs skip about 2
+// in 3 samples in every other configuration.
 // Timing (header of rtl/sdft_lanes.v): with in_valid always high, the
 // consumer taking every token offered and then needing G clocks (1: out_ready
 // always high, as rtl/frame_capture.v keeps it; 2: a consumer that stores a
@@ -20,7 +23,9 @@
 //   9 + G k + max(0, 6 - G LANES) floor(k / LANES)
 // clocks after the sample's handshake, and samples are accepted every
 //   II = 9 + G (K - 1) + max(0, 6 - G LANES) (ceil(K / LANES) - 1)
-// clocks (the next sample in the clock the last token is taken); LANES 1 is sdft_bank: 8 + 6 k and 6 K + 2. Asserted exactly.
+// clocks (the next sample in the clock the last token is taken); LANES 1 is
+// sdft_bank: 8 + 6 k and 6 K + 2. After a skipped sample the next comes
+// 6 ceil(K / LANES) + 2 clocks later. Asserted exactly.
 // Builds (sdft_lanes_test.cmake): LANES 2 (K_MAX 9, N 32, XW 12, ACC_W 18:
 // a 4x4 skin's DFT in dtmf_top), 3 (K_MAX 13, N 48, XW 12, CW 12, TW 8,
 // FB 2, ACC_W 21), 8 (K_MAX 20, N 64, ACC_W 20: the merger's regime
@@ -58,6 +63,8 @@ struct Segment {
   std::vector<uint32_t> inc;
   std::vector<CfgWrite> writes;
   std::vector<int32_t> xs;
+  std::vector<bool> skip;  // per sample: in_skip (no tokens); empty: none skipped
+  bool skipped(size_t i) const { return i < skip.size() && skip[i]; }
 };
 
 enum class Consumer { Random, Always, TwoClock };
@@ -115,17 +122,17 @@ class Harness {
       for (size_t i = 0; i < s.inc.size(); ++i) cfg.inc[i] = s.inc[i];
       ASSERT_TRUE(bank_.configure(cfg));
       SdftBankToken out[sizeof(cfg.inc) / sizeof(cfg.inc[0])];
-      for (int32_t x : s.xs) {
+      for (size_t i = 0; i < s.xs.size(); ++i) {
         before.push_back(expect.size());
-        const int n = bank_.push(x, out);
-        expect.insert(expect.end(), out, out + n);
+        const int n = bank_.push(s.xs[i], out);  // a skipped sample moves the state too
+        if (!s.skipped(i)) expect.insert(expect.end(), out, out + n);
       }
     }
     size_t got = 0, seg = 0, w = 0, xi = 0, samples = 0;
     bool held = false, took = false;
     SdftBankToken held_tok{};
     const uint64_t limit = port_.cycle + 64 * (expect.size() + 1000) + 200 * samples_of(segs);
-    while (got < expect.size()) {
+    while (got < expect.size() || seg < segs.size()) {
       ASSERT_LT(port_.cycle, limit) << "stalled: " << got << " of " << expect.size() << " tokens";
       const Segment* s = seg < segs.size() ? &segs[seg] : nullptr;
       const bool cfg_phase = s && w < s->writes.size();
@@ -138,6 +145,7 @@ class Harness {
       const bool x_phase = s && !cfg_phase && xi < s->xs.size();
       m_->in_valid = x_phase && offer(rng);
       if (x_phase) m_->in_x = uint32_t(s->xs[xi]) & ((1u << XW) - 1);
+      m_->in_skip = x_phase && s->skipped(xi);
       m_->out_ready = consumer == Consumer::Always     ? 1
                       : consumer == Consumer::TwoClock ? !took
                                                        : ready(rng);
@@ -218,6 +226,10 @@ void random_run(const std::vector<int>& ks, size_t samples, uint64_t seed) {
     const uint64_t sd = seed * 100 + i;
     auto xs = i % 3 == 2 ? extremes(H::kXw, samples / 4) : random_samples(H::kXw, samples, sd);
     segs.push_back(segment(ks[i], std::move(xs), sd, i > 0));
+    if (i % 2 == 1) {  // every other configuration: random samples skipped
+      std::mt19937_64 rng(sd + 7);
+      for (size_t j = 0; j < segs.back().xs.size(); ++j) segs.back().skip.push_back(rng() % 3 != 0);
+    }
   }
   h->run(segs, 0.7, Consumer::Random, 0.6, seed);
 }
@@ -238,38 +250,51 @@ TEST(SdftLanesRtl, OneLaneIsSdftBank) {
   random_run<L1>({6, 3, 6, 1}, 20000, 4);
 }
 
-// Exact clocks with in_valid always high, for every K of the build.
+// Exact clocks with in_valid always high, for every K of the build; with
+// `skips`, samples skipped in the pattern dtmf_top gives (runs of skipped
+// samples between ones with tokens, here 2 in 3 skipped, and a run of 7):
+// after a skipped sample the next comes II_skip = 6 ceil(K / L) + 2 clocks
+// later, whatever the consumer; a sample with tokens is followed II later,
+// its tokens at the same offsets as without skips.
 template <class H>
-void check_timing(int k, Consumer consumer, uint64_t seed) {
+void check_timing(int k, Consumer consumer, uint64_t seed, bool skips) {
   auto h = std::make_unique<H>();
   Timing t;
   const size_t n = 60;
-  h->run({segment(k, random_samples(H::kXw, n, seed), seed, false)}, 1.0, consumer, 1.0, seed,
-         &t);
+  Segment seg = segment(k, random_samples(H::kXw, n, seed), seed, false);
+  for (size_t s = 0; s < n && skips; ++s) seg.skip.push_back(s % 3 != 2 || (s >= 30 && s < 37));
+  h->run({seg}, 1.0, consumer, 1.0, seed, &t);
   const int64_t L = H::kLanes, g = consumer == Consumer::TwoClock ? 2 : 1;
   const int64_t wait = std::max<int64_t>(0, 6 - g * L);  // idle clocks per row boundary
   const int64_t ii = L == 1 ? 6 * k + 2 : 9 + g * (k - 1) + wait * ((k + L - 1) / L - 1);
+  const int64_t ii_skip = 6 * ((k + L - 1) / L) + 2;     // the fullest lane's sample
   ASSERT_EQ(ii, eskin::hls::sdft_lanes_interval(k, L, g)) << "the planner's formula";
+  ASSERT_EQ(ii_skip, eskin::hls::sdft_skip_interval(k, L)) << "the planner's formula";
   ASSERT_EQ(t.in_cycle.size(), n);
-  ASSERT_EQ(t.out_cycle.size(), n * size_t(k));
+  size_t tok = 0;
   for (size_t s = 0; s < n; ++s) {
     if (s > 0) {
-      ASSERT_EQ(int64_t(t.in_cycle[s] - t.in_cycle[s - 1]), ii) << "K " << k << " sample " << s;
+      ASSERT_EQ(int64_t(t.in_cycle[s] - t.in_cycle[s - 1]), seg.skipped(s - 1) ? ii_skip : ii)
+          << "K " << k << " sample " << s << (seg.skipped(s - 1) ? " after a skipped one" : "");
     }
-    for (int64_t j = 0; j < k; ++j) {
+    if (seg.skipped(s)) continue;
+    for (int64_t j = 0; j < k; ++j, ++tok) {
       const int64_t at = L == 1 ? 8 + 6 * j : 9 + g * j + wait * (j / L);
-      ASSERT_EQ(int64_t(t.out_cycle[s * size_t(k) + size_t(j)] - t.in_cycle[s]), at)
+      ASSERT_LT(tok, t.out_cycle.size());
+      ASSERT_EQ(int64_t(t.out_cycle[tok] - t.in_cycle[s]), at)
           << "K " << k << " G " << g << " sample " << s << " token " << j;
     }
   }
+  ASSERT_EQ(tok, t.out_cycle.size()) << "tokens of skipped samples came out";
 }
 
 template <class H>
 void check_timing_all(int k_max) {
-  for (int k = 1; k <= k_max; ++k) {
-    check_timing<H>(k, Consumer::Always, uint64_t(10 + k));
-    check_timing<H>(k, Consumer::TwoClock, uint64_t(50 + k));
-  }
+  for (int k = 1; k <= k_max; ++k)
+    for (bool skips : {false, true}) {
+      check_timing<H>(k, Consumer::Always, uint64_t(10 + k), skips);
+      check_timing<H>(k, Consumer::TwoClock, uint64_t(50 + k), skips);
+    }
 }
 
 TEST(SdftLanesRtl, LatencyAndInitiationIntervalTwoLanes) { check_timing_all<L2>(9); }
@@ -288,6 +313,12 @@ TEST(SdftLanesRtl, QuotedIntervals) {
   EXPECT_EQ(eskin::hls::sdft_lanes_interval(20, 8), 20 + 8);
   EXPECT_EQ(eskin::hls::sdft_lanes_interval(9, 3, 2), 2 * 9 + 7);
   EXPECT_EQ(eskin::hls::sdft_lanes_interval(9, 8, 2), 2 * 9 + 7);
+  // Skipped samples: 24x24 (48 channels) in 8 lanes and 32x32 (64) in 11
+  // take 38 clocks, inside 40; one lane is sdft_bank either way.
+  EXPECT_EQ(eskin::hls::sdft_skip_interval(48, 8), 38);
+  EXPECT_EQ(eskin::hls::sdft_skip_interval(64, 11), 38);
+  EXPECT_EQ(eskin::hls::sdft_skip_interval(64, 10), 44);
+  EXPECT_EQ(eskin::hls::sdft_skip_interval(9, 1), eskin::hls::sdft_lanes_interval(9, 1));
 }
 
 }  // namespace
