@@ -26,11 +26,15 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
   j["clock"]["sample_period_clocks"] = r.budget.period;
   j["clock"]["frame_clocks"] = r.budget.frame_clocks;
   j["clock"]["core_min_hz"] = r.core_min_hz;
-  // The DFT's lanes (host/fpga/flow.h choose_sdft_lanes) and its clocks
-  // per sample at them (KS = carriers + DC when demixing).
+  // The DFT's lanes (host/fpga/flow.h choose_sdft_lanes), its clocks per
+  // sample at them (KS = carriers + DC when demixing): a frame's sample,
+  // any other (no tokens), and the least sample period those allow
+  // (hls/dtmf_top_config.h's budget).
   j["dft"] = {{"lanes", r.spec.sdft_lanes},
               {"channels", r.spec.rows + r.spec.cols + (r.spec.demix ? 1 : 0)},
-              {"clocks_per_sample", r.budget.sdft_clocks}};
+              {"frame_sample_clocks", r.budget.sdft_clocks},
+              {"skipped_sample_clocks", r.budget.sdft_skip_clocks},
+              {"min_sample_period_clocks", r.budget.sdft_min_period}};
   nlohmann::json cases = nlohmann::json::object();
   for (const auto& [name, clocks] : r.load.cases) cases[name] = clocks;
   nlohmann::json routines = nlohmann::json::array();
@@ -70,7 +74,8 @@ std::string dtmf_table(const FlowReport& r) {
   std::string t = fmt::format(
       "skin {}x{}, {} carriers, window {}, {:g} S/s, step {}\n"
       "clock {} MHz (the skin's core needs at least {} MHz), UART {:g} Mbaud\n"
-      "DFT: {} lane{}, {} clocks per sample of the {}\n"
+      "DFT: {} lane{}, a frame's sample {} clocks, the others {}: a period of {} or more, "
+      "the sample's is {}\n"
       "frame engine ({} shifter, neurons on {}), clocks of the {} a frame has (STEP x {} per "
       "sample):\n"
       "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
@@ -80,7 +85,8 @@ std::string dtmf_table(const FlowReport& r) {
       r.spec.rows, r.spec.cols, r.spec.rows + r.spec.cols, r.spec.window, r.spec.sample_hz,
       r.step, mhz(double(r.spec.clk_hz)), mhz(double(r.core_min_hz)),
       double(r.spec.baud) / 1e6, r.spec.sdft_lanes, r.spec.sdft_lanes == 1 ? "" : "s",
-      r.budget.sdft_clocks, r.budget.period, r.spec.engine_fast_shift ? "barrel" : "bit-serial",
+      r.budget.sdft_clocks, r.budget.sdft_skip_clocks, r.budget.sdft_min_period, r.budget.period,
+      r.spec.engine_fast_shift ? "barrel" : "bit-serial",
       r.spec.neuron_unit ? "the neuron unit" : "the engine",
       r.budget.frame_clocks, r.budget.period, r.load.scene_clocks,
       100.0 * double(r.load.scene_clocks) / frame, r.load.scene_frames, r.load.stress_clocks,
