@@ -169,17 +169,18 @@ module dtmf_top #(
   sdft_lanes #(.K_MAX(KS), .N(N), .XW(12), .CW(16), .TW(10), .ACC_W(ACC_W), .K_W(8),
                .LANES(SDFT_LANES)) u_sdft (
       .clk(clk), .rst(rst), .in_valid(adc_valid), .in_ready(sdft_in_ready), .in_x(x),
-      .in_skip(!smp_frame), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k), .cfg_inc(cfg_inc),
-      .cfg_last(cfg_last), .out_valid(sd_valid), .out_ready(sd_ready), .out_k(sd_k),
-      .out_re(sd_re), .out_im(sd_im), .out_last(sd_last));
+      .in_skip(!smp_frame), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k),
+      .cfg_inc(cfg_inc), .cfg_last(cfg_last), .out_valid(sd_valid), .out_ready(sd_ready),
+      .out_k(sd_k), .out_re(sd_re), .out_im(sd_im), .out_last(sd_last));
   wire frame_pending;
   wire [31:0] frame_t;
   wire [15:0] frame_overruns;
   frame_capture #(.KS(KS), .W(ACC_W), .N(N), .STEP(STEP)) u_cap (
-      .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(sdft_fire), .smp_t(adc_t), .smp_frame(smp_frame),
-      .tok_valid(sd_valid), .tok_ready(sd_ready), .tok_last(sd_last), .tok_re(sd_re),
-      .tok_im(sd_im), .rd_addr(io_raddr[7:0]), .rd_data(cap_data), .pending(frame_pending),
-      .frame_t(frame_t), .done(wr_done), .clear(wr_clear), .overruns(frame_overruns));
+      .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(sdft_fire), .smp_t(adc_t),
+      .smp_frame(smp_frame), .tok_valid(sd_valid), .tok_ready(sd_ready), .tok_last(sd_last),
+      .tok_re(sd_re), .tok_im(sd_im), .rd_addr(io_raddr[7:0]), .rd_data(cap_data),
+      .pending(frame_pending), .frame_t(frame_t), .done(wr_done), .clear(wr_clear),
+      .overruns(frame_overruns));
   /* verilator lint_off UNUSEDSIGNAL */
   wire [7:0] sd_k_unused = sd_k;  // tokens arrive in k order; capture counts them
   /* verilator lint_on UNUSEDSIGNAL */

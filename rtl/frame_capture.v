@@ -41,7 +41,6 @@ module frame_capture #(
     input  wire         smp_fire,   // a sample entered sdft_bank
     input  wire [31:0]  smp_t,
     output wire         smp_frame,  // a sample entering now would be a frame
-
     input  wire         tok_valid,
     output wire         tok_ready,
     input  wire         tok_last,

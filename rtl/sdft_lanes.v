@@ -52,9 +52,10 @@
 //   II = 9 + G (K - 1) + max(0, 6 - G LANES) (ceil(K / LANES) - 1).
 // G = 1: II = 6 R + 3 + (K - 1) mod LANES while LANES <= 6 (K = 9, 2
 // lanes: 33 clocks, against 56 for sdft_bank), K + 8 from 6 lanes on: the
-// merger's one token a clock, so more than 6 lanes cannot go faster (hence
-// at most 6 in dtmf_top, host/fpga/board.cpp; K = 24, a 12x12 skin: 32;
-// K = 32, a 16x16 skin: 40, one sample a microsecond at 40 MHz).
+// merger's one token a clock, so more than 6 lanes cannot make a sample
+// with tokens faster (K = 24, a 12x12 skin: 32; K = 32, a 16x16 skin: 40,
+// one sample a microsecond at 40 MHz); they do make skipped ones faster
+// (below).
 // G = 2: II = 2 K + 7 from 3 lanes on.
 // Skipped samples (in_skip, taken with in_x): every active lane computes
 // the sample but gives no token, and the merger has nothing to do; the
@@ -124,8 +125,8 @@ module sdft_lanes #(
                   .K_W(K_W)) u_bank (
           .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .in_x(in_x),
           .in_skip(in_skip), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k),
-          .cfg_inc(cfg_inc), .cfg_last(cfg_last), .out_valid(out_valid), .out_ready(out_ready), .out_k(out_k),
-          .out_re(out_re), .out_im(out_im), .out_last(out_last));
+          .cfg_inc(cfg_inc), .cfg_last(cfg_last), .out_valid(out_valid), .out_ready(out_ready),
+          .out_k(out_k), .out_re(out_re), .out_im(out_im), .out_last(out_last));
     end else if (LANES >= 2) begin : g_lanes
       localparam integer KL = (K_MAX + LANES - 1) / LANES;      // channels per lane
       localparam integer KB = (K_MAX > 1) ? $clog2(K_MAX) : 1;  // global index bits used

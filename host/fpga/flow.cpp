@@ -94,17 +94,13 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
   return lanes;
 }
 
-CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
-                            long clk_hz, int fast_shift, int neuron_unit) {
+namespace {
+
+// choose_core_clock for a plan made at spec's baud rate.
+CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
+                               const std::vector<int32_t>& x, LoadPolicy policy, long clk_hz,
+                               int fast_shift) {
   CoreClock c;
-  hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
-  // Before the load: the shifter and the neuron unit set the engine's clocks.
-  spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
-  spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
-  // The scene's samples as the top takes them: 12-bit codes minus 2048.
-  std::vector<int32_t> x;
-  sim::WorldModel world(scene);
-  for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
   auto load_with = [&](const hls::DtmfTopSpec& s) {
     c.plan = hls::make_dtmf_top_plan(s);
     c.load = measure_engine_load(c.plan, x);
@@ -139,6 +135,39 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
         break;
       }
   c.budget = budget_at(c.clocking);
+  return c;
+}
+
+}  // namespace
+
+CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
+                            long clk_hz, int fast_shift, int neuron_unit) {
+  hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
+  // Before the load: the shifter and the neuron unit set the engine's clocks.
+  spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
+  spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
+  // The scene's samples as the top takes them: 12-bit codes minus 2048.
+  std::vector<int32_t> x;
+  sim::WorldModel world(scene);
+  for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
+  // The plan paces the packets for its baud rate (make_dtmf_top_plan: the
+  // decimation that lets the link carry them), and the clock sets the baud
+  // rate (the fastest exact one): when the chosen clock's differs, plan
+  // again at it, and measure the engine again (the decimation moves the
+  // frames that carry packets against the stress signals, so the longest
+  // frame moves a little: 16x16 at 1 MS/s, 38 363 -> 38 504 clocks at 2
+  // instead of 3 Mbaud), which may choose another clock. A plan for a
+  // slower link than the clock's is safe; one for a faster link would
+  // overrun it, and is refused.
+  CoreClock c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift);
+  for (int pass = 1; pass < 3 && c.clocking.baud != spec.baud; ++pass) {
+    spec.baud = c.clocking.baud;
+    c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift);
+  }
+  if (c.clocking.baud < spec.baud)
+    throw std::logic_error(fmt::format("choose_core_clock: the packets are planned for {} baud, "
+                                       "the clock's UART runs at {}",
+                                       spec.baud, c.clocking.baud));
   return c;
 }
 

@@ -104,7 +104,8 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
 // (not below its default) at which every budget holds, or exactly
 // `clk_hz` when > 0. `budget.ok()` is false when no clock keeps up (the
 // board's default or the asked-for clock is returned with the problems).
-// The plan's spec carries the chosen clock and baud rate.
+// The plan's spec carries the chosen clock and baud rate, and its packet
+// decimation is planned for that baud rate.
 struct CoreClock {
   hls::DtmfTopPlan plan;
   EngineLoad load;

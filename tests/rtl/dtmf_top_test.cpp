@@ -493,9 +493,10 @@ TEST(DtmfTop, Staggered10x10At24MHzWithTheNeuronUnit) {
 
 // The scale table's 16x16 skin at 1 MS/s as both ECP5 rows build it
 // (docs/bitstream.md, the scale table): 40 MHz, the AD7476A's first band;
-// 32 DFT channels in 6 lanes at KS + 8 = 40 clocks a sample, exactly the
-// sample period; the barrel shifter and the neuron unit, the engine's
-// stress load (38 363 clocks) within a frame's 40 000. The first whole-top
+// 32 DFT channels in 6 lanes at KS + 8 = 40 clocks a frame's sample,
+// exactly the sample period, 38 any other; the barrel shifter and the
+// neuron unit, the engine's stress load (38 504 clocks) within a frame's
+// 40 000; packets planned for its 2 Mbaud. The first whole-top
 // run of 6 lanes and of a DFT paced at the sample period. Checks: the
 // board flow chooses exactly this build for the ULX3S (its clock, lanes,
 // shifter and unit; prepare() checks every parameter against the plan);
