@@ -406,6 +406,27 @@ inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
   return std::max(other, long(std::ceil(dft)));
 }
 
+// What sets dtmf_top_min_clock_hz, in words, for the flow's messages: the
+// clock each budget asks for, the ADC's acquisition time, the engine's
+// clocks a frame and the DFT's least sample period (at the plan's lanes,
+// which the flow picks as the fewest that ask no more than the other two
+// at the board's clock: then the DFT's figure may be the largest while the
+// others set it).
+inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_clocks) {
+  const double fs = p.spec.sample_hz;
+  const double room = 1.0 / fs - 250e-9;
+  if (room <= 28.0 / 40e6) return "the AD7476A cannot convert that fast";
+  const long period = dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step);
+  char s[320];
+  std::snprintf(s, sizeof s,
+                "the AD7476A's acquisition time %.1f MHz, the frame engine's %ld clocks a frame "
+                "of %d samples %.1f MHz, the DFT's %ld clocks a sample in %d lane%s %.1f MHz",
+                28.0 / room / 1e6, engine_clocks, p.step,
+                fs * double(engine_clocks) / double(p.step) / 1e6, period, p.spec.sdft_lanes,
+                p.spec.sdft_lanes == 1 ? "" : "s", fs * double(period) / 1e6);
+  return s;
+}
+
 // "-GNAME=VALUE" arguments for verilator.
 inline std::vector<std::string> verilator_g_args(const std::vector<VerilogParam>& ps) {
   std::vector<std::string> a;

@@ -54,11 +54,12 @@
 // pay for the token stream (in rtl/sdft_lanes.v, the merger's K clocks).
 //
 // Resources, iCE40 (scripts/synth_ice40.sh sdft_bank [--param K_MAX=32
-// --param N=128], Yosys 0.23 synth_ice40 -dsp): K_MAX 6, N 32: 418 LUT4,
-// 228 FF, 1 SB_MAC16 (ice40_dsp folds the product register into it),
-// 10 SB_RAM40_4K; K_MAX 32, N 128 (16x16 skin): 428 LUT4, 238 FF, 1 SB_MAC16,
-// 10 SB_RAM40_4K (with the CLEAR state before the lazy clear: 486 / 227
-// and 502 / 237; unpipelined: 490 / 231 and 504 / 241).
+// --param N=128], Yosys 0.23 synth_ice40 -dsp): K_MAX 6, N 32: 420 LUT4,
+// 229 FF, 1 SB_MAC16 (ice40_dsp folds the product register into it),
+// 10 SB_RAM40_4K; K_MAX 32, N 128 (16x16 skin): 429 LUT4, 239 FF, 1 SB_MAC16,
+// 10 SB_RAM40_4K (before in_skip: 418 / 228 and 428 / 238; with the CLEAR
+// state before the lazy clear: 486 / 227 and 502 / 237; unpipelined: 490 /
+// 231 and 504 / 241).
 // ECP5-85F out of context (scripts/synth_ecp5.sh sdft_bank --pnr --freq 50,
 // seed 1): 333 LUT4, 367 FF, 73 CCU2C, 36 DPR16X4, 1 MULT18X18D, 1 DP16KD,
 // Fmax 72.5 MHz (unpipelined: 43.4 MHz); its critical path is now ROM

@@ -182,6 +182,7 @@ bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& 
   r.policy = opt.load;
   r.engine_clocks = cc.engine_clocks;
   r.core_min_hz = cc.core_min_hz;
+  r.core_min_reason = hls::dtmf_top_min_clock_reason(plan, cc.engine_clocks);
   r.budget = cc.budget;
   r.spec = plan.spec;
   r.clk_hz = clk.clk_hz;
@@ -234,6 +235,10 @@ FlowReport run_flow(const Board& b, const sim::Scene& scene, const FlowOptions& 
   t.clk_hz = clk.clk_hz;
   t.params = clk.wrapper_params;
   run_tools(b, opt, t, r);
+  // A clock the design misses: say what asked for it.
+  if (r.ran_tools && r.fits && !r.meets_timing)
+    r.failure += fmt::format(" (the core needs {} MHz or more: {})", mhz(double(r.core_min_hz)),
+                             r.core_min_reason);
   return r;
 }
 

@@ -74,6 +74,7 @@ struct FlowReport {
   LoadPolicy policy = LoadPolicy::Scene;
   long engine_clocks = 0;            // what the policy makes the clock carry
   long core_min_hz = 0;              // no slower clock keeps up (a lower bound)
+  std::string core_min_reason;       // what sets it (dtmf_top_min_clock_reason)
   hls::DtmfTopClockBudget budget;    // at the chosen clock
   std::vector<hls::VerilogParam> params;  // the core's, then the wrapper's
   std::vector<Resource> resources;   // nextpnr's utilisation (post-pack)

@@ -26,6 +26,7 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
   j["clock"]["sample_period_clocks"] = r.budget.period;
   j["clock"]["frame_clocks"] = r.budget.frame_clocks;
   j["clock"]["core_min_hz"] = r.core_min_hz;
+  j["clock"]["core_min_reason"] = r.core_min_reason;
   // The DFT's lanes (host/fpga/flow.h choose_sdft_lanes), its clocks per
   // sample at them (KS = carriers + DC when demixing): a frame's sample,
   // any other (no tokens), and the least sample period those allow
@@ -73,7 +74,7 @@ std::string dtmf_table(const FlowReport& r) {
   const double frame = double(std::max(1L, r.budget.frame_clocks));
   std::string t = fmt::format(
       "skin {}x{}, {} carriers, window {}, {:g} S/s, step {}\n"
-      "clock {} MHz (the skin's core needs at least {} MHz), UART {:g} Mbaud\n"
+      "clock {} MHz (the skin's core needs at least {} MHz: {}), UART {:g} Mbaud\n"
       "DFT: {} lane{}, a frame's sample {} clocks, the others {}: a period of {} or more, "
       "the sample's is {}\n"
       "frame engine ({} shifter, neurons on {}), clocks of the {} a frame has (STEP x {} per "
@@ -83,7 +84,7 @@ std::string dtmf_table(const FlowReport& r) {
       "  + longest command     {:>9} ({:.0f} %, {})\n"
       "  the clock carries the {}\n",
       r.spec.rows, r.spec.cols, r.spec.rows + r.spec.cols, r.spec.window, r.spec.sample_hz,
-      r.step, mhz(double(r.spec.clk_hz)), mhz(double(r.core_min_hz)),
+      r.step, mhz(double(r.spec.clk_hz)), mhz(double(r.core_min_hz)), r.core_min_reason,
       double(r.spec.baud) / 1e6, r.spec.sdft_lanes, r.spec.sdft_lanes == 1 ? "" : "s",
       r.budget.sdft_clocks, r.budget.sdft_skip_clocks, r.budget.sdft_min_period, r.budget.period,
       r.spec.engine_fast_shift ? "barrel" : "bit-serial",

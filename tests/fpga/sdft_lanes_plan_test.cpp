@@ -109,6 +109,10 @@ TEST(SdftLanesPlan, FourByFourAtOneMegasampleTakesLanesOnTheUlx3s) {
   EXPECT_GT(hls::dtmf_top_sdft_min_period(c.plan.ks, lanes - 1, step), c.budget.period)
       << "fewer lanes would do";
   EXPECT_EQ(c.core_min_hz, other) << "the DFT sets the minimum clock";
+  const std::string why = hls::dtmf_top_min_clock_reason(c.plan, c.engine_clocks);
+  EXPECT_EQ(why.rfind("the AD7476A's acquisition time 37.3 MHz, ", 0), 0u) << why;
+  EXPECT_NE(why.find(" clocks a sample in " + std::to_string(lanes) + " lanes "),
+            std::string::npos) << why;
   ASSERT_TRUE(c.budget.ok()) << c.budget.problems.front();
   EXPECT_LE(c.clocking.clk_hz, 40000000);
   EXPECT_EQ(c.plan.spec.clk_hz, c.clocking.clk_hz);
@@ -167,6 +171,8 @@ TEST(SdftLanesPlan, IcebreakerKeepsOneLane) {
                                          fpga::LoadPolicy::Stress);
   EXPECT_EQ(c.plan.spec.sdft_lanes, 1);
   EXPECT_EQ(c.core_min_hz, 50000000);  // the DFT's 6 KS + 2 = 50 clocks per sample set it
+  const std::string why = hls::dtmf_top_min_clock_reason(c.plan, c.engine_clocks);
+  EXPECT_NE(why.find("the DFT's 50 clocks a sample in 1 lane 50.0 MHz"), std::string::npos) << why;
 }
 
 // The default scene at 35 kS/s needs no lanes on either board.
