@@ -45,13 +45,13 @@ module dft_capture_tb #(
   sdft_lanes #(.K_MAX(KS), .N(N), .XW(12), .CW(16), .TW(10), .ACC_W(ACC_W), .K_W(8),
                .LANES(LANES)) u_sdft (
       .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .in_x(in_x),
-      .in_skip(!smp_frame), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k), .cfg_inc(cfg_inc),
-      .cfg_last(cfg_last), .out_valid(tok_valid), .out_ready(tok_ready), .out_k(tok_k),
-      .out_re(tok_re), .out_im(tok_im), .out_last(tok_last));
+      .in_skip(!smp_frame), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k),
+      .cfg_inc(cfg_inc), .cfg_last(cfg_last), .out_valid(tok_valid), .out_ready(tok_ready),
+      .out_k(tok_k), .out_re(tok_re), .out_im(tok_im), .out_last(tok_last));
   frame_capture #(.KS(KS), .W(ACC_W), .N(N), .STEP(STEP)) u_cap (
-      .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(in_fire), .smp_t(t), .smp_frame(smp_frame),
-      .tok_valid(tok_valid), .tok_ready(tok_ready), .tok_last(tok_last), .tok_re(tok_re),
-      .tok_im(tok_im), .rd_addr(rd_addr), .rd_data(rd_data), .pending(pending),
+      .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(in_fire), .smp_t(t),
+      .smp_frame(smp_frame), .tok_valid(tok_valid), .tok_ready(tok_ready), .tok_last(tok_last),
+      .tok_re(tok_re), .tok_im(tok_im), .rd_addr(rd_addr), .rd_data(rd_data), .pending(pending),
       .frame_t(frame_t), .done(done), .clear(clear), .overruns(overruns));
   /* verilator lint_off UNUSEDSIGNAL */
   wire [7:0] tok_k_unused = tok_k;  // tokens arrive in k order; the capture counts them
