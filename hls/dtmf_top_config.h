@@ -383,14 +383,34 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
   return b;
 }
 
-// The slowest clock the ADC's acquisition time and the engine allow (with
-// SCLK_DIV = 1 at best), the DFT aside: what its lanes must not exceed. 0
-// when the ADC cannot convert at the sample rate at any clock.
-inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_clocks) {
+// The clock each budget asks for at the plan's rate (Hz, not rounded): the
+// ADC's acquisition time with SCLK_DIV = 1 at best (adc_ok false when no
+// clock lets the AD7476A convert that fast), the engine's clocks a frame,
+// and the DFT's least sample period at the spec's lanes.
+struct DtmfTopClockNeeds {
+  bool adc_ok = false;
+  double adc_hz = 0, engine_hz = 0, dft_hz = 0;
+  long dft_period = 0;  // dtmf_top_sdft_min_period
+};
+
+inline DtmfTopClockNeeds dtmf_top_clock_needs(const DtmfTopPlan& p, long engine_clocks) {
+  DtmfTopClockNeeds n;
   const double fs = p.spec.sample_hz;
   const double room = 1.0 / fs - 250e-9;  // s per sample left after tACQ
-  if (room <= 28.0 / 40e6) return 0;      // 28 H / clk >= 0.7 us at any clock
-  return long(std::ceil(std::max(28.0 / room, fs * double(engine_clocks) / double(p.step))));
+  n.adc_ok = room > 28.0 / 40e6;          // 28 H / clk >= 0.7 us at any clock
+  n.adc_hz = n.adc_ok ? 28.0 / room : 0.0;
+  n.engine_hz = fs * double(engine_clocks) / double(p.step);
+  n.dft_period = dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step);
+  n.dft_hz = fs * double(n.dft_period);
+  return n;
+}
+
+// The slowest clock the ADC's acquisition time and the engine allow, the
+// DFT aside: what its lanes must not exceed. 0 when the ADC cannot convert
+// at the sample rate at any clock.
+inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_clocks) {
+  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
+  return n.adc_ok ? long(std::ceil(std::max(n.adc_hz, n.engine_hz))) : 0;
 }
 
 // The slowest clock the DFT (at the spec's lanes), the engine and the ADC's
@@ -399,31 +419,24 @@ inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_
 // periods are rounded). 0 when the ADC cannot convert at the sample rate at
 // any clock.
 inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
-  const long other = dtmf_top_min_clock_hz_without_dft(p, engine_clocks);
-  if (other == 0) return 0;
-  const double dft =
-      p.spec.sample_hz * double(dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step));
-  return std::max(other, long(std::ceil(dft)));
+  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
+  return n.adc_ok ? long(std::ceil(std::max({n.adc_hz, n.engine_hz, n.dft_hz}))) : 0;
 }
 
 // What sets dtmf_top_min_clock_hz, in words, for the flow's messages: the
-// clock each budget asks for, the ADC's acquisition time, the engine's
-// clocks a frame and the DFT's least sample period (at the plan's lanes,
-// which the flow picks as the fewest that ask no more than the other two
-// at the board's clock: then the DFT's figure may be the largest while the
-// others set it).
+// clock each budget asks for (dtmf_top_clock_needs; the DFT's at the plan's
+// lanes, which the flow picks as the fewest that ask no more than the other
+// two at the board's clock: then the DFT's figure may be the largest while
+// the others set it).
 inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_clocks) {
-  const double fs = p.spec.sample_hz;
-  const double room = 1.0 / fs - 250e-9;
-  if (room <= 28.0 / 40e6) return "the AD7476A cannot convert that fast";
-  const long period = dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step);
+  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
+  if (!n.adc_ok) return "the AD7476A cannot convert that fast";
   char s[320];
   std::snprintf(s, sizeof s,
                 "the AD7476A's acquisition time %.1f MHz, the frame engine's %ld clocks a frame "
                 "of %d samples %.1f MHz, the DFT's %ld clocks a sample in %d lane%s %.1f MHz",
-                28.0 / room / 1e6, engine_clocks, p.step,
-                fs * double(engine_clocks) / double(p.step) / 1e6, period, p.spec.sdft_lanes,
-                p.spec.sdft_lanes == 1 ? "" : "s", fs * double(period) / 1e6);
+                n.adc_hz / 1e6, engine_clocks, p.step, n.engine_hz / 1e6, n.dft_period,
+                p.spec.sdft_lanes, p.spec.sdft_lanes == 1 ? "" : "s", n.dft_hz / 1e6);
   return s;
 }
 

@@ -74,7 +74,8 @@ constexpr int64_t sdft_lanes_interval(int64_t k, int64_t lanes, int64_t take_clo
 // no tokens): the fullest lane's 6 ceil(K / lanes) + 2 clocks, whatever the
 // consumer (one lane: sdft_bank's 6 K + 2, as with tokens).
 constexpr int64_t sdft_skip_interval(int64_t k, int64_t lanes) {
-  return 6 * ((k + (lanes > 1 ? lanes : 1) - 1) / (lanes > 1 ? lanes : 1)) + 2;
+  const int64_t l = lanes > 1 ? lanes : 1;
+  return 6 * ((k + l - 1) / l) + 2;
 }
 
 constexpr int sdft_ceil_log2(int64_t v) {

@@ -97,6 +97,13 @@ std::vector<Clocking> ecp5_clocks(long osc_hz) {
   return out;
 }
 
+// The first (slowest) of ascending `clocks` at or above want.
+std::optional<Clocking> first_clock_from(const std::vector<Clocking>& clocks, long want) {
+  for (const auto& c : clocks)
+    if (c.clk_hz >= want) return c;
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::vector<std::string> board_names() {
@@ -144,10 +151,13 @@ Clocking choose_clock(const Board& b, long min_hz, long clk_hz) {
         b.name, mhz(clk_hz), list()));
   }
   const long want = std::max(min_hz, b.default_clk_hz);
-  for (const auto& c : clocks)
-    if (c.clk_hz >= want) return c;
+  if (const auto c = first_clock_from(clocks, want)) return *c;
   throw std::invalid_argument(fmt::format("board {}: the core needs {} or more; the board makes {}",
                                           b.name, mhz(want), list()));
+}
+
+std::optional<Clocking> slowest_clock_from(const Board& b, long min_hz) {
+  return first_clock_from(board_clocks(b), std::max(min_hz, b.default_clk_hz));
 }
 
 Clocking choose_hall_clock(const Board& b, long clk_hz) {

@@ -4,6 +4,7 @@
 // how the board makes the core's clock from its oscillator.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -73,9 +74,13 @@ struct Clocking {
 // baud rate (3, 2 or 1 Mbaud) that divides each one exactly, ascending.
 std::vector<Clocking> board_clocks(const Board& b);
 
-// The slowest of board_clocks() at or above min_hz (the board's default
-// clock if that is faster); clk_hz > 0 asks for exactly that clock instead.
-// Throws std::invalid_argument listing the clocks the board can make.
+// The slowest of board_clocks() at or above min_hz and the board's default
+// clock; none when the board makes no clock that fast.
+std::optional<Clocking> slowest_clock_from(const Board& b, long min_hz);
+
+// slowest_clock_from(b, min_hz); clk_hz > 0 asks for exactly that clock
+// instead. Throws std::invalid_argument listing the clocks the board can
+// make.
 Clocking choose_clock(const Board& b, long min_hz, long clk_hz = 0);
 
 // The clock of a build with hall_top (alone, or in mixed_top), which counts

@@ -80,12 +80,8 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
   if (other == 0) return 1;
   // The board clock the rest would get (its clocks come in steps: a lane
   // that saves less than a step saves nothing), and its sample period.
-  long clk = std::max(other, b.default_clk_hz);
-  for (const auto& k : board_clocks(b))
-    if (k.clk_hz >= clk) {
-      clk = k.clk_hz;
-      break;
-    }
+  const auto board_clk = slowest_clock_from(b, other);
+  const long clk = board_clk ? board_clk->clk_hz : std::max(other, b.default_clk_hz);
   const long period = std::lround(double(clk) / plan.spec.sample_hz);
   const int most = std::min({b.max_sdft_lanes, 16, plan.ks});
   int lanes = 1;
