@@ -21,10 +21,17 @@
 
 namespace eskin::cli {
 
-// The board executable's arguments: the scene, and an FST trace if asked.
-inline std::vector<std::string> board_args(const std::string& scene, const std::string& trace) {
+// The board executable's arguments: the scene, an FST trace if asked, and
+// the size of the host's start-up `commands` (run_board sends them): the
+// board holds its time at 0 until all of them are in, so they act from the
+// first frame however late the host gets to send them on a busy machine.
+inline std::vector<std::string> board_args(const std::string& scene, const std::string& trace,
+                                           const std::vector<std::vector<uint8_t>>& commands) {
   std::vector<std::string> a{scene};
   if (!trace.empty()) a.insert(a.end(), {"--trace", trace});
+  size_t bytes = 0;
+  for (const auto& c : commands) bytes += c.size();
+  if (bytes > 0) a.insert(a.end(), {"--hold-for-host-bytes", std::to_string(bytes)});
   return a;
 }
 

@@ -411,12 +411,14 @@ int run_simulate_mixed(const sim::Scene& scene, const Args& a) {
   const std::string exe = vboard::board_executable(build, note);
   std::filesystem::create_directories(a.out);
 
-  vboard::VboardProcess board(exe, board_args(a.scene, a.trace));
-  const size_t total = board.ready().at("scene_samples");
   link::LinkEncoder enc;
+  const std::vector<std::vector<uint8_t>> commands = {output_mask_command(scene, enc),
+                                                      setup.commands};
+  vboard::VboardProcess board(exe, board_args(a.scene, a.trace, commands));
+  const size_t total = board.ready().at("scene_samples");
   GoldenRun gold;
   const BoardRun run = run_board(
-      board, int(dtmf.baud()), {output_mask_command(scene, enc), setup.commands}, total,
+      board, int(dtmf.baud()), commands, total,
       [](const Packet& p) { return link::is_hall_packet(p.type) ? -1L : long(p.t); },
       [&] { gold = run_golden(scene, dtmf.plan.step); });
 
@@ -479,16 +481,17 @@ int run_simulate(const Args& a) {
   const std::string exe = vboard::board_executable(build, note);
   std::filesystem::create_directories(a.out);
 
-  vboard::VboardProcess board(exe, board_args(a.scene, a.trace));
-  const size_t total = board.ready().at("scene_samples");
   // The board's serial port through the host streaming library
   // (host/stream), packets decoded and checked by host/link. The host
   // configures the board like a host program: the scene's outputs, plus
   // the periodic status (its counters go into the report).
   link::LinkEncoder enc;
+  const std::vector<std::vector<uint8_t>> commands = {output_mask_command(scene, enc)};
+  vboard::VboardProcess board(exe, board_args(a.scene, a.trace, commands));
+  const size_t total = board.ready().at("scene_samples");
   GoldenRun gold;
   const BoardRun run = run_board(
-      board, int(build.baud()), {output_mask_command(scene, enc)}, total,
+      board, int(build.baud()), commands, total,
       [](const Packet& p) { return long(p.t); },
       [&] { gold = run_golden(scene, build.plan.step); });
   report_dtmf(scene, a.scene, build, gold, run, total, a.out);

@@ -517,7 +517,7 @@ int run_simulate_hall(const sim::Scene& scene, const std::string& scene_file,
       build, [](const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); });
   fs::create_directories(out_dir);
 
-  vboard::VboardProcess board(exe, board_args(scene_file, trace));
+  vboard::VboardProcess board(exe, board_args(scene_file, trace, {setup.commands}));
   const BoardRun run = run_board(
       board, int(build.baud), {setup.commands}, size_t(scene.duration_s * 1e6),
       [](const Packet& p) { return p.type == link::kHallSamples ? long(p.t) : -1L; });

@@ -56,7 +56,7 @@ class UsbSerial {
   // Level the bridge drives on uart_rxd at time t.
   bool rxd_level(double t) {
     if (!tx_busy_) {
-      if (to_fpga_.empty() || bit_ns_ == 0) return true;
+      if (to_fpga_.empty() || bit_ns_ == 0 || t < tx_not_before_) return true;
       tx_busy_ = true;
       tx_start_ = t;
       tx_byte_ = to_fpga_.front();
@@ -72,6 +72,8 @@ class UsbSerial {
   }
 
   void queue_to_fpga(const uint8_t* p, size_t n) { to_fpga_.insert(to_fpga_.end(), p, p + n); }
+  // No start bit before time t (ns): the line idles until then.
+  void send_from(double t) { tx_not_before_ = t; }
   bool to_fpga_idle() const { return !tx_busy_ && to_fpga_.empty(); }
 
   // Bytes received from the FPGA and not yet handed to the host, with the
@@ -96,7 +98,7 @@ class UsbSerial {
   std::deque<uint8_t> to_fpga_;
   bool tx_busy_ = false;
   uint8_t tx_byte_ = 0;
-  double tx_start_ = 0;
+  double tx_start_ = 0, tx_not_before_ = 0;
   uint64_t bytes_to_host_ = 0, bytes_to_fpga_ = 0, framing_errors_ = 0;
 };
 

@@ -24,8 +24,12 @@ int vboard_cli_main(int argc, char** argv, const std::string& title, double defa
   app.add_option("scene", a.scene, "scene file (YAML, docs/scenes.md)")->required()->check(CLI::ExistingFile);
   app.add_option("--pty-link", a.pty_link, "also make this path a symlink to the pty");
   app.add_option("--trace", a.trace, "write an FST waveform of the FPGA (GTKWave; ~7x slower)");
-  app.add_flag("--no-wait", a.no_wait,
+  CLI::Option* no_wait = app.add_flag("--no-wait", a.no_wait,
                "start at once instead of waiting for a reader to set a baud rate");
+  app.add_option("--hold-for-host-bytes", a.hold_for_host_bytes,
+                 "once a reader is there, hold time at 0 until it has sent this many bytes (its "
+                 "start-up commands, which then act from the first frame)")
+      ->excludes(no_wait);
   app.add_option("--reader-timeout", a.reader_timeout_s, "seconds to wait for a reader")
       ->capture_default_str();
   app.add_option("--tail", a.tail_s, "seconds of idle input after the scene (last frames out)")
@@ -42,6 +46,13 @@ int vboard_cli_main(int argc, char** argv, const std::string& title, double defa
     std::fprintf(stderr, "eskin-vboard: error: %s\n", e.what());
     return 2;
   }
+}
+
+void apply_start_options(const VboardArgs& a, BoardConfig& cfg) {
+  cfg.wait_for_reader = !a.no_wait;
+  cfg.reader_timeout_s = a.reader_timeout_s;
+  cfg.hold_for_host_bytes = a.hold_for_host_bytes;
+  cfg.trace = a.trace;
 }
 
 void print_ready(FILE* json, const PtyPort& pty, const std::string& key, double clk_hz, double baud,

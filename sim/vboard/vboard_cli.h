@@ -21,6 +21,7 @@ struct VboardArgs {
   std::string scene, pty_link, trace;
   bool no_wait = false;
   double reader_timeout_s = 60;
+  uint64_t hold_for_host_bytes = 0;  // start only once the host has sent this many bytes
   double tail_s = 0.002;  // idle time after the scene, to let the last frames out
 };
 
@@ -29,6 +30,9 @@ struct VboardArgs {
 // arguments parsed; `run` called; errors printed as "eskin-vboard: error:".
 int vboard_cli_main(int argc, char** argv, const std::string& title, double default_tail_s,
                     const std::function<int(const VboardArgs&, FILE* json)>& run);
+
+// The start and the trace options into the board's configuration.
+void apply_start_options(const VboardArgs& a, BoardConfig& cfg);
 
 // Throws, naming both, when the scene needs another build (`kind`: "FPGA",
 // "Hall", "mixed") than this board's: boards are made per build by

@@ -105,9 +105,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   cfg.baud = double(build.baud);
   cfg.hall = &sensors;
   cfg.cycles = uint64_t(std::llround((scene.duration_s + a.tail_s) * cfg.clk_hz));
-  cfg.wait_for_reader = !a.no_wait;
-  cfg.reader_timeout_s = a.reader_timeout_s;
-  cfg.trace = a.trace;
+  eskin::vboard::apply_start_options(a, cfg);
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);

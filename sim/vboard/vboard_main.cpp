@@ -85,9 +85,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   cfg.clk_hz = params.clk_hz();
   cfg.baud = params.baud();
   const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, params.adc_shift(), a.tail_s);
-  cfg.wait_for_reader = !a.no_wait;
-  cfg.reader_timeout_s = a.reader_timeout_s;
-  cfg.trace = a.trace;
+  eskin::vboard::apply_start_options(a, cfg);
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);

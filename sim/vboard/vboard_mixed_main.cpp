@@ -100,9 +100,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   const eskin::sim::HallWorld hall_world(scene.hall);
   eskin::sim::HallSensorArray sensors(hall_world, scene.hall.config, build.hall.spec);
   cfg.hall = &sensors;
-  cfg.wait_for_reader = !a.no_wait;
-  cfg.reader_timeout_s = a.reader_timeout_s;
-  cfg.trace = a.trace;
+  eskin::vboard::apply_start_options(a, cfg);
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);

@@ -18,6 +18,10 @@ namespace {
 const sc_core::sc_time kBatch(100, sc_core::SC_US);
 const sc_core::sc_time kUsbPeriod(100, sc_core::SC_US);
 constexpr int kBaudCheckEvery = 10;  // USB visits between termios reads (1 ms)
+// A held board's first host bytes go out on RXD from this time, not at 0: on
+// a board the host can write only after the FPGA has been configured and
+// left its power-on reset (16 cycles, rtl/power_on_reset.v).
+constexpr double kHostBytesFromNs = 10000;
 
 double cpu_seconds() {
   timespec ts{};
@@ -121,6 +125,38 @@ void VirtualBoard::move_bytes() {
   while (size_t n = pty_.read(buf, sizeof buf)) usb_.queue_to_fpga(buf, n);
 }
 
+// Time still at 0: the host's first bytes are queued for the FPGA's RXD as
+// they come, so they go out from the first cycle on. False (and the error
+// set) if the reader closes or the timeout passes first.
+bool VirtualBoard::wait_for_host_bytes() {
+  const auto t0 = std::chrono::steady_clock::now();
+  uint64_t got = 0;
+  uint8_t buf[256];
+  while (got < cfg_.hold_for_host_bytes) {
+    while (size_t n = pty_.read(buf, sizeof buf)) {
+      usb_.queue_to_fpga(buf, n);
+      got += n;
+    }
+    if (got >= cfg_.hold_for_host_bytes) {
+      usb_.send_from(kHostBytesFromNs);
+      break;
+    }
+    if (pty_.reader_closed() ||
+        std::chrono::steady_clock::now() - t0 >
+            std::chrono::duration<double>(cfg_.reader_timeout_s)) {
+      stats_.error = "the host sent " + std::to_string(got) + " of the " +
+                     std::to_string(cfg_.hold_for_host_bytes) +
+                     " bytes the board was told to wait for (--hold-for-host-bytes) before " +
+                     (pty_.reader_closed() ? "it closed " + pty_.slave_path()
+                                           : "the " + std::to_string(int(cfg_.reader_timeout_s)) +
+                                                 " s timeout");
+      return false;
+    }
+    usleep(1000);
+  }
+  return true;
+}
+
 void VirtualBoard::usb_thread() {
   if (cfg_.wait_for_reader) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -136,6 +172,10 @@ void VirtualBoard::usb_thread() {
     }
   }
   follow_reader_baud();
+  if (cfg_.hold_for_host_bytes > 0 && !wait_for_host_bytes()) {
+    sc_core::sc_stop();
+    return;
+  }
   started_ = true;
   reader_ready_.notify(sc_core::SC_ZERO_TIME);
   for (int visit = 1; !finished_; ++visit) {

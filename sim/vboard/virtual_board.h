@@ -41,6 +41,10 @@ struct BoardConfig {
   bool wait_for_reader = true;   // hold time at 0 until a reader sets a baud rate
   std::string trace;             // FST waveform file ("": none), from the first cycle
   double reader_timeout_s = 60;  // ... for at most this long (wall clock)
+  // ... and then, until the host has sent this many bytes (its start-up
+  // commands, which then act from the first cycle however busy the machine
+  // is; 0: start at once)
+  uint64_t hold_for_host_bytes = 0;
 };
 
 struct BoardStats {
@@ -74,6 +78,7 @@ SC_MODULE(VirtualBoard) {
   bool running() const;  // the scene (plus its tail) is not over yet
   void move_bytes();
   void follow_reader_baud();
+  bool wait_for_host_bytes();
   sc_core::sc_time time_of(uint64_t cycle) const;
 
   FpgaModel& fpga_;

@@ -46,7 +46,7 @@ TEST(MixedCommands, EachCommandIsJudgedByExactlyOneTop) {
   cmds.push_back(enc.frame(0xA0, 0, {1, 2, 3}));
   cmds.push_back(enc.request_status());
 
-  eskin::vboard::VboardProcess board(exe, {scene_file});
+  eskin::vboard::VboardProcess board(exe, eskin::cli::board_args(scene_file, "", cmds));
   const eskin::cli::BoardRun run = eskin::cli::run_board(
       board, int(dtmf.baud()), cmds, 1, [](const Packet&) { return -1L; });
   EXPECT_EQ(board.wait(), 0);

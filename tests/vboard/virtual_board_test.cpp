@@ -231,4 +231,49 @@ TEST(VirtualBoard, ReaderAtTheWrongBaudRateIsReported) {
   EXPECT_GT(c.done.at("usb_framing_errors").get<uint64_t>(), 0u);
 }
 
+// `--hold-for-host-bytes N` (what `eskin simulate` uses for its start-up
+// commands): the host opens the port, then waits 1.5 s of wall clock, far
+// longer than this 20 ms scene takes to simulate, before it sends
+// SET_OUTPUT_MASK(status only). Held, the board has not moved: the mask
+// acts before the first frame, so not one amplitude, taxel or spike packet
+// arrives (the default mask sends all three), and periodic status does.
+TEST(VirtualBoard, HeldBoardStartsWithTheHostsCommands) {
+  eskin::link::LinkEncoder enc;
+  const std::vector<uint8_t> cmd = enc.set_output_mask(eskin::hls::kMaskStatus);
+  VboardProcess vb(ESKIN_VBOARD_BIN, {short_scene(0.02, "vboard_hold"), "--hold-for-host-bytes",
+                                      std::to_string(cmd.size())});
+  const int fd = open_serial(vb.pty(), B3000000);
+  ASSERT_GE(fd, 0);
+  usleep(1500000);
+  ASSERT_EQ(write(fd, cmd.data(), cmd.size()), ssize_t(cmd.size()));
+  const Capture c = capture(vb, fd, [](const Packet&) {});
+  close(fd);
+  EXPECT_EQ(vb.wait(), 0);
+  EXPECT_EQ(c.done.at("bytes_to_fpga").get<uint64_t>(), cmd.size());
+  int status = 0, data = 0;
+  for (const Packet& p : c.packets) {
+    status += p.type == eskin::link::kStatus;
+    data += p.type == eskin::link::kAmplitudes || p.type == eskin::link::kTaxelsDense ||
+            p.type == eskin::link::kSpikes;
+  }
+  EXPECT_GT(status, 0);
+  EXPECT_EQ(data, 0);
+}
+
+// A host that closes the port before it has sent the bytes the board holds
+// for: the board never starts and exits with an error (status 2, no done
+// line), instead of running without the host's configuration.
+TEST(VirtualBoard, HeldBoardRefusesToStartWithoutTheHostsBytes) {
+  VboardProcess vb(ESKIN_VBOARD_BIN,
+                   {short_scene(0.02, "vboard_hold_short"), "--hold-for-host-bytes", "100"});
+  const int fd = open_serial(vb.pty(), B3000000);
+  ASSERT_GE(fd, 0);
+  const uint8_t three[3] = {0, 1, 2};
+  ASSERT_EQ(write(fd, three, 3), 3);
+  usleep(200000);
+  close(fd);
+  EXPECT_EQ(vb.wait(), 2);
+  EXPECT_TRUE(vb.done().is_null());
+}
+
 }  // namespace
