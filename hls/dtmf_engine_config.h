@@ -163,10 +163,20 @@ struct IzhikevichUnitPort {
     c.x_shift = uint8_t(cfg[15] & 63), c.input_change = cfg[16] != 0;
     return c;
   }
-  // An IO write at `clock`; false when `a` is not a unit port.
+  // An IO write at `clock`; false when `a` is not a unit port. Throws
+  // std::logic_error on a constant word written while an update runs: the
+  // unit reads its constants during the update (rtl/izhikevich_layer.v,
+  // "Configuration"), so the microcode must write them between updates.
   bool write(uint16_t a, uint32_t d, uint64_t clock) {
     if (!present) return false;
-    if ((a & 0xFFE0) == kIoIzCfg) return cfg[a & 31] = d, true;
+    if ((a & 0xFFE0) == kIoIzCfg) {
+      if (clock < done_clock)
+        throw std::logic_error("the microcode wrote the neuron unit's constant word " +
+                               std::to_string(a & 31) + " in clock " + std::to_string(clock) +
+                               ", while an update ran (until clock " +
+                               std::to_string(done_clock) + ")");
+      return cfg[a & 31] = d, true;
+    }
     switch (a) {
       case kIoIzX: x = int32_t(d); return true;
       case kIoIzV: v = int32_t(d); return true;

@@ -19,8 +19,7 @@
 // sK gives p in sK+1, a SH in sK gives {q, qc} in sK+1:
 //   E   from the ports and words: y = ic ? clamp(x - x_prev, 0, 2^31-1) : x,
 //       wh = (v + 62.5 mV)[30:15], wl = v[14:0], vh = rnd(v >> 14), uacc = U,
-//       vacc = v + C, x_prev' = ic ? x : x_prev; the other words are
-//       copied (writes while busy touch only the copies' sources)
+//       vacc = v + C, x_prev' = ic ? x : x_prev (kept for the results)
 //   s0  MUL wh*wl    SH xs' = y >> x_shift        y = U
 //   s1  MUL m4*Uh    SH U22 = y >> (FU-22)        xs = sat16(xs'), sq = p >> 14
 //   s2  MUL m4*Ul    y = p 2^15                   vacc -= U22
@@ -59,8 +58,13 @@
 // engine may read one neuron's results while the unit computes the next
 // (the microcode's nu_layer does).
 // The ports are used at E through the adders above: drive them from
-// registers. Configuration: cfg_we writes a word any time; a write at E or
-// while busy applies from the next update.
+// registers. Configuration: cfg_we writes a word while the unit is idle
+// (in_ready) and not in the clock of the handshake; the unit reads its
+// constants during the update, so a write while busy would mix two
+// configurations. The microcode writes a layer's words only between
+// layers (neuron_unit in rtl/ucode/dtmf_chain.fe), and the top's C++
+// models (hls::IzhikevichUnitPort) throw on any write while busy, so every
+// microcode test checks that contract.
 //
 // Resources (the unit alone; yosys 0.23 synth_ice40 -dsp -abc9 as
 // scripts/synth_ice40.sh; yowasp yosys synth_ecp5 / nextpnr-ecp5 --85k
@@ -132,20 +136,16 @@ module izhikevich_layer (
   wire      go = in_valid && !busy;
   assign in_ready = !busy;
 
-  // Copy, at the handshake, of the words used after it (C is consumed at
-  // that edge, into vacc), and of the update's x_prev result: the outputs
-  // keep the previous update's results until edge E+14.
-  reg [31:0] k_vreset, k_ujump, k_xprev;
-  reg [15:0] k_m2, k_m3, k_m4, k_gain;
-  reg [5:0]  k_xsh, k_fu, k_s4, k_s3, k_nj, k_s2;
+  // The update's x_prev result, taken at the handshake: the outputs keep
+  // the previous update's results until edge E+14, and the engine changes
+  // the operand ports meanwhile. The constants are read where they are
+  // used, from the configuration words themselves (no copy: they must not
+  // change during an update, see the header).
+  reg [31:0] k_xprev;
   always @(posedge clk)
-    if (go) begin
-      k_vreset <= c_vreset; k_ujump <= c_ujump; k_xprev <= c_ic ? in_x : in_x_prev;
-      k_m2 <= c_m2; k_m3 <= c_m3; k_m4 <= c_m4; k_gain <= c_gain;
-      k_xsh <= c_xsh; k_fu <= c_fu; k_s4 <= c_s4; k_s2 <= c_s2;
-      k_s3 <= c_s3 + 6'd15;                // c3v = rnd((p << 15) >> (s3 + 15))
-      k_nj <= 6'd15 + c_gsr - c_gsl;       // J = rnd((p << 15) >> (15 + gsr - gsl))
-    end
+    if (go) k_xprev <= c_ic ? in_x : in_x_prev;
+  wire [5:0] s3_n = c_s3 + 6'd15;            // c3v = rnd((p << 15) >> (s3 + 15))
+  wire [5:0] j_n = 6'd15 + c_gsr - c_gsl;    // J = rnd((p << 15) >> (15 + gsr - gsl))
 
   // ---- registers ------------------------------------------------------------
   reg  [15:0] wh, vh, xs;            // multiplier operands: w[30:15], rnd(v >> 14), sat16(..)
@@ -164,13 +164,13 @@ module izhikevich_layer (
   always @* begin
     case (step)
       4'd0: begin ma = wh; mb = {1'b0, wl}; end
-      4'd1: begin ma = k_m4; mb = uacc[30:15]; end
-      4'd2: begin ma = k_m4; mb = {1'b0, uacc[14:0]}; end
+      4'd1: begin ma = c_m4; mb = uacc[30:15]; end
+      4'd2: begin ma = c_m4; mb = {1'b0, uacc[14:0]}; end
       4'd3: begin ma = wh; mb = wh; end
-      4'd4: begin ma = k_m3; mb = vh; end
-      4'd5: begin ma = k_gain; mb = xs; end
-      4'd6: begin ma = k_m2; mb = sq[30:15]; end
-      default: begin ma = k_m2; mb = {1'b0, sq[14:0]}; end
+      4'd4: begin ma = c_m3; mb = vh; end
+      4'd5: begin ma = c_gain; mb = xs; end
+      4'd6: begin ma = c_m2; mb = sq[30:15]; end
+      default: begin ma = c_m2; mb = {1'b0, sq[14:0]}; end
     endcase
   end
   always @(posedge clk) p <= $signed(ma) * $signed(mb);
@@ -181,12 +181,12 @@ module izhikevich_layer (
   reg  [5:0] sn;
   always @* begin
     case (step)
-      4'd0: sn = k_xsh;
-      4'd1: sn = k_fu;
-      4'd4: sn = k_s4;
-      4'd6: sn = k_s3;
-      4'd7: sn = k_nj;
-      default: sn = k_s2;
+      4'd0: sn = c_xsh;
+      4'd1: sn = c_fu;
+      4'd4: sn = c_s4;
+      4'd6: sn = s3_n;
+      4'd7: sn = j_n;
+      default: sn = c_s2;
     endcase
   end
   wire signed [47:0] sh = $signed({y, 1'b0}) >>> sn;
@@ -224,7 +224,7 @@ module izhikevich_layer (
   wire spike = vacc >= V_PEAK;
   wire [46:0] u_base = step == 4'd11 ? {{15{u_sat[31]}}, u_sat} : uacc;
   wire [46:0] u_add = step == 4'd5 ? ~q : step == 4'd7 ? q
-                    : spike ? {{15{k_ujump[31]}}, k_ujump} : 47'd0;
+                    : spike ? {{15{c_ujump[31]}}, c_ujump} : 47'd0;
   wire        u_cin = step == 4'd5 ? !qc : step == 4'd7 && qc;
   wire [47:0] u_sum = {u_base, 1'b1} + {u_add, u_cin};
   wire unused_lsb = &{1'b0, v_sum[0], u_sum[0]};   // the carry-in positions
@@ -266,7 +266,7 @@ module izhikevich_layer (
         4'd13: begin
           busy <= 1'b0; out_valid <= 1'b1; out_spike <= spike;
           out_u <= u_sat;
-          out_v <= spike ? k_vreset : vacc < V_MIN ? V_MIN[31:0] : vacc[31:0];
+          out_v <= spike ? c_vreset : vacc < V_MIN ? V_MIN[31:0] : vacc[31:0];
           out_x_prev <= k_xprev;
         end
         default: ;

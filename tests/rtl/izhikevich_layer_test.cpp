@@ -383,38 +383,55 @@ TEST(IzhikevichLayerRtl, HandshakeTimingAndBackToBack) {
   }
 }
 
-// (5) Bound: exact. Configuration B written word by word while an update
-// with A is in flight (writes before edges E+1 .. E+14, all 15 words, in
-// both orders) does not change that update (result = golden with A); the
-// next update uses B entirely. A write at the accepting edge E itself
-// also applies from the next update on.
-TEST(IzhikevichLayerRtl, ConfigWrittenWhileBusyAppliesToTheNextUpdate) {
+// (5) Bound: exact. The unit reads its constants during an update, so the
+// contract is: words are written between updates. Configuration B written
+// word by word from the update's last edge (E+14, where the results are
+// taken: the first word lands there) through the clocks after it does not
+// change that update (result = golden with A); the next update uses B
+// entirely. Forward order puts v_reset (word 2), read at that last edge,
+// on the boundary; reversed order, input_change (word 16).
+TEST(IzhikevichLayerRtl, ConfigWrittenBetweenUpdatesAppliesToTheNextUpdate) {
   std::mt19937 g(5);
   Unit u;
   std::uniform_int_distribution<int32_t> any(INT32_MIN, INT32_MAX), uu(izh::kUMin, izh::kUMax);
   std::uniform_int_distribution<int32_t> vs(izh::kVMin, izh::kVPeak - 1);
-  long changed = 0;
+  long changed = 0, reset_on_boundary = 0;
   for (int n = 0; n < 400; ++n) {
     const IzhikevichConfig a = random_config(g, n % 2), b = random_config(g, n % 3 == 0);
     u.configure(a);
     auto wb = config_words(b);
     if (n % 2) std::reverse(wb.begin(), wb.end());
     const Operands o{any(g), any(g), vs(g), uu(g)};
-    // Words 0..13 of B before edges E+1..E+14, the last one at the accept edge.
-    u.drive(o);
-    u.m.cfg_we = 1, u.m.cfg_addr = uint8_t(wb[14].first), u.m.cfg_data = wb[14].second;
     Result r = u.update(o, [&](int k) {
-      u.m.cfg_we = 1, u.m.cfg_addr = uint8_t(wb[size_t(k - 1)].first);
-      u.m.cfg_data = wb[size_t(k - 1)].second;
+      if (k == kLatency) u.m.cfg_we = 1, u.m.cfg_addr = uint8_t(wb[0].first), u.m.cfg_data = wb[0].second;
     });
     u.m.cfg_we = 0;
+    for (size_t w = 1; w < wb.size(); ++w) u.write(wb[w].first, wb[w].second);
     EXPECT_EQ(r, golden(a, o)) << n;
+    reset_on_boundary += r.spike && n % 2 == 0 && a.v_reset != b.v_reset;
     const Operands o2{any(g), any(g), vs(g), uu(g)};
     r = u.update(o2);
     EXPECT_EQ(r, golden(b, o2)) << n;
     changed += !(golden(a, o2) == golden(b, o2));
   }
   EXPECT_GT(changed, 300);  // B's result differs from A's: the check can fail
+  EXPECT_GT(reset_on_boundary, 10);  // v_reset, written at the last edge, was read there
+}
+
+// The C++ models' side of the same contract (hls::IzhikevichUnitPort): a
+// constant word written in the clocks of an update (after the start's
+// clock c, before c + kIzhikevichUnitClocks, when the results come) throws;
+// from that clock on, the write lands at or after the unit's last edge,
+// which the test above shows to be safe.
+TEST(IzhikevichLayerRtl, ModelRefusesConstantsWrittenWhileBusy) {
+  eskin::hls::IzhikevichUnitPort p;
+  p.present = true;
+  const uint16_t vreset = eskin::hls::kIoIzCfg + 2;
+  EXPECT_NO_THROW(p.write(vreset, 5, 90));
+  ASSERT_TRUE(p.write(eskin::hls::kIoIzGo, 0, 100));
+  EXPECT_THROW(p.write(vreset, 5, 101), std::logic_error);
+  EXPECT_THROW(p.write(vreset, 5, 100 + kLatency - 1), std::logic_error);
+  EXPECT_NO_THROW(p.write(vreset, 5, 100 + kLatency));
 }
 
 // (6) Bound: the reset state exactly: out_valid 1, in_ready 1, outputs 0;
