@@ -68,15 +68,14 @@
 //
 // Resources (the unit alone; yosys 0.23 synth_ice40 -dsp -abc9 as
 // scripts/synth_ice40.sh; yowasp yosys synth_ecp5 / nextpnr-ecp5 --85k
-// out of context): iCE40 1448 SB_LUT4, 774 flip-flops, 1 SB_MAC16 (of
+// out of context): iCE40 1448 SB_LUT4, 610 flip-flops, 1 SB_MAC16 (of
 // which the 47-bit round-shift unit is ~335 LUT4); of the flip-flops, 203
-// hold the configuration, 100 its copy and 96 the copies of v_reset,
-// u_jump and the next x_prev, which let the results hold through the next
-// update (before that: 1515 LUT4, 678 flip-flops). ECP5
-// (scripts/synth_ecp5.sh izhikevich_layer --pnr --freq 50 --device 85k):
-// 1318 LUT4 (1634 placed), 806 FF, 1 MULT18X18D, Fmax 84.8 / 87.7 /
-// 86.2 MHz at seeds 1-3 (before: 1516 LUT4, 1832 placed, 710 FF,
-// 83-85 MHz).
+// hold the configuration and 32 the next x_prev. Copying the constants at
+// the handshake (an earlier version, which allowed writes while busy) took
+// 164 more flip-flops, about 100 iCE40 logic cells in a whole top.
+// ECP5 (scripts/synth_ecp5.sh izhikevich_layer --pnr --freq 50 --device
+// 85k): 1315 LUT4 (1631 placed), 642 FF, 1 MULT18X18D, Fmax 82.1 / 85.4 /
+// 84.2 MHz at seeds 1-3 (with the copies: 1318, 806 FF, 84.8-87.7 MHz).
 module izhikevich_layer (
     input  wire        clk,
     input  wire        rst,
