@@ -20,7 +20,8 @@ const sc_core::sc_time kUsbPeriod(100, sc_core::SC_US);
 constexpr int kBaudCheckEvery = 10;  // USB visits between termios reads (1 ms)
 // A held board's first host bytes go out on RXD from this time, not at 0: on
 // a board the host can write only after the FPGA has been configured and
-// left its power-on reset (16 cycles, rtl/power_on_reset.v).
+// left its power-on reset (16 cycles, rtl/power_on_reset.v; 10 us is 120
+// cycles at 12 MHz). A start bit inside the reset garbles the first command.
 constexpr double kHostBytesFromNs = 10000;
 
 double cpu_seconds() {
@@ -126,8 +127,9 @@ void VirtualBoard::move_bytes() {
 }
 
 // Time still at 0: the host's first bytes are queued for the FPGA's RXD as
-// they come, so they go out from the first cycle on. False (and the error
-// set) if the reader closes or the timeout passes first.
+// they come; they go out from kHostBytesFromNs on, before the first frame.
+// False (and the error set) if the reader closes or the timeout passes
+// first.
 bool VirtualBoard::wait_for_host_bytes() {
   const auto t0 = std::chrono::steady_clock::now();
   uint64_t got = 0;
