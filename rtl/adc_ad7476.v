@@ -74,8 +74,7 @@ module adc_ad7476 #(
   reg [HW-1:0] hcnt;          // clocks into the current SCLK half period
   reg [4:0] half;             // half periods done: even -> next edge falls
   reg [16*NCH-1:0] shreg;
-  reg [31:0] count;           // conversions started
-  reg [31:0] cur_t;
+  reg [31:0] count;           // conversions completed: the next one's index
 
   // Shift register after this falling edge's sample (bits 15..0 per channel).
   reg [16*NCH-1:0] shifted;
@@ -103,7 +102,6 @@ module adc_ad7476 #(
       half     <= 5'd0;
       shreg    <= {16*NCH{1'b0}};
       count    <= 32'd0;
-      cur_t    <= 32'd0;
       m_valid  <= 1'b0;
       m_data   <= {12*NCH{1'b0}};
       m_t      <= 32'd0;
@@ -119,8 +117,6 @@ module adc_ad7476 #(
           cs_n  <= 1'b0;
           hcnt  <= {HW{1'b0}};
           half  <= 5'd0;
-          cur_t <= count;
-          count <= count + 32'd1;
         end
       end else if (hcnt != H_LAST) begin
         hcnt <= hcnt + 1'b1;
@@ -132,12 +128,16 @@ module adc_ad7476 #(
           sclk  <= 1'b0;
           shreg <= shifted;
           if (half == 5'd30) begin  // 16th falling edge: sample complete
+            // Its index: every conversion started completes (only rst
+            // stops one), in order, so the completed ones before it are
+            // the started ones before it, lost samples included.
+            count <= count + 32'd1;
             if (m_valid && !m_ready) begin
               if (overruns != 16'hFFFF && !clear) overruns <= overruns + 16'd1;
             end else begin
               m_valid <= 1'b1;
               m_data  <= codes;
-              m_t     <= cur_t;
+              m_t     <= count;
             end
           end
         end else begin
