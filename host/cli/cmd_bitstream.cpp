@@ -120,8 +120,9 @@ void check_mode_options(const BitstreamArgs& a) {
         throw std::invalid_argument(
             std::string("--scale-table: ") + name +
             " does not apply: the table builds each target on its own board with that board's "
-            "engine, at the slowest clock each skin needs under the stress load (choose targets "
-            "with --targets)");
+            "engine (and, when that misses timing, with the smallest engine that keeps up at a "
+            "slower clock), at the slowest clock each skin needs under the stress load (choose "
+            "targets with --targets)");
   } else {
     const std::pair<bool, const char*> table[] = {{!a.scale.sizes.empty(), "--sizes"},
                                                   {!a.scale.targets.empty(), "--targets"},
@@ -176,8 +177,15 @@ int run_bitstream(const BitstreamArgs& a) {
   std::ofstream(fs::path(opt.out_dir) / "bitstream_report.txt") << table;
   std::cout << table;
   if (r.ok()) return 0;
+  // Another engine may keep up where the board's did not (only offered when
+  // the user left the engine and the clock to the board).
+  const std::string engine_hint =
+      r.core == eskin::fpga::Core::Dtmf && opt.fast_shift < 0 && opt.neuron_unit < 0 &&
+              opt.clk_hz == 0
+          ? eskin::fpga::slower_engine_hint(board, scene, r)
+          : "";
   std::cerr << "eskin bitstream: " << board.name << " (" << board.device << "): " << r.failure
-            << "\n  "
+            << (engine_hint.empty() ? "" : "\n  " + engine_hint) << "\n  "
             << (r.core == eskin::fpga::Core::Dtmf
                     ? eskin::fpga::fit_hint(read_scale_table(source_dir() + "/docs/scale_table.csv"),
                                             board.name, board.device, r.spec.sample_hz)

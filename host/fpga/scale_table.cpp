@@ -38,6 +38,46 @@ sim::Scene scale_scene(const sim::Scene& base, int n, double fs) {
   return s;
 }
 
+std::string variant_name(EngineVariant v) {
+  return std::string(v.barrel ? "barrel" : "serial") + " shifter, " +
+         (v.unit ? "neuron unit" : "engine neurons");
+}
+
+std::optional<SlowerClock> slower_clock_variant(const Board& b, const sim::Scene& scene,
+                                                EngineVariant failed, long failed_clk_hz,
+                                                LoadPolicy policy) {
+  // Fewest logic cells first: the barrel shifter costs about 1000 iCE40
+  // cells, the neuron unit about 1900 (docs/fpga.md).
+  for (const EngineVariant v : {EngineVariant{false, false}, EngineVariant{true, false},
+                                EngineVariant{false, true}, EngineVariant{true, true}}) {
+    if (v == failed) continue;
+    const CoreClock c = choose_core_clock(b, scene, policy, 0, v.barrel, v.unit);
+    if (c.budget.ok() && (failed_clk_hz == 0 || c.clocking.clk_hz < failed_clk_hz))
+      return SlowerClock{v, c.clocking.clk_hz, c.engine_clocks};
+  }
+  return std::nullopt;
+}
+
+namespace {
+// A build that failed because its core is too slow (not for area or pins).
+bool missed_timing(const FlowReport& r) {
+  return r.ran_tools ? r.fits && !r.meets_timing : r.core_min_hz > 0 && !r.budget.ok();
+}
+}  // namespace
+
+std::string slower_engine_hint(const Board& b, const sim::Scene& scene, const FlowReport& r) {
+  if (r.ok() || !missed_timing(r)) return "";
+  const auto s = slower_clock_variant(b, scene, {r.spec.engine_fast_shift, r.spec.neuron_unit},
+                                      r.budget.ok() ? r.clk_hz : 0, r.policy);
+  if (!s) return "";
+  return fmt::format(
+      "with a {} the core keeps up at {:g} MHz (its engine takes {} clocks a frame, {} load): "
+      "--engine-shifter {} --neurons {}",
+      variant_name(s->engine), s->clk_hz / 1e6, s->engine_clocks,
+      r.policy == LoadPolicy::Stress ? "stress" : "scene",
+      s->engine.barrel ? "barrel" : "serial", s->engine.unit ? "unit" : "engine");
+}
+
 ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
   ScaleRow row;
   row.target = t.label;
@@ -49,6 +89,7 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
   row.window = r.spec.window;
   row.step = r.step;
   row.clk_hz = r.spec.clk_hz;
+  row.engine = {r.spec.engine_fast_shift, r.spec.neuron_unit};
   row.fits = r.fits;
   row.meets_timing = r.meets_timing;
   auto take = [&](std::initializer_list<const char*> names, long& used, long* avail) {
@@ -100,19 +141,38 @@ std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions&
         const int mid = (lo + hi) / 2;
         const int n = sizes[size_t(mid)];
         const sim::Scene sc = scale_scene(base, n, fs);
-        FlowOptions o = opt;
-        o.load = LoadPolicy::Stress;  // the table's skins have no workload of their own
-        o.out_dir = fmt::format("{}/{}/{:.0f}/{}x{}", opt.out_dir, t.label, fs, n, n);
-        FlowReport r;
-        try {
-          r = run_flow(b, sc, o);
-        } catch (const std::invalid_argument& e) {  // the plan rejects the skin
-          r.spec = sim::dtmf_top_spec(sc);
-          r.failure = e.what();
-        }
-        rows.push_back(scale_row(t, r));
-        progress(rows.back());
-        (rows.back().ok() ? lo : hi) = mid;
+        const auto probe = [&](int fast_shift, int neuron_unit, const std::string& dir) {
+          FlowOptions o = opt;
+          o.load = LoadPolicy::Stress;  // the table's skins have no workload of their own
+          o.fast_shift = fast_shift;
+          o.neuron_unit = neuron_unit;
+          o.out_dir = fmt::format("{}/{}/{:.0f}/{}", opt.out_dir, t.label, fs, dir);
+          FlowReport r;
+          try {
+            r = run_flow(b, sc, o);
+          } catch (const std::invalid_argument& e) {  // the plan rejects the skin
+            r.spec = sim::dtmf_top_spec(sc);
+            r.spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
+            r.spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
+            r.failure = e.what();
+          }
+          rows.push_back(scale_row(t, r));
+          progress(rows.back());
+          return r;
+        };
+        const FlowReport r = probe(opt.fast_shift, opt.neuron_unit, fmt::format("{}x{}", n, n));
+        bool ok = rows.back().ok();
+        // Too slow: an engine that keeps up at a slower clock may make it.
+        if (!ok && missed_timing(r) && opt.fast_shift < 0 && opt.neuron_unit < 0)
+          if (const auto s = slower_clock_variant(b, sc, rows.back().engine,
+                                                  r.budget.ok() ? r.clk_hz : 0)) {
+            const EngineVariant v = s->engine;
+            probe(v.barrel, v.unit,
+                  fmt::format("{}x{}-{}-{}", n, n, v.barrel ? "barrel" : "serial",
+                              v.unit ? "unit" : "engine"));
+            ok = rows.back().ok();
+          }
+        (ok ? lo : hi) = mid;
       }
     }
   }
@@ -133,7 +193,7 @@ std::vector<ScaleRow> merge_scale_rows(const std::vector<ScaleRow>& old,
 
 namespace {
 const char* kHeader =
-    "target,board,device,sample_hz,rows,cols,window,step,clk_hz,fits,meets_timing,"
+    "target,board,device,sample_hz,rows,cols,window,step,clk_hz,shifter,neurons,fits,meets_timing,"
     "logic_used,logic_available,dsp_used,dsp_available,ram_used,ram_available,spram_used,"
     "fmax_mhz,seconds,failure";
 
@@ -170,11 +230,12 @@ std::string khz(double fs) { return fs >= 1e6 ? fmt::format("{:g} MS/s", fs / 1e
 std::string scale_csv(const std::vector<ScaleRow>& rows) {
   std::string s = std::string(kHeader) + "\n";
   for (const auto& r : rows)
-    s += fmt::format("{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{}\n",
-                     r.target, r.board, r.device, r.sample_hz, r.rows, r.cols, r.window, r.step,
-                     r.clk_hz, int(r.fits), int(r.meets_timing), r.logic_used, r.logic_available,
-                     r.dsp_used, r.dsp_available, r.ram_used, r.ram_available, r.spram_used,
-                     r.fmax_mhz, r.seconds, csv_field(r.failure));
+    s += fmt::format(
+        "{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{}\n",
+        r.target, r.board, r.device, r.sample_hz, r.rows, r.cols, r.window, r.step, r.clk_hz,
+        r.engine.barrel ? "barrel" : "serial", r.engine.unit ? "unit" : "engine", int(r.fits),
+        int(r.meets_timing), r.logic_used, r.logic_available, r.dsp_used, r.dsp_available,
+        r.ram_used, r.ram_available, r.spram_used, r.fmax_mhz, r.seconds, csv_field(r.failure));
   return s;
 }
 
@@ -192,8 +253,13 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
     }
     if (line.empty()) continue;
     const auto f = split_csv(line);
-    if (f.size() != 21)
-      throw std::runtime_error(fmt::format("scale table line {}: expected 21 fields, got {}", lineno, f.size()));
+    if (f.size() != 23)
+      throw std::runtime_error(
+          fmt::format("scale table line {}: expected 23 fields, got {}", lineno, f.size()));
+    if ((f[9] != "serial" && f[9] != "barrel") || (f[10] != "engine" && f[10] != "unit"))
+      throw std::runtime_error(fmt::format(
+          "scale table line {}: expected shifter serial|barrel and neurons engine|unit, got {} {}",
+          lineno, f[9], f[10]));
     try {
       ScaleRow r;
       r.target = f[0];
@@ -205,18 +271,19 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
       r.window = std::stoi(f[6]);
       r.step = std::stoi(f[7]);
       r.clk_hz = std::stol(f[8]);
-      r.fits = f[9] == "1";
-      r.meets_timing = f[10] == "1";
-      r.logic_used = std::stol(f[11]);
-      r.logic_available = std::stol(f[12]);
-      r.dsp_used = std::stol(f[13]);
-      r.dsp_available = std::stol(f[14]);
-      r.ram_used = std::stol(f[15]);
-      r.ram_available = std::stol(f[16]);
-      r.spram_used = std::stol(f[17]);
-      r.fmax_mhz = std::stod(f[18]);
-      r.seconds = std::stod(f[19]);
-      r.failure = f[20];
+      r.engine = {f[9] == "barrel", f[10] == "unit"};
+      r.fits = f[11] == "1";
+      r.meets_timing = f[12] == "1";
+      r.logic_used = std::stol(f[13]);
+      r.logic_available = std::stol(f[14]);
+      r.dsp_used = std::stol(f[15]);
+      r.dsp_available = std::stol(f[16]);
+      r.ram_used = std::stol(f[17]);
+      r.ram_available = std::stol(f[18]);
+      r.spram_used = std::stol(f[19]);
+      r.fmax_mhz = std::stod(f[20]);
+      r.seconds = std::stod(f[21]);
+      r.failure = f[22];
       rows.push_back(r);
     } catch (const std::logic_error&) {
       throw std::runtime_error(fmt::format("scale table line {}: a number field is not a number", lineno));
@@ -227,29 +294,43 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
 
 std::string scale_markdown(const std::vector<ScaleRow>& rows) {
   std::string t =
-      "| FPGA | rate | largest skin that fits and meets timing | carriers | window | clock | "
-      "logic | DSP | block RAM | Fmax | smallest that fails |\n"
-      "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+      "| FPGA | rate | largest skin that fits and meets timing | carriers | window | engine | "
+      "clock | logic | DSP | block RAM | Fmax | smallest that fails |\n"
+      "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---|\n";
   for (const auto& tg : scale_targets())
     for (double fs : scale_rates()) {
+      // A size passes when one of its builds (engines) does.
+      std::map<int, std::vector<const ScaleRow*>> sizes;
+      for (const auto& r : rows)
+        if (r.target == tg.label && r.sample_hz == fs) sizes[r.rows].push_back(&r);
       const ScaleRow* best = nullptr;
-      const ScaleRow* fail = nullptr;
-      for (const auto& r : rows) {
-        if (r.target != tg.label || r.sample_hz != fs) continue;
-        if (r.ok() && (!best || r.rows > best->rows)) best = &r;
-        if (!r.ok() && (!fail || r.rows < fail->rows)) fail = &r;
+      int fail = 0;
+      for (const auto& [n, builds] : sizes) {
+        const auto good =
+            std::find_if(builds.begin(), builds.end(), [](const ScaleRow* r) { return r->ok(); });
+        if (good != builds.end()) best = *good;
+        else if (fail == 0) fail = n;
       }
-      const std::string why =
-          fail ? fmt::format("{}x{}: {}", fail->rows, fail->cols, fail->failure) : "-";
+      std::string why = "-";
+      if (fail > 0) {
+        why = fmt::format("{}x{}: ", fail, fail);
+        const auto& builds = sizes[fail];
+        for (size_t i = 0; i < builds.size(); ++i)
+          why += (i ? "; " : "") +
+                 (builds.size() > 1 ? variant_name(builds[i]->engine) + ": " : "") +
+                 builds[i]->failure;
+      }
       if (!best) {
-        t += fmt::format("| {} | {} | none | | | | | | | | {} |\n", tg.label, khz(fs), why);
+        t += fmt::format("| {} | {} | none | | | | | | | | | {} |\n", tg.label, khz(fs), why);
         continue;
       }
-      t += fmt::format("| {} | {} | {}x{} | {} | {} | {:g} MHz | {}/{} | {}/{} | {}/{} | {:.1f} MHz | {} |\n",
+      t += fmt::format(
+          "| {} | {} | {}x{} | {} | {} | {} | {:g} MHz | {}/{} | {}/{} | {}/{} | {:.1f} MHz | {} |\n",
                        tg.label, khz(fs), best->rows, best->cols, best->rows + best->cols,
-                       best->window, best->clk_hz / 1e6, best->logic_used, best->logic_available,
-                       best->dsp_used, best->dsp_available, best->ram_used, best->ram_available,
-                       best->fmax_mhz, why);
+                       best->window, variant_name(best->engine), best->clk_hz / 1e6,
+                       best->logic_used, best->logic_available, best->dsp_used,
+                       best->dsp_available, best->ram_used, best->ram_available, best->fmax_mhz,
+                       why);
     }
   return t;
 }

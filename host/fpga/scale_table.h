@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,12 +30,43 @@ std::vector<int> scale_sizes();     // n of the n x n skins tried, ascending
 // holds them, sampled at fs.
 sim::Scene scale_scene(const sim::Scene& base, int n, double fs);
 
-// One probe: what run_flow reported for one target, rate and size.
+// The frame engine a probe builds (FlowOptions::fast_shift, neuron_unit):
+// its shifter, and where the neuron updates run.
+struct EngineVariant {
+  bool barrel = false;  // barrel shifter (else bit-serial)
+  bool unit = false;    // the hardware neuron unit (else the microcode)
+  bool operator==(const EngineVariant& o) const { return barrel == o.barrel && unit == o.unit; }
+};
+std::string variant_name(EngineVariant v);  // "serial shifter, neuron unit"
+
+// After a build with `failed` missed timing at `failed_clk_hz` (0: no clock
+// of `b` kept up with it at all): the smallest variant (bit-serial before
+// barrel, microcode neurons before the unit: fewer logic cells first) whose
+// core keeps up at a slower clock of `b` (choose_core_clock under
+// `policy`), or none.
+struct SlowerClock {
+  EngineVariant engine;
+  long clk_hz = 0;         // the board clock it keeps up at
+  long engine_clocks = 0;  // its frame engine's clocks a frame (under the policy)
+};
+std::optional<SlowerClock> slower_clock_variant(const Board& b, const sim::Scene& scene,
+                                                EngineVariant failed, long failed_clk_hz,
+                                                LoadPolicy policy = LoadPolicy::Stress);
+
+// For a failed DTMF build `r` of `scene` on `b` whose engine was the
+// board's: when it missed timing (or no clock kept up) and another engine
+// keeps up at a slower clock (under the build's load policy, r.policy), the
+// options that build it, with that clock and the engine's clocks a frame;
+// else "".
+std::string slower_engine_hint(const Board& b, const sim::Scene& scene, const FlowReport& r);
+
+// One probe: what run_flow reported for one target, rate, size and engine.
 struct ScaleRow {
   std::string target, board, device;
   double sample_hz = 0;
   int rows = 0, cols = 0, window = 0, step = 0;
   long clk_hz = 0;
+  EngineVariant engine;
   bool fits = false, meets_timing = false;
   long logic_used = 0, logic_available = 0, dsp_used = 0, dsp_available = 0;
   long ram_used = 0, ram_available = 0, spram_used = 0;
@@ -46,7 +78,10 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r);
 
 // For every target and rate: a binary search over scale_sizes() (assuming
 // that what does not fit at n does not fit above n either), one run_flow per
-// probe into OUT/<target>/<rate>/<n>x<n>/. `progress` sees every row.
+// probe into OUT/<target>/<rate>/<n>x<n>/ with the board's engine; when
+// that misses timing, a second one with slower_clock_variant (if any) into
+// OUT/<target>/<rate>/<n>x<n>-<shifter>-<neurons>/, and the size passes if
+// either build does. `progress` sees every row.
 // What to measure: empty lists mean all of scale_targets() (by label),
 // scale_rates() and scale_sizes() (ascending).
 struct ScaleSelection {
@@ -65,7 +100,8 @@ std::vector<ScaleRow> merge_scale_rows(const std::vector<ScaleRow>& old,
 
 std::string scale_csv(const std::vector<ScaleRow>& rows);
 std::vector<ScaleRow> parse_scale_csv(const std::string& text);  // throws naming the line
-// The largest passing size per target and rate, as a Markdown table.
+// The largest passing size per target and rate, as a Markdown table, with
+// the smallest size no engine passed at and each engine's reason.
 std::string scale_markdown(const std::vector<ScaleRow>& rows);
 
 // "skins that fit ..." for a failed build of `board`/`device` at fs, from

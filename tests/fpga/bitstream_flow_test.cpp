@@ -209,6 +209,82 @@ TEST(ScaleTable, CsvRoundTripAndFitHint) {
   const std::string md = scale_markdown(rows);
   EXPECT_NE(md.find("| up5k | 35 kS/s | 2x2 |"), std::string::npos) << md;
 }
+
+// A size is in the table when one of its builds passes: 3x3 misses timing
+// with the board's engine and passes with the neuron unit, 4x4 fails with
+// both, and the table names each engine's reason for 4x4. The engine is a
+// CSV column, checked by the parser.
+TEST(ScaleTable, ASizePassesWithAnyOfItsEngines) {
+  ScaleRow a;
+  a.target = "up5k";
+  a.board = "icebreaker";
+  a.device = "up5k";
+  a.sample_hz = 35000;
+  a.rows = a.cols = 3;
+  a.clk_hz = 27000000;
+  a.engine = {true, false};
+  a.fits = true;
+  a.failure = "misses timing: 21.0 MHz";
+  ScaleRow b = a;
+  b.engine = {false, true};
+  b.clk_hz = 18000000;
+  b.meets_timing = true;
+  b.failure.clear();
+  ScaleRow c = a, d = b;
+  c.rows = c.cols = d.rows = d.cols = 4;
+  d.meets_timing = d.fits = false;
+  d.failure = "does not fit: ICESTORM_LC 5446/5280";
+  const auto rows = parse_scale_csv(scale_csv({a, b, c, d}));
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_TRUE(rows[1].engine == (EngineVariant{false, true}));
+  EXPECT_TRUE(rows[2].engine == (EngineVariant{true, false}));
+  const std::string md = scale_markdown(rows);
+  EXPECT_NE(md.find("| up5k | 35 kS/s | 3x3 | 6 | 0 | serial shifter, neuron unit | 18 MHz |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("4x4: barrel shifter, engine neurons: misses timing: 21.0 MHz; serial "
+                    "shifter, neuron unit: does not fit: ICESTORM_LC 5446/5280"),
+            std::string::npos)
+      << md;
+  std::string csv = scale_csv({a});
+  csv.replace(csv.find("barrel,engine"), 13, "barrel,neurons");
+  EXPECT_THROW(parse_scale_csv(csv), std::runtime_error);
+}
+
+// The second engine the table tries when the board's misses timing. Bound:
+// the frame engine's clocks a frame (instruction-set model, stress
+// signals; docs/fpga.md): 8x8 at 35 kS/s takes 25 863 with the barrel
+// shifter and microcode neurons (so 27 MHz on the iCEBreaker, which the
+// UP5K does not reach), 42 074 bit-serial (slower still), 17 636
+// bit-serial with the unit (18 MHz): the smallest that keeps up at a
+// slower clock. On the ULX3S the board's engine (barrel + unit) is the
+// fastest, so nothing else helps a 24x24 skin that missed 75 MHz.
+TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const Board ice = find_board("icebreaker");
+  const auto sc = scale_scene(base, 8, 35000.0);
+  const auto v = slower_clock_variant(ice, sc, {true, false}, 27000000);
+  ASSERT_TRUE(v.has_value());
+  EXPECT_TRUE(v->engine == (EngineVariant{false, true})) << variant_name(v->engine);
+  EXPECT_EQ(variant_name(v->engine), "serial shifter, neuron unit");
+  EXPECT_EQ(v->clk_hz, 18000000);
+  EXPECT_LE(v->engine_clocks, 18000);  // 35 samples of 514 clocks at 18 MHz: 17 990
+  EXPECT_FALSE(slower_clock_variant(find_board("ulx3s", "85k"), scale_scene(base, 24, 35000.0),
+                                    {true, true}, 75000000)
+                   .has_value());
+  // The same for a user's failed build (eskin bitstream's hint): it names
+  // the options; a build that failed for area gets none.
+  FlowReport r;
+  r.ran_tools = r.fits = true;
+  r.clk_hz = 27000000;
+  r.spec.engine_fast_shift = true;
+  r.policy = LoadPolicy::Stress;
+  const std::string hint = slower_engine_hint(ice, sc, r);
+  EXPECT_NE(hint.find("keeps up at 18 MHz"), std::string::npos) << hint;
+  EXPECT_NE(hint.find("--engine-shifter serial --neurons unit"), std::string::npos) << hint;
+  r.fits = false;
+  EXPECT_EQ(slower_engine_hint(ice, sc, r), "");
+}
 // The packets are paced for the link the chosen clock gives. A 16x16 skin
 // at 35 kS/s on the ULX3S runs at 40 MHz, whose exact UART rate is 2
 // Mbaud (40 MHz is no multiple of 3 MHz); the plan thins the amplitude and
