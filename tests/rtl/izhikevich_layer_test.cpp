@@ -403,7 +403,8 @@ TEST(IzhikevichLayerRtl, ConfigWrittenBetweenUpdatesAppliesToTheNextUpdate) {
     if (n % 2) std::reverse(wb.begin(), wb.end());
     const Operands o{any(g), any(g), vs(g), uu(g)};
     Result r = u.update(o, [&](int k) {
-      if (k == kLatency) u.m.cfg_we = 1, u.m.cfg_addr = uint8_t(wb[0].first), u.m.cfg_data = wb[0].second;
+      if (k != kLatency) return;
+      u.m.cfg_we = 1, u.m.cfg_addr = uint8_t(wb[0].first), u.m.cfg_data = wb[0].second;
     });
     u.m.cfg_we = 0;
     for (size_t w = 1; w < wb.size(); ++w) u.write(wb[w].first, wb[w].second);
