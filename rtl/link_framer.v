@@ -10,8 +10,10 @@
 // Input: one byte stream carrying whole packets, each as type, t (4 bytes
 // LE), len (2 bytes LE), then exactly len payload bytes (the frame engine
 // writes them so, through the output FIFO). The framer inserts seq after the
-// type and appends the CRC. s_ready is high while it collects the 7 header
-// bytes and while it takes payload bytes.
+// type and appends the CRC. The header is not held: its bytes go through
+// to the encoder as they come (raw order is input order with seq after the
+// type), and only len is kept, as the payload count. s_ready is high while
+// the encoder can take a byte of the input's (type, t, len, payload).
 //
 // Structure: an assembler emits the raw bytes (one per clock when the
 // encoder can take them) and an end-of-packet marker; the COBS encoder
@@ -36,98 +38,66 @@ module link_framer (
     output reg  [7:0]  seq
 );
   // ---------------- assembler: raw bytes + end-of-packet ----------------
-  localparam [2:0] A_IDLE = 3'd0, A_HDR = 3'd1, A_PAY = 3'd2, A_CRC = 3'd3, A_EOP = 3'd4;
+  // A_TYPE: the type byte; A_SEQ: seq; A_HDR: t and len (6 bytes, hidx
+  // 0..5); then payload, CRC (2 bytes) and the end marker.
+  localparam [2:0] A_TYPE = 3'd0, A_SEQ = 3'd1, A_HDR = 3'd2, A_PAY = 3'd3, A_CRC = 3'd4,
+                   A_EOP = 3'd5;
   reg [2:0] astate;
-  reg [2:0] aidx;        // header byte 0..7, crc byte 0..1
-  reg [7:0] typ;
-  reg [31:0] tstamp;
-  reg [15:0] len, remaining;
+  reg [2:0] hidx;        // header byte 0..5 after seq, crc byte 0..1
+  reg [15:0] remaining;  // payload bytes left (len, from the header's last two bytes)
   reg [15:0] crc;
   wire [15:0] crc_next;
   wire enc_ready;        // encoder can take a raw byte / the end marker
 
-  reg [7:0] hdr_byte;
-  always @(*) begin
-    case (aidx)
-      3'd0: hdr_byte = typ;
-      3'd1: hdr_byte = seq;
-      3'd2: hdr_byte = tstamp[7:0];
-      3'd3: hdr_byte = tstamp[15:8];
-      3'd4: hdr_byte = tstamp[23:16];
-      3'd5: hdr_byte = tstamp[31:24];
-      3'd6: hdr_byte = len[7:0];
-      default: hdr_byte = len[15:8];
-    endcase
-  end
-
-  wire raw_valid = (astate == A_HDR) || (astate == A_CRC) || (astate == A_EOP) ||
-                   (astate == A_PAY && s_valid);
+  wire from_input = (astate == A_TYPE) || (astate == A_HDR) || (astate == A_PAY);
+  wire raw_valid = from_input ? s_valid : 1'b1;
   wire raw_eop = (astate == A_EOP);
-  wire [7:0] raw_byte = (astate == A_PAY) ? s_data :
-                        (astate == A_CRC) ? (aidx[0] ? crc[7:0] : crc[15:8]) : hdr_byte;
+  wire [7:0] raw_byte = (astate == A_SEQ) ? seq :
+                        (astate == A_CRC) ? (hidx[0] ? crc[7:0] : crc[15:8]) : s_data;
   wire raw_take = raw_valid && enc_ready;
 
-  assign s_ready = (astate == A_IDLE) || ((astate == A_PAY) && enc_ready);
+  assign s_ready = from_input && enc_ready;
 
   crc16 u_crc (.crc_in(crc), .data(raw_byte), .crc_out(crc_next));
 
   always @(posedge clk) begin
     if (rst) begin
-      astate    <= A_IDLE;
-      aidx      <= 3'd0;
+      astate    <= A_TYPE;
+      hidx      <= 3'd0;
       seq       <= 8'd0;
       crc       <= 16'hFFFF;
-      typ       <= 8'd0;
-      tstamp    <= 32'd0;
-      len       <= 16'd0;
       remaining <= 16'd0;
-    end else begin
+    end else if (raw_take) begin
+      if (astate != A_CRC && !raw_eop) crc <= crc_next;  // over type .. payload
       case (astate)
-        A_IDLE:  // collect type, t, len from the stream
-          if (s_valid) begin
-            case (aidx)
-              3'd0: typ <= s_data;
-              3'd1: tstamp[7:0] <= s_data;
-              3'd2: tstamp[15:8] <= s_data;
-              3'd3: tstamp[23:16] <= s_data;
-              3'd4: tstamp[31:24] <= s_data;
-              3'd5: len[7:0] <= s_data;
-              default: len[15:8] <= s_data;
-            endcase
-            aidx <= aidx + 3'd1;
-            if (aidx == 3'd6) begin
-              remaining <= {s_data, len[7:0]};
-              crc       <= 16'hFFFF;
-              aidx      <= 3'd0;
-              astate    <= A_HDR;
-            end
+        A_TYPE: astate <= A_SEQ;
+        A_SEQ: begin
+          hidx   <= 3'd0;
+          astate <= A_HDR;
+        end
+        A_HDR: begin
+          hidx <= hidx + 3'd1;
+          if (hidx == 3'd4) remaining[7:0] <= s_data;
+          if (hidx == 3'd5) begin
+            remaining[15:8] <= s_data;
+            hidx   <= 3'd0;
+            astate <= ({s_data, remaining[7:0]} == 16'd0) ? A_CRC : A_PAY;
           end
-        A_HDR:
-          if (raw_take) begin
-            crc  <= crc_next;
-            aidx <= aidx + 3'd1;
-            if (aidx == 3'd7) begin
-              aidx   <= 3'd0;
-              astate <= (remaining == 16'd0) ? A_CRC : A_PAY;
-            end
-          end
-        A_PAY:
-          if (raw_take) begin
-            crc       <= crc_next;
-            remaining <= remaining - 16'd1;
-            if (remaining == 16'd1) astate <= A_CRC;
-          end
-        A_CRC:
-          if (raw_take) begin
-            aidx <= aidx + 3'd1;
-            if (aidx[0]) astate <= A_EOP;
-          end
-        default:  // A_EOP
-          if (raw_take) begin
-            seq    <= seq + 8'd1;
-            aidx   <= 3'd0;
-            astate <= A_IDLE;
-          end
+        end
+        A_PAY: begin
+          remaining <= remaining - 16'd1;
+          if (remaining == 16'd1) astate <= A_CRC;
+        end
+        A_CRC: begin
+          hidx <= hidx + 3'd1;
+          if (hidx[0]) astate <= A_EOP;
+        end
+        default: begin  // A_EOP
+          seq    <= seq + 8'd1;
+          crc    <= 16'hFFFF;
+          hidx   <= 3'd0;
+          astate <= A_TYPE;
+        end
       endcase
     end
   end

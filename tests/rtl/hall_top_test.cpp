@@ -57,9 +57,11 @@ using hall_bench::kConvCyc;
 // 16 sensors on 4 buses: mostly the RM read itself (START, 10 bytes of 9
 // bits at 34 clocks = 3060, repeated START, STOP and tBUF: about 3150
 // clocks), plus DRDY synchronisation and pick (4), the token's 10-byte write
-// into the frame RAM, the HALL_SAMPLES header's 7 bytes into link_framer
-// (2 clocks each) and COBS's look-ahead to the first zero byte of the raw frame, and the UART start.
-constexpr uint64_t kLatency16s = 3281;  // 273.4 us
+// into the frame RAM, the HALL_SAMPLES header's bytes and seq through
+// link_framer to the COBS encoder as it takes them (2 clocks each; 3281
+// while the framer held the 7 header bytes before sending any), COBS's
+// look-ahead to the first zero byte of the raw frame, and the UART start.
+constexpr uint64_t kLatency16s = 3270;  // 272.5 us
 
 // Each sensor's data readings across the frames equal its model's
 // deliveries in order (the last one may still be in flight).
