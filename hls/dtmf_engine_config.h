@@ -42,7 +42,6 @@ enum DtmfIoPort : uint16_t {
   kIoIzSpike = 0x20C,    // r: neuron unit: 1 when the last update spiked
   kIoIzV = 0x20D,        // r: neuron unit: v after the last update; w: v operand
   kIoIzU = 0x20E,        // r: neuron unit: U after the last update; w: U operand
-  kIoIzXPrev = 0x20F,    // r: neuron unit: x_prev after the last update
   kIoOutByte = 0x200,    // w: one byte to the output FIFO
   kIoFrameDone = 0x201,  // w: release the frame buffer
   kIoCmdPop = 0x202,     // w: drop the command FIFO head byte
@@ -143,7 +142,7 @@ struct IzhikevichUnitPort {
   int32_t x = 0, v = 0, u = 0;
   struct Results {
     bool spike = false;
-    int32_t v = 0, u = 0, x_prev = 0;
+    int32_t v = 0, u = 0;  // x_prev' is the microcode's (nu_layer)
   };
   Results shown, next;  // the ports until done_clock, and from it on
   uint64_t done_clock = 0;
@@ -187,7 +186,7 @@ struct IzhikevichUnitPort {
         IzhikevichLayer<1> one(config());
         one.set_state(0, v, u, int32_t(d));
         next.spike = one.update(0, x);
-        next.v = one.v(0), next.u = one.U(0), next.x_prev = one.x_prev(0);
+        next.v = one.v(0), next.u = one.U(0);
         done_clock = clock + kIzhikevichUnitClocks;
         return true;
       }
@@ -203,7 +202,6 @@ struct IzhikevichUnitPort {
       case kIoIzSpike: d = r.spike ? 1u : 0u; return true;
       case kIoIzV: d = uint32_t(r.v); return true;
       case kIoIzU: d = uint32_t(r.u); return true;
-      case kIoIzXPrev: d = uint32_t(r.x_prev); return true;
       default: return false;
     }
   }
@@ -338,7 +336,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
            {"IO_CMD_POP", kIoCmdPop},  {"IO_SDFT_K", kIoSdftK},     {"IO_SDFT_INC", kIoSdftInc},
            {"IO_CLEAR", kIoClear},     {"IO_IZ_X", kIoIzX},         {"IO_IZ_V", kIoIzV},
            {"IO_IZ_U", kIoIzU},        {"IO_IZ_GO", kIoIzGo},       {"IO_IZ_CFG", kIoIzCfg},
-           {"IO_IZ_SPIKE", kIoIzSpike}, {"IO_IZ_XPREV", kIoIzXPrev}})
+           {"IO_IZ_SPIKE", kIoIzSpike}})
     sym(n, v);
   return im;
 }

@@ -248,9 +248,9 @@ module dtmf_top #(
   // four over and starts the update. The microcode waits for iz_done
   // before it starts the next, so in_ready is always 1 at the start, and
   // reads a neuron's results while the next one runs (the unit shows them
-  // until the next one's replace them).
+  // until the next one's replace them). The microcode keeps x_prev itself.
   wire        iz_done, iz_spike;
-  wire [31:0] iz_v, iz_u, iz_x_prev;
+  wire [31:0] iz_v, iz_u;
   generate
     if (NEURON_UNIT != 0) begin : g_neuron_unit
       reg [31:0] op_x, op_v, op_u;
@@ -264,15 +264,13 @@ module dtmf_top #(
           .clk(clk), .rst(rst), .cfg_we(wr_iz_cfg), .cfg_addr(io_waddr[4:0]),
           .cfg_data(io_wdata), .in_valid(wr_iz_go), .in_ready(in_ready_unused),
           .in_x(op_x), .in_x_prev(io_wdata), .in_v(op_v), .in_u(op_u),
-          .out_valid(iz_done), .out_spike(iz_spike), .out_v(iz_v), .out_u(iz_u),
-          .out_x_prev(iz_x_prev));
+          .out_valid(iz_done), .out_spike(iz_spike), .out_v(iz_v), .out_u(iz_u));
       wire unused_neuron = in_ready_unused;
     end else begin : g_no_neuron_unit
       assign iz_done = 1'b0;
       assign iz_spike = 1'b0;
       assign iz_v = 32'd0;
       assign iz_u = 32'd0;
-      assign iz_x_prev = 32'd0;
       wire unused_neuron = ^{wr_iz_x, wr_iz_go, wr_iz_v, wr_iz_u, wr_iz_cfg};
     end
   endgenerate
@@ -308,7 +306,7 @@ module dtmf_top #(
       4'hC: io_reg <= {31'd0, iz_spike};
       4'hD: io_reg <= iz_v;
       4'hE: io_reg <= iz_u;
-      default: io_reg <= iz_x_prev;
+      default: io_reg <= 32'd0;  // 0x20F: none (the unit's x_prev until 2026-11-24)
     endcase
   end
   wire unused_io = ^{io_re, io_raddr[15:10], io_raddr[8]};  // partial decode

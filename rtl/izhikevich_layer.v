@@ -19,7 +19,8 @@
 // sK gives p in sK+1, a SH in sK gives {q, qc} in sK+1:
 //   E   from the ports and words: y = ic ? clamp(x - x_prev, 0, 2^31-1) : x,
 //       wh = (v + 62.5 mV)[30:15], wl = v[14:0], vh = rnd(v >> 14), uacc = U,
-//       vacc = v + C, x_prev' = ic ? x : x_prev (kept for the results)
+//       vacc = v + C (x_prev' = ic ? x : x_prev is the microcode's: it
+//       knows both, and a copy here would have to outlive the update)
 //   s0  MUL wh*wl    SH xs' = y >> x_shift        y = U
 //   s1  MUL m4*Uh    SH U22 = y >> (FU-22)        xs = sat16(xs'), sq = p >> 14
 //   s2  MUL m4*Ul    y = p 2^15                   vacc -= U22
@@ -34,7 +35,7 @@
 //   s11 spike = vacc >= V_PEAK; uacc = sat_u(uacc) + (spike ? u_jump : 0)
 //   s12 (pad to 14)
 //   s13 out_v = spike ? v_reset : max(vacc, V_MIN), out_u = sat_u(uacc),
-//       out_x_prev = x_prev', out_spike, out_valid = in_ready = 1 (edge E+14)
+//       out_spike, out_valid = in_ready = 1 (edge E+14)
 //
 // Widths (the C++'s int64 intermediates; why nothing wraps, for ANY 32-bit
 // x, x_prev, v, U and any config): the operands are 16-bit, so |p| <= 2^30;
@@ -91,8 +92,7 @@ module izhikevich_layer (
     output reg         out_valid,
     output reg         out_spike,
     output reg  [31:0] out_v,
-    output reg  [31:0] out_u,
-    output reg  [31:0] out_x_prev
+    output reg  [31:0] out_u
 );
   localparam signed [34:0] V_PEAK = 35'sd125829120;    // 30 mV in Q9.22
   localparam signed [34:0] V_MIN = -35'sd536870912;    // -128 mV
@@ -135,14 +135,9 @@ module izhikevich_layer (
   wire      go = in_valid && !busy;
   assign in_ready = !busy;
 
-  // The update's x_prev result, taken at the handshake: the outputs keep
-  // the previous update's results until edge E+14, and the engine changes
-  // the operand ports meanwhile. The constants are read where they are
-  // used, from the configuration words themselves (no copy: they must not
-  // change during an update, see the header).
-  reg [31:0] k_xprev;
-  always @(posedge clk)
-    if (go) k_xprev <= c_ic ? in_x : in_x_prev;
+  // The constants are read where they are used, from the configuration
+  // words themselves (no copy: they must not change during an update, see
+  // the header).
   wire [5:0] s3_n = c_s3 + 6'd15;            // c3v = rnd((p << 15) >> (s3 + 15))
   wire [5:0] j_n = 6'd15 + c_gsr - c_gsl;    // J = rnd((p << 15) >> (15 + gsr - gsl))
 
@@ -236,7 +231,7 @@ module izhikevich_layer (
     if (rst) begin
       busy <= 1'b0; step <= 4'd0;
       out_valid <= 1'b1; out_spike <= 1'b0;
-      out_v <= 32'd0; out_u <= 32'd0; out_x_prev <= 32'd0;
+      out_v <= 32'd0; out_u <= 32'd0;
     end else if (go) begin
       busy <= 1'b1; step <= 4'd0; out_valid <= 1'b0;
       y <= {{15{drive[31]}}, drive};
@@ -266,7 +261,6 @@ module izhikevich_layer (
           busy <= 1'b0; out_valid <= 1'b1; out_spike <= spike;
           out_u <= u_sat;
           out_v <= spike ? c_vreset : vacc < V_MIN ? V_MIN[31:0] : vacc[31:0];
-          out_x_prev <= k_xprev;
         end
         default: ;
       endcase

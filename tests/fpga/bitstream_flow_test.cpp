@@ -308,13 +308,13 @@ TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   const auto params =
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
   EXPECT_EQ(param(params, "BAUD"), "2000000");
-  // 24x24 at 35 kS/s: its engine sets the clock (71 662 clocks a 35-sample
-  // frame: 71.662 MHz), and the flow's messages give that figure.
+  // 24x24 at 35 kS/s: its engine sets the clock (72 820 clocks a 35-sample
+  // frame: 72.82 MHz), and the flow's messages give that figure.
   const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 24, 35000.0),
                                           LoadPolicy::Stress);
-  EXPECT_EQ(big.engine_clocks, 71662);
+  EXPECT_EQ(big.engine_clocks, 72820);
   const std::string why = eskin::hls::dtmf_top_min_clock_reason(big.plan, big.engine_clocks);
-  EXPECT_NE(why.find("the frame engine's 71662 clocks a frame of 35 samples 71.7 MHz"),
+  EXPECT_NE(why.find("the frame engine's 72820 clocks a frame of 35 samples 72.8 MHz"),
             std::string::npos) << why;
   // The default scene's ULX3S clock (30 MHz) is a 3 Mbaud one: one pass.
   const CoreClock d = choose_core_clock(find_board("ulx3s"), base, LoadPolicy::Scene);
