@@ -92,10 +92,11 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
 
 namespace {
 
-// choose_core_clock for a plan made at spec's baud rate.
+// choose_core_clock for a plan made at spec's baud rate, among the clocks
+// whose UART runs at min_baud or faster (0: any).
 CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
                                const std::vector<int32_t>& x, LoadPolicy policy, long clk_hz,
-                               int fast_shift) {
+                               int fast_shift, long min_baud) {
   CoreClock c;
   auto load_with = [&](const hls::DtmfTopSpec& s) {
     c.plan = hls::make_dtmf_top_plan(s);
@@ -126,7 +127,8 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
   c.clocking = choose_clock(b, 0, clk_hz);  // the asked-for or the board's default
   if (clk_hz == 0)
     for (const auto& k : board_clocks(b))
-      if (k.clk_hz >= std::max(c.core_min_hz, b.default_clk_hz) && budget_at(k).ok()) {
+      if (k.clk_hz >= std::max(c.core_min_hz, b.default_clk_hz) && k.baud >= min_baud &&
+          budget_at(k).ok()) {
         c.clocking = k;
         break;
       }
@@ -152,15 +154,17 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
   // again at it, and measure the engine again (the decimation moves the
   // frames that carry packets against the stress signals, so the longest
   // frame moves a little: 16x16 at 1 MS/s, 38 363 -> 38 504 clocks at 2
-  // instead of 3 Mbaud), which may choose another clock. A plan for a
-  // slower link than the clock's is safe; one for a faster link would
-  // overrun it, and is refused.
-  CoreClock c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift);
+  // instead of 3 Mbaud), which may choose another clock: only one whose
+  // UART is at least as fast as the plan's link (a plan for a slower link
+  // than the clock's is safe; one for a faster link would overrun it), so
+  // the passes cannot step down from clock to clock (a 12x12 skin on the
+  // ULX3S with the bit-serial shifter and the unit went 3 -> 2 -> 1 Mbaud).
+  CoreClock c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, 0);
   for (int pass = 1; pass < 3 && c.clocking.baud != spec.baud; ++pass) {
     spec.baud = c.clocking.baud;
-    c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift);
+    c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, spec.baud);
   }
-  if (c.clocking.baud < spec.baud)
+  if (c.budget.ok() && c.clocking.baud < spec.baud)
     throw std::logic_error(fmt::format("choose_core_clock: the packets are planned for {} baud, "
                                        "the clock's UART runs at {}",
                                        spec.baud, c.clocking.baud));

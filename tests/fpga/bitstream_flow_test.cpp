@@ -337,6 +337,30 @@ namespace {
 // the UP5K takes the shifter, and the 6x6 must then fit its 18 MHz (at most
 // 18 000 clocks). The user's choice (fast_shift 0) stands. (The neuron unit
 // is off throughout: the shifter alone is measured.)
+// The passes that plan the packets for the chosen clock's UART cannot step
+// down from clock to clock. A 12x12 skin at 35 kS/s on the ULX3S with the
+// bit-serial shifter and the neuron unit used to: planned for 3 Mbaud it
+// took a 2 Mbaud clock, planned for 2 Mbaud a 1 Mbaud one, and the flow
+// threw (a plan for a faster link than the clock's). Now a pass after the
+// first only takes clocks at least as fast as its plan's link, so it ends
+// on one whose UART carries the packets it was planned for.
+TEST(CoreClock, PassesDoNotStepDownToASlowerLink) {
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const auto sc = scale_scene(base, 12, 35000.0);
+  const Board ulx = find_board("ulx3s");
+  CoreClock c;
+  ASSERT_NO_THROW(c = choose_core_clock(ulx, sc, LoadPolicy::Stress, 0, 0, 1));
+  EXPECT_TRUE(c.budget.ok());
+  // Its packets were planned for this clock's rate or a slower one: the
+  // plan at the clock's own rate thins them at least as much.
+  auto at_clock = c.plan.spec;
+  const auto replanned = eskin::hls::make_dtmf_top_plan(at_clock);
+  EXPECT_GE(c.plan.decim_tax, replanned.decim_tax);
+  EXPECT_GE(c.plan.decim_amp, replanned.decim_amp);
+  std::printf("12x12 serial + unit on the ULX3S: %ld engine clocks, %.0f MHz, %ld baud\n",
+              c.engine_clocks, c.clocking.clk_hz / 1e6, c.clocking.baud);
+}
+
 TEST(CoreClock, BarrelShifterOnTheUlx3sAndOnTheUp5kWhenNeeded) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const auto ice_board = find_board("icebreaker");
