@@ -69,14 +69,15 @@
 //
 // Resources (the unit alone; yosys 0.23 synth_ice40 -dsp -abc9 as
 // scripts/synth_ice40.sh; yowasp yosys synth_ecp5 / nextpnr-ecp5 --85k
-// out of context): iCE40 1448 SB_LUT4, 610 flip-flops, 1 SB_MAC16 (of
-// which the 47-bit round-shift unit is ~335 LUT4); of the flip-flops, 203
-// hold the configuration and 32 the next x_prev. Copying the constants at
-// the handshake (an earlier version, which allowed writes while busy) took
-// 164 more flip-flops, about 100 iCE40 logic cells in a whole top.
-// ECP5 (scripts/synth_ecp5.sh izhikevich_layer --pnr --freq 50 --device
-// 85k): 1315 LUT4 (1631 placed), 642 FF, 1 MULT18X18D, Fmax 82.1 / 85.4 /
-// 84.2 MHz at seeds 1-3 (with the copies: 1318, 806 FF, 84.8-87.7 MHz).
+// out of context): iCE40 1407 SB_LUT4, 546 flip-flops, 1 SB_MAC16 (of
+// which the 47-bit round-shift unit is ~335 LUT4; 203 of the flip-flops
+// hold the configuration). ECP5 (scripts/synth_ecp5.sh izhikevich_layer
+// --pnr --freq 50 --device 85k): 1234 LUT4 (1550 placed), 578 FF, 1
+// MULT18X18D, Fmax 82.5 / 85.8 / 85.9 MHz at seeds 1-3. Until 2026-11-24
+// the unit also copied its constants at the handshake (so that they could
+// be written while it ran) and kept the next x_prev: 1448 LUT4 and 774
+// flip-flops on the iCE40, 1318 LUT4 and 806 FF on the ECP5; on the
+// iCE40 each of those flip-flops took a logic cell of its own.
 module izhikevich_layer (
     input  wire        clk,
     input  wire        rst,
