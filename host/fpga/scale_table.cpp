@@ -59,23 +59,31 @@ std::optional<SlowerClock> slower_clock_variant(const Board& b, const sim::Scene
 }
 
 namespace {
-// A build that failed because its core is too slow (not for area or pins).
-bool missed_timing(const FlowReport& r) {
-  return r.ran_tools ? r.fits && !r.meets_timing : r.core_min_hz > 0 && !r.budget.ok();
+// The option values (and CSV fields) of an engine.
+const char* shifter_name(EngineVariant v) { return v.barrel ? "barrel" : "serial"; }
+const char* neurons_name(EngineVariant v) { return v.unit ? "unit" : "engine"; }
+
+// For a failed build `r`: slower_clock_variant when its core was too slow
+// (not for area or pins), under r's load policy; else none.
+std::optional<SlowerClock> slower_clock_after(const Board& b, const sim::Scene& scene,
+                                              const FlowReport& r) {
+  const bool too_slow =
+      r.ran_tools ? r.fits && !r.meets_timing : r.core_min_hz > 0 && !r.budget.ok();
+  if (r.ok() || !too_slow) return std::nullopt;
+  return slower_clock_variant(b, scene, {r.spec.engine_fast_shift, r.spec.neuron_unit},
+                              r.budget.ok() ? r.clk_hz : 0, r.policy);
 }
 }  // namespace
 
 std::string slower_engine_hint(const Board& b, const sim::Scene& scene, const FlowReport& r) {
-  if (r.ok() || !missed_timing(r)) return "";
-  const auto s = slower_clock_variant(b, scene, {r.spec.engine_fast_shift, r.spec.neuron_unit},
-                                      r.budget.ok() ? r.clk_hz : 0, r.policy);
+  const auto s = slower_clock_after(b, scene, r);
   if (!s) return "";
   return fmt::format(
       "with a {} the core keeps up at {:g} MHz (its engine takes {} clocks a frame, {} load): "
       "--engine-shifter {} --neurons {}",
       variant_name(s->engine), s->clk_hz / 1e6, s->engine_clocks,
-      r.policy == LoadPolicy::Stress ? "stress" : "scene",
-      s->engine.barrel ? "barrel" : "serial", s->engine.unit ? "unit" : "engine");
+      r.policy == LoadPolicy::Stress ? "stress" : "scene", shifter_name(s->engine),
+      neurons_name(s->engine));
 }
 
 ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
@@ -163,13 +171,11 @@ std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions&
         const FlowReport r = probe(opt.fast_shift, opt.neuron_unit, fmt::format("{}x{}", n, n));
         bool ok = rows.back().ok();
         // Too slow: an engine that keeps up at a slower clock may make it.
-        if (!ok && missed_timing(r) && opt.fast_shift < 0 && opt.neuron_unit < 0)
-          if (const auto s = slower_clock_variant(b, sc, rows.back().engine,
-                                                  r.budget.ok() ? r.clk_hz : 0)) {
+        if (opt.fast_shift < 0 && opt.neuron_unit < 0)
+          if (const auto s = slower_clock_after(b, sc, r)) {
             const EngineVariant v = s->engine;
             probe(v.barrel, v.unit,
-                  fmt::format("{}x{}-{}-{}", n, n, v.barrel ? "barrel" : "serial",
-                              v.unit ? "unit" : "engine"));
+                  fmt::format("{}x{}-{}-{}", n, n, shifter_name(v), neurons_name(v)));
             ok = rows.back().ok();
           }
         (ok ? lo : hi) = mid;
@@ -233,7 +239,7 @@ std::string scale_csv(const std::vector<ScaleRow>& rows) {
     s += fmt::format(
         "{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{}\n",
         r.target, r.board, r.device, r.sample_hz, r.rows, r.cols, r.window, r.step, r.clk_hz,
-        r.engine.barrel ? "barrel" : "serial", r.engine.unit ? "unit" : "engine", int(r.fits),
+        shifter_name(r.engine), neurons_name(r.engine), int(r.fits),
         int(r.meets_timing), r.logic_used, r.logic_available, r.dsp_used, r.dsp_available,
         r.ram_used, r.ram_available, r.spram_used, r.fmax_mhz, r.seconds, csv_field(r.failure));
   return s;
