@@ -223,15 +223,15 @@ std::function<int()> setup_bitstream(CLI::App& app) {
                   "The frame engine's shifter: serial (one bit per clock, the smallest) or "
                   "barrel (any shift in one clock: fewer engine clocks a frame, ~1000 "
                   "logic cells more); default: the board's (ulx3s barrel; icebreaker serial unless "
-                  "the core needs more than 18 MHz and the shifter lowers that)")
+                  "the core needs more than 18 MHz: see --neurons)")
       ->check(CLI::IsMember({"serial", "barrel"}));
   sub->add_option("--neurons", args->neurons,
                   "Where the Izhikevich neuron updates run: engine (the frame engine's "
                   "microcode, no extra logic) or unit (the hardware neuron unit, "
-                  "rtl/izhikevich_layer.v: 20 engine clocks a neuron instead of about 120 with the "
-                  "barrel shifter or 210 without); default: "
-                  "the board's (icebreaker engine: the unit does not fit the UP5K beside the "
-                  "rest; ulx3s unit)")
+                  "rtl/izhikevich_layer.v: 21 engine clocks a neuron instead of about 120 with the "
+                  "barrel shifter or 210 without); default: the board's (ulx3s unit; icebreaker "
+                  "engine unless the core needs more than 18 MHz: then the first of barrel, "
+                  "serial + unit, barrel + unit that keeps up at 18 MHz, else the fastest)")
       ->check(CLI::IsMember({"engine", "unit"}));
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");

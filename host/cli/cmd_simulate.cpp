@@ -42,10 +42,11 @@ namespace {
 using link::Packet;
 
 // The scene's FPGA build on the virtual board, which models the
-// iCEBreaker: the default scene's build at 18 MHz, any other at the
-// slowest clock of the board's PLL at which the core keeps up with the
-// scene's frames, as `eskin bitstream` chooses it (host/fpga/flow.h: the
-// frame engine's measured load on the scene's samples).
+// iCEBreaker: the default scene's build at 18 MHz, any other with the
+// engine and the slowest clock of the board's PLL at which the core keeps
+// up with the scene's frames, as `eskin bitstream` chooses them
+// (host/fpga/flow.h: the frame engine's measured load on the scene's
+// samples).
 vboard::FpgaBuild board_build(const sim::Scene& scene) {
   vboard::FpgaBuild b = vboard::fpga_build_for(scene);  // names a bad field
   if (b.key == "default") return b;
@@ -62,7 +63,17 @@ vboard::FpgaBuild board_build(const sim::Scene& scene) {
                                           "with this scene (it needs at least {:.1f} MHz): {}",
                                           double(cc.core_min_hz) / 1e6, why));
   }
-  return vboard::fpga_build_for(scene, "", cc.plan.spec.clk_hz, cc.plan.spec.baud);
+  return vboard::fpga_build_for(scene, "", cc.plan.spec.clk_hz, cc.plan.spec.baud,
+                                {cc.plan.spec.engine_fast_shift, cc.plan.spec.neuron_unit});
+}
+
+// The build's frame engine, as `eskin bitstream --engine-shifter` and
+// `--neurons` name it.
+std::string engine_shifter(const vboard::FpgaBuild& b) {
+  return b.plan.spec.engine_fast_shift ? "barrel" : "serial";
+}
+std::string engine_neurons(const vboard::FpgaBuild& b) {
+  return b.plan.spec.neuron_unit ? "unit" : "engine";
 }
 
 struct Args {
@@ -336,10 +347,12 @@ nlohmann::json report_dtmf(const sim::Scene& scene, const std::string& scene_fil
   const DftVariant golden_variant = golden::resolve_variant(
       scene.decoder.variant, skin.carrier_freqs_hz(), fs, scene.decoder);
   rep.summary = fmt::format(
-      "{}x{} skin, {} carriers, {} samples at {} Hz; FPGA build {} at {:.0f} MHz, UART {:.0f} "
+      "{}x{} skin, {} carriers, {} samples at {} Hz; FPGA build {} at {:.0f} MHz ({} shifter, "
+      "neurons on the {}), UART {:.0f} "
       "baud (exact sliding DFT{}, ghost filter, frames and neuron steps every {} samples); golden "
       "model: variant {}, ghost-corrected, neurons stepped every {} samples like the FPGA.",
-      R, C, K, total, fs, build.key, build.clk_hz() / 1e6, build.baud(),
+      R, C, K, total, fs, build.key, build.clk_hz() / 1e6, engine_shifter(build),
+      build.plan.spec.neuron_unit ? "neuron unit" : "frame engine", build.baud(),
       build.plan.spec.demix ? " + least-squares demixing" : "", build.plan.step,
       to_string(golden_variant), build.plan.step);
   const std::string html = (std::filesystem::path(out_dir) / "report.html").string();
@@ -347,7 +360,9 @@ nlohmann::json report_dtmf(const sim::Scene& scene, const std::string& scene_fil
   nlohmann::json summary;
   {
     nlohmann::json sum = {{"scene", scene_file}, {"fpga_build", build.key},
-                          {"fpga_clk_hz", build.clk_hz()}, {"sim_s", sim_s},
+                          {"fpga_clk_hz", build.clk_hz()},
+                          {"fpga_engine_shifter", engine_shifter(build)},
+                          {"fpga_neurons", engine_neurons(build)}, {"sim_s", sim_s},
                           {"cpu_s", cpu_s}, {"wall_s", wall_s}, {"cycles", cyc},
                           {"packets", rx.size()}, {"link_errors", ls.crc_errors + ls.framing_errors + ls.payload_errors},
                           {"fpga_worst_rms_kpa", fs_.worst_rms_error_kpa()},
@@ -437,7 +452,8 @@ int run_simulate_mixed(const sim::Scene& scene, const Args& a) {
   const uint64_t link_errors = ls.crc_errors + ls.framing_errors + ls.payload_errors;
   const nlohmann::json sum = {
       {"scene", a.scene}, {"top", "mixed_top"}, {"fpga_build", build.key},
-      {"fpga_clk_hz", dtmf.clk_hz()}, {"packets", run.rx.size()},
+      {"fpga_clk_hz", dtmf.clk_hz()}, {"fpga_engine_shifter", engine_shifter(dtmf)},
+      {"fpga_neurons", engine_neurons(dtmf)}, {"packets", run.rx.size()},
       {"dtmf_packets", run.rx.size() - hall_n}, {"hall_packets", hall_n},
       {"link_errors", link_errors}, {"lost_packets", ls.lost_packets},
       {"skin", skin}, {"hall", hall}};

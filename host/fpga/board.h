@@ -29,7 +29,7 @@ struct Board {
   // The frame engine's barrel shifter (DtmfTopSpec::engine_fast_shift): on
   // where its ~1000 logic cells are cheap (the ECP5s); off on the UP5K, whose
   // default scene keeps its 18 MHz clock either way (but see
-  // engine_fast_shift_when_needed).
+  // engine_when_needed).
   bool engine_fast_shift = false;
   // The most parallel DFT lanes (rtl/sdft_lanes.v) the flow may give
   // dtmf_top: each costs a multiplier, a block RAM and logic. A frame's
@@ -45,15 +45,20 @@ struct Board {
   // 9900).
   int max_sdft_lanes = 1;
   // The hardware neuron unit (DtmfTopSpec::neuron_unit, rtl/izhikevich_layer.v):
-  // on the ECP5s, whose logic is cheap; off on the UP5K, where it takes
-  // about 1950 logic cells and does not fit beside the rest (a 6x6 skin
-  // with it: 5609 / 5280 LC).
+  // on the ECP5s, whose logic is cheap; off on the UP5K by default (about
+  // 1800 logic cells), but see engine_when_needed.
   bool neuron_unit = false;
-  // The barrel shifter where engine_fast_shift is off: on when the core
-  // would need a clock above default_clk_hz and the shifter lowers that
-  // need (choose_core_clock). The UP5K: its ~600 logic cells fit beside a
-  // 6x6 skin (4182 / 5280 LC) and take it from 25.1 MHz to 15.8.
-  bool engine_fast_shift_when_needed = false;
+  // The engine when needed (choose_core_clock), for the options the user
+  // left to the board: when the core of engine_fast_shift / neuron_unit
+  // would need a clock above default_clk_hz, the board takes the first of
+  // bit-serial, barrel, serial + unit, barrel + unit (fewest logic cells
+  // first: about 600 UP5K cells for the shifter, 1800 for the unit) whose
+  // core keeps up at default_clk_hz, else the one that needs the slowest
+  // clock. The UP5K: a 6x6 skin at 35 kS/s gets the barrel shifter (25.1 ->
+  // 15.8 MHz), an 8x8 the bit-serial shifter and the unit (17 770 clocks a
+  // frame: 18 MHz; 5229 / 5280 LC), which its PLL's clocks above 18 MHz
+  // could not replace (the fabric reaches about 21).
+  bool engine_when_needed = false;
 };
 
 // "icebreaker" or "ulx3s"; device_override ("25k", "85k"; empty: the

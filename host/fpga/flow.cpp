@@ -93,29 +93,44 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
 namespace {
 
 // choose_core_clock for a plan made at spec's baud rate, among the clocks
-// whose UART runs at min_baud or faster (0: any).
+// whose UART runs at min_baud or faster (0: any). fast_shift and
+// neuron_unit are the user's (-1: the board's, in spec).
 CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
                                const std::vector<int32_t>& x, LoadPolicy policy, long clk_hz,
-                               int fast_shift, long min_baud) {
+                               int fast_shift, int neuron_unit, long min_baud) {
   CoreClock c;
   auto load_with = [&](const hls::DtmfTopSpec& s) {
     c.plan = hls::make_dtmf_top_plan(s);
     c.load = measure_engine_load(c.plan, x);
     c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
                                ? c.load.stress_total() : c.load.scene_clocks);
+    return hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   };
-  load_with(spec);
-  // The board's "when needed" shifter: when the core needs more than the
-  // board's default clock and the shifter lowers that need (the engine is
-  // what limits it, not the ADC or the DFT).
-  const long serial_min = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
-  if (fast_shift < 0 && !spec.engine_fast_shift && b.engine_fast_shift_when_needed &&
-      serial_min > b.default_clk_hz) {
-    const CoreClock serial = c;  // kept, so the serial load is not measured twice
-    auto barrel = spec;
-    barrel.engine_fast_shift = true;
-    load_with(barrel);
-    if (hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks) >= serial_min) c = serial;
+  long need = load_with(spec);
+  // The board's engine when needed (Board::engine_when_needed): the first
+  // engine, fewest cells first, whose core keeps up at the asked-for clock
+  // or the board's default, else the one that needs the slowest clock (when
+  // the ADC or the DFT sets the need, no engine lowers it).
+  const long keep_up_at = clk_hz > 0 ? clk_hz : b.default_clk_hz;
+  if (b.engine_when_needed && need > keep_up_at) {
+    CoreClock best = c;
+    long best_need = need;
+    for (const auto& [barrel, unit] : {std::pair{true, false}, {false, true}, {true, true}}) {
+      if ((fast_shift >= 0 && barrel != (fast_shift != 0)) ||
+          (neuron_unit >= 0 && unit != (neuron_unit != 0)) ||
+          (barrel == spec.engine_fast_shift && unit == spec.neuron_unit))
+        continue;
+      auto s = spec;
+      s.engine_fast_shift = barrel;
+      s.neuron_unit = unit;
+      need = load_with(s);
+      if (need < best_need) {
+        best = c;
+        best_need = need;
+      }
+      if (best_need <= keep_up_at) break;
+    }
+    c = best;
   }
   c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
   c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
@@ -159,10 +174,10 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
   // than the clock's is safe; one for a faster link would overrun it), so
   // the passes cannot step down from clock to clock (a 12x12 skin on the
   // ULX3S with the bit-serial shifter and the unit went 3 -> 2 -> 1 Mbaud).
-  CoreClock c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, 0);
+  CoreClock c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, neuron_unit, 0);
   for (int pass = 1; pass < 3 && c.clocking.baud != spec.baud; ++pass) {
     spec.baud = c.clocking.baud;
-    c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, spec.baud);
+    c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, neuron_unit, spec.baud);
   }
   if (c.budget.ok() && c.clocking.baud < spec.baud)
     throw std::logic_error(fmt::format("choose_core_clock: the packets are planned for {} baud, "

@@ -116,7 +116,9 @@ struct CoreClock {
   hls::DtmfTopClockBudget budget;
 };
 // fast_shift: the engine's barrel shifter, 1 on, 0 off, -1 the board's
-// (Board::engine_fast_shift); neuron_unit likewise (Board::neuron_unit).
+// (Board::engine_fast_shift); neuron_unit likewise (Board::neuron_unit). On
+// a board with Board::engine_when_needed the options left to it (-1) may
+// change where its defaults do not keep up (the plan's spec says which).
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
                             long clk_hz = 0, int fast_shift = -1, int neuron_unit = -1);
 

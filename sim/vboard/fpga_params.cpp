@@ -23,10 +23,13 @@
 namespace eskin::vboard {
 namespace {
 
-hls::DtmfTopPlan plan_of(const sim::Scene& scene, long clk_hz, long baud = 3000000) {
+hls::DtmfTopPlan plan_of(const sim::Scene& scene, long clk_hz, long baud = 3000000,
+                         EngineOptions engine = {}) {
   try {
     hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene, clk_hz);
     spec.baud = baud;
+    spec.engine_fast_shift = engine.fast_shift;
+    spec.neuron_unit = engine.neuron_unit;
     return hls::make_dtmf_top_plan(spec);
   } catch (const std::invalid_argument& e) {
     // "skin.rows/cols: expected ..." -> a ConfigError on that field.
@@ -55,9 +58,9 @@ std::vector<std::string> FpgaBuild::verilator_args() const {
 }
 
 FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir, long clk_hz,
-                         long baud) {
+                         long baud, EngineOptions engine) {
   FpgaBuild b;
-  b.plan = plan_of(scene, clk_hz, baud);
+  b.plan = plan_of(scene, clk_hz, baud, engine);
   const std::string mine = integer_params(b.plan);
   static const std::string defaults = integer_params(
       plan_of(sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml"), hls::kDtmfTopClkHz));

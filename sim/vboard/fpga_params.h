@@ -28,14 +28,24 @@ struct FpgaBuild {
   std::vector<std::string> verilator_args() const;           // -Gname=value ...
 };
 
+// The frame engine of a build (hls::DtmfTopSpec::engine_fast_shift,
+// neuron_unit): the iCEBreaker's bit-serial engine with the microcode's
+// neurons unless `eskin bitstream`'s board chose another for the scene
+// (fpga::choose_core_clock), whose clocks a frame the clock was chosen for.
+struct EngineOptions {
+  bool fast_shift = false;
+  bool neuron_unit = false;
+};
+
 // The build for `scene` at FPGA clock `clk_hz` and UART rate `baud`
-// (default: the UP5K's 18 MHz, 3 Mbaud);
+// (default: the UP5K's 18 MHz, 3 Mbaud) with `engine`;
 // throws ConfigError naming the field when the top cannot be built for it.
 // With a `dir`, its microcode and constants are written there
 // (KEY.ucode.hex, KEY.krom.hex, each replaced atomically) and `params` name
 // them; without, only the plan and key are derived.
 FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir = "",
-                         long clk_hz = hls::kDtmfTopClkHz, long baud = 3000000);
+                         long clk_hz = hls::kDtmfTopClkHz, long baud = 3000000,
+                         EngineOptions engine = {});
 
 // An exclusive lock on one build's files (DIR/KEY.lock, flock): boards of
 // the same build running different scenes hold it from writing their files

@@ -30,6 +30,9 @@
 #if !defined(VBOARD_CLK_HZ) || !defined(VBOARD_BAUD)
 #error "VBOARD_CLK_HZ, VBOARD_BAUD: the FPGA clock and UART rate of this board's build"
 #endif
+#if !defined(VBOARD_ENGINE_FAST_SHIFT) || !defined(VBOARD_NEURON_UNIT)
+#error "VBOARD_ENGINE_FAST_SHIFT, VBOARD_NEURON_UNIT: the frame engine of this board's build (0/1)"
+#endif
 #ifndef VBOARD_BUILD_DIR
 #error "VBOARD_BUILD_DIR: where the model reads KEY.ucode.hex and KEY.krom.hex"
 #endif
@@ -37,6 +40,9 @@
 ESKIN_EXPOSE_EVAL_STEP(Vdtmf_top)
 
 namespace {
+
+constexpr eskin::vboard::EngineOptions kEngine{VBOARD_ENGINE_FAST_SHIFT != 0,
+                                               VBOARD_NEURON_UNIT != 0};
 
 using eskin::vboard::DirectWire;
 template <class Port>
@@ -78,7 +84,7 @@ class VerilatedFpga final : public eskin::vboard::VerilatedTop<Vdtmf_top> {
 
 int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   const eskin::sim::Scene scene = eskin::sim::load_scene(a.scene);
-  const eskin::vboard::FpgaBuild params = eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ, VBOARD_BAUD);
+  const eskin::vboard::FpgaBuild params = eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ, VBOARD_BAUD, kEngine);
   eskin::vboard::require_build(a.scene, "FPGA", params.key, VBOARD_PARAMS_KEY);
 
   eskin::vboard::BoardConfig cfg;
@@ -94,7 +100,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   // another board of this build may be about to write its own there.
   std::unique_ptr<eskin::vboard::BuildLock> lock =
       std::make_unique<eskin::vboard::BuildLock>(VBOARD_BUILD_DIR, VBOARD_PARAMS_KEY);
-  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR, VBOARD_CLK_HZ, VBOARD_BAUD);
+  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR, VBOARD_CLK_HZ, VBOARD_BAUD, kEngine);
   VerilatedFpga fpga;
   lock.reset();
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz())));

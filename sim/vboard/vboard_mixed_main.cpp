@@ -30,6 +30,9 @@
 #ifndef VBOARD_PARAMS_KEY
 #error "VBOARD_PARAMS_KEY: the mixed build this board is made for"
 #endif
+#if !defined(VBOARD_ENGINE_FAST_SHIFT) || !defined(VBOARD_NEURON_UNIT)
+#error "VBOARD_ENGINE_FAST_SHIFT, VBOARD_NEURON_UNIT: the frame engine of this board's build (0/1)"
+#endif
 #if !defined(VBOARD_CLK_HZ) || !defined(VBOARD_BAUD) || !defined(VBOARD_BUILD_DIR)
 #error "VBOARD_CLK_HZ, VBOARD_BAUD, VBOARD_BUILD_DIR: the build's clock, UART rate, files"
 #endif
@@ -37,6 +40,9 @@
 ESKIN_EXPOSE_EVAL_STEP(Vmixed_top)
 
 namespace {
+
+constexpr eskin::vboard::EngineOptions kEngine{VBOARD_ENGINE_FAST_SHIFT != 0,
+                                               VBOARD_NEURON_UNIT != 0};
 
 using eskin::vboard::DirectPort;
 using eskin::vboard::DirectWire;
@@ -89,7 +95,7 @@ class VerilatedMixedFpga final : public eskin::vboard::VerilatedTop<Vmixed_top> 
 int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   const eskin::sim::Scene scene = eskin::sim::load_scene(a.scene);
   const eskin::vboard::FpgaBuild dtmf =
-      eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ, VBOARD_BAUD);
+      eskin::vboard::fpga_build_for(scene, "", VBOARD_CLK_HZ, VBOARD_BAUD, kEngine);
   const eskin::vboard::MixedBuild build = eskin::vboard::mixed_build_for(scene, dtmf);
   eskin::vboard::require_build(a.scene, "mixed", build.key, VBOARD_PARAMS_KEY);
 
@@ -107,7 +113,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   // The DTMF part reads the scene's microcode and constants when the model
   // is constructed (as in vboard_main.cpp).
   auto lock = std::make_unique<eskin::vboard::BuildLock>(VBOARD_BUILD_DIR, dtmf.key);
-  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR, VBOARD_CLK_HZ, VBOARD_BAUD);
+  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR, VBOARD_CLK_HZ, VBOARD_BAUD, kEngine);
   VerilatedMixedFpga fpga;
   lock.reset();
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / cfg.clk_hz)));

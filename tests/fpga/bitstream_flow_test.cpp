@@ -387,20 +387,18 @@ TEST(CoreClock, BarrelShifterOnTheUlx3sAndOnTheUp5kWhenNeeded) {
             "1");
 }
 
-// The neuron unit is the ULX3S's, not the UP5K's (where it does not fit
-// beside the rest). Bound: an 8x8 35 kS/s skin (128 neurons) under the
-// stress signals, with the barrel shifter either way;
-// the izhikevich_layer routine and its loop take at least 104 clocks a
-// neuron and the unit's loop at most 28 (tests/hls/dtmf_ucode_test.cpp),
-// so the unit saves at least 128 x 76 = 9 728 clocks a frame; with the
-// unit the ULX3S's 30 MHz default carries it (30 000 clocks a frame).
-TEST(CoreClock, Ulx3sHasTheNeuronUnitIcebreakerNot) {
+// The neuron unit is the ULX3S's always, the UP5K's when needed. Bound on
+// the ULX3S: an 8x8 35 kS/s skin (128 neurons) under the stress signals,
+// with the barrel shifter either way; the izhikevich_layer routine and its
+// loop take at least 104 clocks a neuron and the unit's loop at most 28
+// (tests/hls/dtmf_ucode_test.cpp), so the unit saves at least 128 x 76 =
+// 9 728 clocks a frame; with the unit the ULX3S's 30 MHz default carries
+// it (30 000 clocks a frame).
+TEST(CoreClock, Ulx3sHasTheNeuronUnit) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const auto sc = scale_scene(base, 8, 35000.0);
-  const CoreClock ice = choose_core_clock(find_board("icebreaker"), sc, LoadPolicy::Stress, 0, 1);
   const CoreClock engine = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress, 0, -1, 0);
   const CoreClock unit = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress);
-  EXPECT_FALSE(ice.plan.spec.neuron_unit);
   EXPECT_FALSE(engine.plan.spec.neuron_unit);
   EXPECT_TRUE(unit.plan.spec.neuron_unit);
   std::printf("8x8 at 35 kS/s, barrel shifter, longest stress frame: neurons on the engine %llu "
@@ -409,12 +407,67 @@ TEST(CoreClock, Ulx3sHasTheNeuronUnitIcebreakerNot) {
               (unsigned long long)unit.load.stress_clocks, engine.core_min_hz / 1e6,
               unit.core_min_hz / 1e6);
   EXPECT_LE(unit.load.stress_clocks + 128 * 76, engine.load.stress_clocks);
-  EXPECT_EQ(ice.load.stress_clocks, engine.load.stress_clocks);  // the same engine
   EXPECT_LE(unit.engine_clocks, 30000);
   EXPECT_EQ(unit.clocking.clk_hz, 30000000);
   EXPECT_EQ(param(eskin::hls::dtmf_top_params(unit.plan, eskin::hls::dtmf_engine_image(unit.plan), "", ""),
                   "NEURON_UNIT"),
             "1");
+}
+
+// The iCEBreaker's engine when needed (Board::engine_when_needed): the
+// first of bit-serial, barrel, serial + unit, barrel + unit whose core
+// keeps up at 18 MHz (or the clock asked for), else the fastest; an option
+// the user gives stays. The bounds are the engines' own minimum clocks,
+// measured here by the same instruction-set model: an 8x8 skin at 35 kS/s
+// needs more than 18 MHz with the barrel shifter alone and at most 18 with
+// the bit-serial shifter and the unit, so the board takes the latter and
+// keeps its 18 MHz clock.
+TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const Board ice = find_board("icebreaker");
+  const auto sc8 = scale_scene(base, 8, 35000.0);
+  const CoreClock barrel = choose_core_clock(ice, sc8, LoadPolicy::Stress, 0, 1, 0);
+  const CoreClock serial_unit = choose_core_clock(ice, sc8, LoadPolicy::Stress, 0, 0, 1);
+  EXPECT_GT(barrel.core_min_hz, ice.default_clk_hz);
+  EXPECT_LE(serial_unit.core_min_hz, ice.default_clk_hz);
+  const CoreClock chosen = choose_core_clock(ice, sc8, LoadPolicy::Stress);
+  EXPECT_FALSE(chosen.plan.spec.engine_fast_shift);
+  EXPECT_TRUE(chosen.plan.spec.neuron_unit);
+  EXPECT_EQ(chosen.engine_clocks, serial_unit.engine_clocks);
+  EXPECT_EQ(chosen.clocking.clk_hz, ice.default_clk_hz);
+  EXPECT_TRUE(chosen.budget.ok());
+  // --neurons engine stays: then the barrel shifter, the fastest left, at
+  // the clock it needs.
+  const CoreClock no_unit = choose_core_clock(ice, sc8, LoadPolicy::Stress, 0, -1, 0);
+  EXPECT_TRUE(no_unit.plan.spec.engine_fast_shift);
+  EXPECT_FALSE(no_unit.plan.spec.neuron_unit);
+  EXPECT_EQ(no_unit.engine_clocks, barrel.engine_clocks);
+  EXPECT_GE(no_unit.clocking.clk_hz, no_unit.core_min_hz);
+  // A 12x12 skin: no engine keeps up at 18 MHz; the fastest is barrel +
+  // unit, whose need is below every other engine's.
+  const auto sc12 = scale_scene(base, 12, 35000.0);
+  const CoreClock big = choose_core_clock(ice, sc12, LoadPolicy::Stress);
+  EXPECT_TRUE(big.plan.spec.engine_fast_shift);
+  EXPECT_TRUE(big.plan.spec.neuron_unit);
+  EXPECT_GT(big.core_min_hz, ice.default_clk_hz);
+  EXPECT_LT(big.core_min_hz, choose_core_clock(ice, sc12, LoadPolicy::Stress, 0, 0, 1).core_min_hz);
+  // The clock asked for is the bar: a 6x6 skin's bit-serial engine needs
+  // more than 18 MHz but keeps up at 27, so at 27 MHz it stays bit-serial.
+  const auto sc6 = scale_scene(base, 6, 35000.0);
+  const CoreClock at27 = choose_core_clock(ice, sc6, LoadPolicy::Stress, 27000000);
+  EXPECT_FALSE(at27.plan.spec.engine_fast_shift);
+  EXPECT_FALSE(at27.plan.spec.neuron_unit);
+  EXPECT_GT(at27.core_min_hz, ice.default_clk_hz);
+  EXPECT_LE(at27.core_min_hz, 27000000);
+  EXPECT_TRUE(at27.budget.ok());
+  // The default scene needs none of it.
+  const CoreClock dflt = choose_core_clock(ice, base, LoadPolicy::Scene);
+  EXPECT_FALSE(dflt.plan.spec.engine_fast_shift);
+  EXPECT_FALSE(dflt.plan.spec.neuron_unit);
+  std::printf("iCEBreaker 8x8: barrel %ld clocks (%.1f MHz), serial + unit %ld (%.1f MHz); "
+              "12x12 barrel + unit %.1f MHz; 6x6 bit-serial %.1f MHz\n",
+              barrel.engine_clocks, barrel.core_min_hz / 1e6, serial_unit.engine_clocks,
+              serial_unit.core_min_hz / 1e6, big.core_min_hz / 1e6, at27.core_min_hz / 1e6);
 }
 
 
