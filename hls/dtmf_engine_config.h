@@ -268,7 +268,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   for (const char* n :
        {"VT", "TPASS", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "PKTDROP",
         "ACC", "REJ", "LRT", "LRR", "LRS", "CTYPE", "CSEQ", "CLEN", "PT", "PTT", "PLEN", "TLO",
-        "TMP", "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
+        "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
         "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "SEB", "NX", "ND", "NXS",
         "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NUN"})
     alloc(n, 1);
@@ -287,6 +287,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   kc("KC_I32MIN", INT32_MIN), kc("KC_I32MAX", INT32_MAX), kc("KC_UMIN", izh::kUMin);
   kc("KC_UMAX", izh::kUMax), kc("KC_VMIN", izh::kVMin), kc("KC_VPEAK", izh::kVPeak);
   kc("KC_WOFF", izh::kWOffset), kc("KC_RECIP", p.taxel.recip), kc("KC_C", C);
+  kc("KC_GHALF", int64_t(1) << (p.taxel.recip_shift + 13));  // 2^(GRND - 1): a taxel's rounding
   kc("KC_NCS", kNeuronBlock), kc("KC_LAYER1", 1 << 16), kc("KC_MASKRES", 0xE0);
   kc("KC_NCOEF", dim * dim), kc("KC_STEP", p.step);
   constexpr int kQ = 1 << (10 - 2);  // quarter table of CarrierDemix<..., TW = 10>

@@ -54,8 +54,8 @@ struct Board {
   // bit-serial, barrel, serial + unit, barrel + unit (fewest logic cells
   // first: about 600 UP5K cells for the shifter, 1800 for the unit) whose
   // core keeps up at default_clk_hz, else the one that needs the slowest
-  // clock. The UP5K: a 6x6 skin at 35 kS/s gets the barrel shifter (25.1 ->
-  // 15.8 MHz), an 8x8 the bit-serial shifter and the unit (17 770 clocks a
+  // clock. The UP5K: a 6x6 skin at 35 kS/s gets the barrel shifter (24.9 ->
+  // 15.9 MHz), an 8x8 the bit-serial shifter and the unit (16 916 clocks a
   // frame: 18 MHz; 5229 / 5280 LC), which its PLL's clocks above 18 MHz
   // could not replace (the fabric reaches about 21).
   bool engine_when_needed = false;

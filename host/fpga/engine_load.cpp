@@ -138,6 +138,15 @@ class LoadRun {
     return io_.done_clock - start;
   }
 
+  // Every taxel an active ghost site (SITE words 1), as a skin with
+  // contacts everywhere would leave them: the site rule's longer paths
+  // for every taxel in the next frame. Only ghost_filter writes SITE and
+  // none of its paths reads it, so its clocks are those of the signal.
+  void every_taxel_a_site() {
+    const int64_t site = im_.symbol("SITE");
+    for (int i = 0; i < p_.T; ++i) eng_->set_dmem(uint32_t(site + i), 1);
+  }
+
   // A command frame as cmd_decoder queues it; its clocks from the end of
   // the wait to the next wait.
   uint64_t command(const std::vector<uint8_t>& bytes) {
@@ -226,10 +235,24 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
   };
   std::vector<double> level(size_t(p.K), 0.0);
   std::vector<int32_t> x;
-  for (const auto& [name, levels] : signals) {
+  // Each signal as it comes, then (with the ghost filter) again with every
+  // taxel a site before each frame: a signal alone leaves few sites, and a
+  // taxel's clocks depend on whether it is one (rtl/ucode: taxel_reconstruct).
+  struct Run {
+    std::string name;
+    const Levels* levels;
+    bool sites;
+  };
+  std::vector<Run> runs;
+  for (const auto& [name, levels] : signals) runs.push_back({name, &levels, false});
+  if (p.spec.ghost)
+    for (const auto& [name, levels] : signals)
+      runs.push_back({std::string(name) + ", every taxel a site", &levels, true});
+  for (const auto& [name, levels, sites] : runs) {
     uint64_t worst = 0;
     for (int f = 0; f < frames; ++f, ++load.stress_frames) {
-      levels(f, level);
+      (*levels)(f, level);
+      if (sites) run.every_taxel_a_site();
       const uint32_t t = uint32_t(p.N - 1 + load.stress_frames * p.step);
       for (uint32_t m = uint32_t(x.size()); m <= t; ++m) {
         double v = 17.0;

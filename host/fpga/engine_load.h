@@ -13,7 +13,9 @@
 //  - stress: the longest frame of synthetic signals that drive every path
 //    hard (random levels, random on/off carriers, all carriers toggling,
 //    steady full, steady quiet; 64 frames or more each) at the plan's mask
-//    and decimations;
+//    and decimations, and with the ghost filter each again with every
+//    taxel made an active site before each frame (a taxel costs more when
+//    it is one, and synthetic signals leave few);
 //  - command: the longest command of docs/protocol.md §5, each accepted and
 //    each reason of rejection, which delays the frame after it (commands
 //    run between frames).

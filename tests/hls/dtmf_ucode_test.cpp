@@ -139,6 +139,66 @@ TEST(DtmfUcode, RandomCarriersOn5x7EqualTheChain) {
   }
 }
 
+// The paths a full spike window and a chain without the ghost filter
+// take: the 5x7 random carriers with 48 spike events in a window of 20
+// frames (T = 35 neurons a layer), so a window starts with room for a
+// whole layer (the spike encoder's loop without the room test), then fills
+// within a layer (the tested loop) and then holds MAXSPK events (the rest
+// of the flags added up as drops: hundreds of spikes dropped); and the
+// same codes with the ghost filter off (every taxel its product, no site
+// rule). Exact: every data packet equals the chain's, with the neurons on
+// the engine and on the unit, and the engine's drop count (SPKDROP, the
+// STATUS field) equals the chain's spike encoder's, far below the 16-bit
+// saturation.
+TEST(DtmfUcode, FullSpikeWindowsAndNoGhostFilterEqualTheChain) {
+  using S = hls::DtmfChainSizes<5, 7, 32, 4, 48>;
+  sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  sc.skin.rows = 5, sc.skin.cols = 7;
+  const auto f = plan_carriers(12, sc.skin.adc.rate_hz, 32);
+  sc.skin.row_freq_hz.assign(f.begin(), f.begin() + 5);
+  sc.skin.col_freq_hz.assign(f.begin() + 5, f.end());
+  sc.skin.freq_error.clear();
+  const long clk_hz = 96000000;
+  auto spec = sim::dtmf_top_spec(sc, clk_hz);
+  const long period = std::lround(double(clk_hz) / spec.sample_hz);
+  const double full = spec.full_carrier_lsb * std::ldexp(1.0, 12 - spec.adc_bits);
+  const int step = int(std::lround(spec.frame_ms * spec.sample_hz / 1000.0));
+  const auto codes = dtmf_stimulus::random_carrier_codes(f, spec.sample_hz, full, 600 * step,
+                                                         3 * step, 7);
+  for (bool ghost : {true, false})
+    for (bool unit : {false, true}) {
+      spec.ghost = ghost;
+      spec.neuron_unit = unit;
+      auto plan = hls::make_dtmf_top_plan(spec);
+      plan.max_spikes = S::MAX_SPIKES;
+      plan.decim_tax = 20;  // a spike window of 20 frames
+      const std::string what =
+          std::string("48 spikes a window, ghost filter ") + (ghost ? "on" : "off");
+      compare_codes<S>(what, plan, period, codes);
+      // The drop counts, on a fresh pair (compare_codes keeps neither): the
+      // chain's after each frame, the engine's after the last frame it
+      // released (the samples may end while it runs one more).
+      dtmf_model::TopModel<S> top(plan, period);
+      auto chain = std::make_unique<hls::DtmfChain<S>>(hls::chain_config<S>(plan));
+      typename hls::DtmfChain<S>::Packet pk[hls::DtmfChain<S>::kMaxPackets];
+      std::vector<uint32_t> chain_drops;  // after frame i + 1
+      for (size_t n = 0; n < codes.size(); ++n) {
+        top.sample(codes[n]);
+        chain->push(codes[n], uint32_t(n), pk);
+        if (chain->frames() > chain_drops.size()) chain_drops.push_back(chain->spikes_dropped());
+      }
+      ASSERT_GT(top.frames_done(), 0u);
+      ASSERT_LE(top.frames_done(), chain_drops.size());
+      const uint32_t want = chain_drops[top.frames_done() - 1];
+      const uint32_t drops = top.engine().dmem(uint32_t(top.image().symbol("SPKDROP")));
+      std::printf("%s%s: %u spikes dropped in %u frames\n", what.c_str(),
+                  unit ? ", neuron unit" : "", drops, top.frames_done());
+      EXPECT_GT(want, 500u);
+      EXPECT_LT(want, 65535u);
+      EXPECT_EQ(drops, want);
+    }
+}
+
 // SET_NEURON changes sent to the top model at run time, each once the
 // engine has released frame `after_frame`, and applied to the chain before
 // the next one; the default scene with the neuron unit and without. Exact:

@@ -495,8 +495,8 @@ TEST(DtmfTop, Staggered10x10At24MHzWithTheNeuronUnit) {
 // (docs/bitstream.md, the scale table): 40 MHz, the AD7476A's first band;
 // 32 DFT channels in 6 lanes at KS + 8 = 40 clocks a frame's sample,
 // exactly the sample period, 38 any other; the barrel shifter and the
-// neuron unit, the engine's stress load (38 504 clocks) within a frame's
-// 40 000; packets planned for its 2 Mbaud. The first whole-top
+// neuron unit, the engine's stress load and longest command (37 756
+// clocks, every taxel a site) within a frame's 40 000; packets planned for its 2 Mbaud. The first whole-top
 // run of 6 lanes and of a DFT paced at the sample period. Checks: the
 // board flow chooses exactly this build for the ULX3S (its clock, lanes,
 // shifter and unit; prepare() checks every parameter against the plan);
@@ -510,7 +510,7 @@ TEST(DtmfTop, Staggered10x10At24MHzWithTheNeuronUnit) {
 // table's KS = 32 writes cost no sample either: each is taken only while
 // every lane is idle and delays the next sample by at most 2 clocks (the
 // write's clock, then the handshake once cfg_valid falls); the next write
-// comes at least 13 engine clocks later (sdft_program's loop), when the
+// comes at least 10 engine clocks later (sdft_program's loop), when the
 // lanes are busy with that sample, so at most one write falls between two
 // samples. A skipped sample (no tokens: all but the frames') takes S = 38
 // of the P = 40 clocks, so it absorbs its write (S + 2 <= P) and the delay
