@@ -111,6 +111,31 @@ TEST(DtmfUcode, NeuronUnitGivesTheSamePacketsInFewerClocks) {
               (unsigned long long)soft, (unsigned long long)unit);
 }
 
+// The 5x7 skin of the default scene's ADC at 96 MHz and 600 frames of
+// its random on/off carriers (each at 0 or 1.2 full carriers, the taxel
+// rule's range), switched every 3 frames.
+struct Random5x7 {
+  hls::DtmfTopSpec spec;
+  long period = 0;
+  std::vector<uint16_t> codes;
+};
+Random5x7 random_5x7() {
+  sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  sc.skin.rows = 5, sc.skin.cols = 7;
+  const auto f = plan_carriers(12, sc.skin.adc.rate_hz, 32);
+  sc.skin.row_freq_hz.assign(f.begin(), f.begin() + 5);
+  sc.skin.col_freq_hz.assign(f.begin() + 5, f.end());
+  sc.skin.freq_error.clear();
+  const long clk_hz = 96000000;
+  Random5x7 r;
+  r.spec = sim::dtmf_top_spec(sc, clk_hz);
+  r.period = std::lround(double(clk_hz) / r.spec.sample_hz);
+  const double full = r.spec.full_carrier_lsb * std::ldexp(1.0, 12 - r.spec.adc_bits);
+  const int step = int(std::lround(r.spec.frame_ms * r.spec.sample_hz / 1000.0));
+  r.codes = dtmf_stimulus::random_carrier_codes(f, r.spec.sample_hz, full, 600 * step, 3 * step, 7);
+  return r;
+}
+
 // A 5 x 7 skin (rows != columns, so a row/column mix-up shows) driven by
 // random on/off carriers, switched every 3 frames: many lines rise and
 // fall at once (the ghost filter's pairing, its candidate list up to K),
@@ -119,20 +144,7 @@ TEST(DtmfUcode, NeuronUnitGivesTheSamePacketsInFewerClocks) {
 // neurons on the engine and on the unit.
 TEST(DtmfUcode, RandomCarriersOn5x7EqualTheChain) {
   using S = hls::DtmfChainSizes<5, 7, 32>;
-  sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  sc.skin.rows = 5, sc.skin.cols = 7;
-  const auto f = plan_carriers(12, sc.skin.adc.rate_hz, 32);
-  sc.skin.row_freq_hz.assign(f.begin(), f.begin() + 5);
-  sc.skin.col_freq_hz.assign(f.begin() + 5, f.end());
-  sc.skin.freq_error.clear();
-  const long clk_hz = 96000000;
-  auto spec = sim::dtmf_top_spec(sc, clk_hz);
-  const long period = std::lround(double(clk_hz) / spec.sample_hz);
-  // Carrier k at 0 or 1.2 full carriers (the taxel rule's range).
-  const double full = spec.full_carrier_lsb * std::ldexp(1.0, 12 - spec.adc_bits);
-  const int step = int(std::lround(spec.frame_ms * spec.sample_hz / 1000.0));
-  const auto codes = dtmf_stimulus::random_carrier_codes(f, spec.sample_hz, full, 600 * step,
-                                                         3 * step, 7);
+  auto [spec, period, codes] = random_5x7();
   for (bool unit : {false, true}) {
     spec.neuron_unit = unit;
     compare_codes<S>("random carriers, 5x7", hls::make_dtmf_top_plan(spec), period, codes);
@@ -152,19 +164,7 @@ TEST(DtmfUcode, RandomCarriersOn5x7EqualTheChain) {
 // saturation.
 TEST(DtmfUcode, FullSpikeWindowsAndNoGhostFilterEqualTheChain) {
   using S = hls::DtmfChainSizes<5, 7, 32, 4, 48>;
-  sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  sc.skin.rows = 5, sc.skin.cols = 7;
-  const auto f = plan_carriers(12, sc.skin.adc.rate_hz, 32);
-  sc.skin.row_freq_hz.assign(f.begin(), f.begin() + 5);
-  sc.skin.col_freq_hz.assign(f.begin() + 5, f.end());
-  sc.skin.freq_error.clear();
-  const long clk_hz = 96000000;
-  auto spec = sim::dtmf_top_spec(sc, clk_hz);
-  const long period = std::lround(double(clk_hz) / spec.sample_hz);
-  const double full = spec.full_carrier_lsb * std::ldexp(1.0, 12 - spec.adc_bits);
-  const int step = int(std::lround(spec.frame_ms * spec.sample_hz / 1000.0));
-  const auto codes = dtmf_stimulus::random_carrier_codes(f, spec.sample_hz, full, 600 * step,
-                                                         3 * step, 7);
+  auto [spec, period, codes] = random_5x7();
   for (bool ghost : {true, false})
     for (bool unit : {false, true}) {
       spec.ghost = ghost;
