@@ -128,7 +128,8 @@ inline std::array<int64_t, kNeuronBlock> neuron_block(const IzhikevichConfig& n)
 // Clocks of one update of the neuron unit (rtl/izhikevich_layer.v): an
 // update started by the write in clock c shows its results, and raises
 // kEvIzDone, from clock c + kIzhikevichUnitClocks on; until then the ports
-// show the previous update's results, and a start is ignored (busy).
+// show the previous update's results, and a start is ignored (busy; the
+// port model below throws on one).
 constexpr int kIzhikevichUnitClocks = 14;
 
 // rtl/dtmf_top.v's neuron unit ports (NEURON_UNIT = 1) as the engine sees
@@ -163,9 +164,10 @@ struct IzhikevichUnitPort {
     return c;
   }
   // An IO write at `clock`; false when `a` is not a unit port. Throws
-  // std::logic_error on a constant word written while an update runs: the
-  // unit reads its constants during the update (rtl/izhikevich_layer.v,
-  // "Configuration"), so the microcode must write them between updates.
+  // std::logic_error on a constant word written while an update runs (the
+  // unit reads its constants during the update: rtl/izhikevich_layer.v,
+  // "Configuration", so the microcode must write them between updates) and
+  // on a start while an update runs (the unit would ignore it).
   bool write(uint16_t a, uint32_t d, uint64_t clock) {
     if (!present) return false;
     if ((a & 0xFFE0) == kIoIzCfg) {
@@ -181,7 +183,12 @@ struct IzhikevichUnitPort {
       case kIoIzV: v = int32_t(d); return true;
       case kIoIzU: u = int32_t(d); return true;
       case kIoIzGo: {
-        if (clock < done_clock) return true;  // busy: the unit ignores it
+        // The unit ignores a start while busy; no microcode may rely on
+        // that (nu_layer's level loop counts its clocks instead of waiting).
+        if (clock < done_clock)
+          throw std::logic_error("the microcode started the neuron unit in clock " +
+                                 std::to_string(clock) + ", while an update ran (until clock " +
+                                 std::to_string(done_clock) + ")");
         shown = next;
         IzhikevichLayer<1> one(config());
         one.set_state(0, v, u, int32_t(d));

@@ -55,7 +55,7 @@ struct Board {
   // first: about 600 UP5K cells for the shifter, 1800 for the unit) whose
   // core keeps up at default_clk_hz, else the one that needs the slowest
   // clock. The UP5K: a 6x6 skin at 35 kS/s gets the barrel shifter (24.9 ->
-  // 15.9 MHz), an 8x8 the bit-serial shifter and the unit (16 916 clocks a
+  // 15.9 MHz), an 8x8 the bit-serial shifter and the unit (16 670 clocks a
   // frame: 18 MHz; 5229 / 5280 LC), which its PLL's clocks above 18 MHz
   // could not replace (the fabric reaches about 21).
   bool engine_when_needed = false;

@@ -256,7 +256,7 @@ TEST(ScaleTable, ASizePassesWithAnyOfItsEngines) {
 // the frame engine's clocks a frame (instruction-set model, stress
 // signals; docs/fpga.md): 8x8 at 35 kS/s takes 26 406 with the barrel
 // shifter and microcode neurons (so 27 MHz on the iCEBreaker, which the
-// UP5K does not reach), 41 843 bit-serial (slower still), 16 916
+// UP5K does not reach), 41 843 bit-serial (slower still), 16 670
 // bit-serial with the unit (18 MHz): the smallest that keeps up at a
 // slower clock. On the ULX3S the board's engine (barrel + unit) is the
 // fastest, so nothing else helps a 24x24 skin that missed 75 MHz.

@@ -425,8 +425,10 @@ TEST(IzhikevichLayerRtl, ConfigWrittenBetweenUpdatesAppliesToTheNextUpdate) {
 // constant word written in the clocks of an update (after the start's
 // clock c, before c + kIzhikevichUnitClocks, when the results come) throws;
 // from that clock on, the write lands at or after the unit's last edge,
-// which the test above shows to be safe.
-TEST(IzhikevichLayerRtl, ModelRefusesConstantsWrittenWhileBusy) {
+// which the test above shows to be safe. A start in those clocks throws
+// too (the unit, not ready, would ignore it); from c + kLatency on it
+// starts the next update, as the handshake test shows in_ready again.
+TEST(IzhikevichLayerRtl, ModelRefusesConstantsAndStartsWhileBusy) {
   eskin::hls::IzhikevichUnitPort p;
   p.present = true;
   const uint16_t vreset = eskin::hls::kIoIzCfg + 2;
@@ -435,6 +437,10 @@ TEST(IzhikevichLayerRtl, ModelRefusesConstantsWrittenWhileBusy) {
   EXPECT_THROW(p.write(vreset, 5, 101), std::logic_error);
   EXPECT_THROW(p.write(vreset, 5, 100 + kLatency - 1), std::logic_error);
   EXPECT_NO_THROW(p.write(vreset, 5, 100 + kLatency));
+  EXPECT_THROW(p.write(eskin::hls::kIoIzGo, 0, 101), std::logic_error);
+  EXPECT_THROW(p.write(eskin::hls::kIoIzGo, 0, 100 + kLatency - 1), std::logic_error);
+  EXPECT_NO_THROW(p.write(eskin::hls::kIoIzGo, 0, 100 + kLatency));
+  EXPECT_THROW(p.write(eskin::hls::kIoIzGo, 0, 100 + kLatency + 1), std::logic_error);
 }
 
 // (6) Bound: the reset state exactly: out_valid 1, in_ready 1, outputs 0;

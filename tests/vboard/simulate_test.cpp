@@ -147,7 +147,7 @@ TEST(Simulate, ASceneOfAnotherBuildGetsItsBoardBuilt) {
 // carriers at 70 kS/s, a 1 ms frame) needs more than 18 MHz with the
 // board's own engine (bit-serial, neurons in microcode: its longest frame
 // 52 915 clocks) and with the barrel shifter alone (33 144); with the
-// bit-serial shifter and the neuron unit it takes 13 661, so the board
+// bit-serial shifter and the neuron unit it takes 13 466, so the board
 // takes that pair, the next fewest cells, and keeps 18 MHz
 // (host/fpga/flow.h; tests/fpga/bitstream_flow_test.cpp). Bounds: no frame
 // overrun and no dropped packet, which needs an engine that keeps up;
