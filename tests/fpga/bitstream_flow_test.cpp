@@ -309,8 +309,8 @@ TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   const auto params =
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
   EXPECT_EQ(param(params, "BAUD"), "2000000");
-  // 24x24 at 35 kS/s: its engine sets the clock (about 77 000 clocks a
-  // 35-sample frame of 1 ms: 77 MHz, far above the ADC's 1 MHz and the
+  // 24x24 at 35 kS/s: its engine sets the clock (about 75 000 clocks a
+  // 35-sample frame of 1 ms: 75 MHz, far above the ADC's 1 MHz and the
   // DFT's 10), and the flow's messages give that figure.
   const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 24, 35000.0),
                                           LoadPolicy::Stress);
