@@ -24,6 +24,7 @@
 #include "host/golden/sdft_bank.h"
 #include "host/fpga/board.h"
 #include "host/fpga/flow.h"
+#include "host/fpga/scale_table.h"
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
 #include "host/report/html_page.h"
@@ -69,11 +70,8 @@ vboard::FpgaBuild board_build(const sim::Scene& scene) {
 
 // The build's frame engine, as `eskin bitstream --engine-shifter` and
 // `--neurons` name it.
-std::string engine_shifter(const vboard::FpgaBuild& b) {
-  return b.plan.spec.engine_fast_shift ? "barrel" : "serial";
-}
-std::string engine_neurons(const vboard::FpgaBuild& b) {
-  return b.plan.spec.neuron_unit ? "unit" : "engine";
+fpga::EngineVariant engine_of(const vboard::FpgaBuild& b) {
+  return {b.plan.spec.engine_fast_shift, b.plan.spec.neuron_unit};
 }
 
 struct Args {
@@ -351,7 +349,7 @@ nlohmann::json report_dtmf(const sim::Scene& scene, const std::string& scene_fil
       "neurons on the {}), UART {:.0f} "
       "baud (exact sliding DFT{}, ghost filter, frames and neuron steps every {} samples); golden "
       "model: variant {}, ghost-corrected, neurons stepped every {} samples like the FPGA.",
-      R, C, K, total, fs, build.key, build.clk_hz() / 1e6, engine_shifter(build),
+      R, C, K, total, fs, build.key, build.clk_hz() / 1e6, fpga::shifter_name(engine_of(build)),
       build.plan.spec.neuron_unit ? "neuron unit" : "frame engine", build.baud(),
       build.plan.spec.demix ? " + least-squares demixing" : "", build.plan.step,
       to_string(golden_variant), build.plan.step);
@@ -361,8 +359,8 @@ nlohmann::json report_dtmf(const sim::Scene& scene, const std::string& scene_fil
   {
     nlohmann::json sum = {{"scene", scene_file}, {"fpga_build", build.key},
                           {"fpga_clk_hz", build.clk_hz()},
-                          {"fpga_engine_shifter", engine_shifter(build)},
-                          {"fpga_neurons", engine_neurons(build)}, {"sim_s", sim_s},
+                          {"fpga_engine_shifter", fpga::shifter_name(engine_of(build))},
+                          {"fpga_neurons", fpga::neurons_name(engine_of(build))}, {"sim_s", sim_s},
                           {"cpu_s", cpu_s}, {"wall_s", wall_s}, {"cycles", cyc},
                           {"packets", rx.size()}, {"link_errors", ls.crc_errors + ls.framing_errors + ls.payload_errors},
                           {"fpga_worst_rms_kpa", fs_.worst_rms_error_kpa()},
@@ -452,8 +450,8 @@ int run_simulate_mixed(const sim::Scene& scene, const Args& a) {
   const uint64_t link_errors = ls.crc_errors + ls.framing_errors + ls.payload_errors;
   const nlohmann::json sum = {
       {"scene", a.scene}, {"top", "mixed_top"}, {"fpga_build", build.key},
-      {"fpga_clk_hz", dtmf.clk_hz()}, {"fpga_engine_shifter", engine_shifter(dtmf)},
-      {"fpga_neurons", engine_neurons(dtmf)}, {"packets", run.rx.size()},
+      {"fpga_clk_hz", dtmf.clk_hz()}, {"fpga_engine_shifter", fpga::shifter_name(engine_of(dtmf))},
+      {"fpga_neurons", fpga::neurons_name(engine_of(dtmf))}, {"packets", run.rx.size()},
       {"dtmf_packets", run.rx.size() - hall_n}, {"hall_packets", hall_n},
       {"link_errors", link_errors}, {"lost_packets", ls.lost_packets},
       {"skin", skin}, {"hall", hall}};

@@ -58,11 +58,10 @@ std::optional<SlowerClock> slower_clock_variant(const Board& b, const sim::Scene
   return std::nullopt;
 }
 
-namespace {
-// The option values (and CSV fields) of an engine.
 const char* shifter_name(EngineVariant v) { return v.barrel ? "barrel" : "serial"; }
 const char* neurons_name(EngineVariant v) { return v.unit ? "unit" : "engine"; }
 
+namespace {
 // For a failed build `r`: slower_clock_variant when its core was too slow
 // (not for area or pins), under r's load policy; else none.
 std::optional<SlowerClock> slower_clock_after(const Board& b, const sim::Scene& scene,

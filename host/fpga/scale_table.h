@@ -38,6 +38,11 @@ struct EngineVariant {
   bool operator==(const EngineVariant& o) const { return barrel == o.barrel && unit == o.unit; }
 };
 std::string variant_name(EngineVariant v);  // "serial shifter, neuron unit"
+// The option values of `eskin bitstream --engine-shifter` and `--neurons`
+// for an engine (also the scale table's CSV fields): "serial" / "barrel",
+// "engine" / "unit".
+const char* shifter_name(EngineVariant v);
+const char* neurons_name(EngineVariant v);
 
 // After a build with `failed` missed timing at `failed_clk_hz` (0: no clock
 // of `b` kept up with it at all): the smallest variant (bit-serial before
