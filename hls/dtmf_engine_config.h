@@ -268,8 +268,9 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   alloc("PL", K), alloc("NPL", 1), alloc("SITE", T), alloc("MAG", K), alloc("ROOT", K);
   alloc("G", T), alloc("X2IN", T);  // layer inputs: neuron_unit needs X2IN = G + T
   alloc("NV", 2 * T), alloc("NU", 2 * T), alloc("NXP", 2 * T);  // neuron l T + i
+  alloc("SZ", C);                  // zero, never written: synapse_weights' row above row 0
   alloc("S0", T), alloc("S1", T);  // and S1 = S0 + T
-  alloc("XPAD", (R + 2) * (C + 2));  // synapse_weights' sums, with a margin
+  alloc("SWT", 512);  // synapse_weights: the sum for each 3x3 spike pattern (its 9 bits)
   alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 9);
   alloc("AMPC", 3), alloc("SEL", 3), alloc("SEND", 3);  // frame counts per stream (amp, tax, status)
   for (const char* n :
@@ -277,7 +278,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
         "ACC", "REJ", "LRT", "LRR", "LRS", "CTYPE", "CSEQ", "CLEN", "PT", "PTT", "PLEN", "TLO",
         "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
         "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "SEB", "NX", "ND", "NXS",
-        "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NUN"})
+        "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NUN", "SWMASK", "SWD", "SWM", "SWR", "SWI"})
     alloc(n, 1);
   im.dend = at;
   sym("DEND", at);
@@ -309,6 +310,10 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   table("KC_NOFF", [](int q) { return neuron_params()[q].word; }, 16);
   static const int kCmdLen[9] = {5, 3, 5, 1, 3, 0, 0, 3, 4};  // payload bytes, 0x81 .. 0x89
   table("KC_CLEN", [](int t) { return kCmdLen[t]; }, 9);
+  // synapse_weights' pattern bit (a power of two) of weight d = (dr + 1) 3 +
+  // (dc + 1): bit 3 (1 - dc) + (1 - dr): the newest column (dc = 1) in
+  // bits 0..2, row r + 1 the lowest bit of each column (rtl/ucode/dtmf_chain.fe).
+  table("KC_SWBIT", [](int d) { return 1 << (3 * (2 - d % 3) + (2 - d / 3)); }, 9);
   // STATUS fields in payload order: an IO port (bit 15 set) or a DMEM word
   // (address in bits 13..0), one byte wide when bit 14 is set.
   const int64_t io = 0x8000;

@@ -88,7 +88,8 @@ constexpr uint32_t ctl(uint32_t fn, uint32_t x, uint32_t cond, uint32_t addr) {
 }
 
 // Clocks per instruction (docs/frame_engine.md, "Timing").
-constexpr uint32_t kSqrtClocks = 52;  // 1 + 50 root steps + 1
+constexpr uint32_t kSqrtClocks = 52;      // 1 + 50 root steps + 1
+constexpr uint32_t kSqrtClocksFast = 27;  // FAST_SHIFT: 1 + 25 root steps + 1
 
 }  // namespace fe
 
@@ -97,8 +98,8 @@ struct FrameEngineConfig {
   static constexpr int DW = 8;
   static constexpr int KW = 8;
   // rtl/frame_engine.v's FAST_SHIFT: shl/shr/rnd by a barrel shifter (one
-  // clock for any count) instead of one bit per clock. Timing only: every
-  // result is the same.
+  // clock for any count) instead of one bit per clock, and sqrt/sqrtr a root
+  // digit a clock instead of two. Timing only: every result is the same.
   static constexpr bool FAST_SHIFT = false;
 };
 
@@ -372,7 +373,7 @@ class FrameEngine {
         // sqrtr: floor(sqrt(A) + 1/2) = (floor(sqrt(4 A)) + 1) >> 1.
         a_ = a_ < 0 ? 0
                     : int64_t(fn == fe::kSqrt ? isqrt64(uint64_t(a_)) : (isqrt64(uint64_t(a_) * 4) + 1) >> 1);
-        return fe::kSqrtClocks;
+        return FAST_SHIFT ? fe::kSqrtClocksFast : fe::kSqrtClocks;
       case fe::kLdx: if (xi != 0) x_[xi] = uint16_t(addr); return 2;
       case fe::kAddx: if (xi != 0) x_[xi] = uint16_t(addr + x_[xi]); return 2;
       case fe::kTax: if (xi != 0) x_[xi] = uint16_t(uint64_t(a_)); return 2;

@@ -77,7 +77,8 @@ module frame_engine #(
   localparam [3:0] K_J = 4'd0, K_DJNZ = 4'd1, K_CALL = 4'd2, K_RET = 4'd3, K_WAIT = 4'd4,
                    K_SQRT = 4'd5, K_SQRTR = 4'd6, K_LDX = 4'd7, K_ADDX = 4'd8,
                    K_TAX = 4'd9, K_TXA = 4'd10;
-  localparam [5:0] SQ_STEPS = 6'd50;   // 25 root digits, two clocks each
+  // 25 root digits: two clocks each, one with FAST_SHIFT (A moves two bits a clock)
+  localparam [5:0] SQ_STEPS = FAST_SHIFT != 0 ? 6'd25 : 6'd50;
 
   // ---- architectural state ---------------------------------------------------
   reg  [31:0]  ir;
@@ -215,7 +216,10 @@ module frame_engine #(
                     (u_f_15 & w[15]) | (u_f_h & w[31]) | (u_f_h15 & w[30]),
                     ({7{u_f_mid}} & w[14:8]) | ({7{u_f_h}} & w[30:24]) | ({7{u_f_h15}} & w[29:23]),
                     ({8{u_f_lo}} & w[7:0]) | ({8{u_f_h}} & w[23:16]) | ({8{u_f_h15}} & w[22:15])};
-  wire [47:0] sha = u_left ? {acc[46:0], 1'b0} : {acc[47], acc[47:1]};
+  // One step of a shift or of sqrt; with FAST_SHIFT only sqrt steps (two
+  // bits left: its radicand's next two bits go to rem each clock).
+  wire [47:0] sha = FAST_SHIFT != 0 ? {acc[45:0], 2'b00} :
+                    u_left ? {acc[46:0], 1'b0} : {acc[47], acc[47:1]};
   // Barrel shifts by cnt (FAST_SHIFT; constant-0 u_bar removes them
   // otherwise). A 49-bit right shift of {A, 0} gives floor(A / 2^n) in its
   // top 48 bits and bit n - 1 of A, rnd's rounding bit, in bit 0 (the sign
@@ -275,6 +279,13 @@ module frame_engine #(
   wire [27:0] dif = {1'b0, rsh} - {1'b0, root, 2'b01};
   wire dig = !dif[27] && !sqneg;
   wire unused_dif = dif[26];           // 0 whenever dig = 1: rem <= 2 root < 2^26
+  // FAST_SHIFT: a digit every clock, from rem and A's top two bits at once.
+  wire [27:0] rsh2 = {rem, acc[47:46]};
+  wire [28:0] dif2 = {1'b0, rsh2} - {2'b00, root, 2'b01};
+  wire dig2 = !dif2[28] && !sqneg;
+  // Both 0 where used: with dig2, rem <= 2 root < 2^26; without, rsh2 < 4 root
+  // + 1 < 2^26 (root < 2^24 before its last digit).
+  wire [3:0] unused_sq2 = {dif2[27:26], rsh2[27:26]};
 
   // ---- control flow -----------------------------------------------------------
   wire zf = acc == 48'd0;
@@ -371,8 +382,13 @@ module frame_engine #(
       rem <= 26'd0;
       root <= 25'd0;
     end else if (bact && u_sq && u_step) begin
-      rem <= (cnt[0] && dig) ? dif[25:0] : rsh[25:0];
-      if (cnt[0]) root <= {root[23:0], dig};
+      if (FAST_SHIFT != 0) begin
+        rem <= dig2 ? dif2[25:0] : rsh2[25:0];
+        root <= {root[23:0], dig2};
+      end else begin
+        rem <= (cnt[0] && dig) ? dif[25:0] : rsh[25:0];
+        if (cnt[0]) root <= {root[23:0], dig};
+      end
     end
   end
   always @(posedge clk) if (a_go) sqneg <= acc[47];

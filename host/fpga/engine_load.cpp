@@ -274,7 +274,7 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
   // (the measurement changes nothing), and each reason for a rejection.
   const int k = p.K - 1, dim = p.spec.demix ? 2 * p.K + 1 : 0;
   const auto& n1 = p.neuron[1];
-  const std::vector<std::pair<std::string, std::vector<uint8_t>>> cmds = {
+  std::vector<std::pair<std::string, std::vector<uint8_t>>> cmds = {
       {"SET_CARRIER_INC", command(0x81, cat({uint8_t(k)}, le(p.inc[size_t(k)], 4)))},
       {"SET_THRESHOLD", command(0x82, cat({3}, le(p.ghost.pair_tol, 2)))},
       {"SET_NEURON gain_shift", command(0x83, cat({0x13}, le(uint32_t(int32_t(n1.gain_shift)), 4)))},
@@ -283,7 +283,6 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
       {"SET_DECIMATION", command(0x85, cat({1}, le(p.decim_tax, 2)))},
       {"REQUEST_STATUS", command(0x86, {})},
       {"CLEAR_COUNTERS", command(0x87, {})},
-      {"SET_WEIGHT", command(0x88, cat({8}, le(uint16_t(p.synapse.w[8]), 2)))},
       {"SET_DEMIX_COEF", command(0x89, cat(le(dim > 0 ? dim * dim - 1 : 0, 2),
                                            le(dim > 0 ? uint16_t(p.demix.coef.back()) : 0, 2)))},
       {"rejected: type", command(0x80, {})},
@@ -292,6 +291,11 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
       {"rejected: value", command(0x83, cat({0x10}, le(0x7FFFFFFF, 4)))},
       {"rejected: reserved bits", command(0x84, {0xE0})},
   };
+  // SET_WEIGHT for each weight: its cost depends on which (its bit of
+  // synapse_weights' table codes, rtl/ucode/dtmf_chain.fe sw_table).
+  for (uint8_t d = 0; d < 9; ++d)
+    cmds.push_back({"SET_WEIGHT " + std::to_string(d),
+                    command(0x88, cat({d}, le(uint16_t(p.synapse.w[d]), 2)))});
   for (const auto& [name, bytes] : cmds) {
     const uint64_t clocks = run.command(bytes);
     load.cases.emplace_back(name, clocks);

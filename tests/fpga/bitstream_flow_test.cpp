@@ -287,28 +287,28 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   EXPECT_EQ(slower_engine_hint(ice, sc, r), "");
 }
 // The packets are paced for the link the chosen clock gives. A 16x16 skin
-// at 35 kS/s on the ULX3S runs at 40 MHz, whose exact UART rate is 2
-// Mbaud (40 MHz is no multiple of 3 MHz); the plan thins the amplitude and
-// taxel packets so that 1.5 x their bytes per frame fit the link
-// (hls/dtmf_top_config.h): 1.5 x ((10 + 2 x 32 + 2) + (10 + 2 + 2 x 256 +
-// 2)) = 903 bytes against 200 a 1 ms frame at 2 Mbaud (10 bits a byte):
-// every 5th frame (ceil 4.5); planned for 3 Mbaud (300 bytes) it would be
-// every 4th, which leaves no margin on the 2 Mbaud line. The 16x16
-// 1 MS/s build of tests/rtl/dtmf_top_test.cpp is planned at its 2 Mbaud
-// too, so it is this flow's build.
+// at 35 kS/s on the ULX3S runs at 35 MHz, whose exact UART rate is 1
+// Mbaud (35 MHz is no multiple of 2 or 3 MHz); the plan thins the
+// amplitude and taxel packets so that 1.5 x their bytes per frame fit the
+// link (hls/dtmf_top_config.h): 1.5 x ((10 + 2 x 32 + 2) + (10 + 2 + 2 x
+// 256 + 2)) = 903 bytes against 100 a 1 ms frame at 1 Mbaud (10 bits a
+// byte): every 10th frame (ceil 9.03); planned for 3 Mbaud (300 bytes) it
+// would be every 4th, which would overrun the 1 Mbaud line. The 16x16
+// 1 MS/s build of tests/rtl/dtmf_top_test.cpp is planned at its clock's
+// 2 Mbaud (40 MHz) too, so it is this flow's build.
 TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const CoreClock c = choose_core_clock(find_board("ulx3s"), scale_scene(base, 16, 35000.0),
                                         LoadPolicy::Stress);
   ASSERT_TRUE(c.budget.ok()) << c.budget.problems.front();
-  EXPECT_EQ(c.clocking.clk_hz, 40000000);
-  EXPECT_EQ(c.clocking.baud, 2000000);
-  EXPECT_EQ(c.plan.spec.baud, 2000000);
-  EXPECT_EQ(c.plan.decim_tax, 5);
-  EXPECT_EQ(c.plan.decim_amp, 5);
+  EXPECT_EQ(c.clocking.clk_hz, 35000000);
+  EXPECT_EQ(c.clocking.baud, 1000000);
+  EXPECT_EQ(c.plan.spec.baud, 1000000);
+  EXPECT_EQ(c.plan.decim_tax, 10);
+  EXPECT_EQ(c.plan.decim_amp, 10);
   const auto params =
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
-  EXPECT_EQ(param(params, "BAUD"), "2000000");
+  EXPECT_EQ(param(params, "BAUD"), "1000000");
   // 24x24 at 35 kS/s: its engine sets the clock (about 75 000 clocks a
   // 35-sample frame of 1 ms: 75 MHz, far above the ADC's 1 MHz and the
   // DFT's 10), and the flow's messages give that figure.

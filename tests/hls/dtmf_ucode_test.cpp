@@ -19,6 +19,7 @@
 #include "random_carriers.h"
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_top_config.h"
+#include "hls/synapse_weights.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
@@ -290,6 +291,114 @@ TEST(DtmfUcode, WideRecoveryTermEqualsTheChain) {
         {44, 1, 10, 32767},
     };
   });
+}
+
+// synapse_weights looks each taxel's sum up in a 512-word table (SWT, one
+// word per 3x3 spike pattern) that sw_table keeps: built at boot from the
+// plan's weights, updated by SET_WEIGHT with the new weight minus the old
+// on the 256 patterns that hold its bit. Random weights of the whole int16
+// range at boot and 27 changes at run time (every weight three times, its
+// extremes -32768 and 32767 included), on the 5x7 random carriers (most
+// neurons spike, borders included), neurons on the engine and on the unit.
+// Exact, three ways: after every frame (1) every table word equals the sum
+// of its pattern's weights; (2) every layer-1 input (X2IN) equals
+// hls::SynapseWeights on the layer-0 flags the engine left in S0 (the
+// off-grid neighbours of the border taxels count as 0: the last row's
+// code reads layer 1's first row below it, the row above row 0 is a zero
+// row); (3) every data packet equals the chain's, the weights set on it at
+// the same frames. Negative controls: the last row's mask keeping its
+// bits below fails (2) at frame 7; the m <= 8 update one step short fails
+// (1) at frame 1.
+TEST(DtmfUcode, SetWeightKeepsTheSynapseTableExact) {
+  using S = hls::DtmfChainSizes<5, 7, 32>;
+  constexpr int R = 5, C = 7, T = R * C;
+  auto [spec, period, codes] = random_5x7();
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> any16(-32768, 32767);
+  for (bool unit : {false, true}) {
+    spec.neuron_unit = unit;
+    auto plan = hls::make_dtmf_top_plan(spec);
+    for (auto& w : plan.synapse.w) w = int16_t(any16(rng));
+    struct Change {
+      uint32_t after_frame;
+      int id;
+      int16_t w;
+    };
+    std::vector<Change> changes;
+    for (int n = 0; n < 27; ++n)
+      changes.push_back({uint32_t(30 + 15 * n), (n * 4) % 9,
+                         int16_t(n % 9 == 0 ? -32768 : n % 9 == 1 ? 32767 : any16(rng))});
+    dtmf_model::TopModel<S> top(plan, period);
+    auto chain = std::make_unique<hls::DtmfChain<S>>(hls::chain_config<S>(plan));
+    hls::SynapseWeights<R, C> golden;
+    ASSERT_TRUE(golden.configure(plan.synapse));
+    const auto sym = [&top](const char* n) { return uint32_t(top.image().symbol(n)); };
+    const uint32_t swt = sym("SWT"), s0 = sym("S0"), x2in = sym("X2IN");
+    // Weight d's bit in a pattern (the layout hls/dtmf_engine_config.h gives
+    // KC_SWBIT): column (1 - dc), row (1 - dr) within it.
+    const auto bit = [](int d) { return 3 * (2 - d % 3) + (2 - d / 3); };
+    std::vector<dtmf_model::Packet> want;
+    hls::DtmfChain<S>::Packet pk[hls::DtmfChain<S>::kMaxPackets];
+    size_t sent = 0, applied = 0;
+    uint32_t checked = 0;
+    std::vector<bool> seen(512, false);  // the 3x3 patterns the frames held
+    uint32_t s1_row0 = 0;  // layer-1 flags set in row 0: what the next frame's last row reads below
+    for (size_t n = 0; n < codes.size(); ++n) {
+      if (top.frames_done() > checked) {  // a frame is done; the next one is not in
+        checked = top.frames_done();
+        for (uint32_t code = 0; code < 512; ++code) {
+          int32_t sum = 0;
+          for (int d = 0; d < 9; ++d)
+            if (code >> bit(d) & 1) sum += golden.config().w[d];
+          ASSERT_EQ(int32_t(top.engine().dmem(swt + code)), sum)
+              << "SWT[" << code << "] after frame " << checked << (unit ? ", unit" : "");
+        }
+        for (int c = 0; c < C; ++c) s1_row0 += top.engine().dmem(s0 + uint32_t(T + c)) != 0;
+        bool flags[T];
+        for (int i = 0; i < T; ++i) flags[i] = top.engine().dmem(s0 + uint32_t(i)) != 0;
+        for (int i = 0; i < T; ++i) {
+          ASSERT_EQ(int32_t(top.engine().dmem(x2in + uint32_t(i))), golden.input(flags, i / C, i % C))
+              << "X2IN[" << i << "] after frame " << checked << (unit ? ", unit" : "");
+          int code = 0;
+          for (int d = 0; d < 9; ++d) {
+            const int r = i / C + d / 3 - 1, c = i % C + d % 3 - 1;
+            if (r >= 0 && r < R && c >= 0 && c < C && flags[r * C + c])
+              code |= 1 << bit(d);
+          }
+          seen[size_t(code)] = true;
+        }
+      }
+      if (sent < changes.size() && top.frames_done() >= changes[sent].after_frame) {
+        const Change& c = changes[sent++];
+        const uint16_t v = uint16_t(c.w);
+        top.command({0x88, uint8_t(sent), 3, 0, uint8_t(c.id), uint8_t(v), uint8_t(v >> 8)});
+        golden.set_weight(c.id, c.w);  // in effect from the next frame on
+      }
+      if (applied < changes.size() && chain->frames() >= changes[applied].after_frame) {
+        chain->set_weight(changes[applied].id, changes[applied].w);
+        ++applied;
+      }
+      top.sample(codes[n]);
+      const int np = chain->push(codes[n], uint32_t(n), pk);
+      for (int i = 0; i < np; ++i)
+        want.push_back({pk[i].type, pk[i].t, {pk[i].payload, pk[i].payload + pk[i].len}});
+    }
+    EXPECT_EQ(sent, changes.size());
+    EXPECT_GT(checked, 550u);
+    const auto patterns = std::count(seen.begin(), seen.end(), true);
+    EXPECT_GT(patterns, 100);  // the lookups read many different table words
+    EXPECT_GT(s1_row0, 100u);  // the last row's code read set flags below it (S1's), masked off
+    std::vector<dtmf_model::Packet> got;
+    for (const auto& p : top.packets())
+      if (p.type != hls::kDtmfStatus) got.push_back(p);
+    EXPECT_GE(got.size() + 4, want.size());
+    const size_t m = std::min(got.size(), want.size());
+    size_t same = 0;
+    while (same < m && got[same] == want[same]) ++same;
+    EXPECT_EQ(same, m) << (unit ? "unit" : "engine") << ": packet " << same << " differs";
+    std::printf("SET_WEIGHT x %zu%s: %u frames' tables and layer-1 inputs exact (%ld spike patterns), %zu packets equal\n",
+                sent, unit ? ", neuron unit" : "", checked, long(patterns), same);
+  }
 }
 
 // SET_CARRIER_INC's frame increment (FINC, the carrier demixer's phase

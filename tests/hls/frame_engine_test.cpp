@@ -268,14 +268,18 @@ TEST(FrameEngineModel, FastShiftSameResultsInOneClock) {
 // Square roots: r = floor(sqrt(A)) iff r^2 <= A < (r+1)^2; q = the nearest
 // integer iff (2q-1)^2 < 4A < (2q+1)^2 (no ties: 4A is never an odd square).
 
-void check_roots(Engine& e, int64_t a) {
+// Clocks: 1 + 50 root steps + 1 (two clocks a digit), 1 + 25 + 1 with the
+// barrel shifter (a digit a clock).
+template <class E>
+void check_roots(E& e, int64_t a) {
+  const uint32_t clocks = E::FAST_SHIFT ? 27u : 52u;
   TableIo io;
   e.set_pc(0);
   e.set_a(a);
-  ASSERT_EQ(e.step(io), 52u);
+  ASSERT_EQ(e.step(io), clocks);
   const i128 r = e.a();
   e.set_a(a);
-  ASSERT_EQ(e.step(io), 52u);
+  ASSERT_EQ(e.step(io), clocks);
   const i128 q = e.a();
   if (a < 0) {
     ASSERT_EQ(r, 0);
@@ -288,8 +292,9 @@ void check_roots(Engine& e, int64_t a) {
       << "sqrtr " << a << " -> " << int64_t(q);
 }
 
-TEST(FrameEngineModel, SqrtExhaustiveSmallAndRandom48Bit) {
-  auto e = with({fe::ctl(fe::kSqrt, 0, 0, 0), fe::ctl(fe::kSqrtr, 0, 0, 0)});
+template <class CFG>
+void sqrt_exhaustive_small_and_random() {
+  auto e = with<CFG>({fe::ctl(fe::kSqrt, 0, 0, 0), fe::ctl(fe::kSqrtr, 0, 0, 0)});
   for (int64_t a = 0; a < (1 << 16); ++a) check_roots(*e, a);
   std::mt19937_64 rng(3);
   for (int i = 0; i < 20000; ++i) check_roots(*e, int64_t(rng() >> 17));  // 0 .. 2^47 - 1
@@ -299,6 +304,15 @@ TEST(FrameEngineModel, SqrtExhaustiveSmallAndRandom48Bit) {
     check_roots(*e, k * k + k + 1);  // just above: rounds up
   }
   for (int64_t a : {kMax47, int64_t(-1), kMin47}) check_roots(*e, a);
+}
+
+TEST(FrameEngineModel, SqrtExhaustiveSmallAndRandom48Bit) {
+  sqrt_exhaustive_small_and_random<eskin::hls::FrameEngineConfig>();
+}
+
+// The barrel shifter's root: the same roots, a digit a clock.
+TEST(FrameEngineModel, FastShiftSqrtSameRootsInHalfTheClocks) {
+  sqrt_exhaustive_small_and_random<Fast>();
 }
 
 // ---------------------------------------------------------------------------
