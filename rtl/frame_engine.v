@@ -5,7 +5,8 @@
 //
 // Organisation (area first: one 48-bit adder, one logic unit, a 1-bit/clock
 // shifter and a 2-clock/digit square root, all writing A; FAST_SHIFT = 1
-// adds a barrel shifter, so shl/shr/rnd take one B clock for any count):
+// adds a barrel shifter, so shl/shr/rnd take one B clock for any count, and
+// the root takes a digit a clock):
 //   cycle A  IR (the IMEM read port's output register) is decoded; ea =
 //            addr + X[x] addresses DMEM, KROM and the IO bus (io_re); jumps,
 //            calls, returns and X writes take effect at the end of A, and

@@ -248,6 +248,11 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
   if (p.spec.ghost)
     for (const auto& [name, levels] : signals)
       runs.push_back({std::string(name) + ", every taxel a site", &levels, true});
+  // Which routine each instruction address belongs to: a frame's packets.
+  const std::vector<std::string> routine = hls::dtmf_ucode_routines(hls::dtmf_engine_image(p));
+  std::vector<bool> packet_pc(pcs.size(), false);
+  for (size_t a = 0; a < routine.size() && a < pcs.size(); ++a)
+    packet_pc[a] = routine[a] == "packets" || routine[a] == "status";
   for (const auto& [name, levels, sites] : runs) {
     uint64_t worst = 0;
     for (int f = 0; f < frames; ++f, ++load.stress_frames) {
@@ -263,6 +268,11 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
       }
       std::fill(pcs.begin(), pcs.end(), 0);
       const uint64_t clocks = run.frame(x, t, &pcs);
+      uint64_t packets = 0;
+      for (size_t a = 0; a < pcs.size(); ++a)
+        if (packet_pc[a]) packets += pcs[a];
+      load.stress_packet_clocks = std::max(load.stress_packet_clocks, packets);
+      load.stress_other_clocks = std::max(load.stress_other_clocks, clocks - packets);
       if (clocks > std::max(worst, load.stress_clocks)) worst_pcs = pcs;
       worst = std::max(worst, clocks);
     }
@@ -302,7 +312,6 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
     if (clocks > load.command_clocks) load.command_clocks = clocks, load.command_case = name;
   }
   // The longest stress frame by routine, most clocks first.
-  const std::vector<std::string> routine = hls::dtmf_ucode_routines(hls::dtmf_engine_image(p));
   std::map<std::string, uint64_t> by;
   for (size_t a = 0; a < worst_pcs.size() && a < routine.size(); ++a)
     if (worst_pcs[a]) by[routine[a]] += worst_pcs[a];

@@ -50,6 +50,9 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
                  {"stress_longest_frame_clocks", r.load.stress_clocks},
                  {"stress_longest_frame_signal", r.load.stress_case},
                  {"stress_frames", r.load.stress_frames},
+                 {"stress_other_clocks", r.load.stress_other_clocks},
+                 {"stress_packet_clocks", r.load.stress_packet_clocks},
+                 {"stress_bound_clocks", r.load.stress_bound()},
                  {"longest_command_clocks", r.load.command_clocks},
                  {"longest_command", r.load.command_case},
                  {"cases", cases},
@@ -80,7 +83,7 @@ std::string dtmf_table(const FlowReport& r) {
       "frame engine ({} shifter, neurons on {}), clocks of the {} a frame has (STEP x {} per "
       "sample):\n"
       "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
-      "  stress longest frame  {:>9} ({:.0f} %, {})\n"
+      "  stress longest frame  {:>9} ({:.0f} %, {}){}\n"
       "  + longest command     {:>9} ({:.0f} %, {})\n"
       "  the clock carries the {}\n",
       r.spec.rows, r.spec.cols, r.spec.rows + r.spec.cols, r.spec.window, r.spec.sample_hz,
@@ -91,7 +94,14 @@ std::string dtmf_table(const FlowReport& r) {
       r.spec.neuron_unit ? "the neuron unit" : "the engine",
       r.budget.frame_clocks, r.budget.period, r.load.scene_clocks,
       100.0 * double(r.load.scene_clocks) / frame, r.load.scene_frames, r.load.stress_clocks,
-      100.0 * double(r.load.stress_clocks) / frame, r.load.stress_case, r.load.stress_total(),
+      100.0 * double(r.load.stress_clocks) / frame, r.load.stress_case,
+      r.load.stress_bound() > r.load.stress_clocks
+          ? fmt::format("\n  packets on any frame  {:>9} ({:.0f} %: {} without its packets + {}, a "
+                        "frame's most packets)",
+                        r.load.stress_bound(), 100.0 * double(r.load.stress_bound()) / frame,
+                        r.load.stress_other_clocks, r.load.stress_packet_clocks)
+          : std::string(),
+      r.load.stress_total(),
       100.0 * double(r.load.stress_total()) / frame, r.load.command_case,
       r.policy == LoadPolicy::Scene && r.load.scene_frames > 0
           ? "scene's frames (--engine-load scene)"
@@ -133,7 +143,7 @@ std::vector<std::string> flow_warnings(const FlowReport& r) {
     w.push_back(fmt::format(
         "under the stress signals the engine needs {} + {} = {} clocks of the {} a frame has: "
         "frames are lost (STATUS frame_overruns) while input like '{}' lasts",
-        r.load.stress_clocks, r.load.command_clocks, r.load.stress_total(),
+        r.load.stress_bound(), r.load.command_clocks, r.load.stress_total(),
         r.budget.frame_clocks, r.load.stress_case));
   return w;
 }

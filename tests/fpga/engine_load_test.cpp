@@ -8,7 +8,9 @@
 
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_top_config.h"
+#include "host/fpga/board.h"
 #include "host/fpga/engine_load.h"
+#include "host/fpga/flow.h"
 #include "host/fpga/scale_table.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
@@ -167,6 +169,35 @@ TEST(EngineLoad, LongestStressFrameByRoutine) {
   EXPECT_EQ(sum, load.stress_clocks + 1);
   ASSERT_FALSE(load.stress_routines.empty());
   EXPECT_EQ(load.stress_routines.front().first, "izhikevich_layer");
+}
+
+}  // namespace
+
+namespace {
+
+// Packets fall on the frames the decimation counters pick, so the stress
+// signals' own alignment can miss the worst case: the 18x18 skin at 1 MS/s
+// as the ULX3S flow plans it (2 Mbaud, packets every 6th frame) had its
+// longest frame (38 055 clocks, all carriers toggling) on a frame without
+// its largest packets. The bound puts a frame's most packets on the
+// longest frame without them. Checks: the bound is above the longest
+// frame here (the gap it closes) and is what the budget uses (plus the
+// longest command); the most packets of a frame are at least a full spike
+// window's: its MAX_SPIKES events of 5 bytes, one `out` (a clock at
+// least) a byte, so the stress signals fill a window.
+TEST(EngineLoad, StressBoundPutsAFramesMostPacketsOnTheLongestFrame) {
+  const auto base = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const fpga::CoreClock c = fpga::choose_core_clock(
+      fpga::find_board("ulx3s", "85k"), fpga::scale_scene(base, 18, 1e6), fpga::LoadPolicy::Stress);
+  const fpga::EngineLoad& load = c.load;
+  std::printf("18x18, 1 MS/s: longest frame %llu; without its packets %llu + most packets %llu = %llu\n",
+              (unsigned long long)load.stress_clocks, (unsigned long long)load.stress_other_clocks,
+              (unsigned long long)load.stress_packet_clocks, (unsigned long long)load.stress_bound());
+  EXPECT_GT(load.stress_bound(), load.stress_clocks);
+  EXPECT_EQ(load.stress_bound(), load.stress_other_clocks + load.stress_packet_clocks);
+  EXPECT_EQ(c.engine_clocks, long(load.stress_bound() + load.command_clocks));
+  EXPECT_GE(load.stress_packet_clocks, 5u * uint64_t(c.plan.max_spikes));
+  EXPECT_LT(load.stress_other_clocks, load.stress_clocks);  // the longest frame held some, not the most
 }
 
 }  // namespace
