@@ -495,7 +495,7 @@ TEST(DtmfTop, Staggered10x10At24MHzWithTheNeuronUnit) {
 // (docs/bitstream.md, the scale table): 40 MHz, the AD7476A's first band;
 // 32 DFT channels in 6 lanes at KS + 8 = 40 clocks a frame's sample,
 // exactly the sample period, 38 any other; the barrel shifter and the
-// neuron unit, the engine's stress load and longest command (34 566
+// neuron unit, the engine's stress load and longest command (33 526
 // clocks: its longest frame without packets, a frame's most packets, and
 // SET_WEIGHT) within a frame's 40 000; packets planned for its 2 Mbaud.
 // The first whole-top
