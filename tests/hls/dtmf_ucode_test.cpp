@@ -29,6 +29,31 @@ namespace {
 
 using namespace eskin;
 
+// The chain's packets of one push, as the top model's.
+template <class Pk>
+void append_packets(std::vector<dtmf_model::Packet>& want, const Pk* pk, int np) {
+  for (int i = 0; i < np; ++i)
+    want.push_back({pk[i].type, pk[i].t, {pk[i].payload, pk[i].payload + pk[i].len}});
+}
+
+// Every data packet the top model sent (status packets aside) equals the
+// chain's, in order; the last frame's few may still be in the engine when
+// the samples end. Returns how many were compared.
+template <class S>
+size_t expect_data_packets_equal(const dtmf_model::TopModel<S>& top,
+                                 const std::vector<dtmf_model::Packet>& want, const std::string& what) {
+  std::vector<dtmf_model::Packet> got;
+  for (const auto& p : top.packets())
+    if (p.type != hls::kDtmfStatus) got.push_back(p);
+  EXPECT_GE(got.size() + 4, want.size()) << what;
+  const size_t n = std::min(got.size(), want.size());
+  size_t same = 0;
+  while (same < n && got[same] == want[same]) ++same;
+  EXPECT_EQ(same, n) << what << ": packet " << same << " differs (type "
+                     << int(want[same].type) << ")";
+  return same;
+}
+
 // The top model and the chain on the same 12-bit codes: every data packet
 // equal; returns the engine's longest frame, in clocks.
 template <class S>
@@ -41,22 +66,11 @@ uint64_t compare_codes(const std::string& what, const hls::DtmfTopPlan& plan, lo
   typename hls::DtmfChain<S>::Packet pk[hls::DtmfChain<S>::kMaxPackets];
   for (size_t n = 0; n < codes.size(); ++n) {
     top.sample(codes[n]);
-    const int np = chain->push(codes[n], uint32_t(n), pk);
-    for (int i = 0; i < np; ++i)
-      want.push_back({pk[i].type, pk[i].t, {pk[i].payload, pk[i].payload + pk[i].len}});
+    append_packets(want, pk, chain->push(codes[n], uint32_t(n), pk));
   }
-  std::vector<dtmf_model::Packet> got;
-  for (const auto& p : top.packets())
-    if (p.type != hls::kDtmfStatus) got.push_back(p);
   EXPECT_EQ(top.frame_overruns(), 0u);
   EXPECT_GT(want.size(), 250u);  // every case: hundreds of frames of every type
-  // The last frame's packets may still be in the engine when the samples end.
-  EXPECT_GE(got.size() + 4, want.size());
-  const size_t n = std::min(got.size(), want.size());
-  size_t same = 0;
-  while (same < n && got[same] == want[same]) ++same;
-  EXPECT_EQ(same, n) << what << ": packet " << same << " differs (type "
-                     << int(want[same].type) << ")";
+  const size_t same = expect_data_packets_equal(top, want, what);
   std::printf("%s%s: %zu packets equal; the engine's longest frame %llu clocks of %ld available\n",
               what.c_str(), plan.spec.neuron_unit ? " with the neuron unit" : "", same,
               (unsigned long long)top.max_frame_clocks(), period * plan.step);
@@ -241,22 +255,12 @@ void expect_neuron_changes_equal_the_chain(Changes changes_of) {
         chain->set_neuron(c.layer, cfg);
       }
       top.sample(codes[n]);
-      const int np = chain->push(codes[n], uint32_t(n), pk);
-      for (int i = 0; i < np; ++i)
-        want.push_back({pk[i].type, pk[i].t, {pk[i].payload, pk[i].payload + pk[i].len}});
+      append_packets(want, pk, chain->push(codes[n], uint32_t(n), pk));
     }
     EXPECT_EQ(sent, changes.size());
     EXPECT_EQ(applied, changes.size());
-    std::vector<dtmf_model::Packet> got;
-    for (const auto& p : top.packets())
-      if (p.type != hls::kDtmfStatus) got.push_back(p);
     EXPECT_GT(want.size(), 1000u);
-    EXPECT_GE(got.size() + 4, want.size());
-    const size_t m = std::min(got.size(), want.size());
-    size_t same = 0;
-    while (same < m && got[same] == want[same]) ++same;
-    EXPECT_EQ(same, m) << (unit ? "unit" : "engine") << ": packet " << same << " differs (type "
-                       << int(want[same].type) << ")";
+    expect_data_packets_equal(top, want, unit ? "unit" : "engine");
   }
 }
 
@@ -379,23 +383,14 @@ TEST(DtmfUcode, SetWeightKeepsTheSynapseTableExact) {
         ++applied;
       }
       top.sample(codes[n]);
-      const int np = chain->push(codes[n], uint32_t(n), pk);
-      for (int i = 0; i < np; ++i)
-        want.push_back({pk[i].type, pk[i].t, {pk[i].payload, pk[i].payload + pk[i].len}});
+      append_packets(want, pk, chain->push(codes[n], uint32_t(n), pk));
     }
     EXPECT_EQ(sent, changes.size());
     EXPECT_GT(checked, 550u);
     const auto patterns = std::count(seen.begin(), seen.end(), true);
     EXPECT_GT(patterns, 100);  // the lookups read many different table words
     EXPECT_GT(s1_row0, 100u);  // the last row's code read set flags below it (S1's), masked off
-    std::vector<dtmf_model::Packet> got;
-    for (const auto& p : top.packets())
-      if (p.type != hls::kDtmfStatus) got.push_back(p);
-    EXPECT_GE(got.size() + 4, want.size());
-    const size_t m = std::min(got.size(), want.size());
-    size_t same = 0;
-    while (same < m && got[same] == want[same]) ++same;
-    EXPECT_EQ(same, m) << (unit ? "unit" : "engine") << ": packet " << same << " differs";
+    const size_t same = expect_data_packets_equal(top, want, unit ? "unit" : "engine");
     std::printf("SET_WEIGHT x %zu%s: %u frames' tables and layer-1 inputs exact (%ld spike patterns), %zu packets equal\n",
                 sent, unit ? ", neuron unit" : "", checked, long(patterns), same);
   }
