@@ -314,6 +314,9 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // (dc + 1): bit 3 (1 - dc) + (1 - dr): the newest column (dc = 1) in
   // bits 0..2, row r + 1 the lowest bit of each column (rtl/ucode/dtmf_chain.fe).
   table("KC_SWBIT", [](int d) { return 1 << (3 * (2 - d % 3) + (2 - d / 3)); }, 9);
+  // ghost_filter's key of line k (row k, or column k - R): rem 2^15 +
+  // KC_IDX[k], the first row or column the largest of its dimension.
+  if (p.spec.ghost) table("KC_IDX", [R](int k) { return 0x7FFF - (k < R ? k : k - R); }, K);
   // STATUS fields in payload order: an IO port (bit 15 set) or a DMEM word
   // (address in bits 13..0), one byte wide when bit 14 is set.
   const int64_t io = 0x8000;

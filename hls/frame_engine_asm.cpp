@@ -53,11 +53,13 @@ class Assembler {
     for (int pass = 1; pass <= 2; ++pass) {
       pass_ = pass;
       addr_ = 0;
+      conds_.clear();
       for (size_t i = 0; i < lines.size(); ++i) {
         line_ = int(i) + 1;
         text_ = lines[i];
         statement(lines[i]);
       }
+      if (!conds_.empty()) fail_at(conds_.back().line, ".if: no .endif before the end of the file");
     }
     prog_.symbols = symbols_;
     return prog_;
@@ -81,6 +83,7 @@ class Assembler {
   void statement(const std::string& raw) {
     std::string s = raw.substr(0, raw.find(';'));
     s = trim(s);
+    if (conditional(s)) return;
     // Labels.
     for (;;) {
       size_t n = 0;
@@ -101,8 +104,52 @@ class Assembler {
     if (op == ".org") return org(rest);
     if (op == ".word") return word_directive(rest);
     if (!op.empty() && op[0] == '.')
-      fail("directive: expected .equ, .org or .word, got " + op);
+      fail("directive: expected .equ, .org, .word, .if, .else or .endif, got " + op);
     emit(instruction(op, rest));
+  }
+
+  // ---- conditional assembly: .if EXPR / .else / .endif, nested ------------------
+  // EXPR sees only the symbols defined above it (as .equ does), so both
+  // passes take the same branches. Lines in a branch not taken are neither
+  // assembled nor listed: their labels do not exist.
+  struct Cond {
+    int line;        // of the .if
+    bool outer;      // every enclosing branch is taken
+    bool taken;      // this branch is taken
+    bool seen_else;
+  };
+  bool active() const { return conds_.empty() || (conds_.back().outer && conds_.back().taken); }
+
+  // True when s is a conditional directive or a line inside a branch not taken.
+  bool conditional(const std::string& s) {
+    size_t n = 0;
+    while (n < s.size() && !std::isspace(static_cast<unsigned char>(s[n]))) ++n;
+    const std::string op = s.substr(0, n), rest = trim(s.substr(n));
+    if (op == ".if") {
+      bool taken = false;
+      if (active()) {
+        strict_ = true;
+        struct Relax { bool& f; ~Relax() { f = false; } } relax{strict_};
+        if (rest.empty()) fail(".if: expected an expression");
+        taken = eval(rest, ".if") != 0;
+      }
+      conds_.push_back({line_, active(), taken, false});
+      return true;
+    }
+    if (op == ".else" || op == ".endif") {
+      if (conds_.empty()) fail(op + ": no .if before it");
+      if (!rest.empty()) fail(op + ": expected nothing after it, got '" + rest + "'");
+      if (op == ".endif") {
+        conds_.pop_back();
+      } else {
+        if (conds_.back().seen_else) fail(".else: a second .else for the .if of line " +
+                                          std::to_string(conds_.back().line));
+        conds_.back().seen_else = true;
+        conds_.back().taken = !conds_.back().taken;
+      }
+      return true;
+    }
+    return !active();
   }
 
   void define_label(const std::string& name) {
@@ -532,6 +579,7 @@ class Assembler {
   std::string expr_, what_;
   size_t pos_ = 0;
   bool strict_ = false;  // pass 1 tolerates labels not yet seen (only pass 2 encodes)
+  std::vector<Cond> conds_;  // the open .if blocks, innermost last
 };
 
 }  // namespace

@@ -126,23 +126,23 @@ TEST(DtmfUcode, NeuronUnitGivesTheSamePacketsInFewerClocks) {
               (unsigned long long)soft, (unsigned long long)unit);
 }
 
-// The 5x7 skin of the default scene's ADC at 96 MHz and 600 frames of
-// its random on/off carriers (each at 0 or 1.2 full carriers, the taxel
+// A rows x cols skin of the default scene's ADC at 96 MHz and 600 frames
+// of its random on/off carriers (each at 0 or 1.2 full carriers, the taxel
 // rule's range), switched every 3 frames.
-struct Random5x7 {
+struct RandomSkin {
   hls::DtmfTopSpec spec;
   long period = 0;
   std::vector<uint16_t> codes;
 };
-Random5x7 random_5x7() {
+RandomSkin random_skin(int rows, int cols) {
   sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  sc.skin.rows = 5, sc.skin.cols = 7;
-  const auto f = plan_carriers(12, sc.skin.adc.rate_hz, 32);
-  sc.skin.row_freq_hz.assign(f.begin(), f.begin() + 5);
-  sc.skin.col_freq_hz.assign(f.begin() + 5, f.end());
+  sc.skin.rows = rows, sc.skin.cols = cols;
+  const auto f = plan_carriers(rows + cols, sc.skin.adc.rate_hz, 32);
+  sc.skin.row_freq_hz.assign(f.begin(), f.begin() + rows);
+  sc.skin.col_freq_hz.assign(f.begin() + rows, f.end());
   sc.skin.freq_error.clear();
   const long clk_hz = 96000000;
-  Random5x7 r;
+  RandomSkin r;
   r.spec = sim::dtmf_top_spec(sc, clk_hz);
   r.period = std::lround(double(clk_hz) / r.spec.sample_hz);
   const double full = r.spec.full_carrier_lsb * std::ldexp(1.0, 12 - r.spec.adc_bits);
@@ -150,6 +150,7 @@ Random5x7 random_5x7() {
   r.codes = dtmf_stimulus::random_carrier_codes(f, r.spec.sample_hz, full, 600 * step, 3 * step, 7);
   return r;
 }
+RandomSkin random_5x7() { return random_skin(5, 7); }
 
 // A 5 x 7 skin (rows != columns, so a row/column mix-up shows) driven by
 // random on/off carriers, switched every 3 frames: many lines rise and
@@ -164,6 +165,27 @@ TEST(DtmfUcode, RandomCarriersOn5x7EqualTheChain) {
     spec.neuron_unit = unit;
     compare_codes<S>("random carriers, 5x7", hls::make_dtmf_top_plan(spec), period, codes);
   }
+}
+
+// The ghost filter's argmax takes four lines a loop and the last (n - 1) &
+// 3 lines of a dimension of n by name: skins whose rows and columns give
+// every count of loops (0, 1, 2) and of last lines (0..3), one line alone
+// (1 x 6) included, with random carriers (the 5x7 test's stimulus: many
+// lines rise at once, so the pairing takes several argmaxes a frame and
+// equal rises tie). Exact: every data packet equals the chain's.
+template <int R, int C>
+void compare_random_skin() {
+  auto [spec, period, codes] = random_skin(R, C);
+  spec.neuron_unit = true;
+  compare_codes<hls::DtmfChainSizes<R, C, 32>>(
+      "random carriers, " + std::to_string(R) + "x" + std::to_string(C),
+      hls::make_dtmf_top_plan(spec), period, codes);
+}
+TEST(DtmfUcode, GhostArgmaxOnEveryLineCountEqualsTheChain) {
+  compare_random_skin<4, 8>();
+  compare_random_skin<8, 4>();
+  compare_random_skin<1, 6>();
+  compare_random_skin<2, 9>();
 }
 
 // The paths a full spike window and a chain without the ghost filter

@@ -598,6 +598,39 @@ TEST(FrameEngineAsm, LabelsEquOrgExpressionsAndPredefinedSymbols) {
             (std::vector<uint32_t>{1u, 0xC0000010u}));
 }
 
+// .if / .else / .endif: a branch not taken emits no word and defines no
+// label, nested blocks inside it stay skipped whatever their conditions, and
+// the taken branch's labels get the addresses the emitted words leave.
+TEST(FrameEngineAsm, ConditionalAssemblyTakesOneBranch) {
+  fa::Options opt;
+  opt.symbols["UNIT"] = 1;
+  const std::string src =
+      "        .equ  SLOW, UNIT - 1\n"
+      "        .if   UNIT\n"
+      "fast:   ld    1\n"
+      "        .if   SLOW                  ; inner, not taken\n"
+      "        ld    2\n"
+      "        .else\n"
+      "        ld    3\n"
+      "        .endif\n"
+      "        .else\n"
+      "slow:   ld    4\n"
+      "        .if   1                     ; inside a branch not taken\n"
+      "        ld    5\n"
+      "        .endif\n"
+      "        .endif\n"
+      "end:    j     end\n";
+  const auto p = fa::assemble(src, "t.fe", opt);
+  EXPECT_EQ(p.words, (std::vector<uint32_t>{0x40000001u, 0x40000003u, 0xC0000002u}));
+  EXPECT_EQ(p.symbols.at("end"), 2);
+  EXPECT_EQ(p.symbols.count("slow"), 0u);
+  opt.symbols["UNIT"] = 0;
+  const auto q = fa::assemble(src, "t.fe", opt);
+  EXPECT_EQ(q.words, (std::vector<uint32_t>{0x40000004u, 0x40000005u, 0xC0000002u}));
+  EXPECT_EQ(q.symbols.count("fast"), 0u);
+  EXPECT_EQ(q.symbols.at("slow"), 0);
+}
+
 void expect_error(const std::string& src, const std::string& want, const fa::Options& opt = {}) {
   try {
     fa::assemble(src, "dtmf.fe", opt);
@@ -635,7 +668,17 @@ TEST(FrameEngineAsm, ErrorsNameFileLineAndWhatWasExpected) {
   expect_error("ld 1 +\n", "dtmf.fe:1: ld: immediate: expected a value, got the end of the expression");
   expect_error("ld 0x\n", "dtmf.fe:1: ld: immediate: expected digits after the number prefix");
   expect_error("apac 15\n", "dtmf.fe:1: apac: P shift: expected 0");
-  expect_error(".bss 3\n", "dtmf.fe:1: directive: expected .equ, .org or .word, got .bss");
+  expect_error(".bss 3\n",
+               "dtmf.fe:1: directive: expected .equ, .org, .word, .if, .else or .endif, got .bss");
+  expect_error("nop\n.if 1\nnop\n", "dtmf.fe:2: .if: no .endif before the end of the file");
+  expect_error(".if 1\n.endif\n.else\n", "dtmf.fe:3: .else: no .if before it");
+  expect_error(".endif\n", "dtmf.fe:1: .endif: no .if before it");
+  expect_error(".if 0\n.else\n.else\n.endif\n",
+               "dtmf.fe:3: .else: a second .else for the .if of line 1");
+  expect_error(".if\n.endif\n", "dtmf.fe:1: .if: expected an expression");
+  expect_error(".if 1\n.endif 2\n", "dtmf.fe:2: .endif: expected nothing after it, got '2'");
+  expect_error(".if LATER\n.endif\nLATER: nop\n", "dtmf.fe:1: .if: undefined symbol 'LATER'");
+  expect_error(".if 0\nonly: nop\n.endif\nj only\n", "dtmf.fe:4: j: target: undefined symbol 'only'");
   expect_error("ld x1\n", "dtmf.fe:1: ld: immediate: 'x1' is a register, expected a value");
   fa::Options small;
   small.imem_words = 2;
