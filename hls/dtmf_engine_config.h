@@ -50,6 +50,7 @@ enum DtmfIoPort : uint16_t {
   kIoClear = 0x205,      // w: clear the hardware counters
   kIoIzX = 0x206,        // w: neuron unit: the input x operand
   kIoIzGo = 0x207,       // w: neuron unit: the x_prev operand; starts the update
+  kIoIzUGo = 0x208,      // w: neuron unit: the U operand; starts the update, x_prev = x
   kIoIzCfg = 0x220,      // w: neuron unit: constant word w of the layer block at 0x220 + w
 };
 // Engine events (the `wait` mask bits) of rtl/dtmf_top.v.
@@ -128,9 +129,11 @@ inline std::array<int64_t, kNeuronBlock> neuron_block(const IzhikevichConfig& n)
 // Clocks of one update of the neuron unit (rtl/izhikevich_layer.v): an
 // update started by the write in clock c shows its results, and raises
 // kEvIzDone, from clock c + kIzhikevichUnitClocks on; until then the ports
-// show the previous update's results, and a start is ignored (busy; the
-// port model below throws on one).
-constexpr int kIzhikevichUnitClocks = 14;
+// show the previous update's results. The unit takes the next start from
+// clock c + kIzhikevichUnitClocks + 1 on (back to back, one update per 14
+// clocks); before that a start is ignored (busy; the port model below
+// throws on one).
+constexpr int kIzhikevichUnitClocks = 13;
 
 // rtl/dtmf_top.v's neuron unit ports (NEURON_UNIT = 1) as the engine sees
 // them, for the C++ models of the top (its IO objects): constant words as
@@ -146,7 +149,7 @@ struct IzhikevichUnitPort {
     int32_t v = 0, u = 0;  // x_prev' is the microcode's (nu_layer)
   };
   Results shown, next;  // the ports until done_clock, and from it on
-  uint64_t done_clock = 0;
+  uint64_t done_clock = 0, ready_clock = 0;  // results shown; the next start taken
 
   // The layer's constants from the words (neuron_block's inverse; shift
   // counts: the low 6 bits, as the engine's shifts take them; the gain
@@ -182,23 +185,26 @@ struct IzhikevichUnitPort {
       case kIoIzX: x = int32_t(d); return true;
       case kIoIzV: v = int32_t(d); return true;
       case kIoIzU: u = int32_t(d); return true;
-      case kIoIzGo: {
-        // The unit ignores a start while busy; no microcode may rely on
-        // that (nu_layer's level loop counts its clocks instead of waiting).
-        if (clock < done_clock)
-          throw std::logic_error("the microcode started the neuron unit in clock " +
-                                 std::to_string(clock) + ", while an update ran (until clock " +
-                                 std::to_string(done_clock) + ")");
-        shown = next;
-        IzhikevichLayer<1> one(config());
-        one.set_state(0, v, u, int32_t(d));
-        next.spike = one.update(0, x);
-        next.v = one.v(0), next.u = one.U(0);
-        done_clock = clock + kIzhikevichUnitClocks;
-        return true;
-      }
+      case kIoIzGo: return start(int32_t(d), clock), true;
+      case kIoIzUGo: return u = int32_t(d), start(x, clock), true;
       default: return false;
     }
+  }
+  // The update with x_prev, started by a write in `clock`.
+  void start(int32_t x_prev, uint64_t clock) {
+    // The unit ignores a start while busy; no microcode may rely on that
+    // (nu_layer's level loop counts its clocks instead of waiting).
+    if (clock < ready_clock)
+      throw std::logic_error("the microcode started the neuron unit in clock " +
+                             std::to_string(clock) + ", before it takes a start (clock " +
+                             std::to_string(ready_clock) + ")");
+    shown = next;
+    IzhikevichLayer<1> one(config());
+    one.set_state(0, v, u, x_prev);
+    next.spike = one.update(0, x);
+    next.v = one.v(0), next.u = one.U(0);
+    done_clock = clock + kIzhikevichUnitClocks;
+    ready_clock = done_clock + 1;
   }
   // An IO read in `clock` (the engine's cycle A); false when `a` is not a
   // unit port.
@@ -351,8 +357,8 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
            {"IO_OUT_BYTE", kIoOutByte}, {"IO_FRAME_DONE", kIoFrameDone},
            {"IO_CMD_POP", kIoCmdPop},  {"IO_SDFT_K", kIoSdftK},     {"IO_SDFT_INC", kIoSdftInc},
            {"IO_CLEAR", kIoClear},     {"IO_IZ_X", kIoIzX},         {"IO_IZ_V", kIoIzV},
-           {"IO_IZ_U", kIoIzU},        {"IO_IZ_GO", kIoIzGo},       {"IO_IZ_CFG", kIoIzCfg},
-           {"IO_IZ_SPIKE", kIoIzSpike}})
+           {"IO_IZ_U", kIoIzU},        {"IO_IZ_GO", kIoIzGo},       {"IO_IZ_UGO", kIoIzUGo},
+           {"IO_IZ_CFG", kIoIzCfg},    {"IO_IZ_SPIKE", kIoIzSpike}})
     sym(n, v);
   return im;
 }

@@ -1,5 +1,5 @@
 `default_nettype none
-// izhikevich_layer: one Izhikevich neuron update in 14 clocks, for the frame
+// izhikevich_layer: one Izhikevich neuron update in 13 clocks, for the frame
 // engine (which keeps the neurons' state and drives this unit over its IO
 // bus). Bit-exact with IzhikevichLayer::update of hls/izhikevich_layer.h,
 // whose header is the spec of the math, the Q formats (v Q9.22, U Q.FU,
@@ -33,9 +33,10 @@
 //   s9  SH c2w2 = y >> s2
 //   s10 vacc += int32(c2w2)                       (vacc = v' complete)
 //   s11 spike = vacc >= V_PEAK; uacc = sat_u(uacc) + (spike ? u_jump : 0)
-//   s12 (pad to 14)
-//   s13 out_v = spike ? v_reset : max(vacc, V_MIN), out_u = sat_u(uacc),
-//       out_spike, out_valid = in_ready = 1 (edge E+14)
+//   s12 out_v = spike ? v_reset : max(vacc, V_MIN), out_u = sat_u(uacc),
+//       out_spike, out_valid = in_ready = 1 (edge E+13)
+//   (Until 2026-11-25 a pad clock before s12 made it 14, when the engine's
+//   loop took 15 clocks a neuron anyway; its 14-clock loop needs 13.)
 //
 // Widths (the C++'s int64 intermediates; why nothing wraps, for ANY 32-bit
 // x, x_prev, v, U and any config): the operands are 16-bit, so |p| <= 2^30;
@@ -54,8 +55,8 @@
 //
 // Timing: an input accepted at edge E (in_valid && in_ready; in_ready =
 // idle) drops in_ready and out_valid at E; results, out_valid and in_ready
-// come at edge E+14: back to back, one update per 15 clocks. The results
-// hold until the next update's replace them at its edge E+14, so the
+// come at edge E+13: back to back, one update per 14 clocks. The results
+// hold until the next update's replace them at its edge E+13, so the
 // engine may read one neuron's results while the unit computes the next
 // (the microcode's nu_layer does).
 // The ports are used at E through the adders above: drive them from
@@ -258,7 +259,7 @@ module izhikevich_layer (
         4'd8: begin y <= y + p47; vacc <= v_sum[35:1]; end
         4'd10: vacc <= v_sum[35:1];
         4'd11: uacc <= u_sum[47:1];
-        4'd13: begin
+        4'd12: begin
           busy <= 1'b0; out_valid <= 1'b1; out_spike <= spike;
           out_u <= u_sat;
           out_v <= spike ? c_vreset : vacc < V_MIN ? V_MIN[31:0] : vacc[31:0];

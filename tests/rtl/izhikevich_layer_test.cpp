@@ -12,7 +12,7 @@
 // undefined behaviour, so there is nothing to compare with). It contains
 // the stored ranges (v in [V_MIN, V_PEAK), v_reset; U saturated), and
 // Realistic checks that the outputs never leave them.
-// Timing: every update asserts the 14-edge handshake (Unit::update), and
+// Timing: every update asserts the 13-edge handshake (Unit::update), and
 // that the outputs keep the previous update's results until then.
 #include <gtest/gtest.h>
 
@@ -100,7 +100,7 @@ struct Unit : ClockedDut<Vizhikevich_layer> {
   }
   // One update; `during(k)` runs before edge E+k (k = 1..14) to test writes
   // while busy. Asserts the timing: idle before, busy (in_ready = 0,
-  // out_valid = 0) right after edges E .. E+13, done right after E+14; and
+  // out_valid = 0) right after edges E .. E+12, done right after E+13; and
   // that the previous results hold while busy (the microcode reads them
   // while the unit computes the next neuron).
   template <class F>
@@ -326,11 +326,11 @@ TEST(IzhikevichLayerRtl, RealisticNeuronSpikeTrainsMatchHls) {
   }
 }
 
-// (4) Bound: the handshake timing exactly (14 edges), asserted in every
+// (4) Bound: the handshake timing exactly (13 edges), asserted in every
 // update() above; here: an in_valid held high while busy is not accepted
 // (the results are those of the first operands, and the second operands
-// are taken only after E+14, at E+15), and back-to-back updates run at one
-// per 15 clocks, each with its own exact result.
+// are taken only after E+13, at E+14), and back-to-back updates run at one
+// per 14 clocks, each with its own exact result.
 TEST(IzhikevichLayerRtl, HandshakeTimingAndBackToBack) {
   std::mt19937 g(11);
   Unit u;
@@ -387,7 +387,7 @@ TEST(IzhikevichLayerRtl, HandshakeTimingAndBackToBack) {
 
 // (5) Bound: exact. The unit reads its constants during an update, so the
 // contract is: words are written between updates. Configuration B written
-// word by word from the update's last edge (E+14, where the results are
+// word by word from the update's last edge (E+13, where the results are
 // taken: the first word lands there) through the clocks after it does not
 // change that update (result = golden with A); the next update uses B
 // entirely. Forward order puts v_reset (word 2), read at that last edge,
@@ -425,9 +425,13 @@ TEST(IzhikevichLayerRtl, ConfigWrittenBetweenUpdatesAppliesToTheNextUpdate) {
 // constant word written in the clocks of an update (after the start's
 // clock c, before c + kIzhikevichUnitClocks, when the results come) throws;
 // from that clock on, the write lands at or after the unit's last edge,
-// which the test above shows to be safe. A start in those clocks throws
-// too (the unit, not ready, would ignore it); from c + kLatency on it
-// starts the next update, as the handshake test shows in_ready again.
+// which the test above shows to be safe. A start in those clocks, and in
+// clock c + kLatency itself, throws (the unit, not ready, would ignore it:
+// its in_ready comes with the results, at edge E + kLatency, so the
+// earliest start it takes is at the next edge); from c + kLatency + 1 on
+// it starts the next update, kLatency + 1 clocks after the first as the
+// handshake test's back-to-back updates. (The model took a start at c +
+// kLatency until 2026-11-25: no microcode started the unit that soon.)
 TEST(IzhikevichLayerRtl, ModelRefusesConstantsAndStartsWhileBusy) {
   eskin::hls::IzhikevichUnitPort p;
   p.present = true;
@@ -438,9 +442,11 @@ TEST(IzhikevichLayerRtl, ModelRefusesConstantsAndStartsWhileBusy) {
   EXPECT_THROW(p.write(vreset, 5, 100 + kLatency - 1), std::logic_error);
   EXPECT_NO_THROW(p.write(vreset, 5, 100 + kLatency));
   EXPECT_THROW(p.write(eskin::hls::kIoIzGo, 0, 101), std::logic_error);
-  EXPECT_THROW(p.write(eskin::hls::kIoIzGo, 0, 100 + kLatency - 1), std::logic_error);
-  EXPECT_NO_THROW(p.write(eskin::hls::kIoIzGo, 0, 100 + kLatency));
-  EXPECT_THROW(p.write(eskin::hls::kIoIzGo, 0, 100 + kLatency + 1), std::logic_error);
+  EXPECT_THROW(p.write(eskin::hls::kIoIzGo, 0, 100 + kLatency), std::logic_error);
+  EXPECT_THROW(p.write(eskin::hls::kIoIzUGo, 0, 100 + kLatency), std::logic_error);
+  EXPECT_NO_THROW(p.write(eskin::hls::kIoIzUGo, 0, 100 + kLatency + 1));
+  EXPECT_THROW(p.write(eskin::hls::kIoIzGo, 0, 100 + 2 * kLatency + 1), std::logic_error);
+  EXPECT_NO_THROW(p.write(eskin::hls::kIoIzGo, 0, 100 + 2 * kLatency + 2));
 }
 
 // (6) Bound: the reset state exactly: out_valid 1, in_ready 1, outputs 0;
