@@ -50,7 +50,7 @@ enum DtmfIoPort : uint16_t {
   kIoClear = 0x205,      // w: clear the hardware counters
   kIoIzX = 0x206,        // w: neuron unit: the input x operand
   kIoIzGo = 0x207,       // w: neuron unit: the x_prev operand; starts the update
-  kIoIzUGo = 0x208,      // w: neuron unit: the U operand; starts the update, x_prev = x
+  kIoIzUGo = 0x208,      // w: neuron unit: the U operand; starts a level-input update a clock later
   kIoIzCfg = 0x220,      // w: neuron unit: constant word w of the layer block at 0x220 + w
 };
 // Engine events (the `wait` mask bits) of rtl/dtmf_top.v.
@@ -186,7 +186,15 @@ struct IzhikevichUnitPort {
       case kIoIzV: v = int32_t(d); return true;
       case kIoIzU: u = int32_t(d); return true;
       case kIoIzGo: return start(int32_t(d), clock), true;
-      case kIoIzUGo: return u = int32_t(d), start(x, clock), true;
+      case kIoIzUGo:
+        // rtl/dtmf_top.v registers this start, so that the unit takes U from
+        // its operand register: it starts in the next clock, with no x_prev
+        // (the bus's next word), which only a level-input update ignores.
+        if (config().input_change)
+          throw std::logic_error("the microcode started the neuron unit by its U write in clock " +
+                                 std::to_string(clock) +
+                                 " with input_change set: that start has no x_prev");
+        return u = int32_t(d), start(0, clock + 1), true;
       default: return false;
     }
   }

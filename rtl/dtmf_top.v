@@ -117,7 +117,7 @@ module dtmf_top #(
   wire        wr_clear = io_we && io_waddr == 16'h0205;
   wire        wr_iz_x = io_we && io_waddr == 16'h0206;
   wire        wr_iz_go = io_we && io_waddr == 16'h0207;  // the x_prev operand
-  wire        wr_iz_ugo = io_we && io_waddr == 16'h0208; // the U operand, x_prev = x
+  wire        wr_iz_ugo = io_we && io_waddr == 16'h0208; // the U operand; starts (level input)
   wire        wr_iz_v = io_we && io_waddr == 16'h020D;
   wire        wr_iz_u = io_we && io_waddr == 16'h020E;
   wire        wr_iz_cfg = io_we && io_waddr[15:5] == 11'h011;  // 0x220 + word
@@ -247,8 +247,10 @@ module dtmf_top #(
   // ---------------- the neuron unit (NEURON_UNIT) ------------------------
   // Operands are written one by one (x, v, U); the x_prev write hands all
   // four over and starts the update; or, for a level input (no
-  // input_change: the unit reads no x_prev), the U write (0x208) hands x,
-  // v and itself over with x_prev = x and starts it. The microcode waits
+  // input_change: the unit reads no x_prev), the U write (0x208) starts
+  // it at the next edge, once U is in its register (a start from the
+  // register costs no operand multiplexer: 64 cells on the UP5K, which
+  // has none to spare; x_prev is then the bus's next word, unused). The microcode waits
   // for iz_done (or counts the unit's clocks) before it starts the next,
   // so in_ready is always 1 at the start, and reads a neuron's results
   // while the next one runs (the unit shows them until the next one's
@@ -258,17 +260,18 @@ module dtmf_top #(
   generate
     if (NEURON_UNIT != 0) begin : g_neuron_unit
       reg [31:0] op_x, op_v, op_u;
+      reg        ugo_q;  // a U write of the clock before: start
       always @(posedge clk) begin
         if (wr_iz_x) op_x <= io_wdata;
         if (wr_iz_v) op_v <= io_wdata;
-        if (wr_iz_u) op_u <= io_wdata;
+        if (wr_iz_u || wr_iz_ugo) op_u <= io_wdata;
+        ugo_q <= wr_iz_ugo && !rst;
       end
       wire in_ready_unused;
       izhikevich_layer u_neuron (
           .clk(clk), .rst(rst), .cfg_we(wr_iz_cfg), .cfg_addr(io_waddr[4:0]),
-          .cfg_data(io_wdata), .in_valid(wr_iz_go || wr_iz_ugo), .in_ready(in_ready_unused),
-          .in_x(op_x), .in_x_prev(wr_iz_ugo ? op_x : io_wdata), .in_v(op_v),
-          .in_u(wr_iz_ugo ? io_wdata : op_u),
+          .cfg_data(io_wdata), .in_valid(wr_iz_go || ugo_q), .in_ready(in_ready_unused),
+          .in_x(op_x), .in_x_prev(io_wdata), .in_v(op_v), .in_u(op_u),
           .out_valid(iz_done), .out_spike(iz_spike), .out_v(iz_v), .out_u(iz_u));
       wire unused_neuron = in_ready_unused;
     end else begin : g_no_neuron_unit
