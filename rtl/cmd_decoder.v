@@ -18,7 +18,6 @@
 //      decoder on the same line takes it;
 //   5. otherwise committed without its two CRC bytes: the engine reads
 //      type, seq, len (2 bytes LE), then len payload bytes.
-// The counters count a dropped frame one clock after its delimiter.
 // Routing: a top sharing the host link with another (rtl/mixed_top.v) keeps
 // only the command types in TYPE_LO..TYPE_HI (TYPE_IN = 1) or only those
 // outside it (TYPE_IN = 0), so each command reaches exactly one top; the
@@ -67,11 +66,6 @@ module cmd_decoder #(
   reg [15:0] crc;
   reg [15:0] len;
   reg [7:0]  typ;        // the frame's first raw byte
-  // The verdict on the frame that just ended, counted a clock later: the
-  // counters' increments then start from a register instead of from the
-  // frame checks (the UP5K's 8x8 build, 99.8 % full, placed that path at
-  // 15.9 MHz). 0 none, 1 frame error, 2 overflow, 3 CRC error.
-  reg [1:0]  err_q;
 
   wire delim = s_valid && s_data == 8'd0;
   wire is_code = s_valid && !delim && code_rem == 8'd0;
@@ -124,7 +118,6 @@ module cmd_decoder #(
       crc <= 16'hFFFF;
       len <= 16'd0;
       typ <= 8'd0;
-      err_q <= 2'd0;
       wp <= {(AW + 1){1'b0}};
       wc <= {(AW + 1){1'b0}};
       rp <= {(AW + 1){1'b0}};
@@ -166,19 +159,12 @@ module cmd_decoder #(
           if (count == 17'd7) len[15:8] <= raw;
         end
       end
-      err_q <= 2'd0;
-      case (err_q)
-        2'd1: frame_errors <= sat_inc(frame_errors);
-        2'd2: overflows <= sat_inc(overflows);
-        2'd3: crc_errors <= sat_inc(crc_errors);
-        default: ;
-      endcase
       if (do_frame) begin
         if (!struct_ok || ovf || crc != 16'd0 || !routed_here) begin
           wp <= wc;  // discard the frame
-          if (!struct_ok) err_q <= 2'd1;
-          else if (ovf) err_q <= 2'd2;
-          else if (crc != 16'd0) err_q <= 2'd3;
+          if (!struct_ok) frame_errors <= sat_inc(frame_errors);
+          else if (ovf) overflows <= sat_inc(overflows);
+          else if (crc != 16'd0) crc_errors <= sat_inc(crc_errors);
         end else begin
           wc <= wp - TWO;  // without the CRC bytes
           wp <= wp - TWO;
