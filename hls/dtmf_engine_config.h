@@ -279,7 +279,8 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // ---- state ----
   const int lk = p.lookback * K;
   alloc("PHASE", 2 * K), alloc("HIST", lk), alloc("HEAD", 1), alloc("REM", K);
-  alloc("PL", K), alloc("NPL", 1), alloc("SITE", T), alloc("MAG", K), alloc("ROOT", R), alloc("CRT", C);
+  alloc("PL", K), alloc("NPL", 1), alloc("SITE", T), alloc("MAG", K);
+  alloc("ROOT", R), alloc("CRT", C);  // line_roots: rows, then columns for the taxel loop
   alloc("G", T), alloc("X2IN", T);  // layer inputs: neuron_unit needs X2IN = G + T
   alloc("NV", 2 * T), alloc("NU", 2 * T), alloc("NXP", 2 * T);  // neuron l T + i
   alloc("SZ", C);                  // zero, never written: synapse_weights' row above row 0

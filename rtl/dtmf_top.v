@@ -248,13 +248,13 @@ module dtmf_top #(
   // Operands are written one by one (x, v, U); the x_prev write hands all
   // four over and starts the update; or, for a level input (no
   // input_change: the unit reads no x_prev), the U write (0x208) starts
-  // it at the next edge, once U is in its register (a start from the
-  // register costs no operand multiplexer: 64 cells on the UP5K, which
-  // has none to spare; x_prev is then the bus's next word, unused). The microcode waits
-  // for iz_done (or counts the unit's clocks) before it starts the next,
-  // so in_ready is always 1 at the start, and reads a neuron's results
-  // while the next one runs (the unit shows them until the next one's
-  // replace them). The microcode keeps x_prev itself.
+  // it at the next edge, once U is in its register (no U and x_prev
+  // multiplexers: they cost the UP5K's 8x8 build about 50 cells, which it
+  // does not have; x_prev is then the bus's next word, unused). The
+  // microcode waits for iz_done (or counts the unit's clocks) before it
+  // starts the next, so in_ready is always 1 at the start, and reads a
+  // neuron's results while the next one runs (the unit shows them until
+  // the next one's replace them). The microcode keeps x_prev itself.
   wire        iz_done, iz_spike;
   wire [31:0] iz_v, iz_u;
   generate
