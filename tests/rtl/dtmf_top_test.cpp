@@ -31,6 +31,8 @@
 #include "Vdtmf_top_s10unit___024root.h"
 #include "Vdtmf_top_s16m.h"
 #include "Vdtmf_top_s16m___024root.h"
+#include "Vdtmf_top_s18m.h"
+#include "Vdtmf_top_s18m___024root.h"
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_top_config.h"
@@ -73,6 +75,8 @@ const Build kS10Unit{"scenes/staggered10x10.yaml", "staggered10x10_unit", DTMF_T
                      DTMF_TOP_S10UNIT_CLK_HZ, 3, true, true};
 const Build kS16M{"scenes/neuroskin2.yaml", "scale_16x16_1msps", DTMF_TOP_S16M_PARAMS,
                   DTMF_TOP_S16M_CLK_HZ, 6, true, true, 16, 1e6};
+const Build kS18M{"scenes/neuroskin2.yaml", "scale_18x18_1msps", DTMF_TOP_S18M_PARAMS,
+                  DTMF_TOP_S18M_CLK_HZ, 6, true, true, 18, 1e6};
 
 struct BuildSetup {
   eskin::sim::Scene scene;
@@ -491,44 +495,28 @@ TEST(DtmfTop, Staggered10x10At24MHzWithTheNeuronUnit) {
   scene_test<Vdtmf_top_s10unit, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Unit, s);
 }
 
-// The scale table's 16x16 skin at 1 MS/s as both ECP5 rows build it
-// (docs/bitstream.md, the scale table): 40 MHz, the AD7476A's first band;
-// 32 DFT channels in 6 lanes at KS + 8 = 40 clocks a frame's sample,
-// exactly the sample period, 38 any other; the barrel shifter and the
-// neuron unit, the engine's stress load and longest command (33 526
-// clocks: its longest frame without packets, a frame's most packets, and
-// SET_WEIGHT) within a frame's 40 000; packets planned for its 2 Mbaud.
-// The first whole-top
-// run of 6 lanes and of a DFT paced at the sample period. Checks: the
-// board flow chooses exactly this build for the ULX3S (its clock, lanes,
-// shifter and unit; prepare() checks every parameter against the plan);
-// then, driven by random on/off carriers switched every 3 frames (30
-// frames), a clean run (no ADC, frame or output overrun, the ADC's pin
-// timing, no link error; expect_clean_run) and every data packet equal to
-// the chain's, byte for byte. After frame 12 a SET_CARRIER_INC reloads the
-// DFT, and the packets after it equal the chain's with the same change at
-// that sample. The window's clear costs no clock (rtl/sdft_bank.v: a
-// 128-clock clear lost a sample at boot and three at a reload). The
-// table's KS = 32 writes cost no sample either: each is taken only while
-// every lane is idle and delays the next sample by at most 2 clocks (the
-// write's clock, then the handshake once cfg_valid falls); the next write
-// comes at least 10 engine clocks later (sdft_program's loop), when the
-// lanes are busy with that sample, so at most one write falls between two
-// samples. A skipped sample (no tokens: all but the frames') takes S = 38
-// of the P = 40 clocks, so it absorbs its write (S + 2 <= P) and the delay
-// does not grow; a frame's sample takes F = 40 and adds at most 2, and the
-// 32 writes span fewer than STEP = 1000 samples, so at most one frame's
-// sample: the delay stays <= 4 < P and adc_overruns is 0. (Before tokens
-// were skipped every sample took 40 and one sample was lost.)
-TEST(DtmfTop, ScaleTable16x16AtOneMegasampleOnTheEcp5Core) {
-  BuildSetup s = prepare(kS16M);
+// One scale-table build at 1 MS/s, Verilated, against the ULX3S flow's
+// choice and the chain (the checks of the two tests below): the flow
+// chooses exactly this build (its clock, lanes, shifter and unit; prepare()
+// checks every parameter against the plan) and the DFT's clocks a frame's
+// sample (F) and any other (S) are `frame_sdft` and `skip_sdft` of the
+// sample's 40; then, driven by random on/off carriers switched every 3
+// frames (30 frames), a clean run (no ADC, frame or output overrun, the
+// ADC's pin timing, no link error; expect_clean_run) and every data packet
+// equal to the chain's, byte for byte. After frame 12 a SET_CARRIER_INC
+// reloads the DFT, and the packets after it equal the chain's with the
+// same change at that sample.
+template <class V, class Sizes>
+void scale_run_at_one_megasample(const Build& k, long frame_sdft, long skip_sdft) {
+  BuildSetup s = prepare(k);
   const auto& chosen = s.chosen;
   ASSERT_TRUE(chosen.budget.ok()) << chosen.budget.problems.front();
-  EXPECT_EQ(chosen.clocking.clk_hz, kS16M.clk_hz);
-  EXPECT_EQ(chosen.plan.spec.sdft_lanes, kS16M.sdft_lanes);
-  EXPECT_EQ(chosen.plan.spec.engine_fast_shift, kS16M.fast_shift);
-  EXPECT_EQ(chosen.plan.spec.neuron_unit, kS16M.neuron_unit);
-  EXPECT_EQ(chosen.budget.sdft_clocks, 40);
+  EXPECT_EQ(chosen.clocking.clk_hz, k.clk_hz);
+  EXPECT_EQ(chosen.plan.spec.sdft_lanes, k.sdft_lanes);
+  EXPECT_EQ(chosen.plan.spec.engine_fast_shift, k.fast_shift);
+  EXPECT_EQ(chosen.plan.spec.neuron_unit, k.neuron_unit);
+  EXPECT_EQ(chosen.budget.sdft_clocks, frame_sdft);
+  EXPECT_EQ(chosen.budget.sdft_skip_clocks, skip_sdft);
   EXPECT_EQ(chosen.budget.period, 40);
   EXPECT_LE(chosen.engine_clocks, chosen.budget.frame_clocks);
   const auto& sp = s.plan.spec;
@@ -544,7 +532,7 @@ TEST(DtmfTop, ScaleTable16x16AtOneMegasampleOnTheEcp5Core) {
   codes.resize(size_t(n) + 16000, 2048);
   auto padded = s;
   padded.codes12 = codes;
-  Board<Vdtmf_top_s16m> b(codes, double(kS16M.clk_hz), s.cpb);
+  Board<V> b(codes, double(k.clk_hz), s.cpb);
   eskin::link::LinkEncoder enc;
   Reload reload{0, 5, s.plan.inc[5] + 100000};
   const auto cmd = enc.set_carrier_inc(uint8_t(reload.k), reload.inc);
@@ -553,19 +541,58 @@ TEST(DtmfTop, ScaleTable16x16AtOneMegasampleOnTheEcp5Core) {
     b.tick();
     if (!sent && b.frames_done >= 12 && !b.sending()) b.send(cmd), sent = true;
   }
-  ASSERT_LE(chosen.budget.sdft_skip_clocks + 2, chosen.budget.period);  // the bound above
+  ASSERT_LE(chosen.budget.sdft_skip_clocks + 2, chosen.budget.period);  // a skipped sample absorbs a write
   expect_clean_run(b, enc, 1);
   ASSERT_EQ(b.carrier_loads.size(), 2u);  // boot + the SET_CARRIER_INC
   reload.at = b.carrier_load_samples[1];
   ASSERT_GT(reload.at, size_t(s.plan.N + 11 * s.plan.step));  // after the 12th frame
   ASSERT_LT(reload.at, size_t(n - 6 * s.plan.step));  // frames after it to compare
-  const auto want =
-      run_chain<eskin::hls::DtmfChainSizes<16, 16, 128>>(padded, size_t(n) + 60, &reload);
+  const auto want = run_chain<Sizes>(padded, size_t(n) + 60, &reload);
   const uint32_t limit = uint32_t(n) - uint32_t(s.plan.decim_tax * s.plan.step);
   expect_same_packets(want, b.received(),
                       {eskin::link::kAmplitudes, eskin::link::kTaxelsDense, eskin::link::kSpikes},
                       limit);
-  std::printf("%s: %d samples, %zu packets\n", kS16M.name.c_str(), n, b.received().size());
+  std::printf("%s: %d samples, %zu packets, engine %ld of %ld clocks a frame\n", k.name.c_str(), n,
+              b.received().size(), chosen.engine_clocks, chosen.budget.frame_clocks);
+}
+
+// The scale table's 16x16 skin at 1 MS/s as both ECP5 rows built it until
+// 2026-11-24 (docs/bitstream.md, the scale table): 40 MHz, the AD7476A's
+// first band; 32 DFT channels in 6 lanes at KS + 8 = 40 clocks a frame's
+// sample, exactly the sample period, 38 any other; the barrel shifter and
+// the neuron unit; packets planned for its 2 Mbaud. The first whole-top
+// run of 6 lanes and of a DFT paced at the sample period. The window's
+// clear costs no clock (rtl/sdft_bank.v: a 128-clock clear lost a sample
+// at boot and three at a reload). The table's KS = 32 writes cost no
+// sample either: each is taken only while every lane is idle and delays
+// the next sample by at most 2 clocks (the write's clock, then the
+// handshake once cfg_valid falls); the next write comes at least 10
+// engine clocks later (sdft_program's loop), when the lanes are busy with
+// that sample, so at most one write falls between two samples. A skipped
+// sample (no tokens: all but the frames') takes S = 38 of the P = 40
+// clocks, so it absorbs its write (S + 2 <= P) and the delay does not
+// grow; a frame's sample takes F = 40 and adds at most 2, and the 32
+// writes span fewer than STEP = 1000 samples, so at most one frame's
+// sample: the delay stays <= 4 < P and adc_overruns is 0. (Before tokens
+// were skipped every sample took 40 and one sample was lost.)
+TEST(DtmfTop, ScaleTable16x16AtOneMegasampleOnTheEcp5Core) {
+  scale_run_at_one_megasample<Vdtmf_top_s16m, eskin::hls::DtmfChainSizes<16, 16, 128>>(kS16M, 40,
+                                                                                        38);
+}
+
+// The ECP5 rows' 1 MS/s skin since 2026-11-25 (and for a run on
+// 2026-11-24, before the bound on a frame's packets): 18x18 at 40 MHz, 36
+// DFT channels in 6 lanes. The first whole-top run where a frame's sample
+// takes longer than the sample period: F = KS + 8 = 44 clocks against
+// P = 40 (the ADC holds one sample, and every skipped sample, S = 6
+// ceil(36 / 6) + 2 = 38 clocks, gives 2 of the 4 back, so the delay is
+// gone two samples later). The engine takes 36 541 of the frame's 40 000
+// clocks under the stress load, a frame's most packets and the longest
+// command (host/fpga/engine_load.h); the run checks that no frame is lost on these
+// signals and that every packet equals the chain's.
+TEST(DtmfTop, ScaleTable18x18AtOneMegasampleOnTheEcp5Core) {
+  scale_run_at_one_megasample<Vdtmf_top_s18m, eskin::hls::DtmfChainSizes<18, 18, 128>>(kS18M, 44,
+                                                                                        38);
 }
 
 }  // namespace
