@@ -395,6 +395,7 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
           {"ENGINE_FAST_SHIFT", i(p.spec.engine_fast_shift ? 1 : 0)},
           {"SDFT_LANES", i(p.spec.sdft_lanes)},
           {"NEURON_UNIT", i(p.spec.neuron_unit ? 1 : 0)},
+          {"ADC_CLK_HZ", i(p.spec.adc_clk_hz)},
           {"UCODE_HEX", "\"" + ucode_hex + "\""},
           {"KROM_HEX", "\"" + krom_hex + "\""}};
 }

@@ -52,6 +52,11 @@ struct DtmfTopSpec {
   std::string layer2_preset = "RS";
   double layer2_centre = 20.0, layer2_surround = -4.0;
   long clk_hz = kDtmfTopClkHz;     // FPGA clock
+  // The ADC's own clock (rtl/dtmf_top.v ADC_CLK_HZ; its samples cross into
+  // clk_hz's domain in rtl/stream_cdc.v), 0: the ADC runs on clk_hz. The
+  // board flow sets it when the AD7476A's SCLK would pin the core clock to
+  // a band the engine does not fit (1 MS/s: 37.3-40 MHz).
+  long adc_clk_hz = 0;
   long baud = 3000000;
   // The frame engine's barrel shifter (rtl/frame_engine.v FAST_SHIFT): the
   // same packets in fewer clocks, for ~1000 logic cells more; the flow turns it
@@ -267,11 +272,19 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 // ---- clock budget (`eskin bitstream`, the scale table) ---------------------
 // Whether rtl/dtmf_top.v keeps up with the plan's sample rate at clk_hz.
 // The top's budgets, from its modules' headers:
-//  - adc_ad7476: one conversion every period = round(clk / fs) clocks, SCLK
-//    = clk / (2 H) with H = ceil(clk / 40 MHz) (dtmf_top's SCLK_DIV, so SCLK
-//    <= 20 MHz at any clock); the AD7476A needs (period - 28 H) clocks >=
-//    250 ns of acquisition (tACQ) and (period - 31 H) clocks >= 86 ns of
-//    quiet time (t8 + tQUIET).
+//  - adc_ad7476, on its clock a (spec.adc_clk_hz, else clk): one conversion
+//    every A = round(a / fs) clocks of a, SCLK = a / (2 H) with H = ceil(a /
+//    40 MHz) (dtmf_top's SCLK_DIV, so SCLK <= 20 MHz at any clock); the
+//    AD7476A needs (A - 28 H) clocks >= 250 ns of acquisition (tACQ) and
+//    (A - 31 H) clocks >= 86 ns of quiet time (t8 + tQUIET)
+//    (dtmf_top_adc_problem). On clk, the sample period P below is A. On
+//    its own clock, samples reach clk's domain through stream_cdc's
+//    synchroniser, a sample every A / a seconds give or take a clock of
+//    clk either way (a synchroniser may resolve a clock late): P = floor(
+//    clk A / a) - 1 clocks between two samples at the least, and a frame
+//    of STEP samples floor(STEP clk A / a) - 1 clocks. The CDC holds two
+//    samples more than the ADC's one register, so the one-register rule
+//    below still holds.
 //  - the DFT: a frame's sample (one in STEP) takes F = sdft_lanes_interval(
 //    KS, L, 1) clocks to the next handshake, the lanes' II with a consumer
 //    that takes a token every clock (rtl/frame_capture.v: it stores and
@@ -300,7 +313,9 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    own rate error room.
 struct DtmfTopClockBudget {
   long clk_hz = 0;
-  long period = 0;         // clocks per ADC sample
+  long adc_clk_hz = 0;     // the ADC's clock (clk_hz when it runs on clk)
+  long adc_period = 0;     // its clocks per sample (A)
+  long period = 0;         // clocks of clk per ADC sample, at the least (P)
   long sclk_div = 0;       // H
   long sdft_clocks = 0;    // a frame sample's II: dtmf_top_sdft_clocks()
   long sdft_skip_clocks = 0;  // any other sample's: dtmf_top_sdft_skip_clocks()
@@ -330,18 +345,43 @@ inline long dtmf_top_sdft_min_period(int ks, int lanes, long step) {
   return std::max({sk, (f + 1) / 2, (f + (step - 1) * sk + step - 1) / step});
 }
 
+// What keeps adc_ad7476 on a clock of adc_hz from converting at fs (above),
+// empty when nothing does.
+inline std::string dtmf_top_adc_problem(double fs, long adc_hz) {
+  const long period = std::lround(double(adc_hz) / fs);
+  const long h = (adc_hz + 39999999) / 40000000;
+  const double ns = 1e9 / double(adc_hz);
+  const double acq = double(period - 28 * h) * ns, quiet = double(period - 31 * h) * ns;
+  if (acq >= 250.0 && quiet >= 86.0) return "";
+  char s[240];
+  std::snprintf(s, sizeof s,
+                "adc_ad7476: a sample period of %ld clocks leaves %.0f ns of acquisition "
+                "(>= 250 ns) and %.0f ns of quiet time (>= 86 ns) at SCLK_DIV %ld (%.6g MHz / "
+                "%.6g S/s)",
+                period, acq, quiet, h, double(adc_hz) / 1e6, fs);
+  return s;
+}
+
 inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_hz,
                                                 long engine_clocks) {
   DtmfTopClockBudget b;
-  const double fs = p.spec.sample_hz, ns = 1e9 / double(clk_hz);
+  const double fs = p.spec.sample_hz;
   b.clk_hz = clk_hz;
-  b.period = std::lround(double(clk_hz) / fs);
-  b.sclk_div = (clk_hz + 39999999) / 40000000;
+  b.adc_clk_hz = p.spec.adc_clk_hz > 0 ? p.spec.adc_clk_hz : clk_hz;
+  b.adc_period = std::lround(double(b.adc_clk_hz) / fs);
+  b.sclk_div = (b.adc_clk_hz + 39999999) / 40000000;
   const int lanes = p.spec.sdft_lanes;
   b.sdft_clocks = dtmf_top_sdft_clocks(p.ks, lanes);
   b.sdft_skip_clocks = dtmf_top_sdft_skip_clocks(p.ks, lanes);
   b.sdft_min_period = dtmf_top_sdft_min_period(p.ks, lanes, p.step);
-  b.frame_clocks = long(p.step) * b.period;
+  if (p.spec.adc_clk_hz > 0) {  // exact in integers: clk and a are whole Hz
+    const long double per = (long double)clk_hz * b.adc_period / b.adc_clk_hz;
+    b.period = long(std::floor(per)) - 1;
+    b.frame_clocks = long(std::floor(per * p.step)) - 1;
+  } else {
+    b.period = b.adc_period;
+    b.frame_clocks = long(p.step) * b.period;
+  }
   b.engine_clocks = engine_clocks;
   auto at = [&] {
     char s[64];
@@ -349,16 +389,8 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
     return std::string(s);
   };
   auto n = [](long v) { return std::to_string(v); };
-  const double acq = double(b.period - 28 * b.sclk_div) * ns;
-  const double quiet = double(b.period - 31 * b.sclk_div) * ns;
-  if (acq < 250.0 || quiet < 86.0) {
-    char s[200];
-    std::snprintf(s, sizeof s,
-                  "adc_ad7476: a sample period of %ld clocks leaves %.0f ns of acquisition "
-                  "(>= 250 ns) and %.0f ns of quiet time (>= 86 ns) at SCLK_DIV %ld",
-                  b.period, acq, quiet, b.sclk_div);
-    b.problems.push_back(s + at());
-  }
+  if (const std::string adc = dtmf_top_adc_problem(fs, b.adc_clk_hz); !adc.empty())
+    b.problems.push_back(adc);
   if (b.period < b.sdft_min_period)
     b.problems.push_back(
         (lanes == 1 ? std::string("sdft_bank: needs 6 KS + 2 = ") + n(b.sdft_clocks) +
@@ -370,8 +402,13 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
         ", the sample period is " + n(b.period) + at());
   if (engine_clocks > b.frame_clocks)
     b.problems.push_back("frame_engine: its longest frame and command take " + n(engine_clocks) +
-                         " clocks, a frame is STEP x period = " + n(p.step) + " x " +
-                         n(b.period) + " = " + n(b.frame_clocks) + at());
+                         " clocks, a frame is " +
+                         (p.spec.adc_clk_hz > 0
+                              ? "STEP samples of the ADC's clock = " + n(b.frame_clocks) +
+                                    " clocks at the least"
+                              : "STEP x period = " + n(p.step) + " x " + n(b.period) + " = " +
+                                    n(b.frame_clocks)) +
+                         at());
   const long cpb = std::lround(double(clk_hz) / double(p.spec.baud));
   const double err = cpb > 0 ? double(clk_hz) / double(cpb * p.spec.baud) - 1.0 : 1.0;
   if (cpb < 2 || std::fabs(err) > 0.02) {
@@ -385,7 +422,8 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
 
 // The clock each budget asks for at the plan's rate (Hz, not rounded): the
 // ADC's acquisition time with SCLK_DIV = 1 at best (adc_ok false when no
-// clock lets the AD7476A convert that fast), the engine's clocks a frame,
+// clock lets the AD7476A convert that fast; none asked of clk when the ADC
+// has its own, spec.adc_clk_hz), the engine's clocks a frame,
 // and the DFT's least sample period at the spec's lanes.
 struct DtmfTopClockNeeds {
   bool adc_ok = false;
@@ -398,7 +436,8 @@ inline DtmfTopClockNeeds dtmf_top_clock_needs(const DtmfTopPlan& p, long engine_
   const double fs = p.spec.sample_hz;
   const double room = 1.0 / fs - 250e-9;  // s per sample left after tACQ
   n.adc_ok = room > 28.0 / 40e6;          // 28 H / clk >= 0.7 us at any clock
-  n.adc_hz = n.adc_ok ? 28.0 / room : 0.0;
+  // On its own clock the ADC asks nothing of clk.
+  n.adc_hz = n.adc_ok && p.spec.adc_clk_hz == 0 ? 28.0 / room : 0.0;
   n.engine_hz = fs * double(engine_clocks) / double(p.step);
   n.dft_period = dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step);
   n.dft_hz = fs * double(n.dft_period);

@@ -49,7 +49,7 @@ module board_icebreaker #(
 `else
   dtmf_top #(.CLK_HZ(CLK_HZ)) u_core (
 `endif
-      .clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),
+      .clk(clk), .adc_clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),
       .adc_sdata(adc_sdata), .uart_txd(uart_tx), .uart_rxd(uart_rx),
       .pkt_valid(), .pkt_ready(1'b0), .pkt_data());  // own link: no packet stream out
   /* verilator lint_on PINCONNECTEMPTY */

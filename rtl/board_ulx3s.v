@@ -7,7 +7,9 @@
 //     3 Mbaud UART (10 clocks per bit) and keeps the AD7476A's SCLK at
 //     15 MHz (<= 20 MHz). `eskin bitstream` picks other dividers for other
 //     clocks (host/fpga/board.cpp) and passes them with the same CLK_HZ to
-//     the core.
+//     the core; with CLKOS_DIV > 0 the ADC gets its own clock from the same
+//     VCO, VCO / CLKOS_DIV (the core's ADC_CLK_HZ: 40 MHz for 1 MS/s while
+//     the core runs faster).
 //   FIRE1 (active high) -> reset; the core is also held in reset until the
 //     PLL locks.
 //   Pmod AD1 on J1 gp[0..3] -> the core's ADC pins; FT231X -> the UART.
@@ -20,7 +22,8 @@
 module board_ulx3s #(
     parameter integer CLKI_DIV = 5,
     parameter integer CLKFB_DIV = 6,
-    parameter integer CLKOP_DIV = 20
+    parameter integer CLKOP_DIV = 20,
+    parameter integer CLKOS_DIV = 0
 ) (
     input  wire clk_25mhz,
     input  wire btn_fire1,
@@ -33,9 +36,10 @@ module board_ulx3s #(
 );
   // The core's clock; ulx3s_pll stops elaboration on illegal dividers.
   localparam integer CLK_HZ = 25_000 / CLKI_DIV * CLKFB_DIV * 1000;
-  wire clk, locked;
-  ulx3s_pll #(.CLKI_DIV(CLKI_DIV), .CLKFB_DIV(CLKFB_DIV), .CLKOP_DIV(CLKOP_DIV)) u_pll (
-      .clk_25mhz(clk_25mhz), .clk(clk), .locked(locked));
+  wire clk, adc_clk, locked;
+  ulx3s_pll #(.CLKI_DIV(CLKI_DIV), .CLKFB_DIV(CLKFB_DIV), .CLKOP_DIV(CLKOP_DIV),
+              .CLKOS_DIV(CLKOS_DIV)) u_pll (
+      .clk_25mhz(clk_25mhz), .clk(clk), .clk_adc(adc_clk), .locked(locked));
 
   wire rst_n = locked & ~btn_fire1;
   /* verilator lint_off PINCONNECTEMPTY */
@@ -44,7 +48,7 @@ module board_ulx3s #(
 `else
   dtmf_top #(.CLK_HZ(CLK_HZ)) u_core (
 `endif
-      .clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),
+      .clk(clk), .adc_clk(adc_clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),
       .adc_sdata(adc_sdata), .uart_txd(ftdi_rxd), .uart_rxd(ftdi_txd),
       .pkt_valid(), .pkt_ready(1'b0), .pkt_data());  // own link: no packet stream out
   /* verilator lint_on PINCONNECTEMPTY */

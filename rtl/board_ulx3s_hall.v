@@ -44,8 +44,10 @@ module board_ulx3s_hall #(
   // The core's clock; ulx3s_pll stops elaboration on illegal dividers.
   localparam integer CLK_HZ = 25_000 / CLKI_DIV * CLKFB_DIV * 1000;
   wire clk, locked;
+  /* verilator lint_off PINCONNECTEMPTY */
   ulx3s_pll #(.CLKI_DIV(CLKI_DIV), .CLKFB_DIV(CLKFB_DIV), .CLKOP_DIV(CLKOP_DIV)) u_pll (
-      .clk_25mhz(clk_25mhz), .clk(clk), .locked(locked));
+      .clk_25mhz(clk_25mhz), .clk(clk), .clk_adc(), .locked(locked));  // one clock: no CLKOS
+  /* verilator lint_on PINCONNECTEMPTY */
 
   wire [NB-1:0] scl_i, sda_i, scl_oe, sda_oe;
   i2c_pads #(.NB(NB)) u_pads (

@@ -73,9 +73,15 @@ module dtmf_top #(
     // overlapped) instead of running the izhikevich_layer routine (about
     // 120 clocks with the barrel shifter, 210 without); the same packets.
     // The board flow decides (host/fpga/board.h).
-    parameter integer NEURON_UNIT = 0
+    parameter integer NEURON_UNIT = 0,
+    // 0: the ADC runs on clk. Else the frequency of adc_clk, on which it
+    // runs instead (its samples cross to clk in rtl/stream_cdc.v): the
+    // AD7476A's SCLK ties a 1 MS/s ADC to 37.3-40 MHz (or 74.7-80), and
+    // this frees the rest of the core from that band.
+    parameter integer ADC_CLK_HZ = 0
 ) (
     input  wire clk,
+    input  wire adc_clk,     // ADC_CLK_HZ != 0: the ADC's clock (else unused)
     input  wire rst_n,       // active low (button); a power-on reset is built in
     output wire adc_cs_n,
     output wire adc_sclk,
@@ -92,7 +98,7 @@ module dtmf_top #(
         (EXT_LINK != 0 && EXT_LINK != 1) || (HALL_CMDS != 0 && HALL_CMDS != 1) ||
         (ENGINE_FAST_SHIFT != 0 && ENGINE_FAST_SHIFT != 1) ||
         SDFT_LANES < 1 || SDFT_LANES > 16 || SDFT_LANES > KS ||
-        (NEURON_UNIT != 0 && NEURON_UNIT != 1)) begin : g_bad_params
+        (NEURON_UNIT != 0 && NEURON_UNIT != 1) || ADC_CLK_HZ < 0) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -149,16 +155,59 @@ module dtmf_top #(
   end
 
   // ---------------- ADC ------------------------------------------------
+  // On clk (ADC_CLK_HZ = 0), or on adc_clk, its samples carried into clk's
+  // domain by stream_cdc with their index and the overrun count (the count
+  // the engine reads is the one the latest sample brought: CLEAR_COUNTERS
+  // reaches it with the next sample, a microsecond at 1 MS/s). rst and
+  // adc_en reach the ADC through two adc_clk flip-flops (rst through a
+  // power_on_reset of adc_clk, which also holds the ADC from configuration
+  // on), wr_clear as a toggle. The ADC's own output register, s_hold and m_data hold a
+  // sample each, so the DFT may take one later than with the ADC on clk
+  // (hls/dtmf_top_config.h's budget assumes the one register of that case).
   wire adc_valid, sdft_in_ready;
   wire [11:0] adc_code;
   wire [31:0] adc_t;
   wire [15:0] adc_overruns;
-  // SCLK = CLK_HZ / (2 SCLK_DIV) at most 20 MHz (AD7476A): 9 MHz at 18 MHz.
-  localparam integer SCLK_DIV = (CLK_HZ + 39_999_999) / 40_000_000;
-  adc_ad7476 #(.CLK_HZ(CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .SCLK_DIV(SCLK_DIV), .NCH(1)) u_adc (
-      .clk(clk), .rst(rst), .en(adc_en), .cs_n(adc_cs_n), .sclk(adc_sclk),
-      .sdata(adc_sdata), .m_valid(adc_valid), .m_ready(sdft_in_ready),
-      .m_data(adc_code), .m_t(adc_t), .overruns(adc_overruns), .clear(wr_clear));
+  // SCLK = ADC clock / (2 SCLK_DIV) at most 20 MHz (AD7476A): 9 MHz at 18 MHz.
+  localparam integer ADC_HZ = ADC_CLK_HZ != 0 ? ADC_CLK_HZ : CLK_HZ;
+  localparam integer SCLK_DIV = (ADC_HZ + 39_999_999) / 40_000_000;
+  generate
+    if (ADC_CLK_HZ == 0) begin : g_adc_on_clk
+      adc_ad7476 #(.CLK_HZ(CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .SCLK_DIV(SCLK_DIV), .NCH(1)) u_adc (
+          .clk(clk), .rst(rst), .en(adc_en), .cs_n(adc_cs_n), .sclk(adc_sclk),
+          .sdata(adc_sdata), .m_valid(adc_valid), .m_ready(sdft_in_ready),
+          .m_data(adc_code), .m_t(adc_t), .overruns(adc_overruns), .clear(wr_clear));
+      wire unused_adc_clk = adc_clk;
+    end else begin : g_adc_clock
+      reg clear_tgl;  // flips on every wr_clear
+      always @(posedge clk) begin
+        if (rst) clear_tgl <= 1'b0;
+        else if (wr_clear) clear_tgl <= !clear_tgl;
+      end
+      // The ADC side's reset: from configuration on (its own power-on
+      // count) and while rst is high, through two adc_clk flip-flops.
+      wire a_rst;
+      power_on_reset u_adc_por (.clk(adc_clk), .rst_n(!rst), .rst(a_rst));
+      (* ASYNC_REG = "TRUE" *) reg [1:0] a_en_q;
+      (* ASYNC_REG = "TRUE" *) reg [2:0] a_clear_q;
+      always @(posedge adc_clk) begin
+        a_en_q <= {a_en_q[0], adc_en};
+        a_clear_q <= {a_clear_q[1:0], clear_tgl};
+      end
+      wire a_valid, a_ready;
+      wire [11:0] a_code;
+      wire [31:0] a_t;
+      wire [15:0] a_overruns;
+      adc_ad7476 #(.CLK_HZ(ADC_CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .SCLK_DIV(SCLK_DIV), .NCH(1)) u_adc (
+          .clk(adc_clk), .rst(a_rst), .en(a_en_q[1]), .cs_n(adc_cs_n), .sclk(adc_sclk),
+          .sdata(adc_sdata), .m_valid(a_valid), .m_ready(a_ready), .m_data(a_code), .m_t(a_t),
+          .overruns(a_overruns), .clear(a_clear_q[2] != a_clear_q[1]));
+      stream_cdc #(.W(60)) u_cdc (
+          .s_clk(adc_clk), .s_rst(a_rst), .s_valid(a_valid), .s_ready(a_ready),
+          .s_data({a_overruns, a_t, a_code}), .m_clk(clk), .m_rst(rst), .m_valid(adc_valid),
+          .m_ready(sdft_in_ready), .m_data({adc_overruns, adc_t, adc_code}));
+    end
+  endgenerate
 
   // ---------------- sliding DFT and frame capture -----------------------
   wire [11:0] x = {~adc_code[11], adc_code[10:0]};  // code - 2048

@@ -44,6 +44,9 @@ module mixed_top #(
     parameter KROM_HEX = "",
     parameter integer SDFT_LANES = 1,
     parameter integer NEURON_UNIT = 0,
+    // One clock here: the ADC runs on clk (dtmf_top's ADC_CLK_HZ 0; the
+    // board flow gives mixed scenes no ADC clock of their own).
+    parameter integer ADC_CLK_HZ = 0,
     // hall_top
     parameter integer SCL_HZ = 400_000,
     parameter integer NB = 2,
@@ -89,6 +92,12 @@ module mixed_top #(
     output wire              uart_txd,   // to the host
     input  wire              uart_rxd    // from the host
 );
+  generate
+    if (ADC_CLK_HZ != 0) begin : g_bad_params
+      mixed_top_illegal_parameters u_stop ();  // no such module: stops elaboration
+    end
+  endgenerate
+
   // hall_top resets like dtmf_top (which has its own power_on_reset).
   wire rst;
   power_on_reset u_por (.clk(clk), .rst_n(rst_n), .rst(rst));
@@ -102,8 +111,8 @@ module mixed_top #(
       .ENGINE_FAST_SHIFT(ENGINE_FAST_SHIFT), .UCODE_HEX(UCODE_HEX), .KROM_HEX(KROM_HEX), .EXT_LINK(1),
       .HALL_CMDS(DELTAS != 0 ? 1 : 0), .SDFT_LANES(SDFT_LANES), .NEURON_UNIT(NEURON_UNIT)
   ) u_dtmf (
-      .clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk), .adc_sdata(adc_sdata),
-      .uart_txd(), .uart_rxd(uart_rxd), .pkt_valid(pv[0]), .pkt_ready(pr[0]), .pkt_data(pd[7:0]));
+      .clk(clk), .adc_clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),
+      .adc_sdata(adc_sdata), .uart_txd(), .uart_rxd(uart_rxd), .pkt_valid(pv[0]), .pkt_ready(pr[0]), .pkt_data(pd[7:0]));
   hall_top #(
       .CLK_HZ(CLK_HZ), .BAUD(BAUD), .SCL_HZ(SCL_HZ), .NB(NB), .NSB(NSB), .ADDR(ADDR),
       .MUX_ADDR(MUX_ADDR), .MUX_CH(MUX_CH), .REG0(REG0), .REG1(REG1), .REG2(REG2),

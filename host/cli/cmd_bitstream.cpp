@@ -228,10 +228,11 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--neurons", args->neurons,
                   "Where the Izhikevich neuron updates run: engine (the frame engine's "
                   "microcode, no extra logic) or unit (the hardware neuron unit, "
-                  "rtl/izhikevich_layer.v: 15 to 19 engine clocks a neuron instead of about 120 with the "
-                  "barrel shifter or 210 without); default: the board's (ulx3s unit; icebreaker "
-                  "engine unless the core needs more than 18 MHz: then the first of barrel, "
-                  "serial + unit, barrel + unit that keeps up at 18 MHz, else the fastest)")
+                  "rtl/izhikevich_layer.v: 14 (level input) to 19 (change input) engine clocks a "
+                  "neuron instead of about 120 with the barrel shifter or 210 without); default: "
+                  "the board's (ulx3s unit; icebreaker engine unless the core needs more than "
+                  "18 MHz: then the first of barrel, serial + unit, barrel + unit that keeps up "
+                  "at 18 MHz, else the fastest)")
       ->check(CLI::IsMember({"engine", "unit"}));
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");

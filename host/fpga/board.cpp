@@ -156,6 +156,41 @@ Clocking choose_clock(const Board& b, long min_hz, long clk_hz) {
                                           b.name, mhz(want), list()));
 }
 
+std::optional<Clocking> with_adc_clock(const Board& b, const Clocking& core, double sample_hz) {
+  if (b.family != Family::Ecp5) return std::nullopt;
+  // ecp5_clocks' REF and FB for the core clock; then every OP with the VCO
+  // in range and every OS that divides the VCO into whole Hz.
+  std::optional<Clocking> best;
+  long best_vco = 0;
+  const long hz = core.clk_hz;
+  for (int ref = 1; ref <= 8 && !best; ++ref) {
+    if ((hz * ref) % b.osc_hz != 0) continue;
+    const long fb = hz * ref / b.osc_hz;
+    if (fb < 1 || fb > 128) continue;
+    for (int op = 1; op <= 128; ++op) {
+      const long vco = hz * op;
+      if (vco < 400000000L || vco > 800000000L) continue;
+      for (int os = 1; os <= 128; ++os) {
+        if (vco % os != 0) continue;
+        const long adc = vco / os;
+        if (adc > 40000000L || !hls::dtmf_top_adc_problem(sample_hz, adc).empty()) continue;
+        const bool better = !best || adc > best->adc_clk_hz ||
+                            (adc == best->adc_clk_hz &&
+                             std::labs(vco - 600000000L) < std::labs(best_vco - 600000000L));
+        if (!better) continue;
+        best = Clocking{hz, core.baud,
+                        {{"CLKI_DIV", std::to_string(ref)},
+                         {"CLKFB_DIV", std::to_string(fb)},
+                         {"CLKOP_DIV", std::to_string(op)},
+                         {"CLKOS_DIV", std::to_string(os)}},
+                        adc};
+        best_vco = vco;
+      }
+    }
+  }
+  return best;
+}
+
 std::optional<Clocking> slowest_clock_from(const Board& b, long min_hz) {
   return first_clock_from(board_clocks(b), std::max(min_hz, b.default_clk_hz));
 }

@@ -73,6 +73,7 @@ struct Clocking {
   long clk_hz = 0;
   long baud = 0;
   std::vector<hls::VerilogParam> wrapper_params;
+  long adc_clk_hz = 0;  // the ADC's own clock (with_adc_clock), 0: it runs on clk_hz
 };
 
 // The clocks the board can give the core exactly, with the fastest UART
@@ -82,6 +83,14 @@ std::vector<Clocking> board_clocks(const Board& b);
 // The slowest of board_clocks() at or above min_hz and the board's default
 // clock; none when the board makes no clock that fast.
 std::optional<Clocking> slowest_clock_from(const Board& b, long min_hz);
+
+// `core` with a second clock for the ADC (rtl/dtmf_top.v ADC_CLK_HZ) from
+// the same PLL, on which adc_ad7476 converts at sample_hz
+// (hls::dtmf_top_adc_problem): the fastest such clock up to 40 MHz (SCLK
+// at most half of it: the most acquisition time, and the ADC's logic no
+// faster than a one-clock 1 MS/s core's). ECP5 only (the ULX3S's EHXPLLL CLKOS, wrapper
+// parameter CLKOS_DIV); none on the iCE40 or when no divider gives one.
+std::optional<Clocking> with_adc_clock(const Board& b, const Clocking& core, double sample_hz);
 
 // slowest_clock_from(b, min_hz); clk_hz > 0 asks for exactly that clock
 // instead. Throws std::invalid_argument listing the clocks the board can

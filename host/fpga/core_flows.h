@@ -17,8 +17,10 @@ namespace eskin::fpga {
 // into r), its microcode and constants written into OUT as
 // dtmf_scene.ucode.hex / .krom.hex; `clk` and dtmf_top's parameters out.
 // False, with r.failure naming each budget missed, when no clock keeps up.
+// own_adc_clock as in choose_core_clock (false for mixed_top, one clock).
 bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
-                    FlowReport& r, Clocking& clk, std::vector<hls::VerilogParam>& params);
+                    FlowReport& r, Clocking& clk, std::vector<hls::VerilogParam>& params,
+                    bool own_adc_clock);
 
 // A Hall or mixed build (r.core) up to the tools, after r's board fields
 // are set: the Hall spec, the pins, the clock (and, mixed, the DTMF plan),

@@ -56,10 +56,10 @@ std::vector<hls::VerilogParam> from_g_args(const std::vector<std::string>& g_arg
 std::string dtmf_core_wrapper(const std::string& name,
                               const std::vector<hls::VerilogParam>& params) {
   const std::vector<Port> ports = {
-      {"input ", 1, "clk"},      {"input ", 1, "rst_n"},     {"output", 1, "adc_cs_n"},
-      {"output", 1, "adc_sclk"}, {"input ", 1, "adc_sdata"}, {"output", 1, "uart_txd"},
-      {"input ", 1, "uart_rxd"}, {"output", 1, "pkt_valid"}, {"input ", 1, "pkt_ready"},
-      {"output", 8, "pkt_data"}};
+      {"input ", 1, "clk"},       {"input ", 1, "adc_clk"},   {"input ", 1, "rst_n"},
+      {"output", 1, "adc_cs_n"},  {"output", 1, "adc_sclk"},  {"input ", 1, "adc_sdata"},
+      {"output", 1, "uart_txd"},  {"input ", 1, "uart_rxd"},  {"output", 1, "pkt_valid"},
+      {"input ", 1, "pkt_ready"}, {"output", 8, "pkt_data"}};
   return wrapper(name, "dtmf_top", params, ports, "");
 }
 

@@ -82,7 +82,11 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
   // that saves less than a step saves nothing), and its sample period.
   const auto board_clk = slowest_clock_from(b, other);
   const long clk = board_clk ? board_clk->clk_hz : std::max(other, b.default_clk_hz);
-  const long period = std::lround(double(clk) / plan.spec.sample_hz);
+  // An ADC that cannot convert on that clock gets its own (with_adc_clock),
+  // whose samples may come a clock sooner (hls::dtmf_top_clock_budget).
+  const bool own_adc = !hls::dtmf_top_adc_problem(plan.spec.sample_hz, clk).empty() &&
+                       with_adc_clock(b, {clk, 0, {}, 0}, plan.spec.sample_hz).has_value();
+  const long period = std::lround(double(clk) / plan.spec.sample_hz) - (own_adc ? 1 : 0);
   const int most = std::min({b.max_sdft_lanes, 16, plan.ks});
   int lanes = 1;
   while (lanes < most && hls::dtmf_top_sdft_min_period(plan.ks, lanes, plan.step) > period)
@@ -97,7 +101,8 @@ namespace {
 // neuron_unit are the user's (-1: the board's, in spec).
 CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
                                const std::vector<int32_t>& x, LoadPolicy policy, long clk_hz,
-                               int fast_shift, int neuron_unit, long min_baud) {
+                               int fast_shift, int neuron_unit, long min_baud,
+                               bool own_adc_clock) {
   CoreClock c;
   auto load_with = [&](const hls::DtmfTopSpec& s) {
     c.plan = hls::make_dtmf_top_plan(s);
@@ -136,17 +141,29 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
   c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   auto budget_at = [&](const Clocking& k) {
     c.plan.spec.clk_hz = k.clk_hz;
+    c.plan.spec.adc_clk_hz = k.adc_clk_hz;
     c.plan.spec.baud = k.baud;
     return hls::dtmf_top_clock_budget(c.plan, k.clk_hz, c.engine_clocks);
   };
+  // k, or k with an ADC clock of its own when only that keeps up.
+  auto keeps_up = [&](const Clocking& k) -> std::optional<Clocking> {
+    if (budget_at(k).ok()) return k;
+    if (own_adc_clock)
+      if (const auto a = with_adc_clock(b, k, c.plan.spec.sample_hz); a && budget_at(*a).ok())
+        return a;
+    return std::nullopt;
+  };
   c.clocking = choose_clock(b, 0, clk_hz);  // the asked-for or the board's default
-  if (clk_hz == 0)
+  if (clk_hz > 0) {
+    if (const auto k = keeps_up(c.clocking)) c.clocking = *k;
+  } else {
     for (const auto& k : board_clocks(b))
-      if (k.clk_hz >= std::max(c.core_min_hz, b.default_clk_hz) && k.baud >= min_baud &&
-          budget_at(k).ok()) {
-        c.clocking = k;
-        break;
-      }
+      if (k.clk_hz >= std::max(c.core_min_hz, b.default_clk_hz) && k.baud >= min_baud)
+        if (const auto ok = keeps_up(k)) {
+          c.clocking = *ok;
+          break;
+        }
+  }
   c.budget = budget_at(c.clocking);
   return c;
 }
@@ -154,7 +171,7 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
 }  // namespace
 
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
-                            long clk_hz, int fast_shift, int neuron_unit) {
+                            long clk_hz, int fast_shift, int neuron_unit, bool own_adc_clock) {
   hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
   // Before the load: the shifter and the neuron unit set the engine's clocks.
   spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
@@ -174,10 +191,12 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
   // than the clock's is safe; one for a faster link would overrun it), so
   // the passes cannot step down from clock to clock (a 12x12 skin on the
   // ULX3S with the bit-serial shifter and the unit went 3 -> 2 -> 1 Mbaud).
-  CoreClock c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, neuron_unit, 0);
+  CoreClock c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, neuron_unit, 0,
+                                     own_adc_clock);
   for (int pass = 1; pass < 3 && c.clocking.baud != spec.baud; ++pass) {
     spec.baud = c.clocking.baud;
-    c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, neuron_unit, spec.baud);
+    c = choose_core_clock_at(b, spec, x, policy, clk_hz, fast_shift, neuron_unit, spec.baud,
+                             own_adc_clock);
   }
   if (c.budget.ok() && c.clocking.baud < spec.baud)
     throw std::logic_error(fmt::format("choose_core_clock: the packets are planned for {} baud, "
@@ -187,9 +206,10 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
 }
 
 bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
-                    FlowReport& r, Clocking& clk, std::vector<hls::VerilogParam>& params) {
+                    FlowReport& r, Clocking& clk, std::vector<hls::VerilogParam>& params,
+                    bool own_adc_clock) {
   CoreClock cc = choose_core_clock(b, scene, opt.load, opt.clk_hz, opt.fast_shift,
-                                   opt.neuron_unit);
+                                   opt.neuron_unit, own_adc_clock);
   const hls::DtmfTopPlan& plan = cc.plan;
   clk = cc.clocking;
   r.step = plan.step;
@@ -237,7 +257,7 @@ FlowReport run_flow(const Board& b, const sim::Scene& scene, const FlowOptions& 
     return r;
   }
   Clocking clk;
-  if (!plan_dtmf_core(b, scene, opt, r, clk, r.params)) return r;
+  if (!plan_dtmf_core(b, scene, opt, r, clk, r.params, true)) return r;
   const fs::path wrapper = fs::absolute(opt.out_dir) / "dtmf_scene.v";
   std::ofstream(wrapper) << dtmf_core_wrapper("dtmf_scene", r.params);
   r.params.insert(r.params.end(), clk.wrapper_params.begin(), clk.wrapper_params.end());

@@ -94,7 +94,8 @@ struct FlowReport {
 // The DFT lanes (rtl/sdft_lanes.v) for a plan on board `b`: the fewest, up
 // to the board's max_sdft_lanes, with which the DFT needs no faster clock
 // than the board clock the ADC and the engine (engine_clocks) already need
-// (hls::dtmf_top_sdft_min_period at its sample period); the board's most
+// (hls::dtmf_top_sdft_min_period at its sample period, a clock shorter
+// when the ADC needs a clock of its own there); the board's most
 // when none does (the budget then names the DFT). 1 when the ADC cannot
 // convert at the rate at all.
 int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks);
@@ -119,8 +120,13 @@ struct CoreClock {
 // (Board::engine_fast_shift); neuron_unit likewise (Board::neuron_unit). On
 // a board with Board::engine_when_needed the options left to it (-1) may
 // change where its defaults do not keep up (the plan's spec says which).
+// own_adc_clock: a clock whose budget fails only for the ADC (the AD7476A's
+// SCLK bands) may give the ADC a clock of its own (with_adc_clock; the
+// plan's spec.adc_clk_hz and the clocking say so); dtmf_top builds only,
+// mixed_top has one clock.
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
-                            long clk_hz = 0, int fast_shift = -1, int neuron_unit = -1);
+                            long clk_hz = 0, int fast_shift = -1, int neuron_unit = -1,
+                            bool own_adc_clock = true);
 
 // Builds the scene's core (scene_core) on board `b`: for a skin the plan,
 // the engine's load (engine_load.h), the clock, the microcode and constant

@@ -77,22 +77,29 @@ std::string dtmf_table(const FlowReport& r) {
   const double frame = double(std::max(1L, r.budget.frame_clocks));
   std::string t = fmt::format(
       "skin {}x{}, {} carriers, window {}, {:g} S/s, step {}\n"
-      "clock {} MHz (the skin's core needs at least {} MHz: {}), UART {:g} Mbaud\n"
+      "clock {} MHz{} (the skin's core needs at least {} MHz: {}), UART {:g} Mbaud\n"
       "DFT: {} lane{}, a frame's sample {} clocks, the others {}: a period of {} or more, "
       "the sample's is {}\n"
-      "frame engine ({} shifter, neurons on {}), clocks of the {} a frame has (STEP x {} per "
-      "sample):\n"
+      "frame engine ({} shifter, neurons on {}), clocks of the {} a frame has ({}):\n"
       "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
       "  stress longest frame  {:>9} ({:.0f} %, {}){}\n"
       "  + longest command     {:>9} ({:.0f} %, {})\n"
       "  the clock carries the {}\n",
       r.spec.rows, r.spec.cols, r.spec.rows + r.spec.cols, r.spec.window, r.spec.sample_hz,
-      r.step, mhz(double(r.spec.clk_hz)), mhz(double(r.core_min_hz)), r.core_min_reason,
+      r.step, mhz(double(r.spec.clk_hz)),
+      r.spec.adc_clk_hz > 0
+          ? fmt::format(", the ADC on its own {} MHz clock", mhz(double(r.spec.adc_clk_hz)))
+          : std::string(),
+      mhz(double(r.core_min_hz)), r.core_min_reason,
       double(r.spec.baud) / 1e6, r.spec.sdft_lanes, r.spec.sdft_lanes == 1 ? "" : "s",
       r.budget.sdft_clocks, r.budget.sdft_skip_clocks, r.budget.sdft_min_period, r.budget.period,
       r.spec.engine_fast_shift ? "barrel" : "bit-serial",
       r.spec.neuron_unit ? "the neuron unit" : "the engine",
-      r.budget.frame_clocks, r.budget.period, r.load.scene_clocks,
+      r.budget.frame_clocks,
+      r.spec.adc_clk_hz > 0
+          ? fmt::format("STEP samples of {} ADC clocks, at the least", r.budget.adc_period)
+          : fmt::format("STEP x {} per sample", r.budget.period),
+      r.load.scene_clocks,
       100.0 * double(r.load.scene_clocks) / frame, r.load.scene_frames, r.load.stress_clocks,
       100.0 * double(r.load.stress_clocks) / frame, r.load.stress_case,
       r.load.stress_bound() > r.load.stress_clocks
@@ -154,7 +161,8 @@ std::string report_json(const FlowReport& r) {
   j["device"] = r.device;
   j["scene"] = r.scene;
   j["core"] = core_top(r.core);
-  j["clock"] = {{"clk_hz", r.clk_hz}, {"baud", r.baud}, {"source", r.pll ? "pll" : "oscillator"}};
+  j["clock"] = {{"clk_hz", r.clk_hz}, {"baud", r.baud}, {"source", r.pll ? "pll" : "oscillator"},
+                {"adc_clk_hz", r.spec.adc_clk_hz}};
   if (r.core != Core::Hall) dtmf_json(r, j);
   if (r.core != Core::Dtmf) hall_json(r, j);
   j["warnings"] = flow_warnings(r);

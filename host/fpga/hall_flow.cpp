@@ -38,7 +38,7 @@ bool prepare_hall_build(const Board& b, const sim::Scene& scene, const FlowOptio
     // One clock for both tops: the DTMF build's (the slowest the skin keeps
     // up at, or --clk-mhz), which hall_top needs in whole MHz.
     vboard::FpgaBuild dtmf;
-    if (!plan_dtmf_core(b, scene, opt, r, clk, dtmf.params)) return false;
+    if (!plan_dtmf_core(b, scene, opt, r, clk, dtmf.params, false)) return false;  // one clock
     dtmf.plan.spec = r.spec;
     const vboard::MixedBuild m = vboard::mixed_build_for(scene, dtmf);  // names the field
     r.hall.spec = m.hall.spec;

@@ -96,6 +96,7 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
   row.window = r.spec.window;
   row.step = r.step;
   row.clk_hz = r.spec.clk_hz;
+  row.adc_clk_hz = r.spec.adc_clk_hz;
   row.engine = {r.spec.engine_fast_shift, r.spec.neuron_unit};
   row.fits = r.fits;
   row.meets_timing = r.meets_timing;
@@ -198,7 +199,8 @@ std::vector<ScaleRow> merge_scale_rows(const std::vector<ScaleRow>& old,
 
 namespace {
 const char* kHeader =
-    "target,board,device,sample_hz,rows,cols,window,step,clk_hz,shifter,neurons,fits,meets_timing,"
+    "target,board,device,sample_hz,rows,cols,window,step,clk_hz,adc_clk_hz,shifter,neurons,fits,"
+    "meets_timing,"
     "logic_used,logic_available,dsp_used,dsp_available,ram_used,ram_available,spram_used,"
     "fmax_mhz,seconds,failure";
 
@@ -236,9 +238,9 @@ std::string scale_csv(const std::vector<ScaleRow>& rows) {
   std::string s = std::string(kHeader) + "\n";
   for (const auto& r : rows)
     s += fmt::format(
-        "{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{}\n",
+        "{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{}\n",
         r.target, r.board, r.device, r.sample_hz, r.rows, r.cols, r.window, r.step, r.clk_hz,
-        shifter_name(r.engine), neurons_name(r.engine), int(r.fits),
+        r.adc_clk_hz, shifter_name(r.engine), neurons_name(r.engine), int(r.fits),
         int(r.meets_timing), r.logic_used, r.logic_available, r.dsp_used, r.dsp_available,
         r.ram_used, r.ram_available, r.spram_used, r.fmax_mhz, r.seconds, csv_field(r.failure));
   return s;
@@ -258,13 +260,13 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
     }
     if (line.empty()) continue;
     const auto f = split_csv(line);
-    if (f.size() != 23)
+    if (f.size() != 24)
       throw std::runtime_error(
-          fmt::format("scale table line {}: expected 23 fields, got {}", lineno, f.size()));
-    if ((f[9] != "serial" && f[9] != "barrel") || (f[10] != "engine" && f[10] != "unit"))
+          fmt::format("scale table line {}: expected 24 fields, got {}", lineno, f.size()));
+    if ((f[10] != "serial" && f[10] != "barrel") || (f[11] != "engine" && f[11] != "unit"))
       throw std::runtime_error(fmt::format(
           "scale table line {}: expected shifter serial|barrel and neurons engine|unit, got {} {}",
-          lineno, f[9], f[10]));
+          lineno, f[10], f[11]));
     try {
       ScaleRow r;
       r.target = f[0];
@@ -276,19 +278,20 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
       r.window = std::stoi(f[6]);
       r.step = std::stoi(f[7]);
       r.clk_hz = std::stol(f[8]);
-      r.engine = {f[9] == "barrel", f[10] == "unit"};
-      r.fits = f[11] == "1";
-      r.meets_timing = f[12] == "1";
-      r.logic_used = std::stol(f[13]);
-      r.logic_available = std::stol(f[14]);
-      r.dsp_used = std::stol(f[15]);
-      r.dsp_available = std::stol(f[16]);
-      r.ram_used = std::stol(f[17]);
-      r.ram_available = std::stol(f[18]);
-      r.spram_used = std::stol(f[19]);
-      r.fmax_mhz = std::stod(f[20]);
-      r.seconds = std::stod(f[21]);
-      r.failure = f[22];
+      r.adc_clk_hz = std::stol(f[9]);
+      r.engine = {f[10] == "barrel", f[11] == "unit"};
+      r.fits = f[12] == "1";
+      r.meets_timing = f[13] == "1";
+      r.logic_used = std::stol(f[14]);
+      r.logic_available = std::stol(f[15]);
+      r.dsp_used = std::stol(f[16]);
+      r.dsp_available = std::stol(f[17]);
+      r.ram_used = std::stol(f[18]);
+      r.ram_available = std::stol(f[19]);
+      r.spram_used = std::stol(f[20]);
+      r.fmax_mhz = std::stod(f[21]);
+      r.seconds = std::stod(f[22]);
+      r.failure = f[23];
       rows.push_back(r);
     } catch (const std::logic_error&) {
       throw std::runtime_error(fmt::format("scale table line {}: a number field is not a number", lineno));
@@ -330,9 +333,11 @@ std::string scale_markdown(const std::vector<ScaleRow>& rows) {
         continue;
       }
       t += fmt::format(
-          "| {} | {} | {}x{} | {} | {} | {} | {:g} MHz | {}/{} | {}/{} | {}/{} | {:.1f} MHz | {} |\n",
+          "| {} | {} | {}x{} | {} | {} | {} | {:g} MHz{} | {}/{} | {}/{} | {}/{} | {:.1f} MHz | {} |\n",
                        tg.label, khz(fs), best->rows, best->cols, best->rows + best->cols,
                        best->window, variant_name(best->engine), best->clk_hz / 1e6,
+                       best->adc_clk_hz > 0 ? fmt::format(" (ADC {:g})", best->adc_clk_hz / 1e6)
+                                            : std::string(),
                        best->logic_used, best->logic_available, best->dsp_used,
                        best->dsp_available, best->ram_used, best->ram_available, best->fmax_mhz,
                        why);

@@ -71,6 +71,7 @@ struct ScaleRow {
   double sample_hz = 0;
   int rows = 0, cols = 0, window = 0, step = 0;
   long clk_hz = 0;
+  long adc_clk_hz = 0;  // the ADC's own clock (FlowReport spec.adc_clk_hz), 0: clk_hz
   EngineVariant engine;
   bool fits = false, meets_timing = false;
   long logic_used = 0, logic_available = 0, dsp_used = 0, dsp_available = 0;

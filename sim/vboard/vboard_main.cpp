@@ -54,6 +54,7 @@ class VerilatedFpga final : public eskin::vboard::VerilatedTop<Vdtmf_top> {
       : rst_n_("rst_n", true), sdata_("adc_sdata"), rxd_("uart_rxd", true), cs_n_("adc_cs_n", true),
         sclk_("adc_sclk", true), txd_("uart_txd", true), pkt_valid_("pkt_valid"),
         pkt_ready_("pkt_ready"), pkt_data_("pkt_data") {
+    top_.adc_clk(clk_);  // ADC_CLK_HZ = 0: the ADC runs on clk (this port is unused)
     top_.rst_n(rst_n_);
     top_.adc_sdata(sdata_);
     top_.uart_rxd(rxd_);

@@ -183,8 +183,11 @@ TEST(ScaleTable, CsvRoundTripAndFitHint) {
   ScaleRow c = a;
   c.sample_hz = 1e6;
   c.rows = c.cols = 4;  // passes at the other rate only
+  c.adc_clk_hz = 40000000;  // with the ADC on its own clock
   const auto rows = parse_scale_csv(scale_csv({a, b, c}));
   ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].adc_clk_hz, 0);
+  EXPECT_EQ(rows[2].adc_clk_hz, 40000000);
   EXPECT_EQ(rows[1].failure, b.failure);
   EXPECT_EQ(rows[0].logic_used, 4000);
   EXPECT_DOUBLE_EQ(rows[0].fmax_mhz, 17.25);
@@ -209,6 +212,7 @@ TEST(ScaleTable, CsvRoundTripAndFitHint) {
   EXPECT_EQ(merged[1].rows, 8);
   const std::string md = scale_markdown(rows);
   EXPECT_NE(md.find("| up5k | 35 kS/s | 2x2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 12 MHz (ADC 40) |"), std::string::npos) << md;
 }
 
 // A size is in the table when one of its builds passes: 3x3 misses timing
@@ -477,3 +481,56 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
 
 
 }  // namespace
+
+// At 1 MS/s the AD7476A's SCLK ties the ADC to a 37.3-40 MHz clock (or
+// 74.7-80: SCLK = a / (2 H) <= 20 MHz with A - 28 H clocks of acquisition
+// >= 250 ns). An 18x18 skin's engine fits the 40 MHz frame (36 541 of
+// 40 000 clocks): one clock. A 20x20 skin's (43 258) does not, and 75 MHz
+// is beyond the ECP5 build's Fmax (about 50): the ULX3S gives the ADC a
+// clock of its own from the same PLL (VCO / CLKOS_DIV, 40 MHz, the fastest
+// that converts) and the core the slowest clock whose frame, floor(STEP
+// clk A / a) - 1 clocks, holds the engine: 45 MHz (44 999 >= 43 258).
+// The iCE40 has no such clock; mixed_top (own_adc_clock false) neither.
+TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const Board ulx = find_board("ulx3s", "85k");
+  const CoreClock s18 = choose_core_clock(ulx, scale_scene(base, 18, 1e6), LoadPolicy::Stress);
+  ASSERT_TRUE(s18.budget.ok());
+  EXPECT_EQ(s18.clocking.clk_hz, 40000000);
+  EXPECT_EQ(s18.clocking.adc_clk_hz, 0);
+  EXPECT_EQ(param(eskin::hls::dtmf_top_params(s18.plan, eskin::hls::dtmf_engine_image(s18.plan),
+                                              "", ""),
+                  "ADC_CLK_HZ"),
+            "0");
+  const CoreClock s20 = choose_core_clock(ulx, scale_scene(base, 20, 1e6), LoadPolicy::Stress);
+  ASSERT_TRUE(s20.budget.ok()) << s20.budget.problems.front();
+  EXPECT_GT(s20.engine_clocks, 40000);
+  EXPECT_EQ(s20.clocking.adc_clk_hz, 40000000);
+  EXPECT_EQ(s20.plan.spec.adc_clk_hz, 40000000);
+  EXPECT_LT(s20.clocking.clk_hz, 74700000);
+  EXPECT_GE(s20.budget.frame_clocks, s20.engine_clocks);
+  EXPECT_EQ(s20.budget.adc_period, 40);
+  EXPECT_EQ(s20.budget.frame_clocks, s20.clocking.clk_hz / 1000 - 1);
+  EXPECT_EQ(s20.budget.period, s20.clocking.clk_hz / 1000000 - 1);
+  // One clock slower would not hold the engine.
+  EXPECT_LT(s20.clocking.clk_hz / 1000 - 1 - 1000, s20.engine_clocks + 1000);
+  const auto params =
+      eskin::hls::dtmf_top_params(s20.plan, eskin::hls::dtmf_engine_image(s20.plan), "", "");
+  EXPECT_EQ(param(params, "ADC_CLK_HZ"), "40000000");
+  EXPECT_EQ(param(params, "CLK_HZ"), std::to_string(s20.clocking.clk_hz));
+  // The PLL: VCO = clk x CLKOP_DIV = 40 MHz x CLKOS_DIV, in 400..800 MHz.
+  auto wp = [&](const char* n) { return std::stol(param(s20.clocking.wrapper_params, n)); };
+  const long vco = s20.clocking.clk_hz * wp("CLKOP_DIV");
+  EXPECT_EQ(vco, 40000000L * wp("CLKOS_DIV"));
+  EXPECT_GE(vco, 400000000L);
+  EXPECT_LE(vco, 800000000L);
+  EXPECT_EQ(s20.clocking.clk_hz, 25000000L * wp("CLKFB_DIV") / wp("CLKI_DIV"));
+  // mixed_top's one clock: the 75 MHz band, or none.
+  const CoreClock one = choose_core_clock(ulx, scale_scene(base, 20, 1e6), LoadPolicy::Stress, 0,
+                                          -1, -1, false);
+  EXPECT_EQ(one.clocking.adc_clk_hz, 0);
+  EXPECT_GE(one.clocking.clk_hz, 74700000);
+  const CoreClock ice =
+      choose_core_clock(find_board("icebreaker"), scale_scene(base, 4, 1e6), LoadPolicy::Stress);
+  EXPECT_EQ(ice.clocking.adc_clk_hz, 0);
+}

@@ -12,6 +12,7 @@
 
 #include "host/link/link_decoder.h"
 #include "sim/ad7476_model.h"
+#include "two_clocks.h"
 
 namespace dtmf_bench {
 
@@ -50,14 +51,21 @@ struct Events {
 };
 
 // Verilated top (model M) + AD7476A model + UART line codec at clk_hz with
-// `cpb` clocks per UART bit; tick() is one clock.
+// `cpb` clocks per UART bit; tick() is one clock. adc_clk_hz > 0: a build
+// with ADC_CLK_HZ, whose adc_clk runs free at that rate beside clk (the
+// ADC model driven on its edges, the UART and the probes on clk's).
 template <class M>
 class Board {
  public:
-  Board(std::vector<uint16_t> codes12, double clk_hz, int cpb)
+  Board(std::vector<uint16_t> codes12, double clk_hz, int cpb, double adc_clk_hz = 0)
       : m_(std::make_unique<M>()), adc_(std::move(codes12)), clk_hz_(clk_hz), cpb_(cpb) {
+    // The ADC clock's first edge a third of its period after clk's: no
+    // fixed phase between the two.
+    if (adc_clk_hz > 0) two_ = std::make_unique<TwoClocks>(clk_hz, adc_clk_hz,
+                                                          std::llround(0.33e15 / adc_clk_hz));
     decoder_.on_packet([this](const Packet& p) { rx_.push_back({p, frame_start_, cycle_}); });
     m_->clk = 0;
+    m_->adc_clk = 0;
     m_->rst_n = 1;
     m_->uart_rxd = 1;
     m_->adc_sdata = 0;
@@ -65,6 +73,10 @@ class Board {
   }
 
   void tick() {
+    if (two_) {
+      tick_two_clocks();
+      return;
+    }
     const double t_ns = double(cycle_ + 1) * 1e9 / clk_hz_;
     m_->adc_sdata = adc_.sdata(t_ns);
     m_->uart_rxd = rx_level();
@@ -73,12 +85,7 @@ class Board {
     m_->clk = 0;
     m_->eval();
     ++cycle_;
-    adc_.drive(t_ns, m_->adc_cs_n, m_->adc_sclk);
-    // 16th SCLK falling edge of a conversion: the sample's last data edge.
-    if (!m_->adc_cs_n && prev_sclk_ && !m_->adc_sclk && ++falls_ == 16)
-      sample_edge_.push_back(cycle_);
-    if (m_->adc_cs_n) falls_ = 0;
-    prev_sclk_ = m_->adc_sclk;
+    adc_edge(t_ns);
     uart_sample(m_->uart_txd);
     probe();
   }
@@ -115,6 +122,38 @@ class Board {
   uint32_t frames_done = 0;             // frames the engine finished
 
  private:
+  // Edges of both clocks up to and including clk's next one.
+  void tick_two_clocks() {
+    for (;;) {
+      const TwoClocks::Edge e = two_->next();
+      if (e.b) m_->adc_sdata = adc_.sdata(e.t_ns());
+      if (e.a) m_->uart_rxd = rx_level();
+      m_->clk = e.a;
+      m_->adc_clk = e.b;
+      m_->eval();
+      m_->clk = 0;
+      m_->adc_clk = 0;
+      m_->eval();
+      if (e.a) ++cycle_;
+      if (e.b) adc_edge(e.t_ns());
+      if (e.a) {
+        uart_sample(m_->uart_txd);
+        probe();
+        return;
+      }
+    }
+  }
+
+  // After an edge of the ADC's clock at t_ns: the pins to the ADC model.
+  void adc_edge(double t_ns) {
+    adc_.drive(t_ns, m_->adc_cs_n, m_->adc_sclk);
+    // 16th SCLK falling edge of a conversion: the sample's last data edge.
+    if (!m_->adc_cs_n && prev_sclk_ && !m_->adc_sclk && ++falls_ == 16)
+      sample_edge_.push_back(cycle_);
+    if (m_->adc_cs_n) falls_ = 0;
+    prev_sclk_ = m_->adc_sclk;
+  }
+
   int rx_level() {
     if (!sending()) return 1;
     return tx_bits_[tx_pos_++ / size_t(cpb_)];
@@ -186,6 +225,7 @@ class Board {
   }
 
   std::unique_ptr<M> m_;
+  std::unique_ptr<TwoClocks> two_;  // adc_clk_hz > 0: clk (A) and adc_clk (B)
   eskin::sim::Ad7476Model adc_;
   double clk_hz_;
   int cpb_;

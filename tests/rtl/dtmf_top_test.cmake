@@ -20,11 +20,14 @@
 #           40 clocks a sample, the barrel shifter and the neuron unit.
 #  s18m:    the same for 18x18, the ECP5 rows' 1 MS/s skin since
 #           2026-11-24: 36 channels in 6 lanes, a frame's sample 44 clocks.
+#  s20m:    20x20 at 1 MS/s with the ADC on its own 40 MHz clock
+#           (ADC_CLK_HZ, rtl/stream_cdc.v) and the core at 45 MHz: 40
+#           channels in 7 lanes, 3 Mbaud.
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
 set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
   -GSTEP=70 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=8 -GOUT_DEPTH=2048 -GENGINE_FAST_SHIFT=0
-  -GSDFT_LANES=3 -GNEURON_UNIT=0)
+  -GSDFT_LANES=3 -GNEURON_UNIT=0 -GADC_CLK_HZ=0)
 set(eskin_default_args ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/neuroskin2.krom.hex\")
 eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10}
@@ -44,7 +47,7 @@ eskin_verilate(${exe} Vdtmf_top_s10unit ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10_unit.krom.hex\")
 set(dtmf_s16m -GCLK_HZ=40000000 -GSAMPLE_HZ=1000000 -GBAUD=2000000 -GKS=32 -GN=128 -GACC_W=20
   -GSTEP=1000 -GIW=11 -GIMEM_WORDS=1280 -GDW=13 -GKW=9 -GOUT_DEPTH=2048 -GENGINE_FAST_SHIFT=1
-  -GSDFT_LANES=6 -GNEURON_UNIT=1)
+  -GSDFT_LANES=6 -GNEURON_UNIT=1 -GADC_CLK_HZ=0)
 eskin_verilate(${exe} Vdtmf_top_s16m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s16m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_16x16_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_16x16_1msps.krom.hex\")
@@ -53,17 +56,28 @@ list(TRANSFORM dtmf_s18m REPLACE "^-GKS=.*" "-GKS=36")
 eskin_verilate(${exe} Vdtmf_top_s18m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s18m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_18x18_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_18x18_1msps.krom.hex\")
+set(dtmf_s20m ${dtmf_s16m})
+list(TRANSFORM dtmf_s20m REPLACE "^-GKS=.*" "-GKS=40")
+list(TRANSFORM dtmf_s20m REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=45000000")
+list(TRANSFORM dtmf_s20m REPLACE "^-GADC_CLK_HZ=.*" "-GADC_CLK_HZ=40000000")
+list(TRANSFORM dtmf_s20m REPLACE "^-GBAUD=.*" "-GBAUD=3000000")
+list(TRANSFORM dtmf_s20m REPLACE "^-GSDFT_LANES=.*" "-GSDFT_LANES=7")
+eskin_verilate(${exe} Vdtmf_top_s20m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s20m}
+  -GUCODE_HEX=\"${dtmf_dir}/scale_20x20_1msps.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/scale_20x20_1msps.krom.hex\")
 string(JOIN " " dtmf_default_str ${dtmf_default})
 string(JOIN " " dtmf_s10_str ${dtmf_s10})
 string(JOIN " " dtmf_s10fast_str ${dtmf_s10fast})
 string(JOIN " " dtmf_s10unit_str ${dtmf_s10unit})
 string(JOIN " " dtmf_s16m_str ${dtmf_s16m})
 string(JOIN " " dtmf_s18m_str ${dtmf_s18m})
+string(JOIN " " dtmf_s20m_str ${dtmf_s20m})
 target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=${ESKIN_DTMF_TOP_CLK_HZ}
   DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000
   DTMF_TOP_S10FAST_PARAMS="${dtmf_s10fast_str}" DTMF_TOP_S10FAST_CLK_HZ=48000000
   DTMF_TOP_S10UNIT_PARAMS="${dtmf_s10unit_str}" DTMF_TOP_S10UNIT_CLK_HZ=24000000
   DTMF_TOP_S16M_PARAMS="${dtmf_s16m_str}" DTMF_TOP_S16M_CLK_HZ=40000000
-  DTMF_TOP_S18M_PARAMS="${dtmf_s18m_str}" DTMF_TOP_S18M_CLK_HZ=40000000)
+  DTMF_TOP_S18M_PARAMS="${dtmf_s18m_str}" DTMF_TOP_S18M_CLK_HZ=40000000
+  DTMF_TOP_S20M_PARAMS="${dtmf_s20m_str}" DTMF_TOP_S20M_CLK_HZ=45000000)
 target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode eskin_fpga)
