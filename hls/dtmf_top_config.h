@@ -470,12 +470,18 @@ inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
 inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_clocks) {
   const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
   if (!n.adc_ok) return "the AD7476A cannot convert that fast";
-  char s[320];
+  char adc[96];
+  if (p.spec.adc_clk_hz > 0)
+    std::snprintf(adc, sizeof adc, "the AD7476A on its own %.6g MHz clock",
+                  double(p.spec.adc_clk_hz) / 1e6);
+  else
+    std::snprintf(adc, sizeof adc, "the AD7476A's acquisition time %.1f MHz", n.adc_hz / 1e6);
+  char s[400];
   std::snprintf(s, sizeof s,
-                "the AD7476A's acquisition time %.1f MHz, the frame engine's %ld clocks a frame "
-                "of %d samples %.1f MHz, the DFT's %ld clocks a sample in %d lane%s %.1f MHz",
-                n.adc_hz / 1e6, engine_clocks, p.step, n.engine_hz / 1e6, n.dft_period,
-                p.spec.sdft_lanes, p.spec.sdft_lanes == 1 ? "" : "s", n.dft_hz / 1e6);
+                "%s, the frame engine's %ld clocks a frame of %d samples %.1f MHz, the DFT's %ld "
+                "clocks a sample in %d lane%s %.1f MHz",
+                adc, engine_clocks, p.step, n.engine_hz / 1e6, n.dft_period, p.spec.sdft_lanes,
+                p.spec.sdft_lanes == 1 ? "" : "s", n.dft_hz / 1e6);
   return s;
 }
 
