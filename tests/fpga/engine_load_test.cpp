@@ -159,8 +159,8 @@ TEST(EngineLoad, LongestStressFrameByRoutine) {
   uint64_t sum = 0;
   const std::set<std::string> sections = {"boot", "main", "carrier_demix", "carrier_magnitude",
                                           "taxel_reconstruct", "ghost_filter", "neurons",
-                                          "izhikevich_layer", "synapse_weights", "spike_encoder",
-                                          "packets", "status", "commands"};
+                                          "izhikevich_layer", "synapse_weights", "spike_window",
+                                          "spike_encoder", "packets", "status", "commands"};
   for (const auto& [name, clocks] : load.stress_routines) {
     std::printf("  %-20s %7llu clocks\n", name.c_str(), (unsigned long long)clocks);
     EXPECT_TRUE(sections.count(name)) << name;
