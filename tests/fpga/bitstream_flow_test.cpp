@@ -315,8 +315,8 @@ TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   const auto params =
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
   EXPECT_EQ(param(params, "BAUD"), "2000000");
-  // 24x24 at 35 kS/s: its engine sets the clock (about 60 000 clocks a
-  // 35-sample frame of 1 ms, 59 946 on 2026-11-25: 60 MHz, far above the
+  // 24x24 at 35 kS/s: its engine sets the clock (about 57 000 clocks a
+  // 35-sample frame of 1 ms, 56 918 on 2026-11-25: 60 MHz, far above the
   // ADC's 1 MHz and the DFT's 10.2, its 290 clocks a sample), and the
   // flow's messages give that figure.
   const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 24, 35000.0),

@@ -586,25 +586,25 @@ TEST(DtmfTop, ScaleTable16x16AtOneMegasampleOnTheEcp5Core) {
                                                                                         38, 40);
 }
 
-// The ECP5 rows' 1 MS/s skin since 2026-11-25 (and for a run on
-// 2026-11-24, before the bound on a frame's packets): 18x18 at 40 MHz, 36
-// DFT channels in 6 lanes. The first whole-top run where a frame's sample
+// The ECP5 rows' 1 MS/s skin on 2026-11-25 until the ADC got a clock of
+// its own, and still the largest one-clock 1 MS/s build: 18x18 at 40 MHz,
+// 36 DFT channels in 6 lanes. The first whole-top run where a frame's sample
 // takes longer than the sample period: F = KS + 8 = 44 clocks against
 // P = 40 (the ADC holds one sample, and every skipped sample, S = 6
 // ceil(36 / 6) + 2 = 38 clocks, gives 2 of the 4 back, so the delay is
-// gone two samples later). The engine takes 36 541 of the frame's 40 000
+// gone two samples later). The engine takes 34 811 of the frame's 40 000
 // clocks under the stress load, a frame's most packets and the longest
-// command (host/fpga/engine_load.h); the run checks that no frame is lost on these
-// signals and that every packet equals the chain's.
+// command (host/fpga/engine_load.h); the run checks that no frame is lost
+// on these signals and that every packet equals the chain's.
 TEST(DtmfTop, ScaleTable18x18AtOneMegasampleOnTheEcp5Core) {
   scale_run_at_one_megasample<Vdtmf_top_s18m, eskin::hls::DtmfChainSizes<18, 18, 128>>(kS18M, 44,
                                                                                         38, 40);
 }
 
-// 20x20 at 1 MS/s: its engine (43 258 clocks a frame under the stress
-// load) does not fit the 40 MHz frame of the ADC's band, so the ULX3S flow
-// gives the ADC its own 40 MHz clock (the PLL's CLKOS) and the core 45
-// MHz: samples cross in rtl/stream_cdc.v, a sample every 45 clocks give
+// 20x20 at 1 MS/s, the ECP5 rows' since: its engine (41 285 clocks a
+// frame under the stress load) does not fit the 40 MHz frame of the ADC's
+// band, so the ULX3S flow gives the ADC its own 40 MHz clock (the PLL's
+// CLKOS) and the core 45 MHz: samples cross in rtl/stream_cdc.v, a sample every 45 clocks give
 // or take one (P = 44 in the budget), a frame at least 44 999 clocks.
 // 40 DFT channels in 7 lanes: a frame's sample takes KS + 8 = 48 clocks,
 // any other 6 ceil(40 / 7) + 2 = 38. The bench runs both clocks free (no
