@@ -22,7 +22,9 @@
 #           2026-11-24: 36 channels in 6 lanes, a frame's sample 44 clocks.
 #  s20m:    20x20 at 1 MS/s with the ADC on its own 40 MHz clock
 #           (ADC_CLK_HZ, rtl/stream_cdc.v) and the core at 45 MHz: 40
-#           channels in 7 lanes, 3 Mbaud.
+#           channels in 7 lanes, 3 Mbaud;
+#  s22m:    22x22 the same way, the ECP5 rows' 1 MS/s skin since
+#           2026-11-25: the core at 50 MHz, 44 channels in 7 lanes, 2 Mbaud.
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
 set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
@@ -65,6 +67,13 @@ list(TRANSFORM dtmf_s20m REPLACE "^-GSDFT_LANES=.*" "-GSDFT_LANES=7")
 eskin_verilate(${exe} Vdtmf_top_s20m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s20m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_20x20_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_20x20_1msps.krom.hex\")
+set(dtmf_s22m ${dtmf_s20m})
+list(TRANSFORM dtmf_s22m REPLACE "^-GKS=.*" "-GKS=44")
+list(TRANSFORM dtmf_s22m REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=50000000")
+list(TRANSFORM dtmf_s22m REPLACE "^-GBAUD=.*" "-GBAUD=2000000")
+eskin_verilate(${exe} Vdtmf_top_s22m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s22m}
+  -GUCODE_HEX=\"${dtmf_dir}/scale_22x22_1msps.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/scale_22x22_1msps.krom.hex\")
 string(JOIN " " dtmf_default_str ${dtmf_default})
 string(JOIN " " dtmf_s10_str ${dtmf_s10})
 string(JOIN " " dtmf_s10fast_str ${dtmf_s10fast})
@@ -72,6 +81,7 @@ string(JOIN " " dtmf_s10unit_str ${dtmf_s10unit})
 string(JOIN " " dtmf_s16m_str ${dtmf_s16m})
 string(JOIN " " dtmf_s18m_str ${dtmf_s18m})
 string(JOIN " " dtmf_s20m_str ${dtmf_s20m})
+string(JOIN " " dtmf_s22m_str ${dtmf_s22m})
 target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=${ESKIN_DTMF_TOP_CLK_HZ}
   DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000
@@ -79,5 +89,6 @@ target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_S10UNIT_PARAMS="${dtmf_s10unit_str}" DTMF_TOP_S10UNIT_CLK_HZ=24000000
   DTMF_TOP_S16M_PARAMS="${dtmf_s16m_str}" DTMF_TOP_S16M_CLK_HZ=40000000
   DTMF_TOP_S18M_PARAMS="${dtmf_s18m_str}" DTMF_TOP_S18M_CLK_HZ=40000000
-  DTMF_TOP_S20M_PARAMS="${dtmf_s20m_str}" DTMF_TOP_S20M_CLK_HZ=45000000)
+  DTMF_TOP_S20M_PARAMS="${dtmf_s20m_str}" DTMF_TOP_S20M_CLK_HZ=45000000
+  DTMF_TOP_S22M_PARAMS="${dtmf_s22m_str}" DTMF_TOP_S22M_CLK_HZ=50000000)
 target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode eskin_fpga)

@@ -35,6 +35,8 @@
 #include "Vdtmf_top_s18m___024root.h"
 #include "Vdtmf_top_s20m.h"
 #include "Vdtmf_top_s20m___024root.h"
+#include "Vdtmf_top_s22m.h"
+#include "Vdtmf_top_s22m___024root.h"
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_top_config.h"
@@ -82,6 +84,8 @@ const Build kS18M{"scenes/neuroskin2.yaml", "scale_18x18_1msps", DTMF_TOP_S18M_P
                   DTMF_TOP_S18M_CLK_HZ, 6, true, true, 18, 1e6};
 const Build kS20M{"scenes/neuroskin2.yaml", "scale_20x20_1msps", DTMF_TOP_S20M_PARAMS,
                   DTMF_TOP_S20M_CLK_HZ, 7, true, true, 20, 1e6, 40000000};
+const Build kS22M{"scenes/neuroskin2.yaml", "scale_22x22_1msps", DTMF_TOP_S22M_PARAMS,
+                  DTMF_TOP_S22M_CLK_HZ, 7, true, true, 22, 1e6, 40000000};
 
 struct BuildSetup {
   eskin::sim::Scene scene;
@@ -192,7 +196,14 @@ template <class M>
 void expect_clean_run(Board<M>& b, eskin::link::LinkEncoder& enc, int accepted_before = 0) {
   b.send(enc.request_status());
   const size_t before = b.received().size();
-  for (int i = 0; i < 400000 && b.received().size() == before; ++i) b.tick();
+  // Until the status arrives (behind a frame's packets: a 22x22 skin's
+  // dense taxels take 5 ms at 2 Mbaud), then 200 000 clocks more.
+  auto status_in = [&] {
+    for (size_t i = before; i < b.received().size(); ++i)
+      if (b.received()[i].p.type == eskin::link::kStatus) return true;
+    return false;
+  };
+  for (int i = 0; i < 1000000 && !status_in(); ++i) b.tick();
   b.run_cycles(200000);
   EXPECT_EQ(b.link_stats().crc_errors + b.link_stats().framing_errors +
                 b.link_stats().payload_errors, 0u);
@@ -529,13 +540,15 @@ void scale_run_at_one_megasample(const Build& k, long frame_sdft, long skip_sdft
   const double full = sp.full_carrier_lsb * std::ldexp(1.0, 12 - sp.adc_bits);
   std::vector<double> f(s.scene.skin.row_freq_hz);
   f.insert(f.end(), s.scene.skin.col_freq_hz.begin(), s.scene.skin.col_freq_hz.end());
-  const int frames = 30;
+  // At least 30 frames, and enough for 5 packets of each decimated
+  // stream to compare after the last window (22x22: every 9th frame).
+  const int frames = std::max(30, 8 * int(s.plan.decim_tax));
   const int n = s.plan.N + frames * s.plan.step;
   s.codes12 = dtmf_stimulus::random_carrier_codes(f, sp.sample_hz, full, n, 3 * s.plan.step, 5);
   // Quiet conversions while the last frames and the final status get out
-  // (expect_clean_run: up to 600 000 clocks, 15 000 samples at 40 clocks).
+  // (expect_clean_run: up to 1 200 000 clocks, 24 000 samples at 50 clocks).
   auto codes = s.codes12;
-  codes.resize(size_t(n) + 16000, 2048);
+  codes.resize(size_t(n) + 30000, 2048);
   auto padded = s;
   padded.codes12 = codes;
   Board<V> b(codes, double(k.clk_hz), s.cpb, double(k.adc_clk_hz));
@@ -614,6 +627,16 @@ TEST(DtmfTop, ScaleTable18x18AtOneMegasampleOnTheEcp5Core) {
 TEST(DtmfTop, ScaleTable20x20AtOneMegasampleWithTheAdcOnItsOwnClock) {
   scale_run_at_one_megasample<Vdtmf_top_s20m, eskin::hls::DtmfChainSizes<20, 20, 128>>(kS20M, 48,
                                                                                         38, 44);
+}
+
+// 22x22 at 1 MS/s, the ECP5 rows' skin since the spike events moved into
+// the unit's loops: engine 48 640 clocks a frame (stress), so the core at
+// 50 MHz (a frame at least 49 999 clocks; P = 49) beside the ADC's 40 MHz;
+// 44 channels in 7 lanes: a frame's sample 52 clocks, any other 6 ceil(44 /
+// 7) + 2 = 44. A clock ratio of 5 : 4, against 20x20's 9 : 8.
+TEST(DtmfTop, ScaleTable22x22AtOneMegasampleWithTheAdcOnItsOwnClock) {
+  scale_run_at_one_megasample<Vdtmf_top_s22m, eskin::hls::DtmfChainSizes<22, 22, 128>>(kS22M, 52,
+                                                                                        44, 49);
 }
 
 }  // namespace
