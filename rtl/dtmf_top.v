@@ -161,9 +161,10 @@ module dtmf_top #(
   // reaches it with the next sample, a microsecond at 1 MS/s). rst and
   // adc_en reach the ADC through two adc_clk flip-flops (rst through a
   // power_on_reset of adc_clk, which also holds the ADC from configuration
-  // on), wr_clear as a toggle. The ADC's own output register, s_hold and m_data hold a
-  // sample each, so the DFT may take one later than with the ADC on clk
-  // (hls/dtmf_top_config.h's budget assumes the one register of that case).
+  // on), wr_clear as a toggle. The ADC's own output register, s_hold and
+  // m_data hold a sample each, so the DFT may take one later than with the
+  // ADC on clk (hls/dtmf_top_config.h's budget assumes the one register of
+  // that case).
   wire adc_valid, sdft_in_ready;
   wire [11:0] adc_code;
   wire [31:0] adc_t;

@@ -37,8 +37,8 @@ void run(double s_hz, double m_hz, int64_t phase_fs, int p_offer, int p_ready, i
   uint16_t next = 0;
   int received = 0;
   bool offer = false, ready = false;
-  // Edges of each clock since the last take (-1: none pending).
-  int m_edges_since_take = -1, s_edges_since_take = -1;
+  int m_edges_since_take = -1;  // m_clk edges since the last take (-1: none yet)
+  bool s_ready_due = false;      // s_ready not yet back since the last take
   int64_t in_flight_take_fs = 0;  // the last take
   bool prev_m_valid = false;
   m.s_clk = 0;
@@ -48,15 +48,15 @@ void run(double s_hz, double m_hz, int64_t phase_fs, int p_offer, int p_ready, i
   m.s_valid = 0;
   m.m_ready = 0;
   m.eval();
-  for (int i = 0; i < 8; ++i) {  // both resets overlap for a few edges of each
-    const auto e = clk.next();
+  auto pulse = [&](const TwoClocks::Edge& e) {  // the rising edges at e, then both low
     m.s_clk = e.a;
     m.m_clk = e.b;
     m.eval();
     m.s_clk = 0;
     m.m_clk = 0;
     m.eval();
-  }
+  };
+  for (int i = 0; i < 8; ++i) pulse(clk.next());  // both resets overlap for a few edges of each
   m.s_rst = 0;
   m.m_rst = 0;
   while (received < n_tokens) {
@@ -82,19 +82,13 @@ void run(double s_hz, double m_hz, int64_t phase_fs, int p_offer, int p_ready, i
       in_flight.pop_front();
       ++received;
     }
-    m.s_clk = e.a;
-    m.m_clk = e.b;
-    m.eval();
-    m.s_clk = 0;
-    m.m_clk = 0;
-    m.eval();
+    pulse(e);
     if (e.b && m_edges_since_take >= 0) ++m_edges_since_take;
-    if (e.a && s_edges_since_take >= 0) ++s_edges_since_take;
     if (took) {
       in_flight.push_back({next, e.t_fs});
       ++next;
       m_edges_since_take = 0;
-      s_edges_since_take = 0;
+      s_ready_due = true;
       in_flight_take_fs = e.t_fs;
     }
     // A copy into m_data: m_valid rises, or a new token replaces one taken.
@@ -110,10 +104,10 @@ void run(double s_hz, double m_hz, int64_t phase_fs, int p_offer, int p_ready, i
         EXPECT_LE(m_edges_since_take, kSync + 1) << "token " << tok << " late to m_valid";
       }
     }
-    if (p_ready == 100 && s_edges_since_take >= 0 && m.s_ready) {
+    if (p_ready == 100 && s_ready_due && m.s_ready) {
       EXPECT_LE(e.t_fs - in_flight_take_fs, (kSync + 1) * (clk.period_a + clk.period_b))
           << "s_ready late after token " << next - 1;
-      s_edges_since_take = -1;
+      s_ready_due = false;
     }
     prev_m_valid = m.m_valid;
   }
