@@ -214,7 +214,9 @@ TEST(DtmfUcode, FullSpikeWindowsAndNoGhostFilterEqualTheChain) {
       plan.decim_tax = 20;  // a spike window of 20 frames
       const std::string what = std::string("48 spikes a window, ghost filter ") +
                                (ghost ? "on" : "off") + (unit == 2 ? ", input change" : "");
-      if (unit == 2) ASSERT_TRUE(plan.neuron[0].input_change) << "the change loop";
+      if (unit == 2) {
+        ASSERT_TRUE(plan.neuron[0].input_change) << "the change loop";
+      }
       compare_codes<S>(what, plan, period, codes);
       // The drop counts, on a fresh pair (compare_codes keeps neither): the
       // chain's after each frame, the engine's after the last frame it
