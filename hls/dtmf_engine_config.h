@@ -289,7 +289,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 9);
   alloc("AMPC", 3), alloc("SEL", 3), alloc("SEND", 3);  // frame counts per stream (amp, tax, status)
   for (const char* n :
-       {"VT", "TPASS", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "PKTDROP",
+       {"VT", "TPASS", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "SPKDL", "PKTDROP",
         "ACC", "REJ", "LRT", "LRR", "LRS", "CTYPE", "CSEQ", "CLEN", "PT", "PTT", "PLEN", "TLO",
         "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
         "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "SEB", "NX", "ND", "NXS",

@@ -26,9 +26,11 @@
 // the last B clock of the one before, unless that would break the order of
 // a shared resource, so most instructions cost their B clocks only. Cycle A
 // waits one clock (a bubble) when it reads A (a jump on A, tax, sqrt,
-// sqrtr: A is still being written), reads DMEM right after `st` (one DMEM
-// port) or reads IO right after `out` (the write lands at the same edge),
-// and it never overlaps a `wait` or a shift whose count operand is 0 (their
+// sqrtr) right after an instruction that writes A (A is still being
+// written; after st, out, lt, mpy, a shift by an immediate 0 or a control
+// instruction other than txa, sqrt and sqrtr it is final), reads DMEM
+// right after `st` (one DMEM port) or reads IO right after `out` (the
+// write lands at the same edge), and it never overlaps a `wait` or a shift whose count operand is 0 (their
 // last clock is known only in that clock).
 #pragma once
 
@@ -156,7 +158,7 @@ class FrameEngine {
     for (auto& x : x_) x = 0;
     for (auto& s : stack_) s = 0;
     waiting_ = false;
-    overlap_ok_ = prev_st_ = prev_out_ = false;
+    overlap_ok_ = prev_st_ = prev_out_ = prev_writes_a_ = false;
     last_ = FrameEngineRetired{};
   }
 
@@ -237,6 +239,11 @@ class FrameEngine {
     last_.a_clock = c0;
     prev_st_ = cls == fe::kMem && fn == fe::kSt;
     prev_out_ = cls == fe::kMem && fn == fe::kOut;
+    // Writes A in its B clocks: the arithmetic and logic, the shifts (not
+    // an immediate shift by 0: shift() clears it), txa and the roots.
+    prev_writes_a_ = cls == fe::kCtl ? (fn == fe::kTxa || fn == fe::kSqrt || fn == fe::kSqrtr)
+                                     : (fn <= fe::kXor || fn == fe::kShl || fn == fe::kShr ||
+                                        fn == fe::kRnd);
     overlap_ok_ = true;
     const uint32_t pc1 = (pc_ + 1) & (kImemWords - 1);
     pc_ = pc1;  // end of cycle A; control flow may change it
@@ -315,7 +322,7 @@ class FrameEngine {
     const bool reads = cls == fe::kMem && fn <= fe::kRnd;
     const bool reads_a = cls == fe::kCtl && ((fn == fe::kJ && (fe::field_of(w) & 3u) != 0) ||
                                              fn == fe::kTax || fn == fe::kSqrt || fn == fe::kSqrtr);
-    return overlap_ok_ && !reads_a && !(prev_st_ && reads && fe::space_of(w) == fe::kDmem) &&
+    return overlap_ok_ && !(reads_a && prev_writes_a_) && !(prev_st_ && reads && fe::space_of(w) == fe::kDmem) &&
            !(prev_out_ && reads && fe::space_of(w) == fe::kIo);
   }
 
@@ -326,6 +333,7 @@ class FrameEngine {
   uint32_t shift(uint32_t fn, uint32_t n, bool imm_count) {
     if (n == 0) {
       overlap_ok_ = imm_count;  // a loaded count of 0 ends B in the loading clock
+      prev_writes_a_ = !imm_count;  // by an immediate 0: A is left alone
       return 2;
     }
     const uint32_t base = imm_count ? 1 : 2, steps = FAST_SHIFT ? 1 : n;
@@ -409,8 +417,9 @@ class FrameEngine {
   bool waiting_ = false;
   uint16_t wait_mask_ = 0;
   // The last instruction's end: may the next cycle A overlap its last B
-  // clock, and was it `st` / `out` (overlaps()).
-  bool overlap_ok_ = false, prev_st_ = false, prev_out_ = false;
+  // clock, was it `st` / `out`, and did its last B clock write A
+  // (overlaps()).
+  bool overlap_ok_ = false, prev_st_ = false, prev_out_ = false, prev_writes_a_ = false;
   FrameEngineRetired last_;
 };
 

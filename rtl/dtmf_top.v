@@ -69,9 +69,10 @@ module dtmf_top #(
     // ADC keeps up. 1 on the UP5K.
     parameter integer SDFT_LANES = 1,
     // 1: the hardware neuron unit (rtl/izhikevich_layer.v): the microcode
-    // hands it each neuron update (13 clocks; 16 engine clocks a neuron
-    // with level input, its spike event included, overlapped) instead of running the izhikevich_layer routine (about
-    // 120 clocks with the barrel shifter, 210 without); the same packets.
+    // hands it each neuron update (13 clocks; 14 engine clocks a neuron
+    // with level input, the spike test included, overlapped) instead of
+    // running the izhikevich_layer routine (about 120 clocks with the
+    // barrel shifter, 210 without); the same packets.
     // The board flow decides (host/fpga/board.h).
     parameter integer NEURON_UNIT = 0,
     // 0: the ADC runs on clk. Else the frequency of adc_clk, on which it

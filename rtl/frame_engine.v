@@ -20,9 +20,9 @@
 // Overlap: the next instruction's cycle A runs in the current one's last B
 // clock (a_go), and cycle A fetches the one after it, so most instructions
 // take one clock. A waits for a clock of its own when it reads A (j on a
-// condition, tax, sqrt/sqrtr), reads DMEM after `st` (one port: SPRAM) or
-// IO after `out`, and after a B whose last clock is known only in it (wait,
-// a loaded shift count of 0). The B clock is "last" by flip-flops only
+// condition, tax, sqrt/sqrtr) while the B clock may write A, reads DMEM
+// after `st` (one port: SPRAM) or IO after `out`, and after a B whose
+// last clock is known only in it (wait, a loaded shift count of 0). The B clock is "last" by flip-flops only
 // (b_last), so no B-clock result reaches cycle A's enables.
 // Memories: IMEM 2^IW x 32 ROM ($readmemh UCODE_HEX), KROM 2^KW x 32 ROM
 // (KROM_INIT, word k at [32k +: 32]), DMEM 2^DW x 32 single-port RAM, not
@@ -348,7 +348,11 @@ module frame_engine #(
   wire io_rd = memop && space == 2'd2 && fn <= F_RND;
   wire dm_rd = memop && space == 2'd0 && fn <= F_RND;
   wire reads_a = ctl && ((fn == K_J && fld[1:0] != 2'd0) || fn == K_TAX || fn == K_SQRT || fn == K_SQRTR);
-  wire hazard = reads_a || (u_st && dm_rd) || (u_out && io_rd);
+  // A read of A waits only for a B clock that may write it (u_we, or
+  // min/max's second clock): after st, out, lt, mpy or a control
+  // instruction A is already final. Flip-flops only, as b_last.
+  wire b_writes_a = u_we || u_put;
+  wire hazard = (reads_a && b_writes_a) || (u_st && dm_rd) || (u_out && io_rd);
   assign a_go = !rst && (!bact || (b_last && !hazard));
 
   // T and P. P has no reset of its own, so that it stays the SB_MAC16's

@@ -228,7 +228,7 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--neurons", args->neurons,
                   "Where the Izhikevich neuron updates run: engine (the frame engine's "
                   "microcode, no extra logic) or unit (the hardware neuron unit, "
-                  "rtl/izhikevich_layer.v: 16 (level input) to 21 (change input) engine clocks a "
+                  "rtl/izhikevich_layer.v: 14 (level input) to 20 (change input) engine clocks a "
                   "neuron instead of about 120 with the barrel shifter or 210 without); default: "
                   "the board's (ulx3s unit; icebreaker engine unless the core needs more than "
                   "18 MHz: then the first of barrel, serial + unit, barrel + unit that keeps up "

@@ -291,32 +291,32 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   EXPECT_EQ(slower_engine_hint(ice, sc, r), "");
 }
 // The packets are paced for the link the chosen clock gives. An 18x18 skin
-// at 35 kS/s on the ULX3S (engine 35 547 clocks a frame on 2026-11-25)
-// runs at 40 MHz, whose exact UART rate is 2 Mbaud (40 MHz is no multiple
-// of 3 MHz); the plan thins the amplitude and taxel packets so that 1.5 x
-// their bytes per frame fit the link (hls/dtmf_top_config.h): 1.5 x ((10 +
-// 2 x 36 + 2) + (10 + 2 + 2 x 324 + 2)) = 1119 bytes against 200 a 1 ms
-// frame at 2 Mbaud (10 bits a byte): every 6th frame (ceil 5.6); planned
-// for 3 Mbaud (300 bytes) it would be every 4th, which would overrun the
-// 2 Mbaud line. (A 16x16 skin, 35 MHz and 1 Mbaud until its engine went
-// under 30 000 clocks, was this test's case before.) The 16x16
-// 1 MS/s build of tests/rtl/dtmf_top_test.cpp is planned at its clock's
-// 2 Mbaud (40 MHz) too, so it is this flow's build.
+// at 35 kS/s on the ULX3S (engine 32 981 clocks a frame on 2026-11-27)
+// runs at 35 MHz, whose exact UART rate is 1 Mbaud (35 MHz is no multiple
+// of 2 or 3 MHz); the plan thins the amplitude and taxel packets so that
+// 1.5 x their bytes per frame fit the link (hls/dtmf_top_config.h): 1.5 x
+// ((10 + 2 x 36 + 2) + (10 + 2 + 2 x 324 + 2)) = 1119 bytes against 100 a
+// 1 ms frame at 1 Mbaud (10 bits a byte): every 12th frame (ceil 11.2);
+// planned for 3 Mbaud (300 bytes) it would be every 4th, which would
+// overrun the 1 Mbaud line. (At 40 MHz and 2 Mbaud, every 6th, until the
+// engine went under 35 000 clocks.) The 16x16 1 MS/s build of
+// tests/rtl/dtmf_top_test.cpp is planned at its clock's 2 Mbaud (40 MHz),
+// so it is this flow's build.
 TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const CoreClock c = choose_core_clock(find_board("ulx3s"), scale_scene(base, 18, 35000.0),
                                         LoadPolicy::Stress);
   ASSERT_TRUE(c.budget.ok()) << c.budget.problems.front();
-  EXPECT_EQ(c.clocking.clk_hz, 40000000);
-  EXPECT_EQ(c.clocking.baud, 2000000);
-  EXPECT_EQ(c.plan.spec.baud, 2000000);
-  EXPECT_EQ(c.plan.decim_tax, 6);
-  EXPECT_EQ(c.plan.decim_amp, 6);
+  EXPECT_EQ(c.clocking.clk_hz, 35000000);
+  EXPECT_EQ(c.clocking.baud, 1000000);
+  EXPECT_EQ(c.plan.spec.baud, 1000000);
+  EXPECT_EQ(c.plan.decim_tax, 12);
+  EXPECT_EQ(c.plan.decim_amp, 12);
   const auto params =
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
-  EXPECT_EQ(param(params, "BAUD"), "2000000");
-  // 24x24 at 35 kS/s: its engine sets the clock (about 57 000 clocks a
-  // 35-sample frame of 1 ms, 56 918 on 2026-11-25: 60 MHz, far above the
+  EXPECT_EQ(param(params, "BAUD"), "1000000");
+  // 24x24 at 35 kS/s: its engine sets the clock (about 53 000 clocks a
+  // 35-sample frame of 1 ms, 52 610 on 2026-11-27: 55 MHz, far above the
   // ADC's 1 MHz and the DFT's 10.2, its 290 clocks a sample), and the
   // flow's messages give that figure.
   const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 24, 35000.0),
@@ -454,14 +454,24 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
   EXPECT_FALSE(no_unit.plan.spec.neuron_unit);
   EXPECT_EQ(no_unit.engine_clocks, barrel.engine_clocks);
   EXPECT_GE(no_unit.clocking.clk_hz, no_unit.core_min_hz);
-  // A 12x12 skin: no engine keeps up at 18 MHz; the fastest is barrel +
-  // unit, whose need is below every other engine's.
+  // A 12x12 skin: only barrel + unit keeps up at 18 MHz (serial + unit
+  // needs more), so the board takes it at 18 MHz.
   const auto sc12 = scale_scene(base, 12, 35000.0);
-  const CoreClock big = choose_core_clock(ice, sc12, LoadPolicy::Stress);
+  const CoreClock c12 = choose_core_clock(ice, sc12, LoadPolicy::Stress);
+  EXPECT_TRUE(c12.plan.spec.engine_fast_shift);
+  EXPECT_TRUE(c12.plan.spec.neuron_unit);
+  EXPECT_LE(c12.core_min_hz, ice.default_clk_hz);
+  EXPECT_EQ(c12.clocking.clk_hz, ice.default_clk_hz);
+  EXPECT_GT(choose_core_clock(ice, sc12, LoadPolicy::Stress, 0, 0, 1).core_min_hz,
+            ice.default_clk_hz);
+  // A 16x16 skin: no engine keeps up at 18 MHz; the fastest is barrel +
+  // unit, whose need is below every other engine's.
+  const auto sc16 = scale_scene(base, 16, 35000.0);
+  const CoreClock big = choose_core_clock(ice, sc16, LoadPolicy::Stress);
   EXPECT_TRUE(big.plan.spec.engine_fast_shift);
   EXPECT_TRUE(big.plan.spec.neuron_unit);
   EXPECT_GT(big.core_min_hz, ice.default_clk_hz);
-  EXPECT_LT(big.core_min_hz, choose_core_clock(ice, sc12, LoadPolicy::Stress, 0, 0, 1).core_min_hz);
+  EXPECT_LT(big.core_min_hz, choose_core_clock(ice, sc16, LoadPolicy::Stress, 0, 0, 1).core_min_hz);
   // The clock asked for is the bar: a 6x6 skin's bit-serial engine needs
   // more than 18 MHz but keeps up at 27, so at 27 MHz it stays bit-serial.
   const auto sc6 = scale_scene(base, 6, 35000.0);
@@ -476,9 +486,11 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
   EXPECT_FALSE(dflt.plan.spec.engine_fast_shift);
   EXPECT_FALSE(dflt.plan.spec.neuron_unit);
   std::printf("iCEBreaker 8x8: barrel %ld clocks (%.1f MHz), serial + unit %ld (%.1f MHz); "
-              "12x12 barrel + unit %.1f MHz; 6x6 bit-serial %.1f MHz\n",
+              "12x12 barrel + unit %.1f MHz; 16x16 barrel + unit %.1f MHz; 6x6 bit-serial "
+              "%.1f MHz\n",
               barrel.engine_clocks, barrel.core_min_hz / 1e6, serial_unit.engine_clocks,
-              serial_unit.core_min_hz / 1e6, big.core_min_hz / 1e6, at27.core_min_hz / 1e6);
+              serial_unit.core_min_hz / 1e6, c12.core_min_hz / 1e6, big.core_min_hz / 1e6,
+              at27.core_min_hz / 1e6);
 }
 
 
@@ -486,49 +498,49 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
 
 // At 1 MS/s the AD7476A's SCLK ties the ADC to a 37.3-40 MHz clock (or
 // 74.7-80: SCLK = a / (2 H) <= 20 MHz with A - 28 H clocks of acquisition
-// >= 250 ns). An 18x18 skin's engine fits the 40 MHz frame (34 811 of
-// 40 000 clocks on 2026-11-25): one clock. A 20x20 skin's (41 285) does
-// not, and 75 MHz
-// is beyond the ECP5 build's Fmax (about 50): the ULX3S gives the ADC a
-// clock of its own from the same PLL (VCO / CLKOS_DIV, 40 MHz, the fastest
-// that converts) and the core the slowest clock whose frame, floor(STEP
-// clk A / a) - 1 clocks, holds the engine and whose sample period holds
-// the DFT's lanes: 45 MHz (44 999 >= 41 285; the ULX3S makes no 44 MHz).
-// The iCE40 has no such clock; mixed_top (own_adc_clock false) neither.
+// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (38 120 of
+// 40 000 clocks on 2026-11-27): one clock. A 22x22 skin's (44 412) does
+// not, and 75 MHz is beyond the ECP5 build's Fmax (about 50): the ULX3S
+// gives the ADC a clock of its own from the same PLL (VCO / CLKOS_DIV,
+// 40 MHz, the fastest that converts) and the core the slowest clock whose
+// frame, floor(STEP clk A / a) - 1 clocks, holds the engine and whose
+// sample period holds the DFT's lanes: 45 MHz (44 999 >= 44 412; the
+// ULX3S makes no 44 MHz). The iCE40 has no such clock; mixed_top
+// (own_adc_clock false) neither.
 TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const Board ulx = find_board("ulx3s", "85k");
-  const CoreClock s18 = choose_core_clock(ulx, scale_scene(base, 18, 1e6), LoadPolicy::Stress);
-  ASSERT_TRUE(s18.budget.ok());
-  EXPECT_EQ(s18.clocking.clk_hz, 40000000);
-  EXPECT_EQ(s18.clocking.adc_clk_hz, 0);
-  EXPECT_EQ(param(eskin::hls::dtmf_top_params(s18.plan, eskin::hls::dtmf_engine_image(s18.plan),
+  const CoreClock s20 = choose_core_clock(ulx, scale_scene(base, 20, 1e6), LoadPolicy::Stress);
+  ASSERT_TRUE(s20.budget.ok());
+  EXPECT_EQ(s20.clocking.clk_hz, 40000000);
+  EXPECT_EQ(s20.clocking.adc_clk_hz, 0);
+  EXPECT_EQ(param(eskin::hls::dtmf_top_params(s20.plan, eskin::hls::dtmf_engine_image(s20.plan),
                                               "", ""),
                   "ADC_CLK_HZ"),
             "0");
-  const CoreClock s20 = choose_core_clock(ulx, scale_scene(base, 20, 1e6), LoadPolicy::Stress);
-  ASSERT_TRUE(s20.budget.ok()) << s20.budget.problems.front();
-  EXPECT_GT(s20.engine_clocks, 40000);
-  EXPECT_EQ(s20.clocking.adc_clk_hz, 40000000);
-  EXPECT_EQ(s20.plan.spec.adc_clk_hz, 40000000);
-  EXPECT_LT(s20.clocking.clk_hz, 74700000);
-  EXPECT_GE(s20.budget.frame_clocks, s20.engine_clocks);
-  EXPECT_EQ(s20.budget.adc_period, 40);
-  EXPECT_EQ(s20.budget.frame_clocks, s20.clocking.clk_hz / 1000 - 1);
-  EXPECT_EQ(s20.budget.period, s20.clocking.clk_hz / 1000000 - 1);
+  const CoreClock s22 = choose_core_clock(ulx, scale_scene(base, 22, 1e6), LoadPolicy::Stress);
+  ASSERT_TRUE(s22.budget.ok()) << s22.budget.problems.front();
+  EXPECT_GT(s22.engine_clocks, 40000);
+  EXPECT_EQ(s22.clocking.adc_clk_hz, 40000000);
+  EXPECT_EQ(s22.plan.spec.adc_clk_hz, 40000000);
+  EXPECT_LT(s22.clocking.clk_hz, 74700000);
+  EXPECT_GE(s22.budget.frame_clocks, s22.engine_clocks);
+  EXPECT_EQ(s22.budget.adc_period, 40);
+  EXPECT_EQ(s22.budget.frame_clocks, s22.clocking.clk_hz / 1000 - 1);
+  EXPECT_EQ(s22.budget.period, s22.clocking.clk_hz / 1000000 - 1);
   const auto params =
-      eskin::hls::dtmf_top_params(s20.plan, eskin::hls::dtmf_engine_image(s20.plan), "", "");
+      eskin::hls::dtmf_top_params(s22.plan, eskin::hls::dtmf_engine_image(s22.plan), "", "");
   EXPECT_EQ(param(params, "ADC_CLK_HZ"), "40000000");
-  EXPECT_EQ(param(params, "CLK_HZ"), std::to_string(s20.clocking.clk_hz));
+  EXPECT_EQ(param(params, "CLK_HZ"), std::to_string(s22.clocking.clk_hz));
   // The PLL: VCO = clk x CLKOP_DIV = 40 MHz x CLKOS_DIV, in 400..800 MHz.
-  auto wp = [&](const char* n) { return std::stol(param(s20.clocking.wrapper_params, n)); };
-  const long vco = s20.clocking.clk_hz * wp("CLKOP_DIV");
+  auto wp = [&](const char* n) { return std::stol(param(s22.clocking.wrapper_params, n)); };
+  const long vco = s22.clocking.clk_hz * wp("CLKOP_DIV");
   EXPECT_EQ(vco, 40000000L * wp("CLKOS_DIV"));
   EXPECT_GE(vco, 400000000L);
   EXPECT_LE(vco, 800000000L);
-  EXPECT_EQ(s20.clocking.clk_hz, 25000000L * wp("CLKFB_DIV") / wp("CLKI_DIV"));
+  EXPECT_EQ(s22.clocking.clk_hz, 25000000L * wp("CLKFB_DIV") / wp("CLKI_DIV"));
   // mixed_top's one clock: the 75 MHz band, or none.
-  const CoreClock one = choose_core_clock(ulx, scale_scene(base, 20, 1e6), LoadPolicy::Stress, 0,
+  const CoreClock one = choose_core_clock(ulx, scale_scene(base, 22, 1e6), LoadPolicy::Stress, 0,
                                           -1, -1, false);
   EXPECT_EQ(one.clocking.adc_clk_hz, 0);
   EXPECT_GE(one.clocking.clk_hz, 74700000);

@@ -398,8 +398,9 @@ TEST(FrameEngineModel, IndexRegisterOps) {
   auto e = with({fe::ctl(fe::kLdx, 1, 0, 0xFFFE), fe::ctl(fe::kAddx, 1, 0, 5), fe::ctl(fe::kTax, 3, 0, 0),
                  fe::ctl(fe::kTxa, 1, 0, 0), fe::ctl(fe::kLdx, 0, 0, 7), fe::ctl(fe::kTxa, 0, 0, 0)});
   e->set_a(-2);  // tax takes A[15:0]
-  // tax reads A in its cycle A, so it does not overlap the B before it.
-  for (uint32_t want : {2u, 1u, 2u, 1u}) EXPECT_EQ(e->step(io), want);
+  // tax reads A in its cycle A; addx before it leaves A alone, so it
+  // overlaps addx's B (OverlapAndItsBubbles has the cases that wait).
+  for (uint32_t want : {2u, 1u, 1u, 1u}) EXPECT_EQ(e->step(io), want);
   EXPECT_EQ(e->x(1), 3);       // 0xFFFE + 5 wraps
   EXPECT_EQ(e->x(3), 0xFFFE);
   EXPECT_EQ(e->a(), 3);        // txa: zero-extended X1
@@ -427,8 +428,8 @@ TEST(FrameEngineModel, StoreAndOutWriteA31to0) {
 }
 
 // The overlap (docs/frame_engine.md, "Timing"): cycle A runs in the last B
-// clock of the instruction before, except where that would read A before
-// it is written, DMEM in the clock `st` writes it, IO in the clock `out`
+// clock of the instruction before, except where that would read A in the
+// clock the instruction before writes it, DMEM in the clock `st` writes it, IO in the clock `out`
 // writes it, or follow a B whose last clock is known only in that clock.
 // Each case: the clocks of every instruction, first after reset (A + B).
 TEST(FrameEngineModel, OverlapAndItsBubbles) {
@@ -452,6 +453,19 @@ TEST(FrameEngineModel, OverlapAndItsBubbles) {
       {"jump never", {ld1, fe::ctl(fe::kJ, 0, fe::kNever, 0)}, {2, 1}},
       {"jump on A", {ld1, fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 2}},
       {"tax", {ld1, fe::ctl(fe::kTax, 1, 0, 0)}, {2, 2}},
+      // A read of A after an instruction that leaves A alone: no bubble.
+      {"jump on A after st", {ld1, st5, fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 1, 1}},
+      {"jump on A after out", {ld1, out3, fe::ctl(fe::kJ, 0, fe::kEq, 0)}, {2, 1, 1}},
+      {"jump on A after lt", {ld1, fe::imm(fe::kLt, 3), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 1, 1}},
+      {"jump on A after mpy", {ld1, fe::imm(fe::kMpy, 3), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 1, 1}},
+      {"tax after addx", {ld1, fe::ctl(fe::kAddx, 1, 0, 1), fe::ctl(fe::kTax, 2, 0, 0)}, {2, 1, 1}},
+      {"sqrt after ldx", {ld1, fe::ctl(fe::kLdx, 1, 0, 1), fe::ctl(fe::kSqrt, 0, 0, 0)}, {2, 1, fe::kSqrtClocks - 1}},
+      {"jump on A after shl by an immediate 0", {fe::imm(fe::kShl, 0), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 1}},
+      // ... and after one that writes it: a bubble.
+      {"jump on A after shl by an immediate 1", {fe::imm(fe::kShl, 1), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 2}},
+      {"jump on A after txa", {fe::ctl(fe::kTxa, 1, 0, 0), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 2}},
+      {"jump on A after min", {ld1, fe::imm(fe::kMin, 0), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 2, 2}},
+      {"tax after and", {ld1, fe::imm(fe::kAnd, 1), fe::ctl(fe::kTax, 2, 0, 0)}, {2, 1, 2}},
       {"sqrt", {ld1, fe::ctl(fe::kSqrt, 0, 0, 0), ld2}, {2, fe::kSqrtClocks, 1}},
       {"min, then a load", {ld1, fe::imm(fe::kMin, 0), ld2}, {2, 2, 1}},
       {"after a wait", {fe::ctl(fe::kWait, 0, 0, 1), ld2}, {2, 2}},

@@ -18,13 +18,13 @@
 #           it (host/fpga/scale_table.h scale_scene; 40 MHz, the AD7476A's
 #           first band at 1 MS/s): 32 DFT channels in 6 lanes at KS + 8 =
 #           40 clocks a sample, the barrel shifter and the neuron unit.
-#  s18m:    the same for 18x18, the ECP5 rows' 1 MS/s skin since
-#           2026-11-24: 36 channels in 6 lanes, a frame's sample 44 clocks.
-#  s20m:    20x20 at 1 MS/s with the ADC on its own 40 MHz clock
-#           (ADC_CLK_HZ, rtl/stream_cdc.v) and the core at 45 MHz: 40
-#           channels in 7 lanes, 3 Mbaud;
-#  s22m:    22x22 the same way, the ECP5 rows' 1 MS/s skin since
-#           2026-11-25: the core at 50 MHz, 44 channels in 7 lanes, 2 Mbaud.
+#  s18m:    the same for 18x18: 36 channels in 6 lanes, a frame's sample
+#           44 clocks;
+#  s20m:    the same for 20x20, the largest skin whose engine keeps up at
+#           40 MHz (since 2026-11-27): 40 channels in 7 lanes, 48 clocks;
+#  s22m:    22x22, the ECP5 rows' 1 MS/s skin, with the ADC on its own
+#           40 MHz clock (ADC_CLK_HZ, rtl/stream_cdc.v) and the core at
+#           45 MHz: 44 channels in 8 lanes, 3 Mbaud.
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
 set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
@@ -60,17 +60,16 @@ eskin_verilate(${exe} Vdtmf_top_s18m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top
   -GKROM_HEX=\"${dtmf_dir}/scale_18x18_1msps.krom.hex\")
 set(dtmf_s20m ${dtmf_s16m})
 list(TRANSFORM dtmf_s20m REPLACE "^-GKS=.*" "-GKS=40")
-list(TRANSFORM dtmf_s20m REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=45000000")
-list(TRANSFORM dtmf_s20m REPLACE "^-GADC_CLK_HZ=.*" "-GADC_CLK_HZ=40000000")
-list(TRANSFORM dtmf_s20m REPLACE "^-GBAUD=.*" "-GBAUD=3000000")
 list(TRANSFORM dtmf_s20m REPLACE "^-GSDFT_LANES=.*" "-GSDFT_LANES=7")
 eskin_verilate(${exe} Vdtmf_top_s20m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s20m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_20x20_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_20x20_1msps.krom.hex\")
 set(dtmf_s22m ${dtmf_s20m})
 list(TRANSFORM dtmf_s22m REPLACE "^-GKS=.*" "-GKS=44")
-list(TRANSFORM dtmf_s22m REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=50000000")
-list(TRANSFORM dtmf_s22m REPLACE "^-GBAUD=.*" "-GBAUD=2000000")
+list(TRANSFORM dtmf_s22m REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=45000000")
+list(TRANSFORM dtmf_s22m REPLACE "^-GADC_CLK_HZ=.*" "-GADC_CLK_HZ=40000000")
+list(TRANSFORM dtmf_s22m REPLACE "^-GBAUD=.*" "-GBAUD=3000000")
+list(TRANSFORM dtmf_s22m REPLACE "^-GSDFT_LANES=.*" "-GSDFT_LANES=8")
 eskin_verilate(${exe} Vdtmf_top_s22m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s22m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_22x22_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_22x22_1msps.krom.hex\")
@@ -89,10 +88,10 @@ target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_S10UNIT_PARAMS="${dtmf_s10unit_str}" DTMF_TOP_S10UNIT_CLK_HZ=24000000
   DTMF_TOP_S16M_PARAMS="${dtmf_s16m_str}" DTMF_TOP_S16M_CLK_HZ=40000000
   DTMF_TOP_S18M_PARAMS="${dtmf_s18m_str}" DTMF_TOP_S18M_CLK_HZ=40000000
-  DTMF_TOP_S20M_PARAMS="${dtmf_s20m_str}" DTMF_TOP_S20M_CLK_HZ=45000000
-  DTMF_TOP_S22M_PARAMS="${dtmf_s22m_str}" DTMF_TOP_S22M_CLK_HZ=50000000)
+  DTMF_TOP_S20M_PARAMS="${dtmf_s20m_str}" DTMF_TOP_S20M_CLK_HZ=40000000
+  DTMF_TOP_S22M_PARAMS="${dtmf_s22m_str}" DTMF_TOP_S22M_CLK_HZ=45000000)
 target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode eskin_fpga)
 # Verilator 5.006 leaves an unused delayed copy of power_on_reset's
-# synchroniser in the code it writes for the two-clock builds (s20m, s22m):
+# synchroniser in the code it writes for the two-clock build (s22m):
 # GCC's -Wunused-but-set-variable on generated code, not ours.
 target_compile_options(${exe} PRIVATE -Wno-unused-but-set-variable)

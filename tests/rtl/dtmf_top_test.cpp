@@ -83,9 +83,9 @@ const Build kS16M{"scenes/neuroskin2.yaml", "scale_16x16_1msps", DTMF_TOP_S16M_P
 const Build kS18M{"scenes/neuroskin2.yaml", "scale_18x18_1msps", DTMF_TOP_S18M_PARAMS,
                   DTMF_TOP_S18M_CLK_HZ, 6, true, true, 18, 1e6};
 const Build kS20M{"scenes/neuroskin2.yaml", "scale_20x20_1msps", DTMF_TOP_S20M_PARAMS,
-                  DTMF_TOP_S20M_CLK_HZ, 7, true, true, 20, 1e6, 40000000};
+                  DTMF_TOP_S20M_CLK_HZ, 7, true, true, 20, 1e6};
 const Build kS22M{"scenes/neuroskin2.yaml", "scale_22x22_1msps", DTMF_TOP_S22M_PARAMS,
-                  DTMF_TOP_S22M_CLK_HZ, 7, true, true, 22, 1e6, 40000000};
+                  DTMF_TOP_S22M_CLK_HZ, 8, true, true, 22, 1e6, 40000000};
 
 struct BuildSetup {
   eskin::sim::Scene scene;
@@ -599,44 +599,42 @@ TEST(DtmfTop, ScaleTable16x16AtOneMegasampleOnTheEcp5Core) {
                                                                                         38, 40);
 }
 
-// The ECP5 rows' 1 MS/s skin on 2026-11-25 until the ADC got a clock of
-// its own, and still the largest one-clock 1 MS/s build: 18x18 at 40 MHz,
-// 36 DFT channels in 6 lanes. The first whole-top run where a frame's sample
-// takes longer than the sample period: F = KS + 8 = 44 clocks against
-// P = 40 (the ADC holds one sample, and every skipped sample, S = 6
-// ceil(36 / 6) + 2 = 38 clocks, gives 2 of the 4 back, so the delay is
-// gone two samples later). The engine takes 34 811 of the frame's 40 000
-// clocks under the stress load, a frame's most packets and the longest
-// command (host/fpga/engine_load.h); the run checks that no frame is lost
-// on these signals and that every packet equals the chain's.
+// 18x18 at 40 MHz, 36 DFT channels in 6 lanes. The first whole-top run
+// where a frame's sample takes longer than the sample period: F = KS + 8 =
+// 44 clocks against P = 40 (the ADC holds one sample, and every skipped
+// sample, S = 6 ceil(36 / 6) + 2 = 38 clocks, gives 2 of the 4 back, so
+// the delay is gone two samples later). The run checks that no frame is
+// lost on these signals and that every packet equals the chain's.
 TEST(DtmfTop, ScaleTable18x18AtOneMegasampleOnTheEcp5Core) {
   scale_run_at_one_megasample<Vdtmf_top_s18m, eskin::hls::DtmfChainSizes<18, 18, 128>>(kS18M, 44,
                                                                                         38, 40);
 }
 
-// 20x20 at 1 MS/s, the ECP5 rows' since: its engine (41 285 clocks a
-// frame under the stress load) does not fit the 40 MHz frame of the ADC's
-// band, so the ULX3S flow gives the ADC its own 40 MHz clock (the PLL's
-// CLKOS) and the core 45 MHz: samples cross in rtl/stream_cdc.v, a sample every 45 clocks give
-// or take one (P = 44 in the budget), a frame at least 44 999 clocks.
-// 40 DFT channels in 7 lanes: a frame's sample takes KS + 8 = 48 clocks,
-// any other 6 ceil(40 / 7) + 2 = 38. The bench runs both clocks free (no
-// fixed phase: hls::dtmf_top_clock_budget's margin) with the ADC model
-// on adc_clk's edges checking the AD7476A's pin timing there. Clean run,
-// every packet equal to the chain's, as above.
-TEST(DtmfTop, ScaleTable20x20AtOneMegasampleWithTheAdcOnItsOwnClock) {
+// 20x20 at 40 MHz, the largest one-clock 1 MS/s build since the engine
+// reads A without a bubble after an instruction that leaves it alone
+// (2026-11-27): 38 120 of the frame's 40 000 clocks under the stress load,
+// a frame's most packets and the longest command (host/fpga/engine_load.h);
+// 41 285 before, when it needed a core clock of its own. 40 channels in 7
+// lanes: a frame's sample F = KS + 8 = 48 clocks against P = 40, any other
+// 6 ceil(40 / 7) + 2 = 38.
+TEST(DtmfTop, ScaleTable20x20AtOneMegasampleOnTheEcp5Core) {
   scale_run_at_one_megasample<Vdtmf_top_s20m, eskin::hls::DtmfChainSizes<20, 20, 128>>(kS20M, 48,
-                                                                                        38, 44);
+                                                                                        38, 40);
 }
 
-// 22x22 at 1 MS/s, the ECP5 rows' skin since the spike events moved into
-// the unit's loops: engine 48 640 clocks a frame (stress), so the core at
-// 50 MHz (a frame at least 49 999 clocks; P = 49) beside the ADC's 40 MHz;
-// 44 channels in 7 lanes: a frame's sample 52 clocks, any other 6 ceil(44 /
-// 7) + 2 = 44. A clock ratio of 5 : 4, against 20x20's 9 : 8.
+// 22x22 at 1 MS/s, the ECP5 rows' skin: its engine (44 412 clocks a frame,
+// stress load) does not fit the 40 MHz frame of the ADC's band, so the
+// ULX3S flow gives the ADC its own 40 MHz clock (the PLL's CLKOS) and the
+// core 45 MHz: samples cross in rtl/stream_cdc.v, a sample every 45 clocks
+// give or take one (P = 44 in the budget), a frame at least 44 999 clocks.
+// 44 DFT channels in 8 lanes: a frame's sample takes KS + 8 = 52 clocks,
+// any other 6 ceil(44 / 8) + 2 = 38. The bench runs both clocks free (no
+// fixed phase: hls::dtmf_top_clock_budget's margin; a ratio of 9 : 8) with
+// the ADC model on adc_clk's edges checking the AD7476A's pin timing
+// there. Clean run, every packet equal to the chain's, as above.
 TEST(DtmfTop, ScaleTable22x22AtOneMegasampleWithTheAdcOnItsOwnClock) {
   scale_run_at_one_megasample<Vdtmf_top_s22m, eskin::hls::DtmfChainSizes<22, 22, 128>>(kS22M, 52,
-                                                                                        44, 49);
+                                                                                        38, 44);
 }
 
 }  // namespace
