@@ -1,5 +1,5 @@
 // `eskin bitstream --board icebreaker|ulx3s [--scene SCENE.yaml] [--out DIR]
-//  [--seed N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]`:
+//  [--seed N] [--seeds N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]`:
 // builds the core the scene needs (host/fpga/flow.h): its DTMF skin's
 // (parameters from hls/dtmf_top_config.h, microcode and constants from
 // hls/dtmf_ucode.h), its Hall sensors' (sim/hall_top_spec.h, with their I2C
@@ -46,6 +46,7 @@ struct BitstreamArgs {
   std::string out;
   std::string device;
   int seed = 1;
+  int seeds = 1;
   double clk_mhz = 0;
   std::string engine_load = "scene";
   bool engine_load_given = false;  // a Hall-only scene has no engine to load
@@ -86,6 +87,7 @@ int run_scale_table(const BitstreamArgs& a) {
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/scale" : a.out;
   opt.seed = a.seed;
+  opt.seeds = a.seeds;
   // The CSV is rewritten after every probe, so an interrupted run keeps
   // what it measured; it is read again each time (and replaced by a
   // rename), so runs of other targets at the same time keep theirs.
@@ -152,6 +154,7 @@ int run_bitstream(const BitstreamArgs& a) {
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/" + board.name : a.out;
   opt.seed = a.seed;
+  opt.seeds = a.seeds;
   opt.clk_hz = std::lround(a.clk_mhz * 1e6);
   opt.load = a.engine_load == "stress" ? eskin::fpga::LoadPolicy::Stress
                                        : eskin::fpga::LoadPolicy::Scene;
@@ -206,7 +209,14 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--out", args->out,
                   "Output directory (default build/bitstream/BOARD; scale table: "
                   "build/bitstream/scale); must not be under /tmp for ECP5");
-  sub->add_option("--seed", args->seed, "nextpnr placer seed")->capture_default_str();
+  sub->add_option("--seed", args->seed, "nextpnr placer seed (the first one tried)")
+      ->capture_default_str();
+  sub->add_option("--seeds", args->seeds,
+                  "Placer seeds to try: a build that fits but misses timing is placed again "
+                  "at the next seed, up to this many runs (the report names the seed; the "
+                  "scale table's probes too, its CSV has a seed column)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   sub->add_option("--device", args->device, "ulx3s: ECP5 size 25k, 45k or 85k (default 85k)");
   sub->add_option("--clk-mhz", args->clk_mhz,
                   "Core clock (default: the slowest the board makes at which the skin's core "

@@ -31,7 +31,10 @@ enum class LoadPolicy { Scene, Stress };
 struct FlowOptions {
   std::string source_dir;  // the eskin source tree (rtl/, scripts/, constraints/)
   std::string out_dir;     // where the wrapper, logs, reports and bitstream go
-  int seed = 1;            // nextpnr placer seed
+  int seed = 1;            // nextpnr placer seed (the first one tried)
+  // Placer seeds to try: a design that fits but misses timing is placed
+  // again at seed + 1, ... until one meets it, `seeds` runs at most.
+  int seeds = 1;
   LoadPolicy load = LoadPolicy::Scene;
   long clk_hz = 0;         // 0: the slowest board clock (not below the board's
                            // default) at which the core keeps up
@@ -85,7 +88,8 @@ struct FlowReport {
   std::string bitstream;             // path, empty if none was written
   std::string failure;               // why it failed, with the numbers
   std::string log;                   // the tools' combined output
-  double seconds = 0;                // wall time of the tools
+  double seconds = 0;                // wall time of the tools (every seed tried)
+  int seed = 0, seeds_tried = 0;     // the placer seed of this report; how many ran
 
   bool ok() const { return fits && meets_timing && !bitstream.empty(); }
   const Resource* resource(const std::string& name) const;

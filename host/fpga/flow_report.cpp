@@ -181,6 +181,8 @@ std::string report_json(const FlowReport& r) {
   j["bitstream"] = r.bitstream;
   j["failure"] = r.failure;
   j["tool_seconds"] = r.seconds;
+  j["placer_seed"] = r.seed;
+  j["placer_seeds_tried"] = r.seeds_tried;
   return j.dump(2) + "\n";
 }
 
@@ -200,8 +202,10 @@ std::string report_table(const FlowReport& r) {
     }
   }
   if (!r.clocks.empty()) {
-    t += fmt::format("\n{:<28} {:>9} {:>13} {:>7}\n", "clock net", "Fmax MHz", "required MHz",
-                     "slack");
+    t += fmt::format("\n{:<28} {:>9} {:>13} {:>7}   (placer seed {}{})\n", "clock net",
+                     "Fmax MHz", "required MHz", "slack", r.seed,
+                     r.seeds_tried > 1 ? fmt::format(", the last of {} tried", r.seeds_tried)
+                                       : std::string());
     for (const auto& c : r.clocks)
       t += fmt::format("{:<28} {:>9.1f} {:>13.1f} {:>6.0f}%\n", c.net, c.achieved_mhz,
                        c.required_mhz, 100.0 * (c.achieved_mhz / c.required_mhz - 1.0));

@@ -119,6 +119,7 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
       worst = c.achieved_mhz / c.required_mhz;
       row.fmax_mhz = c.achieved_mhz;
     }
+  row.seed = r.seed > 0 ? r.seed : 1;  // 0: stopped before the tools
   row.seconds = r.seconds;
   row.failure = r.failure;
   return row;
@@ -201,7 +202,7 @@ namespace {
 const char* kHeader =
     "target,board,device,sample_hz,rows,cols,window,step,clk_hz,adc_clk_hz,shifter,neurons,fits,"
     "meets_timing,"
-    "logic_used,logic_available,dsp_used,dsp_available,ram_used,ram_available,spram_used,"
+    "logic_used,logic_available,dsp_used,dsp_available,ram_used,ram_available,spram_used,seed,"
     "fmax_mhz,seconds,failure";
 
 std::string csv_field(const std::string& s) {
@@ -238,11 +239,12 @@ std::string scale_csv(const std::vector<ScaleRow>& rows) {
   std::string s = std::string(kHeader) + "\n";
   for (const auto& r : rows)
     s += fmt::format(
-        "{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{}\n",
+        "{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{}\n",
         r.target, r.board, r.device, r.sample_hz, r.rows, r.cols, r.window, r.step, r.clk_hz,
         r.adc_clk_hz, shifter_name(r.engine), neurons_name(r.engine), int(r.fits),
         int(r.meets_timing), r.logic_used, r.logic_available, r.dsp_used, r.dsp_available,
-        r.ram_used, r.ram_available, r.spram_used, r.fmax_mhz, r.seconds, csv_field(r.failure));
+        r.ram_used, r.ram_available, r.spram_used, r.seed, r.fmax_mhz, r.seconds,
+        csv_field(r.failure));
   return s;
 }
 
@@ -260,9 +262,9 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
     }
     if (line.empty()) continue;
     const auto f = split_csv(line);
-    if (f.size() != 24)
+    if (f.size() != 25)
       throw std::runtime_error(
-          fmt::format("scale table line {}: expected 24 fields, got {}", lineno, f.size()));
+          fmt::format("scale table line {}: expected 25 fields, got {}", lineno, f.size()));
     if ((f[10] != "serial" && f[10] != "barrel") || (f[11] != "engine" && f[11] != "unit"))
       throw std::runtime_error(fmt::format(
           "scale table line {}: expected shifter serial|barrel and neurons engine|unit, got {} {}",
@@ -289,9 +291,10 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
       r.ram_used = std::stol(f[18]);
       r.ram_available = std::stol(f[19]);
       r.spram_used = std::stol(f[20]);
-      r.fmax_mhz = std::stod(f[21]);
-      r.seconds = std::stod(f[22]);
-      r.failure = f[23];
+      r.seed = std::stoi(f[21]);
+      r.fmax_mhz = std::stod(f[22]);
+      r.seconds = std::stod(f[23]);
+      r.failure = f[24];
       rows.push_back(r);
     } catch (const std::logic_error&) {
       throw std::runtime_error(fmt::format("scale table line {}: a number field is not a number", lineno));
@@ -333,13 +336,14 @@ std::string scale_markdown(const std::vector<ScaleRow>& rows) {
         continue;
       }
       t += fmt::format(
-          "| {} | {} | {}x{} | {} | {} | {} | {:g} MHz{} | {}/{} | {}/{} | {}/{} | {:.1f} MHz | {} |\n",
+          "| {} | {} | {}x{} | {} | {} | {} | {:g} MHz{} | {}/{} | {}/{} | {}/{} | {:.1f} MHz{} | {} |\n",
                        tg.label, khz(fs), best->rows, best->cols, best->rows + best->cols,
                        best->window, variant_name(best->engine), best->clk_hz / 1e6,
                        best->adc_clk_hz > 0 ? fmt::format(" (ADC {:g})", best->adc_clk_hz / 1e6)
                                             : std::string(),
                        best->logic_used, best->logic_available, best->dsp_used,
                        best->dsp_available, best->ram_used, best->ram_available, best->fmax_mhz,
+                       best->seed != 1 ? fmt::format(" (seed {})", best->seed) : std::string(),
                        why);
     }
   return t;

@@ -76,6 +76,7 @@ struct ScaleRow {
   bool fits = false, meets_timing = false;
   long logic_used = 0, logic_available = 0, dsp_used = 0, dsp_available = 0;
   long ram_used = 0, ram_available = 0, spram_used = 0;
+  int seed = 1;  // the placer seed of the run reported (FlowReport::seed)
   double fmax_mhz = 0, seconds = 0;
   std::string failure;
   bool ok() const { return fits && meets_timing; }

@@ -184,10 +184,15 @@ TEST(ScaleTable, CsvRoundTripAndFitHint) {
   c.sample_hz = 1e6;
   c.rows = c.cols = 4;  // passes at the other rate only
   c.adc_clk_hz = 40000000;  // with the ADC on its own clock
+  c.seed = 3;               // placed at the third seed tried
   const auto rows = parse_scale_csv(scale_csv({a, b, c}));
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[0].adc_clk_hz, 0);
   EXPECT_EQ(rows[2].adc_clk_hz, 40000000);
+  EXPECT_EQ(rows[0].seed, 1);
+  EXPECT_EQ(rows[2].seed, 3);
+  EXPECT_NE(scale_markdown(rows).find("17.2 MHz (seed 3)"), std::string::npos)
+      << scale_markdown(rows);
   EXPECT_EQ(rows[1].failure, b.failure);
   EXPECT_EQ(rows[0].logic_used, 4000);
   EXPECT_DOUBLE_EQ(rows[0].fmax_mhz, 17.25);
@@ -291,7 +296,7 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   EXPECT_EQ(slower_engine_hint(ice, sc, r), "");
 }
 // The packets are paced for the link the chosen clock gives. An 18x18 skin
-// at 35 kS/s on the ULX3S (engine 32 981 clocks a frame on 2026-11-27)
+// at 35 kS/s on the ULX3S (engine 32 675 clocks a frame on 2026-11-27)
 // runs at 35 MHz, whose exact UART rate is 1 Mbaud (35 MHz is no multiple
 // of 2 or 3 MHz); the plan thins the amplitude and taxel packets so that
 // 1.5 x their bytes per frame fit the link (hls/dtmf_top_config.h): 1.5 x
@@ -315,8 +320,8 @@ TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   const auto params =
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
   EXPECT_EQ(param(params, "BAUD"), "1000000");
-  // 24x24 at 35 kS/s: its engine sets the clock (about 53 000 clocks a
-  // 35-sample frame of 1 ms, 52 610 on 2026-11-27: 55 MHz, far above the
+  // 24x24 at 35 kS/s: its engine sets the clock (about 51 500 clocks a
+  // 35-sample frame of 1 ms, 51 482 on 2026-11-27: 55 MHz, far above the
   // ADC's 1 MHz and the DFT's 10.2, its 290 clocks a sample), and the
   // flow's messages give that figure.
   const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 24, 35000.0),
@@ -498,13 +503,13 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
 
 // At 1 MS/s the AD7476A's SCLK ties the ADC to a 37.3-40 MHz clock (or
 // 74.7-80: SCLK = a / (2 H) <= 20 MHz with A - 28 H clocks of acquisition
-// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (38 120 of
-// 40 000 clocks on 2026-11-27): one clock. A 22x22 skin's (44 412) does
+// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (37 740 of
+// 40 000 clocks on 2026-11-27): one clock. A 22x22 skin's (43 950) does
 // not, and 75 MHz is beyond the ECP5 build's Fmax (about 50): the ULX3S
 // gives the ADC a clock of its own from the same PLL (VCO / CLKOS_DIV,
 // 40 MHz, the fastest that converts) and the core the slowest clock whose
 // frame, floor(STEP clk A / a) - 1 clocks, holds the engine and whose
-// sample period holds the DFT's lanes: 45 MHz (44 999 >= 44 412; the
+// sample period holds the DFT's lanes: 45 MHz (44 999 >= 43 950; the
 // ULX3S makes no 44 MHz). The iCE40 has no such clock; mixed_top
 // (own_adc_clock false) neither.
 TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {
