@@ -68,8 +68,8 @@ struct DtmfTopSpec {
   // The hardware neuron unit (rtl/izhikevich_layer.v, NEURON_UNIT): the
   // engine hands it each neuron update (13 clocks, overlapped: 14 engine
   // clocks a neuron with level input, the spike test included) instead of
-  // running the izhikevich_layer routine (about 120 clocks with the barrel shifter,
-  // 210 without); the same packets, where the board flow puts it
+  // running the izhikevich_layer routine (about 120 clocks with the barrel
+  // shifter, 210 without); the same packets, where the board flow puts it
   // (host/fpga/board.h).
   bool neuron_unit = false;
 };

@@ -30,8 +30,9 @@
 // written; after st, out, lt, mpy, a shift by an immediate 0 or a control
 // instruction other than txa, sqrt and sqrtr it is final), reads DMEM
 // right after `st` (one DMEM port) or reads IO right after `out` (the
-// write lands at the same edge), and it never overlaps a `wait` or a shift whose count operand is 0 (their
-// last clock is known only in that clock).
+// write lands at the same edge), and it never overlaps a `wait` or a
+// shift whose count operand is 0 (their last clock is known only in that
+// clock).
 #pragma once
 
 #include <cstdint>
@@ -322,7 +323,8 @@ class FrameEngine {
     const bool reads = cls == fe::kMem && fn <= fe::kRnd;
     const bool reads_a = cls == fe::kCtl && ((fn == fe::kJ && (fe::field_of(w) & 3u) != 0) ||
                                              fn == fe::kTax || fn == fe::kSqrt || fn == fe::kSqrtr);
-    return overlap_ok_ && !(reads_a && prev_writes_a_) && !(prev_st_ && reads && fe::space_of(w) == fe::kDmem) &&
+    return overlap_ok_ && !(reads_a && prev_writes_a_) &&
+           !(prev_st_ && reads && fe::space_of(w) == fe::kDmem) &&
            !(prev_out_ && reads && fe::space_of(w) == fe::kIo);
   }
 

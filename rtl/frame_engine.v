@@ -22,8 +22,9 @@
 // take one clock. A waits for a clock of its own when it reads A (j on a
 // condition, tax, sqrt/sqrtr) while the B clock may write A, reads DMEM
 // after `st` (one port: SPRAM) or IO after `out`, and after a B whose
-// last clock is known only in it (wait, a loaded shift count of 0). The B clock is "last" by flip-flops only
-// (b_last), so no B-clock result reaches cycle A's enables.
+// last clock is known only in it (wait, a loaded shift count of 0). The
+// B clock is "last" by flip-flops only (b_last, b_writes_a), so no B-clock
+// result reaches cycle A's enables.
 // Memories: IMEM 2^IW x 32 ROM ($readmemh UCODE_HEX), KROM 2^KW x 32 ROM
 // (KROM_INIT, word k at [32k +: 32]), DMEM 2^DW x 32 single-port RAM, not
 // initialised: EBR for DW <= 9, SPRAM for DW >= 10 (ram_style "huge": two

@@ -441,6 +441,7 @@ TEST(FrameEngineModel, OverlapAndItsBubbles) {
   const uint32_t ld1 = fe::imm(fe::kLd, 1), ld2 = fe::imm(fe::kLd, 2);
   const uint32_t st5 = fe::mem(fe::kSt, fe::kDmem, 0, 0, 5);
   const uint32_t out3 = fe::mem(fe::kOut, fe::kIo, 0, 0, 3);
+  const uint32_t jne = fe::ctl(fe::kJ, 0, fe::kNe, 0), sqrt = fe::ctl(fe::kSqrt, 0, 0, 0);
   const Case cases[] = {
       {"two loads", {ld1, ld2}, {2, 1}},
       {"DMEM read after st", {ld1, st5, fe::mem(fe::kLd, fe::kDmem, 0, 0, 5)}, {2, 1, 2}},
@@ -454,19 +455,19 @@ TEST(FrameEngineModel, OverlapAndItsBubbles) {
       {"jump on A", {ld1, fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 2}},
       {"tax", {ld1, fe::ctl(fe::kTax, 1, 0, 0)}, {2, 2}},
       // A read of A after an instruction that leaves A alone: no bubble.
-      {"jump on A after st", {ld1, st5, fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 1, 1}},
+      {"jump on A after st", {ld1, st5, jne}, {2, 1, 1}},
       {"jump on A after out", {ld1, out3, fe::ctl(fe::kJ, 0, fe::kEq, 0)}, {2, 1, 1}},
-      {"jump on A after lt", {ld1, fe::imm(fe::kLt, 3), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 1, 1}},
-      {"jump on A after mpy", {ld1, fe::imm(fe::kMpy, 3), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 1, 1}},
+      {"jump on A after lt", {ld1, fe::imm(fe::kLt, 3), jne}, {2, 1, 1}},
+      {"jump on A after mpy", {ld1, fe::imm(fe::kMpy, 3), jne}, {2, 1, 1}},
       {"tax after addx", {ld1, fe::ctl(fe::kAddx, 1, 0, 1), fe::ctl(fe::kTax, 2, 0, 0)}, {2, 1, 1}},
-      {"sqrt after ldx", {ld1, fe::ctl(fe::kLdx, 1, 0, 1), fe::ctl(fe::kSqrt, 0, 0, 0)}, {2, 1, fe::kSqrtClocks - 1}},
-      {"jump on A after shl by an immediate 0", {fe::imm(fe::kShl, 0), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 1}},
+      {"sqrt after ldx", {ld1, fe::ctl(fe::kLdx, 1, 0, 1), sqrt}, {2, 1, fe::kSqrtClocks - 1}},
+      {"jump on A after shl by an immediate 0", {fe::imm(fe::kShl, 0), jne}, {2, 1}},
       // ... and after one that writes it: a bubble.
-      {"jump on A after shl by an immediate 1", {fe::imm(fe::kShl, 1), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 2}},
-      {"jump on A after txa", {fe::ctl(fe::kTxa, 1, 0, 0), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 2}},
-      {"jump on A after min", {ld1, fe::imm(fe::kMin, 0), fe::ctl(fe::kJ, 0, fe::kNe, 0)}, {2, 2, 2}},
+      {"jump on A after shl by an immediate 1", {fe::imm(fe::kShl, 1), jne}, {2, 2}},
+      {"jump on A after txa", {fe::ctl(fe::kTxa, 1, 0, 0), jne}, {2, 2}},
+      {"jump on A after min", {ld1, fe::imm(fe::kMin, 0), jne}, {2, 2, 2}},
       {"tax after and", {ld1, fe::imm(fe::kAnd, 1), fe::ctl(fe::kTax, 2, 0, 0)}, {2, 1, 2}},
-      {"sqrt", {ld1, fe::ctl(fe::kSqrt, 0, 0, 0), ld2}, {2, fe::kSqrtClocks, 1}},
+      {"sqrt", {ld1, sqrt, ld2}, {2, fe::kSqrtClocks, 1}},
       {"min, then a load", {ld1, fe::imm(fe::kMin, 0), ld2}, {2, 2, 1}},
       {"after a wait", {fe::ctl(fe::kWait, 0, 0, 1), ld2}, {2, 2}},
       {"after shl by an immediate 0", {fe::imm(fe::kShl, 0), ld2}, {2, 1}},
