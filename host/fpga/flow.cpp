@@ -42,6 +42,14 @@ const Resource* FlowReport::resource(const std::string& name) const {
   return nullptr;
 }
 
+const ClockResult* FlowReport::slowest_clock() const {
+  const ClockResult* worst = nullptr;
+  for (const auto& c : clocks)
+    if (!worst || c.achieved_mhz / c.required_mhz < worst->achieved_mhz / worst->required_mhz)
+      worst = &c;
+  return worst;
+}
+
 void parse_nextpnr_report(const std::string& json_text, FlowReport& r) {
   const auto j = nlohmann::json::parse(json_text);
   r.resources.clear();

@@ -93,6 +93,9 @@ struct FlowReport {
 
   bool ok() const { return fits && meets_timing && !bitstream.empty(); }
   const Resource* resource(const std::string& name) const;
+  // The clock with the least margin (Fmax / required; the first of equals),
+  // nullptr without clocks.
+  const ClockResult* slowest_clock() const;
 };
 
 // The DFT lanes (rtl/sdft_lanes.v) for a plan on board `b`: the fewest, up

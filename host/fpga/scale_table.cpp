@@ -113,12 +113,7 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
   take({"ICESTORM_SPRAM"}, row.spram_used, nullptr);
   // The clock with the least margin (the core's; the ULX3S oscillator net
   // has next to no logic).
-  double worst = 1e300;
-  for (const auto& c : r.clocks)
-    if (c.achieved_mhz / c.required_mhz < worst) {
-      worst = c.achieved_mhz / c.required_mhz;
-      row.fmax_mhz = c.achieved_mhz;
-    }
+  if (const ClockResult* c = r.slowest_clock()) row.fmax_mhz = c->achieved_mhz;
   row.seed = r.seed > 0 ? r.seed : 1;  // 0: stopped before the tools
   row.seconds = r.seconds;
   row.failure = r.failure;

@@ -159,16 +159,6 @@ void run_once(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowRepo
   }
 }
 
-// The slowest clock's margin (achieved / required), 0 without clocks.
-double timing_ratio(const FlowReport& r) {
-  double worst = 0;
-  for (size_t i = 0; i < r.clocks.size(); ++i) {
-    const double q = r.clocks[i].achieved_mhz / r.clocks[i].required_mhz;
-    if (i == 0 || q < worst) worst = q;
-  }
-  return worst;
-}
-
 }  // namespace
 
 void run_tools(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowReport& r) {
@@ -190,7 +180,9 @@ void run_tools(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowRep
     r.seed = o.seed;
     r.seeds_tried = i + 1;
     if (!r.fits || r.meets_timing) return;
-    if (i == 0 || timing_ratio(r) > best_ratio) best_ratio = timing_ratio(r), best_seed = o.seed;
+    const ClockResult* c = r.slowest_clock();
+    const double ratio = c ? c->achieved_mhz / c->required_mhz : 0;
+    if (i == 0 || ratio > best_ratio) best_ratio = ratio, best_seed = o.seed;
   }
   if (opt.seeds > 1)
     r.failure += fmt::format(" (placer seeds {} to {} tried; seed {} came closest, {:.1f} % of the "
