@@ -43,6 +43,7 @@ enum DtmfIoPort : uint16_t {
   kIoIzV = 0x20D,        // r: neuron unit: v after the last update; w: v operand
   kIoIzU = 0x20E,        // r: neuron unit: U after the last update; w: U operand
   kIoOutByte = 0x200,    // w: one byte to the output FIFO
+  kIoOutWord = 0x209,    // w: two bytes to it, bits 7:0 then 15:8 (OutFifoPort)
   kIoFrameDone = 0x201,  // w: release the frame buffer
   kIoCmdPop = 0x202,     // w: drop the command FIFO head byte
   kIoSdftK = 0x203,      // w: carrier index of the next DFT write, bit 8 = last
@@ -134,6 +135,30 @@ inline std::array<int64_t, kNeuronBlock> neuron_block(const IzhikevichConfig& n)
 // clocks); before that a start is ignored (busy; the port model below
 // throws on one).
 constexpr int kIzhikevichUnitClocks = 13;
+
+// rtl/dtmf_top.v's output FIFO write ports as the engine sees them, for the
+// C++ models of the top. kIoOutByte writes one byte; kIoOutWord two, bits
+// 7:0 in the clock of the `out` and bits 15:8 from a register in the next
+// clock, so that clock must not write the FIFO (the top would lose a
+// byte): write() throws on that, so every microcode test checks it.
+struct OutFifoPort {
+  uint64_t held_clock = ~uint64_t(0);  // the clock that writes a word's second byte
+  // An IO write at `clock`; false when `a` is not a FIFO port. `out` (may
+  // be null) gets the bytes.
+  bool write(uint16_t a, uint32_t d, uint64_t clock, std::vector<uint8_t>* out) {
+    if (a != kIoOutByte && a != kIoOutWord) return false;
+    if (clock == held_clock)
+      throw std::logic_error("the microcode wrote the output FIFO in clock " +
+                             std::to_string(clock) +
+                             ", which writes the second byte of the word written before it");
+    if (out) out->push_back(uint8_t(d));
+    if (a == kIoOutWord) {
+      if (out) out->push_back(uint8_t(d >> 8));
+      held_clock = clock + 1;
+    }
+    return true;
+  }
+};
 
 // rtl/dtmf_top.v's neuron unit ports (NEURON_UNIT = 1) as the engine sees
 // them, for the C++ models of the top (its IO objects): constant words as
@@ -289,7 +314,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 9);
   alloc("AMPC", 3), alloc("SEL", 3), alloc("SEND", 3);  // frame counts per stream (amp, tax, status)
   for (const char* n :
-       {"VT", "TPASS", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "SPKDL", "PKTDROP",
+       {"VT", "TPASS", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "PKTDROP",
         "ACC", "REJ", "LRT", "LRR", "LRS", "CTYPE", "CSEQ", "CLEN", "PT", "PTT", "PLEN", "TLO",
         "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
         "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "SEB", "NX", "ND", "NXS",
@@ -363,7 +388,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
            {"IO_ADC_OVR", kIoAdcOvr},  {"IO_RX_ERR", kIoRxErr},     {"IO_CRC_ERR", kIoCrcErr},
            {"IO_FRM_ERR", kIoFrmErr},  {"IO_FRAME_OVR", kIoFrameOvr},
            {"IO_SDFT_BUSY", kIoSdftBusy}, {"IO_CMD_OVF", kIoCmdOvf},
-           {"IO_OUT_BYTE", kIoOutByte}, {"IO_FRAME_DONE", kIoFrameDone},
+           {"IO_OUT_BYTE", kIoOutByte}, {"IO_OUT_WORD", kIoOutWord}, {"IO_FRAME_DONE", kIoFrameDone},
            {"IO_CMD_POP", kIoCmdPop},  {"IO_SDFT_K", kIoSdftK},     {"IO_SDFT_INC", kIoSdftInc},
            {"IO_CLEAR", kIoClear},     {"IO_IZ_X", kIoIzX},         {"IO_IZ_V", kIoIzV},
            {"IO_IZ_U", kIoIzU},        {"IO_IZ_GO", kIoIzGo},       {"IO_IZ_UGO", kIoIzUGo},

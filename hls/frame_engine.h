@@ -92,7 +92,7 @@ constexpr uint32_t ctl(uint32_t fn, uint32_t x, uint32_t cond, uint32_t addr) {
 
 // Clocks per instruction (docs/frame_engine.md, "Timing").
 constexpr uint32_t kSqrtClocks = 52;      // 1 + 50 root steps + 1
-constexpr uint32_t kSqrtClocksFast = 27;  // FAST_SHIFT: 1 + 25 root steps + 1
+constexpr uint32_t kSqrtClocksFast = 15;  // FAST_SHIFT: 1 + 13 root steps (2 digits) + 1
 
 }  // namespace fe
 
@@ -101,8 +101,9 @@ struct FrameEngineConfig {
   static constexpr int DW = 8;
   static constexpr int KW = 8;
   // rtl/frame_engine.v's FAST_SHIFT: shl/shr/rnd by a barrel shifter (one
-  // clock for any count) instead of one bit per clock, and sqrt/sqrtr a root
-  // digit a clock instead of two. Timing only: every result is the same.
+  // clock for any count) instead of one bit per clock, and sqrt/sqrtr two
+  // root digits a clock instead of one every two. Timing only: every result
+  // is the same.
   static constexpr bool FAST_SHIFT = false;
 };
 

@@ -117,6 +117,7 @@ module dtmf_top #(
   wire [31:0] cap_data;
   wire [31:0] io_rdata = io_frame_q ? cap_data : io_reg;
   wire        wr_out = io_we && io_waddr == 16'h0200;
+  wire        wr_word = io_we && io_waddr == 16'h0209;  // two bytes (below)
   wire        wr_done = io_we && io_waddr == 16'h0201;
   wire        wr_pop = io_we && io_waddr == 16'h0202;
   wire        wr_sdk = io_we && io_waddr == 16'h0203;
@@ -265,8 +266,20 @@ module dtmf_top #(
   wire fifo_valid, fifo_ready;
   wire [7:0] fifo_data;
   wire [15:0] out_free, out_overflows;
+  // IO_OUT_WORD writes bits 7:0 now and bits 15:8 from word_hi in the next
+  // clock, which the microcode leaves free (hls::OutFifoPort checks that in
+  // every microcode test): the FIFO keeps its one write port, and a 16-bit
+  // field costs the engine one `out` instead of out, shr 8, out.
+  reg        word_held;
+  reg  [7:0] word_hi;
+  always @(posedge clk) begin
+    word_held <= !rst && wr_word;
+    if (wr_word) word_hi <= io_wdata[15:8];
+  end
+  wire       fifo_in_valid = wr_out || wr_word || word_held;
+  wire [7:0] fifo_in_data = word_held ? word_hi : io_wdata[7:0];
   byte_fifo #(.DEPTH(OUT_DEPTH)) u_out (
-      .clk(clk), .rst(rst), .in_valid(wr_out), .in_data(io_wdata[7:0]),
+      .clk(clk), .rst(rst), .in_valid(fifo_in_valid), .in_data(fifo_in_data),
       .out_valid(fifo_valid), .out_ready(fifo_ready), .out_data(fifo_data), .free(out_free),
       .overflows(out_overflows));
   wire [7:0] link_seq;
@@ -379,7 +392,7 @@ module dtmf_top #(
   wire p_frame_fire /* verilator public_flat_rd */ = frame_pending;
   wire [31:0] p_frame_t /* verilator public_flat_rd */ = frame_t;
   wire p_frame_done /* verilator public_flat_rd */ = wr_done;
-  wire p_out_fire /* verilator public_flat_rd */ = wr_out;
+  wire p_out_fire /* verilator public_flat_rd */ = wr_out || wr_word;
   wire [15:0] p_out_overflows /* verilator public_flat_rd */ = out_overflows;
   wire p_fr_fire /* verilator public_flat_rd */ = link_fire;
   wire [7:0] p_seq /* verilator public_flat_rd */ = link_seq;

@@ -6,7 +6,7 @@
 // Organisation (area first: one 48-bit adder, one logic unit, a 1-bit/clock
 // shifter and a 2-clock/digit square root, all writing A; FAST_SHIFT = 1
 // adds a barrel shifter, so shl/shr/rnd take one B clock for any count, and
-// the root takes a digit a clock):
+// the root takes two digits a clock):
 //   cycle A  IR (the IMEM read port's output register) is decoded; ea =
 //            addr + X[x] addresses DMEM, KROM and the IO bus (io_re); jumps,
 //            calls, returns and X writes take effect at the end of A, and
@@ -79,8 +79,9 @@ module frame_engine #(
   localparam [3:0] K_J = 4'd0, K_DJNZ = 4'd1, K_CALL = 4'd2, K_RET = 4'd3, K_WAIT = 4'd4,
                    K_SQRT = 4'd5, K_SQRTR = 4'd6, K_LDX = 4'd7, K_ADDX = 4'd8,
                    K_TAX = 4'd9, K_TXA = 4'd10;
-  // 25 root digits: two clocks each, one with FAST_SHIFT (A moves two bits a clock)
-  localparam [5:0] SQ_STEPS = FAST_SHIFT != 0 ? 6'd25 : 6'd50;
+  // 25 root digits: two clocks each; with FAST_SHIFT two digits a clock (A
+  // moves four bits a clock; the first clock takes two zero bits and two of A)
+  localparam [5:0] SQ_STEPS = FAST_SHIFT != 0 ? 6'd13 : 6'd50;
 
   // ---- architectural state ---------------------------------------------------
   reg  [31:0]  ir;
@@ -218,10 +219,12 @@ module frame_engine #(
                     (u_f_15 & w[15]) | (u_f_h & w[31]) | (u_f_h15 & w[30]),
                     ({7{u_f_mid}} & w[14:8]) | ({7{u_f_h}} & w[30:24]) | ({7{u_f_h15}} & w[29:23]),
                     ({8{u_f_lo}} & w[7:0]) | ({8{u_f_h}} & w[23:16]) | ({8{u_f_h15}} & w[22:15])};
-  // One step of a shift or of sqrt; with FAST_SHIFT only sqrt steps (two
-  // bits left: its radicand's next two bits go to rem each clock).
-  wire [47:0] sha = FAST_SHIFT != 0 ? {acc[45:0], 2'b00} :
-                    u_left ? {acc[46:0], 1'b0} : {acc[47], acc[47:1]};
+  // One step of a shift or of sqrt; with FAST_SHIFT only sqrt steps (four
+  // bits left: its radicand's next four bits go to rem each clock; two in
+  // the first, behind two zero bits: sq_first below).
+  wire sq_first = cnt == SQ_STEPS;
+  wire [47:0] sha = FAST_SHIFT == 0 ? (u_left ? {acc[46:0], 1'b0} : {acc[47], acc[47:1]}) :
+                    sq_first ? {acc[45:0], 2'b00} : {acc[43:0], 4'b0000};
   // Barrel shifts by cnt (FAST_SHIFT; constant-0 u_bar removes them
   // otherwise). A 49-bit right shift of {A, 0} gives floor(A / 2^n) in its
   // top 48 bits and bit n - 1 of A, rnd's rounding bit, in bit 0 (the sign
@@ -281,13 +284,22 @@ module frame_engine #(
   wire [27:0] dif = {1'b0, rsh} - {1'b0, root, 2'b01};
   wire dig = !dif[27] && !sqneg;
   wire unused_dif = dif[26];           // 0 whenever dig = 1: rem <= 2 root < 2^26
-  // FAST_SHIFT: a digit every clock, from rem and A's top two bits at once.
-  wire [27:0] rsh2 = {rem, acc[47:46]};
-  wire [28:0] dif2 = {1'b0, rsh2} - {2'b00, root, 2'b01};
-  wire dig2 = !dif2[28] && !sqneg;
-  // Both 0 where used: with dig2, rem <= 2 root < 2^26; without, rsh2 < 4 root
-  // + 1 < 2^26 (root < 2^24 before its last digit).
-  wire [3:0] unused_sq2 = {dif2[27:26], rsh2[27:26]};
+  // FAST_SHIFT: two digits every clock, the step above twice in a row on
+  // A's next four bits: {0, 0, A[47:46]} first (a leading 0 digit, then
+  // A's first: 26 digits in 13 clocks, the 0 shifted out of root at the
+  // end), then A[47:44] as A moves four bits a clock.
+  wire [3:0] sq4 = sq_first ? {2'b00, acc[47:46]} : acc[47:44];
+  wire [27:0] rsa = {rem, sq4[3:2]};
+  wire [28:0] dfa = {1'b0, rsa} - {2'b00, root, 2'b01};
+  wire dga = !dfa[28] && !sqneg;
+  wire [25:0] rma = dga ? dfa[25:0] : rsa[25:0];
+  wire [24:0] rta = {root[23:0], dga};  // root[24] is the leading 0 until the last clock
+  wire [27:0] rsb = {rma, sq4[1:0]};
+  wire [28:0] dfb = {1'b0, rsb} - {2'b00, rta, 2'b01};
+  wire dgb = !dfb[28] && !sqneg;
+  // All 0 where used: with a digit, rem <= 2 root < 2^26; without, the
+  // trial value < 4 root + 1 < 2^26 (root < 2^24 before its last digits).
+  wire [7:0] unused_sq2 = {dfa[27:26], rsa[27:26], dfb[27:26], rsb[27:26]};
 
   // ---- control flow -----------------------------------------------------------
   wire zf = acc == 48'd0;
@@ -389,8 +401,8 @@ module frame_engine #(
       root <= 25'd0;
     end else if (bact && u_sq && u_step) begin
       if (FAST_SHIFT != 0) begin
-        rem <= dig2 ? dif2[25:0] : rsh2[25:0];
-        root <= {root[23:0], dig2};
+        rem <= dgb ? dfb[25:0] : rsb[25:0];
+        root <= {rta[23:0], dgb};
       end else begin
         rem <= (cnt[0] && dig) ? dif[25:0] : rsh[25:0];
         if (cnt[0]) root <= {root[23:0], dig};

@@ -42,6 +42,7 @@ struct LoadIo {
   int cfg_k = 0;
   bool cfg_last = false;
   hls::IzhikevichUnitPort neuron;
+  hls::OutFifoPort fifo;  // checks the word port's rule; the bytes are not kept
 
   uint32_t io_read(uint16_t a, uint64_t clock) {
     if (a < 0x200) return a < frame.size() ? uint32_t(frame[a]) : 0u;
@@ -55,7 +56,7 @@ struct LoadIo {
     }
   }
   void io_write(uint16_t a, uint32_t d, uint64_t clock) {
-    if (neuron.write(a, d, clock)) return;
+    if (neuron.write(a, d, clock) || fifo.write(a, d, clock, nullptr)) return;
     switch (a) {
       case hls::kIoFrameDone: pending = false, done = true, done_clock = clock; break;
       case hls::kIoCmdPop: if (!cmd.empty()) cmd.pop_front(); break;

@@ -142,6 +142,7 @@ class TopModel {
     int ks = 0;
     size_t sdft_loads = 0;
     eskin::hls::IzhikevichUnitPort neuron;  // the plan's neuron unit (NEURON_UNIT)
+    eskin::hls::OutFifoPort fifo;           // its writes go to `out`
     uint32_t io_read(uint16_t a, uint64_t clock) {
       if (a < 0x200) return uint32_t(a < 2 * KS_MAX ? frame[a] : 0);
       if (uint32_t d = 0; neuron.read(a, d, clock)) return d;
@@ -156,9 +157,8 @@ class TopModel {
       }
     }
     void io_write(uint16_t a, uint32_t d, uint64_t clock) {
-      if (neuron.write(a, d, clock)) return;
+      if (neuron.write(a, d, clock) || fifo.write(a, d, clock, &out)) return;
       switch (a) {
-        case eskin::hls::kIoOutByte: out.push_back(uint8_t(d)); break;
         case eskin::hls::kIoFrameDone:
           pending = false;
           max_frame = std::max<uint64_t>(max_frame, clock - frame_start);

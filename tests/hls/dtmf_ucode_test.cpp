@@ -19,6 +19,8 @@
 #include "random_carriers.h"
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_top_config.h"
+#include "hls/frame_engine.h"
+#include "hls/frame_engine_asm.h"
 #include "hls/synapse_weights.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
@@ -474,6 +476,45 @@ TEST(DtmfUcode, SetCarrierIncFormsTheFrameIncrement) {
     }
     EXPECT_EQ(plan.step, fs == 1e6 ? 1000 : 35);
   }
+}
+
+// The output FIFO's word port (hls::OutFifoPort; rtl/dtmf_top.v 0x209): a
+// word's bits 15:8 take the FIFO in the clock after its `out`, so a FIFO
+// write in that clock throws, and one a clock later follows the word's
+// two bytes. On the engine's model, so that the clocks are the
+// instructions' own (`out`s one instruction apart are one clock apart).
+struct FifoIo {
+  hls::OutFifoPort fifo;
+  std::vector<uint8_t> out;
+  uint32_t io_read(uint16_t, uint64_t) { return 0; }
+  void io_write(uint16_t a, uint32_t d, uint64_t c) { fifo.write(a, d, c, &out); }
+  uint16_t events(uint64_t) { return 0; }
+};
+std::vector<uint8_t> fifo_bytes(const std::string& body) {
+  hls::fe_asm::Options opt;
+  opt.symbols = {{"IO_OUT_BYTE", hls::kIoOutByte}, {"IO_OUT_WORD", hls::kIoOutWord}};
+  const auto prog = hls::fe_asm::assemble(body + "\nend: j end\n", "fifo_test", opt);
+  hls::FrameEngine<hls::FrameEngineConfig> e;
+  e.load_program(prog.words.data(), uint32_t(prog.words.size()));
+  FifoIo io;
+  for (size_t i = 0; i + 1 < prog.words.size(); ++i) e.step(io);
+  return io.out;
+}
+
+TEST(DtmfUcode, OutputWordPortsSecondByteTakesTheNextClock) {
+  using B = std::vector<uint8_t>;
+  EXPECT_EQ(fifo_bytes("ldi 0x1234\nout io[IO_OUT_WORD]\nldi 0x56\nout io[IO_OUT_BYTE]"),
+            (B{0x34, 0x12, 0x56}));
+  EXPECT_EQ(fifo_bytes("ldi 0xABCD\nout io[IO_OUT_WORD]\nshr 8\nout io[IO_OUT_WORD]"),
+            (B{0xCD, 0xAB, 0xAB, 0x00}));
+  EXPECT_THROW(fifo_bytes("ldi 0x1234\nout io[IO_OUT_WORD]\nout io[IO_OUT_BYTE]"),
+               std::logic_error);
+  EXPECT_THROW(fifo_bytes("ldi 0x1234\nout io[IO_OUT_WORD]\nout io[IO_OUT_WORD]"),
+               std::logic_error);
+  // Bytes may follow each other in consecutive clocks; a word may follow a byte.
+  EXPECT_EQ(fifo_bytes("ldi 0x0201\nout io[IO_OUT_BYTE]\nout io[IO_OUT_BYTE]\n"
+                       "out io[IO_OUT_WORD]"),
+            (B{0x01, 0x01, 0x01, 0x02}));
 }
 
 }  // namespace

@@ -268,11 +268,11 @@ TEST(FrameEngineModel, FastShiftSameResultsInOneClock) {
 // Square roots: r = floor(sqrt(A)) iff r^2 <= A < (r+1)^2; q = the nearest
 // integer iff (2q-1)^2 < 4A < (2q+1)^2 (no ties: 4A is never an odd square).
 
-// Clocks: 1 + 50 root steps + 1 (two clocks a digit), 1 + 25 + 1 with the
-// barrel shifter (a digit a clock).
+// Clocks: 1 + 50 root steps + 1 (two clocks a digit), 1 + 13 + 1 with the
+// barrel shifter (two digits a clock; 26 digits, the first a leading 0).
 template <class E>
 void check_roots(E& e, int64_t a) {
-  const uint32_t clocks = E::FAST_SHIFT ? 27u : 52u;
+  const uint32_t clocks = E::FAST_SHIFT ? 15u : 52u;
   TableIo io;
   e.set_pc(0);
   e.set_a(a);
