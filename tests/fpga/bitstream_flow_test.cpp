@@ -296,7 +296,7 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   EXPECT_EQ(slower_engine_hint(ice, sc, r), "");
 }
 // The packets are paced for the link the chosen clock gives. An 18x18 skin
-// at 35 kS/s on the ULX3S (engine 32 675 clocks a frame on 2026-11-27)
+// at 35 kS/s on the ULX3S (engine 30 772 clocks a frame late on 2026-11-27)
 // runs at 35 MHz, whose exact UART rate is 1 Mbaud (35 MHz is no multiple
 // of 2 or 3 MHz); the plan thins the amplitude and taxel packets so that
 // 1.5 x their bytes per frame fit the link (hls/dtmf_top_config.h): 1.5 x
@@ -320,8 +320,8 @@ TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   const auto params =
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
   EXPECT_EQ(param(params, "BAUD"), "1000000");
-  // 24x24 at 35 kS/s: its engine sets the clock (about 51 500 clocks a
-  // 35-sample frame of 1 ms, 51 482 on 2026-11-27: 55 MHz, far above the
+  // 24x24 at 35 kS/s: its engine sets the clock (about 49 000 clocks a
+  // 35-sample frame of 1 ms, 49 145 late on 2026-11-27: 50 MHz, far above the
   // ADC's 1 MHz and the DFT's 10.2, its 290 clocks a sample), and the
   // flow's messages give that figure.
   const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 24, 35000.0),
@@ -503,13 +503,13 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
 
 // At 1 MS/s the AD7476A's SCLK ties the ADC to a 37.3-40 MHz clock (or
 // 74.7-80: SCLK = a / (2 H) <= 20 MHz with A - 28 H clocks of acquisition
-// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (37 740 of
-// 40 000 clocks on 2026-11-27): one clock. A 22x22 skin's (43 950) does
+// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (35 742 of
+// 40 000 clocks late on 2026-11-27): one clock. A 22x22 skin's (41 725) does
 // not, and 75 MHz is beyond the ECP5 build's Fmax (about 50): the ULX3S
 // gives the ADC a clock of its own from the same PLL (VCO / CLKOS_DIV,
 // 40 MHz, the fastest that converts) and the core the slowest clock whose
 // frame, floor(STEP clk A / a) - 1 clocks, holds the engine and whose
-// sample period holds the DFT's lanes: 45 MHz (44 999 >= 43 950; the
+// sample period holds the DFT's lanes: 45 MHz (44 999 >= 41 725; the
 // ULX3S makes no 44 MHz). The iCE40 has no such clock; mixed_top
 // (own_adc_clock false) neither.
 TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {

@@ -22,9 +22,10 @@
 #           44 clocks;
 #  s20m:    the same for 20x20, the largest skin whose engine keeps up at
 #           40 MHz (since 2026-11-27): 40 channels in 7 lanes, 48 clocks;
-#  s22m:    22x22, the ECP5 rows' 1 MS/s skin, with the ADC on its own
-#           40 MHz clock (ADC_CLK_HZ, rtl/stream_cdc.v) and the core at
-#           45 MHz: 44 channels in 8 lanes, 3 Mbaud.
+#  s22m:    22x22 (the ECP5 rows' 1 MS/s skin until late on 2026-11-27),
+#           with the ADC on its own 40 MHz clock (ADC_CLK_HZ,
+#           rtl/stream_cdc.v) and the core at 45 MHz: 44 channels in 8
+#           lanes, 3 Mbaud.
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
 set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19

@@ -612,9 +612,9 @@ TEST(DtmfTop, ScaleTable18x18AtOneMegasampleOnTheEcp5Core) {
 
 // 20x20 at 40 MHz, the largest one-clock 1 MS/s build since the engine
 // reads A without a bubble after an instruction that leaves it alone
-// (2026-11-27): 37 740 of the frame's 40 000 clocks under the stress load,
-// a frame's most packets and the longest command (host/fpga/engine_load.h);
-// 41 285 before, when it needed a core clock of its own. 40 channels in 7
+// (2026-11-27): 35 742 of the frame's 40 000 clocks under the stress load,
+// a frame's most packets and the longest command (host/fpga/engine_load.h),
+// late that day; 41 285 before, when it needed a core clock of its own. 40 channels in 7
 // lanes: a frame's sample F = KS + 8 = 48 clocks against P = 40, any other
 // 6 ceil(40 / 7) + 2 = 38.
 TEST(DtmfTop, ScaleTable20x20AtOneMegasampleOnTheEcp5Core) {
@@ -622,10 +622,10 @@ TEST(DtmfTop, ScaleTable20x20AtOneMegasampleOnTheEcp5Core) {
                                                                                         38, 40);
 }
 
-// 22x22 at 1 MS/s, the ECP5 rows' skin: its engine (43 950 clocks a frame,
-// stress load) does not fit the 40 MHz frame of the ADC's band, so the
-// ULX3S flow gives the ADC its own 40 MHz clock (the PLL's CLKOS) and the
-// core 45 MHz: samples cross in rtl/stream_cdc.v, a sample every 45 clocks
+// 22x22 at 1 MS/s, the ECP5 rows' skin until late on 2026-11-27 (24x24 at
+// 50 MHz since): its engine (41 725 clocks a frame, stress load) does not
+// fit the 40 MHz frame of the ADC's band, so the ULX3S flow gives the ADC
+// its own 40 MHz clock (the PLL's CLKOS) and the core 45 MHz: samples cross in rtl/stream_cdc.v, a sample every 45 clocks
 // give or take one (P = 44 in the budget), a frame at least 44 999 clocks.
 // 44 DFT channels in 8 lanes: a frame's sample takes KS + 8 = 52 clocks,
 // any other 6 ceil(44 / 8) + 2 = 38. The bench runs both clocks free (no
