@@ -24,7 +24,8 @@ namespace eskin::hls {
 
 // IO ports of the frame engine in rtl/dtmf_top.v (reads / writes). The top
 // decodes reads partially (bit 9: frame or register; bits 3:0: which
-// register) and writes fully; the microcode uses only these addresses.
+// register; with neuron lanes bit 12: a spike flag, bit 13: an event) and
+// writes fully; the microcode uses only these addresses.
 enum DtmfIoPort : uint16_t {
   kIoFrame = 0x000,      // r: frame token k: re at 2k, im at 2k + 1 (k = 0..KS-1)
   kIoFrameT = 0x200,     // r: t of the frame's newest sample
@@ -53,12 +54,20 @@ enum DtmfIoPort : uint16_t {
   kIoIzGo = 0x207,       // w: neuron unit: the x_prev operand; starts the update
   kIoIzUGo = 0x208,      // w: neuron unit: the U operand; starts a level-input update a clock later
   kIoIzCfg = 0x220,      // w: neuron unit: constant word w of the layer block at 0x220 + w
+  // Neuron lanes (NEURON_LANES: rtl/izhikevich_lanes.v, IzhikevichLanesPort below):
+  kIoIzN = 0x20A,        // w: the next neuron to start or initialise; the event count restarts
+  kIoIzXGo = 0x20B,      // w: that neuron's x: starts its update on the next lane
+  kIoIzSV = 0x20C,       // w: v of the next initialisation
+  kIoIzSU = 0x20F,       // w: U: initialises the neuron (v, U, x_prev 0, flag 0)
+  kIoIzEvN = 0x20F,      // r: spike events since the last kIoIzN
+  kIoIzFlag = 0x1000,    // r: at 0x1000 + C + n: neuron n's flag (bit 1), n - C's (2), n + C's (0)
+  kIoIzEv = 0x2000,      // r: the neuron of event i at 0x2000 + i
 };
 // Engine events (the `wait` mask bits) of rtl/dtmf_top.v.
 enum DtmfEvent : uint16_t {
   kEvFramePending = 1,
   kEvCmdAvail = 2,
-  kEvIzDone = 4,  // the neuron unit holds the results of its last update
+  kEvIzDone = 4,  // the neuron unit holds the results of its last update (lanes: all written back)
 };
 
 constexpr int kNeuronBlock = 20;  // words of constants per layer (NCS)
@@ -127,13 +136,16 @@ inline std::array<int64_t, kNeuronBlock> neuron_block(const IzhikevichConfig& n)
           n.gain_shift < 0 ? -n.gain_shift : 0, n.x_shift, n.input_change ? 1 : 0, 0, 0, 0};
 }
 
-// Clocks of one update of the neuron unit (rtl/izhikevich_layer.v): an
-// update started by the write in clock c shows its results, and raises
-// kEvIzDone, from clock c + kIzhikevichUnitClocks on; until then the ports
-// show the previous update's results. The unit takes the next start from
-// clock c + kIzhikevichUnitClocks + 1 on (back to back, one update per 14
-// clocks); before that a start is ignored (busy; the port model below
-// throws on one).
+// Clocks of one update of the neuron unit (rtl/izhikevich_layer.v): its
+// results come kIzhikevichUnitClocks edges after the handshake edge, the
+// end of the clock c of the write that starts it, so they show, and raise
+// kEvIzDone, from clock c + kIzhikevichUnitClocks + 1 on; until then the
+// ports show the previous update's results. The unit takes the next start
+// from that clock on (back to back, one update per 14 clocks); before
+// that a start is ignored (busy; the port model below throws on one).
+// (Until 2026-11-27 the model showed the results a clock early, from
+// c + 13: no loop read them there, but a wait for them ended a clock
+// before the RTL's; tests/rtl/izhikevich_lanes_test.cpp measures it.)
 constexpr int kIzhikevichUnitClocks = 13;
 
 // rtl/dtmf_top.v's output FIFO write ports as the engine sees them, for the
@@ -175,6 +187,7 @@ struct IzhikevichUnitPort {
   };
   Results shown, next;  // the ports until done_clock, and from it on
   uint64_t done_clock = 0, ready_clock = 0;  // results shown; the next start taken
+  uint64_t cfg_clock = 0;  // a constant word lands at or after the update's last edge
 
   // The layer's constants from the words (neuron_block's inverse; shift
   // counts: the low 6 bits, as the engine's shifts take them; the gain
@@ -199,11 +212,11 @@ struct IzhikevichUnitPort {
   bool write(uint16_t a, uint32_t d, uint64_t clock) {
     if (!present) return false;
     if ((a & 0xFFE0) == kIoIzCfg) {
-      if (clock < done_clock)
+      if (clock < cfg_clock)
         throw std::logic_error("the microcode wrote the neuron unit's constant word " +
                                std::to_string(a & 31) + " in clock " + std::to_string(clock) +
                                ", while an update ran (until clock " +
-                               std::to_string(done_clock) + ")");
+                               std::to_string(cfg_clock) + ")");
       return cfg[a & 31] = d, true;
     }
     switch (a) {
@@ -236,8 +249,9 @@ struct IzhikevichUnitPort {
     one.set_state(0, v, u, x_prev);
     next.spike = one.update(0, x);
     next.v = one.v(0), next.u = one.U(0);
-    done_clock = clock + kIzhikevichUnitClocks;
-    ready_clock = done_clock + 1;
+    cfg_clock = clock + kIzhikevichUnitClocks;  // its write lands at the last edge: safe
+    done_clock = cfg_clock + 1;
+    ready_clock = done_clock;
   }
   // An IO read in `clock` (the engine's cycle A); false when `a` is not a
   // unit port.
@@ -253,6 +267,160 @@ struct IzhikevichUnitPort {
   }
   uint16_t events(uint64_t clock) const {
     return present && clock >= done_clock ? kEvIzDone : 0;
+  }
+};
+
+// rtl/izhikevich_lanes.v's ports as the frame engine sees them in
+// rtl/dtmf_top.v (NEURON_LANES), for the C++ models of the top (beside
+// IzhikevichUnitPort): the clock-exact spec of the lanes' timing, and the
+// checks of the contract the microcode must keep (each throws
+// std::logic_error naming the clock).
+//
+// The lanes keep v, U and x_prev of every neuron n (layer l's neuron i is
+// l T + i), its spike flag and the layer's spike events; the engine writes
+// each neuron's x (kIoIzXGo), which starts its update on the next lane,
+// and reads the flags a column of three at a time (kIoIzFlag: a taxel's
+// flag with those of the rows above and below, for synapse_weights).
+// The update is hls/izhikevich_layer.h's IzhikevichLayer::update (whose
+// header states the Q formats, rounding and saturation); nothing here is
+// arithmetic of its own.
+//
+// Timing, from the clock c of the x write (its `out`'s cycle B): the lane
+// starts in c + 1; the results are written back at the end of clock
+// c + kLaneWriteBack (15); a read of the flag in that clock is undefined in
+// the block RAM (throws), earlier ones give the old flag, later ones the new.
+// Events, their count and kEvIzDone (all written back) from clock c +
+// kLaneWriteBack + 1. A lane takes its next start kLaneRate clocks after
+// its last, so the same lane's x writes must be kLaneRate apart.
+struct IzhikevichLanesPort {
+  // A lane's results show in clock c + 1 + kIzhikevichUnitClocks + 1 (its
+  // start is registered: clock c + 1), and are written back at its end.
+  static constexpr int kLaneWriteBack = kIzhikevichUnitClocks + 2;
+  static constexpr int kLaneRate = kIzhikevichUnitClocks + 1;       // a unit's start to start
+
+  int lanes = 0;          // the plan's neuron_lanes: 0, the ports are not decoded
+  int flag_offset = 0;    // the skin's columns C: F(C + n) is neuron n's flag
+  IzhikevichUnitPort unit;  // the constant words and their decoding (one copy in every lane)
+
+  struct Neuron {
+    int32_t v = 0, u = 0, x_prev = 0;
+    bool flag = false, old_flag = false;
+    uint64_t written = 0;  // the clock whose end wrote v .. flag
+  };
+  std::vector<Neuron> neurons;
+  std::vector<uint32_t> events;  // the layer's spiking neurons, in order
+  uint32_t idx = 0;              // the next neuron to start or initialise
+  int32_t init_v = 0;
+  int next_lane = 0;
+  std::vector<uint64_t> lane_ready;  // the first clock each lane takes a start
+  uint64_t idle_clock = 0;           // all written back from this clock on
+
+  // n neurons (2 T), the skin's columns, `count` lanes (0: absent).
+  void configure(int count, int n, int columns) {
+    lanes = count, flag_offset = columns;
+    neurons.assign(size_t(n), Neuron{});
+    lane_ready.assign(size_t(count), 0);
+  }
+
+  bool write(uint16_t a, uint32_t d, uint64_t clock) {
+    if (lanes == 0) return false;
+    if ((a & 0xFFE0) == kIoIzCfg) {
+      busy_check("wrote the neurons' constant word " + std::to_string(a & 31), clock);
+      unit.cfg[a & 31] = d;
+      return true;
+    }
+    switch (a) {
+      case kIoIzN:
+        busy_check("set the next neuron", clock);
+        idx = d, events.clear();
+        return true;
+      case kIoIzXGo: return start(int32_t(d), clock), true;
+      case kIoIzSV: init_v = int32_t(d); return true;
+      case kIoIzSU: {
+        busy_check("initialised neuron " + std::to_string(idx), clock);
+        Neuron& s = at(idx, clock);
+        s.old_flag = s.flag;
+        s = Neuron{init_v, int32_t(d), 0, false, s.old_flag, clock};
+        ++idx;
+        return true;
+      }
+      default: return false;
+    }
+  }
+
+  bool read(uint16_t a, uint32_t& d, uint64_t clock) const {
+    if (lanes == 0) return false;
+    if ((a & 0xF000) == kIoIzFlag) {  // a column: F(f - C) << 2 | F(f) << 1 | F(f + C)
+      const int f = int(a & 0x0FFF);
+      d = flag(f - flag_offset, clock) << 2 | flag(f, clock) << 1 | flag(f + flag_offset, clock);
+      return true;
+    }
+    if ((a & 0xF000) == kIoIzEv || a == kIoIzEvN) {
+      if (clock < idle_clock)
+        throw std::logic_error("the microcode read the spike events in clock " +
+                               std::to_string(clock) + ", before the updates end (clock " +
+                               std::to_string(idle_clock) + ")");
+      if (a == kIoIzEvN) return d = uint32_t(events.size()), true;
+      const size_t i = a & 0x0FFF;
+      if (i >= events.size())
+        throw std::logic_error("the microcode read spike event " + std::to_string(i) + " of " +
+                               std::to_string(events.size()) + " in clock " +
+                               std::to_string(clock));
+      return d = events[i], true;
+    }
+    return false;
+  }
+
+  uint16_t events_at(uint64_t clock) const {
+    return lanes != 0 && clock >= idle_clock ? kEvIzDone : 0;
+  }
+
+ private:
+  // F(f): neuron f - C's flag as a read in `clock` sees it; 0 where no
+  // neuron's flag is (the row above layer 0, past the last layer).
+  uint32_t flag(int f, uint64_t clock) const {
+    const int n = f - flag_offset;
+    if (n < 0 || size_t(n) >= neurons.size()) return 0;
+    const Neuron& s = neurons[size_t(n)];
+    if (clock == s.written && s.written != 0)
+      throw std::logic_error("the microcode read neuron " + std::to_string(n) +
+                             "'s spike flag in clock " + std::to_string(clock) +
+                             ", the clock that writes it");
+    return (clock > s.written ? s.flag : s.old_flag) ? 1u : 0u;
+  }
+  Neuron& at(uint32_t n, uint64_t clock) {
+    if (n >= neurons.size())
+      throw std::logic_error("the microcode addressed neuron " + std::to_string(n) + " of " +
+                             std::to_string(neurons.size()) + " in clock " +
+                             std::to_string(clock));
+    return neurons[n];
+  }
+  void busy_check(const std::string& what, uint64_t clock) const {
+    if (clock < idle_clock)
+      throw std::logic_error("the microcode " + what + " in clock " + std::to_string(clock) +
+                             ", while the neuron lanes ran (until clock " +
+                             std::to_string(idle_clock) + ")");
+  }
+  void start(int32_t x, uint64_t clock) {
+    uint64_t& ready = lane_ready[size_t(next_lane)];
+    if (clock + 1 < ready)
+      throw std::logic_error("the microcode started neuron " + std::to_string(idx) +
+                             " in clock " + std::to_string(clock) + " on lane " +
+                             std::to_string(next_lane) + ", which takes a start from clock " +
+                             std::to_string(ready) + " (the write from clock " +
+                             std::to_string(ready - 1) + ")");
+    Neuron& s = at(idx, clock);
+    IzhikevichLayer<1> one(unit.config());
+    one.set_state(0, s.v, s.u, s.x_prev);
+    const bool spike = one.update(0, x);
+    s.old_flag = s.flag;
+    s.v = one.v(0), s.u = one.U(0), s.x_prev = one.x_prev(0), s.flag = spike;
+    s.written = clock + kLaneWriteBack;
+    if (spike) events.push_back(idx);
+    ready = clock + 1 + kLaneRate;
+    next_lane = (next_lane + 1) % lanes;
+    idle_clock = s.written + 1;
+    ++idx;
   }
 };
 
@@ -306,10 +474,13 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   alloc("PHASE", 2 * K), alloc("HIST", lk), alloc("HEAD", 1), alloc("REM", K);
   alloc("PL", K), alloc("NPL", 1), alloc("SITE", T), alloc("MAG", K);
   alloc("ROOT", R), alloc("CRT", C);  // line_roots: rows, then columns for the taxel loop
-  alloc("G", T), alloc("X2IN", T);  // layer inputs: neuron_unit needs X2IN = G + T
-  alloc("NV", 2 * T), alloc("NU", 2 * T), alloc("NXP", 2 * T);  // neuron l T + i
-  alloc("SZ", C);                  // zero, never written: synapse_weights' row above row 0
-  alloc("S0", T), alloc("S1", T);  // and S1 = S0 + T
+  alloc("G", T);
+  if (!p.spec.neuron_lanes) {  // the lanes keep the neurons' state and flags themselves
+    alloc("X2IN", T);          // layer 1's input: neuron_unit needs X2IN = G + T
+    alloc("NV", 2 * T), alloc("NU", 2 * T), alloc("NXP", 2 * T);  // neuron l T + i
+    alloc("SZ", C);                  // zero, never written: synapse_weights' row above row 0
+    alloc("S0", T), alloc("S1", T);  // and S1 = S0 + T
+  }
   alloc("SWT", 512);  // synapse_weights: the sum for each 3x3 spike pattern (its 9 bits)
   alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 9);
   alloc("AMPC", 3), alloc("SEL", 3), alloc("SEND", 3);  // frame counts per stream (amp, tax, status)
@@ -318,7 +489,8 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
         "ACC", "REJ", "LRT", "LRR", "LRS", "CTYPE", "CSEQ", "CLEN", "PT", "PTT", "PLEN", "TLO",
         "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
         "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "SEB", "NX", "ND", "NXS",
-        "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NUN", "SWMASK", "SWD", "SWM", "SWI"})
+        "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NUN", "SWMASK", "SWD", "SWM", "SWI",
+        "NDROP"})
     alloc(n, 1);
   im.dend = at;
   sym("DEND", at);
@@ -335,7 +507,6 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   kc("KC_I32MIN", INT32_MIN), kc("KC_I32MAX", INT32_MAX), kc("KC_UMIN", izh::kUMin);
   kc("KC_UMAX", izh::kUMax), kc("KC_VMIN", izh::kVMin), kc("KC_VPEAK", izh::kVPeak);
   kc("KC_WOFF", izh::kWOffset), kc("KC_RECIP", p.taxel.recip), kc("KC_C", C);
-  kc("KC_GHALF", int64_t(1) << (p.taxel.recip_shift + 13));  // 2^(GRND - 1): a taxel's rounding
   kc("KC_NCS", kNeuronBlock), kc("KC_LAYER1", 1 << 16), kc("KC_MASKRES", 0xE0);
   kc("KC_NCOEF", dim * dim), kc("KC_STEP", p.step);
   constexpr int kQ = 1 << (10 - 2);  // quarter table of CarrierDemix<..., TW = 10>
@@ -379,6 +550,10 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   sym("STEP", p.step), sym("MAXSPK", p.max_spikes), sym("LK", lk), sym("NCS", kNeuronBlock);
   sym("DEMIX", demix), sym("GHOST", p.spec.ghost), sym("NEURONS", p.spec.spikes);
   sym("NEURON_UNIT", p.spec.neuron_unit), sym("EV_IZ_DONE", kEvIzDone);
+  sym("NEURON_LANES", p.spec.neuron_lanes);
+  // Layer 0's spike flags for synapse_weights: S0 in DMEM (SZ, zeros, the
+  // row above it; S1 below), or the lanes' columns of three at FLAGS + n.
+  if (p.spec.neuron_lanes) sym("FLAGS", kIoIzFlag + C);
   sym("CF", 14), sym("TW", 10), sym("QUART", kQ);
   sym("SHL_Q", p.mag_shift == 0 ? 2 : 0), sym("SHR_Q", p.mag_shift == 0 ? 0 : 2 * p.mag_shift - 2);
   sym("GRND", p.taxel.recip_shift + 14);
@@ -392,7 +567,9 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
            {"IO_CMD_POP", kIoCmdPop},  {"IO_SDFT_K", kIoSdftK},     {"IO_SDFT_INC", kIoSdftInc},
            {"IO_CLEAR", kIoClear},     {"IO_IZ_X", kIoIzX},         {"IO_IZ_V", kIoIzV},
            {"IO_IZ_U", kIoIzU},        {"IO_IZ_GO", kIoIzGo},       {"IO_IZ_UGO", kIoIzUGo},
-           {"IO_IZ_CFG", kIoIzCfg},    {"IO_IZ_SPIKE", kIoIzSpike}})
+           {"IO_IZ_CFG", kIoIzCfg},    {"IO_IZ_SPIKE", kIoIzSpike}, {"IO_IZ_N", kIoIzN},
+           {"IO_IZ_XGO", kIoIzXGo},    {"IO_IZ_SV", kIoIzSV},       {"IO_IZ_SU", kIoIzSU},
+           {"IO_IZ_EVN", kIoIzEvN},    {"IO_IZ_EV", kIoIzEv}})
     sym(n, v);
   return im;
 }
@@ -405,7 +582,7 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
                                                  const std::string& krom_hex) {
   using dtmf_top_detail::clog2;
   auto i = [](long v) { return std::to_string(v); };
-  return {{"CLK_HZ", i(p.spec.clk_hz)},
+  std::vector<VerilogParam> v = {{"CLK_HZ", i(p.spec.clk_hz)},
           {"SAMPLE_HZ", i(std::lround(p.spec.sample_hz))},
           {"BAUD", i(p.spec.baud)},
           {"KS", i(p.ks)},
@@ -423,6 +600,11 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
           {"ADC_CLK_HZ", i(p.spec.adc_clk_hz)},
           {"UCODE_HEX", "\"" + ucode_hex + "\""},
           {"KROM_HEX", "\"" + krom_hex + "\""}};
+  if (p.spec.neuron_lanes)  // (without lanes dtmf_top's defaults, unused)
+    v.insert(v.end() - 3, {{"NEURON_LANES", i(p.spec.neuron_lanes)},
+                           {"NEURON_BITS", i(std::max(1, clog2(2L * p.T)))},
+                           {"COLS", i(p.C)}});
+  return v;
 }
 
 }  // namespace eskin::hls

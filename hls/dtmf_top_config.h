@@ -72,6 +72,12 @@ struct DtmfTopSpec {
   // shifter, 210 without); the same packets, where the board flow puts it
   // (host/fpga/board.h).
   bool neuron_unit = false;
+  // With neuron_unit: 0, the engine keeps the neurons' state; 2..8, that
+  // many units keep it themselves (rtl/izhikevich_lanes.v, NEURON_LANES):
+  // the engine sends each neuron's input (3 clocks a neuron instead of 14)
+  // and reads the spike flags and events back. For boards with room (about
+  // 1300 LUT4 and a multiplier a lane, the state in block RAM).
+  int neuron_lanes = 0;
 };
 
 // A Verilog parameter override: value in Verilog syntax (e.g. "16'd35").
@@ -155,6 +161,12 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
     throw std::invalid_argument("sdft_lanes: expected 1.." + std::to_string(std::min(16, ks)) +
                                 " (at most 16, at most the " + std::to_string(ks) +
                                 " DFT channels), got " + std::to_string(s.sdft_lanes));
+  if (s.neuron_lanes != 0 && (!s.neuron_unit || s.neuron_lanes < 5 || s.neuron_lanes > 8 ||
+                              2 * p.T > 2048))
+    throw std::invalid_argument("neuron_lanes: expected 0, or 5..8 with the neuron unit and at "
+                                "most 1024 taxels, got " + std::to_string(s.neuron_lanes) +
+                                (s.neuron_unit ? "" : " without the unit") + " for " +
+                                std::to_string(p.T) + " taxels");
   p.mag_shift = clog2(p.N) > 5 ? clog2(p.N) - 5 : 0;
   p.step = int(std::lround(s.frame_ms * s.sample_hz / 1000.0));
   if (p.step < 1)

@@ -75,6 +75,15 @@ module dtmf_top #(
     // barrel shifter, 210 without); the same packets.
     // The board flow decides (host/fpga/board.h).
     parameter integer NEURON_UNIT = 0,
+    // With NEURON_UNIT: 0, the engine keeps the neurons' state and drives
+    // the one unit; 2..8, that many units that keep the state themselves
+    // (rtl/izhikevich_lanes.v: the engine sends each neuron's x, 3 clocks
+    // a neuron, and reads spike flags and events back), for the ECP5s.
+    // NEURON_BITS: neuron index bits (2 T <= 2^NEURON_BITS), COLS: the
+    // skin's columns (synapse_weights reads a taxel's column of 3 flags).
+    parameter integer NEURON_LANES = 0,
+    parameter integer NEURON_BITS = 11,
+    parameter integer COLS = 32,
     // 0: the ADC runs on clk. Else the frequency of adc_clk, on which it
     // runs instead (its samples cross to clk in rtl/stream_cdc.v): the
     // AD7476A's SCLK ties a 1 MS/s ADC to 37.3-40 MHz (or 74.7-80), and
@@ -99,7 +108,8 @@ module dtmf_top #(
         (EXT_LINK != 0 && EXT_LINK != 1) || (HALL_CMDS != 0 && HALL_CMDS != 1) ||
         (ENGINE_FAST_SHIFT != 0 && ENGINE_FAST_SHIFT != 1) ||
         SDFT_LANES < 1 || SDFT_LANES > 16 || SDFT_LANES > KS ||
-        (NEURON_UNIT != 0 && NEURON_UNIT != 1) || ADC_CLK_HZ < 0) begin : g_bad_params
+        (NEURON_UNIT != 0 && NEURON_UNIT != 1) || ADC_CLK_HZ < 0 ||
+        (NEURON_LANES != 0 && (NEURON_UNIT != 1 || NEURON_LANES < 2 || NEURON_LANES > 8))) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -114,8 +124,12 @@ module dtmf_top #(
   wire [31:0] io_wdata;
   reg  [31:0] io_reg;
   reg         io_frame_q;   // the read went to the frame buffer
+  reg         io_flag_q, io_ev_q;  // to the lanes' spike flags, events (NEURON_LANES)
   wire [31:0] cap_data;
-  wire [31:0] io_rdata = io_frame_q ? cap_data : io_reg;
+  wire [2:0]  lane_flags;
+  wire [NEURON_BITS-1:0] lane_ev;
+  wire [31:0] io_rdata = io_ev_q ? {{(32 - NEURON_BITS){1'b0}}, lane_ev} :
+                         io_flag_q ? {29'd0, lane_flags} : io_frame_q ? cap_data : io_reg;
   wire        wr_out = io_we && io_waddr == 16'h0200;
   wire        wr_word = io_we && io_waddr == 16'h0209;  // two bytes (below)
   wire        wr_done = io_we && io_waddr == 16'h0201;
@@ -129,6 +143,10 @@ module dtmf_top #(
   wire        wr_iz_v = io_we && io_waddr == 16'h020D;
   wire        wr_iz_u = io_we && io_waddr == 16'h020E;
   wire        wr_iz_cfg = io_we && io_waddr[15:5] == 11'h011;  // 0x220 + word
+  wire        wr_iz_n = io_we && io_waddr == 16'h020A;   // lanes: the next neuron
+  wire        wr_iz_xgo = io_we && io_waddr == 16'h020B; // lanes: its x; starts it
+  wire        wr_iz_sv = io_we && io_waddr == 16'h020C;  // lanes: v of an initialisation
+  wire        wr_iz_su = io_we && io_waddr == 16'h020F;  // lanes: U; initialises
 
   // ---------------- carrier table writes to the DFT ---------------------
   reg [7:0]  cfg_k;
@@ -321,8 +339,21 @@ module dtmf_top #(
   // the next one's replace them). The microcode keeps x_prev itself.
   wire        iz_done, iz_spike;
   wire [31:0] iz_v, iz_u;
+  wire [NEURON_BITS:0] lane_ev_count;
   generate
-    if (NEURON_UNIT != 0) begin : g_neuron_unit
+    if (NEURON_LANES != 0) begin : g_neuron_lanes
+      // The lanes keep the state; iz_done: every update written back.
+      izhikevich_lanes #(.LANES(NEURON_LANES), .NB(NEURON_BITS), .COLS(COLS)) u_lanes (
+          .clk(clk), .rst(rst), .cfg_we(wr_iz_cfg), .cfg_addr(io_waddr[4:0]), .idx_we(wr_iz_n),
+          .x_we(wr_iz_xgo), .sv_we(wr_iz_sv), .su_we(wr_iz_su), .data(io_wdata),
+          .flag_addr(io_raddr[NEURON_BITS:0]),
+          .flag_q(lane_flags), .ev_addr(io_raddr[NEURON_BITS-1:0]), .ev_q(lane_ev),
+          .ev_count(lane_ev_count), .idle(iz_done));
+      assign iz_spike = 1'b0;
+      assign iz_v = 32'd0;
+      assign iz_u = 32'd0;
+      wire unused_lanes = ^{wr_iz_x, wr_iz_go, wr_iz_ugo, wr_iz_v, wr_iz_u};
+    end else if (NEURON_UNIT != 0) begin : g_neuron_unit
       reg [31:0] op_x, op_v, op_u;
       reg        ugo_q;  // a U write of the clock before: start
       always @(posedge clk) begin
@@ -345,6 +376,12 @@ module dtmf_top #(
       assign iz_u = 32'd0;
       wire unused_neuron = ^{wr_iz_x, wr_iz_go, wr_iz_ugo, wr_iz_v, wr_iz_u, wr_iz_cfg};
     end
+    if (NEURON_LANES == 0) begin : g_no_lanes
+      assign lane_flags = 3'd0;
+      assign lane_ev = {NEURON_BITS{1'b0}};
+      assign lane_ev_count = {(NEURON_BITS + 1){1'b0}};
+      wire unused_lane_ports = ^{wr_iz_n, wr_iz_xgo, wr_iz_sv, wr_iz_su};
+    end
   endgenerate
 
   // ---------------- the frame engine -------------------------------------
@@ -360,7 +397,12 @@ module dtmf_top #(
   // the frame buffer (0x000-0x0FF) or the registers (0x200-0x20F, bits
   // 3:0); the microcode uses only these addresses (hls/dtmf_engine_config.h).
   // Both keep the path IMEM -> ea adder -> this register short.
+  // With lanes, bit 13 picks an event and bit 12 a spike flag (0x1000 +
+  // flag address; 0x2000 + event).
+  localparam LANES_ON = NEURON_LANES != 0;
   always @(posedge clk) begin
+    io_ev_q <= LANES_ON && io_raddr[13];
+    io_flag_q <= LANES_ON && !io_raddr[13] && io_raddr[12];
     io_frame_q <= !io_raddr[9];
     case (io_raddr[3:0])
       4'h0: io_reg <= frame_t;
@@ -378,7 +420,7 @@ module dtmf_top #(
       4'hC: io_reg <= {31'd0, iz_spike};
       4'hD: io_reg <= iz_v;
       4'hE: io_reg <= iz_u;
-      default: io_reg <= 32'd0;  // 0x20F: none (the unit's x_prev until 2026-11-24)
+      default: io_reg <= {{(31 - NEURON_BITS){1'b0}}, lane_ev_count};  // 0x20F: lanes' events
     endcase
   end
   wire unused_io = ^{io_re, io_raddr[15:10], io_raddr[8]};  // partial decode

@@ -44,6 +44,9 @@ module mixed_top #(
     parameter KROM_HEX = "",
     parameter integer SDFT_LANES = 1,
     parameter integer NEURON_UNIT = 0,
+    parameter integer NEURON_LANES = 0,  // dtmf_top's neuron lanes (and their sizes)
+    parameter integer NEURON_BITS = 11,
+    parameter integer COLS = 32,
     // One clock here: the ADC runs on clk (dtmf_top's ADC_CLK_HZ 0; the
     // board flow gives mixed scenes no ADC clock of their own).
     parameter integer ADC_CLK_HZ = 0,
@@ -109,7 +112,8 @@ module mixed_top #(
       .CLK_HZ(CLK_HZ), .SAMPLE_HZ(SAMPLE_HZ), .BAUD(BAUD), .KS(KS), .N(N), .ACC_W(ACC_W),
       .STEP(STEP), .IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .OUT_DEPTH(OUT_DEPTH),
       .ENGINE_FAST_SHIFT(ENGINE_FAST_SHIFT), .UCODE_HEX(UCODE_HEX), .KROM_HEX(KROM_HEX), .EXT_LINK(1),
-      .HALL_CMDS(DELTAS != 0 ? 1 : 0), .SDFT_LANES(SDFT_LANES), .NEURON_UNIT(NEURON_UNIT)
+      .HALL_CMDS(DELTAS != 0 ? 1 : 0), .SDFT_LANES(SDFT_LANES), .NEURON_UNIT(NEURON_UNIT),
+      .NEURON_LANES(NEURON_LANES), .NEURON_BITS(NEURON_BITS), .COLS(COLS)
   ) u_dtmf (
       .clk(clk), .adc_clk(clk), .rst_n(rst_n), .adc_cs_n(adc_cs_n), .adc_sclk(adc_sclk),
       .adc_sdata(adc_sdata), .uart_txd(), .uart_rxd(uart_rxd), .pkt_valid(pv[0]), .pkt_ready(pr[0]), .pkt_data(pd[7:0]));

@@ -51,7 +51,7 @@ struct BitstreamArgs {
   std::string engine_load = "scene";
   bool engine_load_given = false;  // a Hall-only scene has no engine to load
   std::string engine_shifter;      // "serial", "barrel"; empty: the board's
-  std::string neurons;             // "engine", "unit"; empty: the board's
+  std::string neurons;             // "engine", "unit", "lanes"; empty: the board's
   bool scale_table = false;
   eskin::fpga::ScaleSelection scale;  // --targets, --rates, --sizes
 };
@@ -159,7 +159,7 @@ int run_bitstream(const BitstreamArgs& a) {
   opt.load = a.engine_load == "stress" ? eskin::fpga::LoadPolicy::Stress
                                        : eskin::fpga::LoadPolicy::Scene;
   opt.fast_shift = a.engine_shifter.empty() ? -1 : a.engine_shifter == "barrel" ? 1 : 0;
-  opt.neuron_unit = a.neurons.empty() ? -1 : a.neurons == "unit" ? 1 : 0;
+  opt.neuron_unit = a.neurons.empty() ? -1 : a.neurons == "lanes" ? 2 : a.neurons == "unit" ? 1 : 0;
   // A clock the board cannot make is named before anything runs.
   if (opt.clk_hz > 0 && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
     eskin::fpga::choose_hall_clock(board, opt.clk_hz);
@@ -237,13 +237,15 @@ std::function<int()> setup_bitstream(CLI::App& app) {
       ->check(CLI::IsMember({"serial", "barrel"}));
   sub->add_option("--neurons", args->neurons,
                   "Where the Izhikevich neuron updates run: engine (the frame engine's "
-                  "microcode, no extra logic) or unit (the hardware neuron unit, "
+                  "microcode, no extra logic), unit (the hardware neuron unit, "
                   "rtl/izhikevich_layer.v: 14 (level input) to 20 (change input) engine clocks a "
-                  "neuron instead of about 120 with the barrel shifter or 210 without); default: "
-                  "the board's (ulx3s unit; icebreaker engine unless the core needs more than "
-                  "18 MHz: then the first of barrel, serial + unit, barrel + unit that keeps up "
-                  "at 18 MHz, else the fastest)")
-      ->check(CLI::IsMember({"engine", "unit"}));
+                  "neuron instead of about 120 with the barrel shifter or 210 without) or lanes "
+                  "(units that keep the neurons' state, rtl/izhikevich_lanes.v: 3 engine clocks "
+                  "a neuron, skins up to 1024 taxels); default: the board's (ulx3s lanes; "
+                  "icebreaker engine unless the core needs more than 18 MHz: then the first of "
+                  "barrel, serial + unit, barrel + unit that keeps up at 18 MHz, else the "
+                  "fastest)")
+      ->check(CLI::IsMember({"engine", "unit", "lanes"}));
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");
   sub->add_option("--sizes", args->scale.sizes,

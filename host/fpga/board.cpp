@@ -14,9 +14,9 @@ const std::vector<Board>& boards() {
   static const std::vector<Board> b = {
       {"icebreaker", Family::Ice40, "up5k", "sg48", "board_icebreaker",
        "constraints/icebreaker.pcf", 12000000, hls::kDtmfTopClkHz, "ICESTORM_LC",
-       "board_icebreaker_hall", true, false, 1, false, true},
+       "board_icebreaker_hall", true, false, 1, false, 0, true},
       {"ulx3s", Family::Ecp5, "85k", "CABGA381", "board_ulx3s", "constraints/ulx3s.lpf",
-       25000000, 30000000, "TRELLIS_COMB", "board_ulx3s_hall", false, true, 16, true},
+       25000000, 30000000, "TRELLIS_COMB", "board_ulx3s_hall", false, true, 16, true, 5},
   };
   return b;
 }

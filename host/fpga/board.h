@@ -48,6 +48,12 @@ struct Board {
   // on the ECP5s, whose logic is cheap; off on the UP5K by default (about
   // 1800 logic cells), but see engine_when_needed.
   bool neuron_unit = false;
+  // With the unit: its lanes (DtmfTopSpec::neuron_lanes, rtl/izhikevich_lanes.v),
+  // which keep the neurons' state themselves: 3 engine clocks a neuron
+  // instead of 14. ULX3S 5 (the fewest the microcode's loop takes; each
+  // about 1300 LUT4 and a multiplier, the state in DP16KDs); 0 on the UP5K,
+  // which has neither the cells nor the block RAM.
+  int neuron_lanes = 0;
   // The engine when needed (choose_core_clock), for the options the user
   // left to the board: when the core of engine_fast_shift / neuron_unit
   // would need a clock above default_clk_hz, the board takes the first of

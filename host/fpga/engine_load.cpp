@@ -42,11 +42,12 @@ struct LoadIo {
   int cfg_k = 0;
   bool cfg_last = false;
   hls::IzhikevichUnitPort neuron;
+  hls::IzhikevichLanesPort lanes;  // the plan's neuron lanes (they take the unit's place)
   hls::OutFifoPort fifo;  // checks the word port's rule; the bytes are not kept
 
   uint32_t io_read(uint16_t a, uint64_t clock) {
     if (a < 0x200) return a < frame.size() ? uint32_t(frame[a]) : 0u;
-    if (uint32_t d = 0; neuron.read(a, d, clock)) return d;
+    if (uint32_t d = 0; neuron.read(a, d, clock) || lanes.read(a, d, clock)) return d;
     switch (a) {
       case hls::kIoFrameT: case hls::kIoAdcT: return t;
       case hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);
@@ -56,7 +57,9 @@ struct LoadIo {
     }
   }
   void io_write(uint16_t a, uint32_t d, uint64_t clock) {
-    if (neuron.write(a, d, clock) || fifo.write(a, d, clock, nullptr)) return;
+    if (neuron.write(a, d, clock) || lanes.write(a, d, clock) ||
+        fifo.write(a, d, clock, nullptr))
+      return;
     switch (a) {
       case hls::kIoFrameDone: pending = false, done = true, done_clock = clock; break;
       case hls::kIoCmdPop: if (!cmd.empty()) cmd.pop_front(); break;
@@ -67,7 +70,7 @@ struct LoadIo {
   }
   uint16_t events(uint64_t clock) const {
     return uint16_t((pending ? hls::kEvFramePending : 0) | (cmd.empty() ? 0 : hls::kEvCmdAvail) |
-                    neuron.events(clock));
+                    neuron.events(clock) | lanes.events_at(clock));
   }
 };
 
@@ -100,7 +103,8 @@ class LoadRun {
     eng_->reset();
     io_.frame.assign(size_t(2 * p.ks), 0);
     io_.out_depth = p.out_depth;
-    io_.neuron.present = p.spec.neuron_unit;
+    io_.neuron.present = p.spec.neuron_unit && p.spec.neuron_lanes == 0;
+    if (p.spec.neuron_lanes) io_.lanes.configure(p.spec.neuron_lanes, 2 * p.T, p.C);
     limit_ = 4000 * uint64_t(p.T + p.K) + 1000000;  // far above any frame, below a hang
     run_until(64 * uint64_t(im_.dend + im_.krom.size()) + 100000,
               [&] { return io_.adc_on && at_wait(); }, "its first wait");

@@ -102,6 +102,12 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
   return lanes;
 }
 
+int neuron_lanes_for(const Board& b, int neuron_unit, int taxels) {
+  const int lanes = neuron_unit == 2 ? std::max(5, b.neuron_lanes)
+                    : neuron_unit < 0 && b.neuron_unit ? b.neuron_lanes : 0;
+  return 2 * taxels <= 2048 ? lanes : 0;  // rtl/izhikevich_lanes.v numbers 2^11 neurons
+}
+
 namespace {
 
 // choose_core_clock for a plan made at spec's baud rate, among the clocks
@@ -136,6 +142,7 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
       auto s = spec;
       s.engine_fast_shift = barrel;
       s.neuron_unit = unit;
+      s.neuron_lanes = unit ? neuron_lanes_for(b, neuron_unit, s.rows * s.cols) : 0;
       need = load_with(s);
       if (need < best_need) {
         best = c;
@@ -184,6 +191,7 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
   // Before the load: the shifter and the neuron unit set the engine's clocks.
   spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
   spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
+  spec.neuron_lanes = neuron_lanes_for(b, neuron_unit, spec.rows * spec.cols);
   // The scene's samples as the top takes them: 12-bit codes minus 2048.
   std::vector<int32_t> x;
   sim::WorldModel world(scene);

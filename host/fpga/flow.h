@@ -39,7 +39,7 @@ struct FlowOptions {
   long clk_hz = 0;         // 0: the slowest board clock (not below the board's
                            // default) at which the core keeps up
   int fast_shift = -1;     // the engine's barrel shifter: 1 on, 0 off, -1 the board's
-  int neuron_unit = -1;    // the hardware neuron unit: 1 on, 0 off, -1 the board's
+  int neuron_unit = -1;    // the hardware neuron unit: 1 on, 2 with its lanes, 0 off, -1 the board's
 };
 
 struct Resource {
@@ -123,8 +123,14 @@ struct CoreClock {
   Clocking clocking;
   hls::DtmfTopClockBudget budget;
 };
+// The neuron lanes a build gets (DtmfTopSpec::neuron_lanes) for the option
+// neuron_unit (FlowOptions): 2, the board's or 5; -1, the board's with its
+// unit; else 0; and 0 for a skin of more than 1024 taxels.
+int neuron_lanes_for(const Board& b, int neuron_unit, int taxels);
+
 // fast_shift: the engine's barrel shifter, 1 on, 0 off, -1 the board's
-// (Board::engine_fast_shift); neuron_unit likewise (Board::neuron_unit). On
+// (Board::engine_fast_shift); neuron_unit likewise (Board::neuron_unit; 2:
+// with its lanes, neuron_lanes_for). On
 // a board with Board::engine_when_needed the options left to it (-1) may
 // change where its defaults do not keep up (the plan's spec says which).
 // own_adc_clock: a clock whose budget fails only for the ADC (the AD7476A's

@@ -44,6 +44,7 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
   j["engine"] = {{"policy", r.policy == LoadPolicy::Stress ? "stress" : "scene"},
                  {"fast_shift", r.spec.engine_fast_shift},
                  {"neuron_unit", r.spec.neuron_unit},
+                 {"neuron_lanes", r.spec.neuron_lanes},
                  {"required_clocks", r.engine_clocks},
                  {"scene_longest_frame_clocks", r.load.scene_clocks},
                  {"scene_frames", r.load.scene_frames},
@@ -94,7 +95,8 @@ std::string dtmf_table(const FlowReport& r) {
       double(r.spec.baud) / 1e6, r.spec.sdft_lanes, r.spec.sdft_lanes == 1 ? "" : "s",
       r.budget.sdft_clocks, r.budget.sdft_skip_clocks, r.budget.sdft_min_period, r.budget.period,
       r.spec.engine_fast_shift ? "barrel" : "bit-serial",
-      r.spec.neuron_unit ? "the neuron unit" : "the engine",
+      r.spec.neuron_lanes ? fmt::format("{} neuron lanes", r.spec.neuron_lanes)
+      : r.spec.neuron_unit ? std::string("the neuron unit") : std::string("the engine"),
       r.budget.frame_clocks,
       r.spec.adc_clk_hz > 0
           ? fmt::format("STEP samples of {} ADC clocks, at the least", r.budget.adc_period)

@@ -40,7 +40,7 @@ sim::Scene scale_scene(const sim::Scene& base, int n, double fs) {
 
 std::string variant_name(EngineVariant v) {
   return std::string(v.barrel ? "barrel" : "serial") + " shifter, " +
-         (v.unit ? "neuron unit" : "engine neurons");
+         (v.lanes ? "neuron lanes" : v.unit ? "neuron unit" : "engine neurons");
 }
 
 std::optional<SlowerClock> slower_clock_variant(const Board& b, const sim::Scene& scene,
@@ -51,7 +51,7 @@ std::optional<SlowerClock> slower_clock_variant(const Board& b, const sim::Scene
   for (const EngineVariant v : {EngineVariant{false, false}, EngineVariant{true, false},
                                 EngineVariant{false, true}, EngineVariant{true, true}}) {
     if (v == failed) continue;
-    const CoreClock c = choose_core_clock(b, scene, policy, 0, v.barrel, v.unit);
+    const CoreClock c = choose_core_clock(b, scene, policy, 0, v.barrel, v.unit ? 1 : 0);
     if (c.budget.ok() && (failed_clk_hz == 0 || c.clocking.clk_hz < failed_clk_hz))
       return SlowerClock{v, c.clocking.clk_hz, c.engine_clocks};
   }
@@ -59,7 +59,9 @@ std::optional<SlowerClock> slower_clock_variant(const Board& b, const sim::Scene
 }
 
 const char* shifter_name(EngineVariant v) { return v.barrel ? "barrel" : "serial"; }
-const char* neurons_name(EngineVariant v) { return v.unit ? "unit" : "engine"; }
+const char* neurons_name(EngineVariant v) {
+  return v.lanes ? "lanes" : v.unit ? "unit" : "engine";
+}
 
 namespace {
 // For a failed build `r`: slower_clock_variant when its core was too slow
@@ -69,7 +71,8 @@ std::optional<SlowerClock> slower_clock_after(const Board& b, const sim::Scene& 
   const bool too_slow =
       r.ran_tools ? r.fits && !r.meets_timing : r.core_min_hz > 0 && !r.budget.ok();
   if (r.ok() || !too_slow) return std::nullopt;
-  return slower_clock_variant(b, scene, {r.spec.engine_fast_shift, r.spec.neuron_unit},
+  return slower_clock_variant(b, scene,
+                              {r.spec.engine_fast_shift, r.spec.neuron_unit, r.spec.neuron_lanes > 0},
                               r.budget.ok() ? r.clk_hz : 0, r.policy);
 }
 }  // namespace
@@ -97,7 +100,7 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
   row.step = r.step;
   row.clk_hz = r.spec.clk_hz;
   row.adc_clk_hz = r.spec.adc_clk_hz;
-  row.engine = {r.spec.engine_fast_shift, r.spec.neuron_unit};
+  row.engine = {r.spec.engine_fast_shift, r.spec.neuron_unit, r.spec.neuron_lanes > 0};
   row.fits = r.fits;
   row.meets_timing = r.meets_timing;
   auto take = [&](std::initializer_list<const char*> names, long& used, long* avail) {
@@ -158,6 +161,8 @@ std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions&
             r.spec = sim::dtmf_top_spec(sc);
             r.spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
             r.spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
+            r.spec.neuron_lanes =
+                neuron_lanes_for(b, neuron_unit, r.spec.rows * r.spec.cols);
             r.failure = e.what();
           }
           rows.push_back(scale_row(t, r));
@@ -260,9 +265,11 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
     if (f.size() != 25)
       throw std::runtime_error(
           fmt::format("scale table line {}: expected 25 fields, got {}", lineno, f.size()));
-    if ((f[10] != "serial" && f[10] != "barrel") || (f[11] != "engine" && f[11] != "unit"))
+    if ((f[10] != "serial" && f[10] != "barrel") ||
+        (f[11] != "engine" && f[11] != "unit" && f[11] != "lanes"))
       throw std::runtime_error(fmt::format(
-          "scale table line {}: expected shifter serial|barrel and neurons engine|unit, got {} {}",
+          "scale table line {}: expected shifter serial|barrel and neurons engine|unit|lanes, "
+          "got {} {}",
           lineno, f[10], f[11]));
     try {
       ScaleRow r;
@@ -276,7 +283,7 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
       r.step = std::stoi(f[7]);
       r.clk_hz = std::stol(f[8]);
       r.adc_clk_hz = std::stol(f[9]);
-      r.engine = {f[10] == "barrel", f[11] == "unit"};
+      r.engine = {f[10] == "barrel", f[11] != "engine", f[11] == "lanes"};
       r.fits = f[12] == "1";
       r.meets_timing = f[13] == "1";
       r.logic_used = std::stol(f[14]);

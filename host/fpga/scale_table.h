@@ -35,12 +35,15 @@ sim::Scene scale_scene(const sim::Scene& base, int n, double fs);
 struct EngineVariant {
   bool barrel = false;  // barrel shifter (else bit-serial)
   bool unit = false;    // the hardware neuron unit (else the microcode)
-  bool operator==(const EngineVariant& o) const { return barrel == o.barrel && unit == o.unit; }
+  bool lanes = false;   // with the unit: its lanes, which keep the state
+  bool operator==(const EngineVariant& o) const {
+    return barrel == o.barrel && unit == o.unit && lanes == o.lanes;
+  }
 };
 std::string variant_name(EngineVariant v);  // "serial shifter, neuron unit"
 // The option values of `eskin bitstream --engine-shifter` and `--neurons`
 // for an engine (also the scale table's CSV fields): "serial" / "barrel",
-// "engine" / "unit".
+// "engine" / "unit" / "lanes".
 const char* shifter_name(EngineVariant v);
 const char* neurons_name(EngineVariant v);
 

@@ -132,16 +132,20 @@ TEST(BitstreamCli, EngineShifterIsTheUsersOrTheBoards) {
       "barrel", "frame engine to build");
 }
 
-// --neurons reaches the plan (the report's engine.neuron_unit, and its
-// table), and without it the board decides: the ULX3S has the neuron unit,
-// the iCEBreaker not.
+// --neurons reaches the plan (the report's engine.neuron_unit and
+// neuron_lanes, and its table), and without it the board decides: the
+// ULX3S has the neuron unit's lanes, the iCEBreaker neither.
 TEST(BitstreamCli, NeuronsAreTheUsersOrTheBoards) {
   expect_engine_choice(
       "--neurons",
       {{"--board icebreaker --clk-mhz 18", "\"neuron_unit\": false", "neurons on the engine"},
        {"--board icebreaker --clk-mhz 18 --neurons unit", "\"neuron_unit\": true",
         "neurons on the neuron unit"},
-       {"--board ulx3s --clk-mhz 30", "\"neuron_unit\": true", "neurons on the neuron unit"},
+       {"--board icebreaker --clk-mhz 18 --neurons lanes", "\"neuron_lanes\": 5",
+        "neurons on 5 neuron lanes"},
+       {"--board ulx3s --clk-mhz 30", "\"neuron_lanes\": 5", "neurons on 5 neuron lanes"},
+       {"--board ulx3s --clk-mhz 30 --neurons unit", "\"neuron_lanes\": 0",
+        "neurons on the neuron unit"},
        {"--board ulx3s --clk-mhz 30 --neurons engine", "\"neuron_unit\": false",
         "neurons on the engine"}},
       "unit", "neuron layers to build");

@@ -185,8 +185,12 @@ TEST(ScaleTable, CsvRoundTripAndFitHint) {
   c.rows = c.cols = 4;  // passes at the other rate only
   c.adc_clk_hz = 40000000;  // with the ADC on its own clock
   c.seed = 3;               // placed at the third seed tried
+  c.engine = {true, true, true};  // barrel shifter, the neuron unit's lanes
   const auto rows = parse_scale_csv(scale_csv({a, b, c}));
   ASSERT_EQ(rows.size(), 3u);
+  EXPECT_TRUE(rows[2].engine == c.engine);
+  EXPECT_TRUE(rows[0].engine == a.engine);
+  EXPECT_NE(scale_csv({c}).find(",barrel,lanes,"), std::string::npos) << scale_csv({c});
   EXPECT_EQ(rows[0].adc_clk_hz, 0);
   EXPECT_EQ(rows[2].adc_clk_hz, 40000000);
   EXPECT_EQ(rows[0].seed, 1);
@@ -267,8 +271,9 @@ TEST(ScaleTable, ASizePassesWithAnyOfItsEngines) {
 // shifter and microcode neurons (so 27 MHz on the iCEBreaker, which the
 // UP5K does not reach), 41 843 bit-serial (slower still), 16 670
 // bit-serial with the unit (18 MHz): the smallest that keeps up at a
-// slower clock. On the ULX3S the board's engine (barrel + unit) is the
-// fastest, so nothing else helps a 24x24 skin that missed 75 MHz.
+// slower clock. On the ULX3S the board's engine (barrel + neuron lanes)
+// is the fastest, so nothing else helps a 24x24 skin that missed its
+// clock.
 TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const Board ice = find_board("icebreaker");
@@ -279,9 +284,12 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   EXPECT_EQ(variant_name(v->engine), "serial shifter, neuron unit");
   EXPECT_EQ(v->clk_hz, 18000000);
   EXPECT_LE(v->engine_clocks, 18000);  // 35 samples of 514 clocks at 18 MHz: 17 990
-  EXPECT_FALSE(slower_clock_variant(find_board("ulx3s", "85k"), scale_scene(base, 24, 35000.0),
-                                    {true, true}, 75000000)
-                   .has_value());
+  const Board ulx = find_board("ulx3s", "85k");
+  const auto sc24 = scale_scene(base, 24, 35000.0);
+  const CoreClock lanes24 = choose_core_clock(ulx, sc24, LoadPolicy::Stress);
+  EXPECT_GT(lanes24.plan.spec.neuron_lanes, 0);
+  EXPECT_FALSE(
+      slower_clock_variant(ulx, sc24, {true, true, true}, lanes24.clocking.clk_hz).has_value());
   // The same for a user's failed build (eskin bitstream's hint): it names
   // the options; a build that failed for area gets none.
   FlowReport r;
@@ -295,36 +303,36 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   r.fits = false;
   EXPECT_EQ(slower_engine_hint(ice, sc, r), "");
 }
-// The packets are paced for the link the chosen clock gives. An 18x18 skin
-// at 35 kS/s on the ULX3S (engine 30 772 clocks a frame late on 2026-11-27)
-// runs at 35 MHz, whose exact UART rate is 1 Mbaud (35 MHz is no multiple
-// of 2 or 3 MHz); the plan thins the amplitude and taxel packets so that
-// 1.5 x their bytes per frame fit the link (hls/dtmf_top_config.h): 1.5 x
-// ((10 + 2 x 36 + 2) + (10 + 2 + 2 x 324 + 2)) = 1119 bytes against 100 a
-// 1 ms frame at 1 Mbaud (10 bits a byte): every 12th frame (ceil 11.2);
-// planned for 3 Mbaud (300 bytes) it would be every 4th, which would
-// overrun the 1 Mbaud line. (At 40 MHz and 2 Mbaud, every 6th, until the
-// engine went under 35 000 clocks.) The 16x16 1 MS/s build of
+// The packets are paced for the link the chosen clock gives. A 24x24 skin
+// at 35 kS/s on the ULX3S (engine 31 962 clocks a frame with the neuron
+// lanes, at the end of 2026-11-27) runs at 35 MHz, whose exact UART rate
+// is 1 Mbaud (35 MHz is no multiple of 2 or 3 MHz); the plan thins the
+// amplitude and taxel packets so that 1.5 x their bytes per frame fit the
+// link (hls/dtmf_top_config.h): 1.5 x ((10 + 2 x 48 + 2) + (10 + 2 + 2 x
+// 576 + 2)) = 1911 bytes against 100 a 1 ms frame at 1 Mbaud (10 bits a
+// byte): every 20th frame (ceil 19.1); planned for 3 Mbaud (300 bytes) it
+// would be every 7th, which would overrun the 1 Mbaud line. (Until then
+// the 18x18 skin showed it, engine 30 772 clocks.) The 16x16 1 MS/s build of
 // tests/rtl/dtmf_top_test.cpp is planned at its clock's 2 Mbaud (40 MHz),
 // so it is this flow's build.
 TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  const CoreClock c = choose_core_clock(find_board("ulx3s"), scale_scene(base, 18, 35000.0),
+  const CoreClock c = choose_core_clock(find_board("ulx3s"), scale_scene(base, 24, 35000.0),
                                         LoadPolicy::Stress);
   ASSERT_TRUE(c.budget.ok()) << c.budget.problems.front();
   EXPECT_EQ(c.clocking.clk_hz, 35000000);
   EXPECT_EQ(c.clocking.baud, 1000000);
   EXPECT_EQ(c.plan.spec.baud, 1000000);
-  EXPECT_EQ(c.plan.decim_tax, 12);
-  EXPECT_EQ(c.plan.decim_amp, 12);
+  EXPECT_EQ(c.plan.decim_tax, 20);
+  EXPECT_EQ(c.plan.decim_amp, 20);
   const auto params =
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
   EXPECT_EQ(param(params, "BAUD"), "1000000");
-  // 24x24 at 35 kS/s: its engine sets the clock (about 49 000 clocks a
-  // 35-sample frame of 1 ms, 49 145 late on 2026-11-27: 50 MHz, far above the
-  // ADC's 1 MHz and the DFT's 10.2, its 290 clocks a sample), and the
-  // flow's messages give that figure.
-  const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 24, 35000.0),
+  // 30x30 at 35 kS/s: its engine sets the clock (about 46 000 clocks a
+  // 35-sample frame of 1 ms, 46 376 at the end of 2026-11-27: 50 MHz, far
+  // above the ADC's 1 MHz and the DFT's), and the flow's messages give
+  // that figure.
+  const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 30, 35000.0),
                                           LoadPolicy::Stress);
   EXPECT_GT(big.engine_clocks, 40000);
   EXPECT_EQ(big.core_min_hz, big.engine_clocks * 1000);
@@ -503,15 +511,15 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
 
 // At 1 MS/s the AD7476A's SCLK ties the ADC to a 37.3-40 MHz clock (or
 // 74.7-80: SCLK = a / (2 H) <= 20 MHz with A - 28 H clocks of acquisition
-// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (35 742 of
-// 40 000 clocks late on 2026-11-27): one clock. A 22x22 skin's (41 725) does
-// not, and 75 MHz is beyond the ECP5 build's Fmax (about 50): the ULX3S
-// gives the ADC a clock of its own from the same PLL (VCO / CLKOS_DIV,
-// 40 MHz, the fastest that converts) and the core the slowest clock whose
-// frame, floor(STEP clk A / a) - 1 clocks, holds the engine and whose
-// sample period holds the DFT's lanes: 45 MHz (44 999 >= 41 725; the
-// ULX3S makes no 44 MHz). The iCE40 has no such clock; mixed_top
-// (own_adc_clock false) neither.
+// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (23 767 of
+// 40 000 clocks with the neuron lanes, late on 2026-11-27): one clock. A
+// 32x32 skin's (49 011) does not, and 75 MHz is beyond the ECP5 build's
+// Fmax (about 50): the ULX3S gives the ADC a clock of its own from the
+// same PLL (VCO / CLKOS_DIV, 40 MHz, the fastest that converts) and the
+// core the slowest clock whose frame, floor(STEP clk A / a) - 1 clocks,
+// holds the engine and whose sample period holds the DFT's lanes: 50 MHz
+// (49 999 >= 49 011; 45 MHz's 44 999 does not). The iCE40 has no such
+// clock; mixed_top (own_adc_clock false) neither.
 TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const Board ulx = find_board("ulx3s", "85k");
@@ -523,29 +531,30 @@ TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {
                                               "", ""),
                   "ADC_CLK_HZ"),
             "0");
-  const CoreClock s22 = choose_core_clock(ulx, scale_scene(base, 22, 1e6), LoadPolicy::Stress);
-  ASSERT_TRUE(s22.budget.ok()) << s22.budget.problems.front();
-  EXPECT_GT(s22.engine_clocks, 40000);
-  EXPECT_EQ(s22.clocking.adc_clk_hz, 40000000);
-  EXPECT_EQ(s22.plan.spec.adc_clk_hz, 40000000);
-  EXPECT_LT(s22.clocking.clk_hz, 74700000);
-  EXPECT_GE(s22.budget.frame_clocks, s22.engine_clocks);
-  EXPECT_EQ(s22.budget.adc_period, 40);
-  EXPECT_EQ(s22.budget.frame_clocks, s22.clocking.clk_hz / 1000 - 1);
-  EXPECT_EQ(s22.budget.period, s22.clocking.clk_hz / 1000000 - 1);
+  const CoreClock s32 = choose_core_clock(ulx, scale_scene(base, 32, 1e6), LoadPolicy::Stress);
+  ASSERT_TRUE(s32.budget.ok()) << s32.budget.problems.front();
+  EXPECT_GT(s32.engine_clocks, 45000);
+  EXPECT_EQ(s32.clocking.clk_hz, 50000000);
+  EXPECT_EQ(s32.clocking.adc_clk_hz, 40000000);
+  EXPECT_EQ(s32.plan.spec.adc_clk_hz, 40000000);
+  EXPECT_LT(s32.clocking.clk_hz, 74700000);
+  EXPECT_GE(s32.budget.frame_clocks, s32.engine_clocks);
+  EXPECT_EQ(s32.budget.adc_period, 40);
+  EXPECT_EQ(s32.budget.frame_clocks, s32.clocking.clk_hz / 1000 - 1);
+  EXPECT_EQ(s32.budget.period, s32.clocking.clk_hz / 1000000 - 1);
   const auto params =
-      eskin::hls::dtmf_top_params(s22.plan, eskin::hls::dtmf_engine_image(s22.plan), "", "");
+      eskin::hls::dtmf_top_params(s32.plan, eskin::hls::dtmf_engine_image(s32.plan), "", "");
   EXPECT_EQ(param(params, "ADC_CLK_HZ"), "40000000");
-  EXPECT_EQ(param(params, "CLK_HZ"), std::to_string(s22.clocking.clk_hz));
+  EXPECT_EQ(param(params, "CLK_HZ"), std::to_string(s32.clocking.clk_hz));
   // The PLL: VCO = clk x CLKOP_DIV = 40 MHz x CLKOS_DIV, in 400..800 MHz.
-  auto wp = [&](const char* n) { return std::stol(param(s22.clocking.wrapper_params, n)); };
-  const long vco = s22.clocking.clk_hz * wp("CLKOP_DIV");
+  auto wp = [&](const char* n) { return std::stol(param(s32.clocking.wrapper_params, n)); };
+  const long vco = s32.clocking.clk_hz * wp("CLKOP_DIV");
   EXPECT_EQ(vco, 40000000L * wp("CLKOS_DIV"));
   EXPECT_GE(vco, 400000000L);
   EXPECT_LE(vco, 800000000L);
-  EXPECT_EQ(s22.clocking.clk_hz, 25000000L * wp("CLKFB_DIV") / wp("CLKI_DIV"));
+  EXPECT_EQ(s32.clocking.clk_hz, 25000000L * wp("CLKFB_DIV") / wp("CLKI_DIV"));
   // mixed_top's one clock: the 75 MHz band, or none.
-  const CoreClock one = choose_core_clock(ulx, scale_scene(base, 22, 1e6), LoadPolicy::Stress, 0,
+  const CoreClock one = choose_core_clock(ulx, scale_scene(base, 32, 1e6), LoadPolicy::Stress, 0,
                                           -1, -1, false);
   EXPECT_EQ(one.clocking.adc_clk_hz, 0);
   EXPECT_GE(one.clocking.clk_hz, 74700000);

@@ -52,7 +52,8 @@ class TopModel {
     cfg_inc_.assign(size_t(plan.ks), 0);
     io_.inc = &cfg_inc_;
     io_.out_depth = plan.out_depth;
-    io_.neuron.present = plan.spec.neuron_unit;
+    io_.neuron.present = plan.spec.neuron_unit && plan.spec.neuron_lanes == 0;
+    if (plan.spec.neuron_lanes) io_.lanes.configure(plan.spec.neuron_lanes, 2 * plan.T, plan.C);
     // Boot until the first carrier table reaches the DFT (the ADC starts then).
     eng_->run(io_, 2000000, [this](const auto&) { return io_.adc_on; });
   }
@@ -142,10 +143,11 @@ class TopModel {
     int ks = 0;
     size_t sdft_loads = 0;
     eskin::hls::IzhikevichUnitPort neuron;  // the plan's neuron unit (NEURON_UNIT)
+    eskin::hls::IzhikevichLanesPort lanes;  // or its lanes (NEURON_LANES)
     eskin::hls::OutFifoPort fifo;           // its writes go to `out`
     uint32_t io_read(uint16_t a, uint64_t clock) {
       if (a < 0x200) return uint32_t(a < 2 * KS_MAX ? frame[a] : 0);
-      if (uint32_t d = 0; neuron.read(a, d, clock)) return d;
+      if (uint32_t d = 0; neuron.read(a, d, clock) || lanes.read(a, d, clock)) return d;
       switch (a) {
         case eskin::hls::kIoFrameT: return frame_t;
         case eskin::hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);
@@ -157,7 +159,8 @@ class TopModel {
       }
     }
     void io_write(uint16_t a, uint32_t d, uint64_t clock) {
-      if (neuron.write(a, d, clock) || fifo.write(a, d, clock, &out)) return;
+      if (neuron.write(a, d, clock) || lanes.write(a, d, clock) || fifo.write(a, d, clock, &out))
+        return;
       switch (a) {
         case eskin::hls::kIoFrameDone:
           pending = false;
@@ -182,7 +185,8 @@ class TopModel {
       }
     }
     uint16_t events(uint64_t clock) const {
-      return uint16_t((pending ? 1 : 0) | (cmd.empty() ? 0 : 2) | neuron.events(clock));
+      return uint16_t((pending ? 1 : 0) | (cmd.empty() ? 0 : 2) | neuron.events(clock) |
+                      lanes.events_at(clock));
     }
   };
 

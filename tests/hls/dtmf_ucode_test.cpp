@@ -74,17 +74,22 @@ uint64_t compare_codes(const std::string& what, const hls::DtmfTopPlan& plan, lo
   EXPECT_GT(want.size(), 250u);  // every case: hundreds of frames of every type
   const size_t same = expect_data_packets_equal(top, want, what);
   std::printf("%s%s: %zu packets equal; the engine's longest frame %llu clocks of %ld available\n",
-              what.c_str(), plan.spec.neuron_unit ? " with the neuron unit" : "", same,
+              what.c_str(),
+              plan.spec.neuron_lanes ? " with the neuron lanes"
+              : plan.spec.neuron_unit ? " with the neuron unit" : "",
+              same,
               (unsigned long long)top.max_frame_clocks(), period * plan.step);
   EXPECT_LE(top.max_frame_clocks(), uint64_t(period * plan.step));
   return top.max_frame_clocks();
 }
 
 template <class S>
-uint64_t compare_scene(const std::string& scene_file, long clk_hz, bool neuron_unit = false) {
+uint64_t compare_scene(const std::string& scene_file, long clk_hz, bool neuron_unit = false,
+                       int lanes = 0) {
   const sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/" + scene_file);
   auto spec = sim::dtmf_top_spec(sc, clk_hz);
   spec.neuron_unit = neuron_unit;
+  spec.neuron_lanes = lanes;
   const long period = std::lround(double(clk_hz) / sc.skin.adc.rate_hz);
   sim::WorldModel world(sc);
   std::vector<uint16_t> codes;
@@ -117,15 +122,27 @@ TEST(DtmfUcode, Staggered10x10EqualsTheChain) {
 // least 84 fewer per neuron: the 10x10 scene updates 200 neurons every
 // frame in two layers, so its longest frame is at least 200 x 84 - 2 x 40
 // = 16 720 clocks shorter (16 700 asserted).
+// The unit's lanes (NEURON_LANES: they keep the state and the flags): the
+// same packets, and shorter again. The unit's level loop takes at least 14
+// clocks a neuron and synapse_weights 12 a taxel: 2 800 + 1 200 for the
+// 10x10 scene; with lanes layer 0 takes 3 a neuron and layer 1 none of
+// its own (synapse_weights, 8 a taxel, starts its neurons): 300 + 800.
+// Against the 2 900 saved, the lanes record each spike after the layer
+// (11 clocks, the unit's loops 8 inline: at most 3 x 200 more), wait for
+// each layer's last write-back (at most 16 clocks twice) and set the next
+// neuron (2 clocks twice): at least 2 900 - 600 - 36 > 2 200 fewer.
 TEST(DtmfUcode, NeuronUnitGivesTheSamePacketsInFewerClocks) {
   using S3 = hls::DtmfChainSizes<3, 3, 32>;
   using S10 = hls::DtmfChainSizes<10, 10, 64>;
   compare_scene<S3>("scenes/neuroskin2.yaml", hls::kDtmfTopClkHz, true);
   const uint64_t soft = compare_scene<S10>("scenes/staggered10x10.yaml", 96000000);
   const uint64_t unit = compare_scene<S10>("scenes/staggered10x10.yaml", 96000000, true);
+  const uint64_t lanes = compare_scene<S10>("scenes/staggered10x10.yaml", 96000000, true, 5);
   EXPECT_LE(unit + 16700, soft);
-  std::printf("10x10 scene, longest frame: %llu clocks with the neurons on the engine, %llu on the unit\n",
-              (unsigned long long)soft, (unsigned long long)unit);
+  EXPECT_LE(lanes + 2200, unit);
+  std::printf("10x10 scene, longest frame: %llu clocks with the neurons on the engine, %llu on the "
+              "unit, %llu on its lanes\n",
+              (unsigned long long)soft, (unsigned long long)unit, (unsigned long long)lanes);
 }
 
 // A rows x cols skin of the default scene's ADC at 96 MHz and 600 frames
@@ -163,8 +180,9 @@ RandomSkin random_5x7() { return random_skin(5, 7); }
 TEST(DtmfUcode, RandomCarriersOn5x7EqualTheChain) {
   using S = hls::DtmfChainSizes<5, 7, 32>;
   auto [spec, period, codes] = random_5x7();
-  for (bool unit : {false, true}) {
-    spec.neuron_unit = unit;
+  for (int unit : {0, 1, 2}) {  // 2: the lanes
+    spec.neuron_unit = unit > 0;
+    spec.neuron_lanes = unit == 2 ? 5 : 0;
     compare_codes<S>("random carriers, 5x7", hls::make_dtmf_top_plan(spec), period, codes);
   }
 }
@@ -179,9 +197,12 @@ template <int R, int C>
 void compare_random_skin() {
   auto [spec, period, codes] = random_skin(R, C);
   spec.neuron_unit = true;
-  compare_codes<hls::DtmfChainSizes<R, C, 32>>(
-      "random carriers, " + std::to_string(R) + "x" + std::to_string(C),
-      hls::make_dtmf_top_plan(spec), period, codes);
+  for (int lanes : {0, 5}) {  // the unit; the lanes (their synapse_weights' starts too)
+    spec.neuron_lanes = lanes;
+    compare_codes<hls::DtmfChainSizes<R, C, 32>>(
+        "random carriers, " + std::to_string(R) + "x" + std::to_string(C),
+        hls::make_dtmf_top_plan(spec), period, codes);
+  }
 }
 TEST(DtmfUcode, GhostArgmaxOnEveryLineCountEqualsTheChain) {
   compare_random_skin<4, 8>();
@@ -207,16 +228,18 @@ TEST(DtmfUcode, FullSpikeWindowsAndNoGhostFilterEqualTheChain) {
   using S = hls::DtmfChainSizes<5, 7, 32, 4, 48>;
   auto [spec, period, codes] = random_5x7();
   for (bool ghost : {true, false})
-    for (int unit : {0, 1, 2}) {  // 2: the unit, receptors on the input's change
+    for (int unit : {0, 1, 2, 3, 4}) {  // 2, 4: receptors on the input's change; 3, 4: lanes
       spec.ghost = ghost;
       spec.neuron_unit = unit > 0;
-      spec.neuron_change = unit == 2;
+      spec.neuron_change = unit == 2 || unit == 4;
+      spec.neuron_lanes = unit >= 3 ? 5 : 0;
       auto plan = hls::make_dtmf_top_plan(spec);
       plan.max_spikes = S::MAX_SPIKES;
       plan.decim_tax = 20;  // a spike window of 20 frames
       const std::string what = std::string("48 spikes a window, ghost filter ") +
-                               (ghost ? "on" : "off") + (unit == 2 ? ", input change" : "");
-      if (unit == 2) {
+                               (ghost ? "on" : "off") +
+                               (spec.neuron_change ? ", input change" : "");
+      if (spec.neuron_change) {
         ASSERT_TRUE(plan.neuron[0].input_change) << "the change loop";
       }
       compare_codes<S>(what, plan, period, codes);
@@ -237,11 +260,12 @@ TEST(DtmfUcode, FullSpikeWindowsAndNoGhostFilterEqualTheChain) {
       const uint32_t want = chain_drops[top.frames_done() - 1];
       const uint32_t drops = top.engine().dmem(uint32_t(top.image().symbol("SPKDROP")));
       std::printf("%s%s: %u spikes dropped in %u frames\n", what.c_str(),
-                  unit ? ", neuron unit" : "", drops, top.frames_done());
+                  unit >= 3 ? ", neuron lanes" : unit ? ", neuron unit" : "", drops,
+                  top.frames_done());
       // Receptors on the input's change spike only while it moves: with
       // the ghost filter's sites few of them do, and the window fills
       // once (one drop, which still takes the change loop's drop path).
-      EXPECT_GT(want, unit == 2 && ghost ? 0u : 500u);
+      EXPECT_GT(want, spec.neuron_change && ghost ? 0u : 500u);
       EXPECT_LT(want, 65535u);
       EXPECT_EQ(drops, want);
     }
@@ -252,15 +276,18 @@ TEST(DtmfUcode, FullSpikeWindowsAndNoGhostFilterEqualTheChain) {
   spec.ghost = false;
   spec.neuron_unit = true;
   spec.neuron_change = false;
-  auto plan = hls::make_dtmf_top_plan(spec);
-  plan.max_spikes = S::MAX_SPIKES;
-  plan.decim_tax = 20;
-  plan.mask &= ~4;
-  compare_codes<S>("spikes not recorded", plan, period, codes);
-  dtmf_model::TopModel<S> top(plan, period);
-  for (size_t n = 0; n < codes.size(); ++n) top.sample(codes[n]);
-  ASSERT_GT(top.frames_done(), 500u);
-  EXPECT_EQ(top.engine().dmem(uint32_t(top.image().symbol("SPKDROP"))), 0u);
+  for (int lanes : {0, 5}) {
+    spec.neuron_lanes = lanes;
+    auto plan = hls::make_dtmf_top_plan(spec);
+    plan.max_spikes = S::MAX_SPIKES;
+    plan.decim_tax = 20;
+    plan.mask &= ~4;
+    compare_codes<S>("spikes not recorded", plan, period, codes);
+    dtmf_model::TopModel<S> top(plan, period);
+    for (size_t n = 0; n < codes.size(); ++n) top.sample(codes[n]);
+    ASSERT_GT(top.frames_done(), 500u);
+    EXPECT_EQ(top.engine().dmem(uint32_t(top.image().symbol("SPKDROP"))), 0u);
+  }
 }
 
 // SET_NEURON changes sent to the top model at run time, each once the
@@ -279,9 +306,10 @@ void expect_neuron_changes_equal_the_chain(Changes changes_of) {
   sim::WorldModel world(sc);
   std::vector<uint16_t> codes;
   for (int c : world.all_codes()) codes.push_back(uint16_t(c << (12 - sc.skin.adc.bits)));
-  for (bool unit : {true, false}) {
+  for (int unit : {1, 0, 2}) {  // 2: the lanes
     auto spec = sim::dtmf_top_spec(sc, hls::kDtmfTopClkHz);
-    spec.neuron_unit = unit;
+    spec.neuron_unit = unit > 0;
+    spec.neuron_lanes = unit == 2 ? 5 : 0;
     const auto plan = hls::make_dtmf_top_plan(spec);
     const std::vector<NeuronChange> changes = changes_of(plan);
     const long period = std::lround(double(hls::kDtmfTopClkHz) / sc.skin.adc.rate_hz);

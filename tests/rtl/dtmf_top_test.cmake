@@ -17,15 +17,14 @@
 #  s16m:    the scale table's 16x16 skin at 1 MS/s as the ECP5 rows build
 #           it (host/fpga/scale_table.h scale_scene; 40 MHz, the AD7476A's
 #           first band at 1 MS/s): 32 DFT channels in 6 lanes at KS + 8 =
-#           40 clocks a sample, the barrel shifter and the neuron unit.
+#           40 clocks a sample, the barrel shifter and the neuron unit's
+#           5 lanes (NEURON_LANES, rtl/izhikevich_lanes.v).
 #  s18m:    the same for 18x18: 36 channels in 6 lanes, a frame's sample
 #           44 clocks;
-#  s20m:    the same for 20x20, the largest skin whose engine keeps up at
-#           40 MHz (since 2026-11-27): 40 channels in 7 lanes, 48 clocks;
-#  s22m:    22x22 (the ECP5 rows' 1 MS/s skin until late on 2026-11-27),
-#           with the ADC on its own 40 MHz clock (ADC_CLK_HZ,
-#           rtl/stream_cdc.v) and the core at 45 MHz: 44 channels in 8
-#           lanes, 3 Mbaud.
+#  s20m:    the same for 20x20: 40 channels in 7 lanes, 48 clocks;
+#  s32m:    32x32, the issue's ECP5-85F target, with the ADC on its own
+#           40 MHz clock (ADC_CLK_HZ, rtl/stream_cdc.v) and the core at
+#           50 MHz: 64 channels in 10 lanes, N 256, 2 Mbaud.
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
 set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
@@ -49,31 +48,39 @@ eskin_verilate(${exe} Vdtmf_top_s10unit ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_unit.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10_unit.krom.hex\")
 set(dtmf_s16m -GCLK_HZ=40000000 -GSAMPLE_HZ=1000000 -GBAUD=2000000 -GKS=32 -GN=128 -GACC_W=20
-  -GSTEP=1000 -GIW=11 -GIMEM_WORDS=1280 -GDW=13 -GKW=9 -GOUT_DEPTH=2048 -GENGINE_FAST_SHIFT=1
-  -GSDFT_LANES=6 -GNEURON_UNIT=1 -GADC_CLK_HZ=0)
+  -GSTEP=1000 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=9 -GOUT_DEPTH=2048 -GENGINE_FAST_SHIFT=1
+  -GSDFT_LANES=6 -GNEURON_UNIT=1 -GNEURON_LANES=5 -GNEURON_BITS=9 -GCOLS=16 -GADC_CLK_HZ=0)
 eskin_verilate(${exe} Vdtmf_top_s16m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s16m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_16x16_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_16x16_1msps.krom.hex\")
 set(dtmf_s18m ${dtmf_s16m})
 list(TRANSFORM dtmf_s18m REPLACE "^-GKS=.*" "-GKS=36")
+list(TRANSFORM dtmf_s18m REPLACE "^-GNEURON_BITS=.*" "-GNEURON_BITS=10")
+list(TRANSFORM dtmf_s18m REPLACE "^-GCOLS=.*" "-GCOLS=18")
 eskin_verilate(${exe} Vdtmf_top_s18m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s18m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_18x18_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_18x18_1msps.krom.hex\")
 set(dtmf_s20m ${dtmf_s16m})
 list(TRANSFORM dtmf_s20m REPLACE "^-GKS=.*" "-GKS=40")
 list(TRANSFORM dtmf_s20m REPLACE "^-GSDFT_LANES=.*" "-GSDFT_LANES=7")
+list(TRANSFORM dtmf_s20m REPLACE "^-GCOLS=.*" "-GCOLS=20")
+list(TRANSFORM dtmf_s20m REPLACE "^-GNEURON_BITS=.*" "-GNEURON_BITS=10")
 eskin_verilate(${exe} Vdtmf_top_s20m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s20m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_20x20_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_20x20_1msps.krom.hex\")
-set(dtmf_s22m ${dtmf_s20m})
-list(TRANSFORM dtmf_s22m REPLACE "^-GKS=.*" "-GKS=44")
-list(TRANSFORM dtmf_s22m REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=45000000")
-list(TRANSFORM dtmf_s22m REPLACE "^-GADC_CLK_HZ=.*" "-GADC_CLK_HZ=40000000")
-list(TRANSFORM dtmf_s22m REPLACE "^-GBAUD=.*" "-GBAUD=3000000")
-list(TRANSFORM dtmf_s22m REPLACE "^-GSDFT_LANES=.*" "-GSDFT_LANES=8")
-eskin_verilate(${exe} Vdtmf_top_s22m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s22m}
-  -GUCODE_HEX=\"${dtmf_dir}/scale_22x22_1msps.ucode.hex\"
-  -GKROM_HEX=\"${dtmf_dir}/scale_22x22_1msps.krom.hex\")
+set(dtmf_s32m ${dtmf_s20m})
+list(TRANSFORM dtmf_s32m REPLACE "^-GKS=.*" "-GKS=64")
+list(TRANSFORM dtmf_s32m REPLACE "^-GN=.*" "-GN=256")
+list(TRANSFORM dtmf_s32m REPLACE "^-GACC_W=.*" "-GACC_W=21")
+list(TRANSFORM dtmf_s32m REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=50000000")
+list(TRANSFORM dtmf_s32m REPLACE "^-GADC_CLK_HZ=.*" "-GADC_CLK_HZ=40000000")
+list(TRANSFORM dtmf_s32m REPLACE "^-GOUT_DEPTH=.*" "-GOUT_DEPTH=8192")
+list(TRANSFORM dtmf_s32m REPLACE "^-GSDFT_LANES=.*" "-GSDFT_LANES=10")
+list(TRANSFORM dtmf_s32m REPLACE "^-GNEURON_BITS=.*" "-GNEURON_BITS=11")
+list(TRANSFORM dtmf_s32m REPLACE "^-GCOLS=.*" "-GCOLS=32")
+eskin_verilate(${exe} Vdtmf_top_s32m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s32m}
+  -GUCODE_HEX=\"${dtmf_dir}/scale_32x32_1msps.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/scale_32x32_1msps.krom.hex\")
 string(JOIN " " dtmf_default_str ${dtmf_default})
 string(JOIN " " dtmf_s10_str ${dtmf_s10})
 string(JOIN " " dtmf_s10fast_str ${dtmf_s10fast})
@@ -81,7 +88,7 @@ string(JOIN " " dtmf_s10unit_str ${dtmf_s10unit})
 string(JOIN " " dtmf_s16m_str ${dtmf_s16m})
 string(JOIN " " dtmf_s18m_str ${dtmf_s18m})
 string(JOIN " " dtmf_s20m_str ${dtmf_s20m})
-string(JOIN " " dtmf_s22m_str ${dtmf_s22m})
+string(JOIN " " dtmf_s32m_str ${dtmf_s32m})
 target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_PARAMS="${dtmf_default_str}" DTMF_TOP_CLK_HZ=${ESKIN_DTMF_TOP_CLK_HZ}
   DTMF_TOP_S10_PARAMS="${dtmf_s10_str}" DTMF_TOP_S10_CLK_HZ=96000000
@@ -90,9 +97,9 @@ target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_S16M_PARAMS="${dtmf_s16m_str}" DTMF_TOP_S16M_CLK_HZ=40000000
   DTMF_TOP_S18M_PARAMS="${dtmf_s18m_str}" DTMF_TOP_S18M_CLK_HZ=40000000
   DTMF_TOP_S20M_PARAMS="${dtmf_s20m_str}" DTMF_TOP_S20M_CLK_HZ=40000000
-  DTMF_TOP_S22M_PARAMS="${dtmf_s22m_str}" DTMF_TOP_S22M_CLK_HZ=45000000)
+  DTMF_TOP_S32M_PARAMS="${dtmf_s32m_str}" DTMF_TOP_S32M_CLK_HZ=50000000)
 target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode eskin_fpga)
 # Verilator 5.006 leaves an unused delayed copy of power_on_reset's
-# synchroniser in the code it writes for the two-clock build (s22m):
+# synchroniser in the code it writes for the two-clock build (s32m):
 # GCC's -Wunused-but-set-variable on generated code, not ours.
 target_compile_options(${exe} PRIVATE -Wno-unused-but-set-variable)
