@@ -105,7 +105,9 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
 int neuron_lanes_for(const Board& b, int neuron_unit, int taxels) {
   const int lanes = neuron_unit == 2 ? std::max(5, b.neuron_lanes)
                     : neuron_unit < 0 && b.neuron_unit ? b.neuron_lanes : 0;
-  return 2 * taxels <= 2048 ? lanes : 0;  // rtl/izhikevich_lanes.v numbers 2^11 neurons
+  // rtl/izhikevich_lanes.v numbers 2^11 neurons: the board's choice falls
+  // back to the unit alone beyond, the user's is refused by the plan.
+  return neuron_unit == 2 || 2 * taxels <= 2048 ? lanes : 0;
 }
 
 namespace {

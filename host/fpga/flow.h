@@ -124,8 +124,9 @@ struct CoreClock {
   hls::DtmfTopClockBudget budget;
 };
 // The neuron lanes a build gets (DtmfTopSpec::neuron_lanes) for the option
-// neuron_unit (FlowOptions): 2, the board's or 5; -1, the board's with its
-// unit; else 0; and 0 for a skin of more than 1024 taxels.
+// neuron_unit (FlowOptions): 2, the board's or 5 (a skin of more than 1024
+// taxels is then refused by make_dtmf_top_plan, naming the limit); -1, the
+// board's with its unit, 0 beyond 1024 taxels; else 0.
 int neuron_lanes_for(const Board& b, int neuron_unit, int taxels);
 
 // fast_shift: the engine's barrel shifter, 1 on, 0 off, -1 the board's

@@ -438,6 +438,29 @@ TEST(CoreClock, Ulx3sHasTheNeuronUnit) {
             "1");
 }
 
+// The ULX3S's neuron lanes (Board::neuron_lanes) number 2^11 neurons: a
+// 32x32 skin (2 x 1024) gets them, a 34x34 one (2 x 1156) the unit alone;
+// asked for (`--neurons lanes`, 2), the 34x34 plan is refused with the
+// limit named, not built without them.
+TEST(CoreClock, NeuronLanesUpTo1024Taxels) {
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const Board ulx = find_board("ulx3s", "85k");
+  EXPECT_EQ(neuron_lanes_for(ulx, -1, 32 * 32), 5);
+  EXPECT_EQ(neuron_lanes_for(ulx, -1, 34 * 34), 0);
+  EXPECT_EQ(neuron_lanes_for(ulx, 1, 32 * 32), 0);
+  EXPECT_EQ(neuron_lanes_for(find_board("icebreaker"), -1, 8 * 8), 0);
+  EXPECT_EQ(neuron_lanes_for(find_board("icebreaker"), 2, 8 * 8), 5);
+  try {
+    choose_core_clock(ulx, scale_scene(base, 34, 35000.0), LoadPolicy::Stress, 0, -1, 2);
+    ADD_FAILURE() << "a 34x34 skin was planned with neuron lanes";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("neuron_lanes: expected 0, or 5..8 with the neuron unit "
+                                         "and at most 1024 taxels, got 5 for 1156 taxels"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // The iCEBreaker's engine when needed (Board::engine_when_needed): the
 // first of bit-serial, barrel, serial + unit, barrel + unit whose core
 // keeps up at 18 MHz (or the clock asked for), else the fastest; an option
