@@ -628,7 +628,7 @@ TEST(DtmfTop, ScaleTable18x18AtOneMegasampleOnTheEcp5Core) {
                                                                                         38, 40);
 }
 
-// 20x20 at 40 MHz: 23 767 of the frame's 40 000 clocks under the stress
+// 20x20 at 40 MHz: 23 769 of the frame's 40 000 clocks under the stress
 // load, a frame's most packets and the longest command (host/fpga/
 // engine_load.h) with the neuron lanes (35 742 with the unit alone, late
 // on 2026-11-27). 40 channels in 7 lanes: a frame's sample F = KS + 8 = 48
@@ -638,8 +638,8 @@ TEST(DtmfTop, ScaleTable20x20AtOneMegasampleOnTheEcp5Core) {
                                                                                         38, 40);
 }
 
-// 32x32 at 1 MS/s, the ECP5-85F target: its engine (49 011 clocks
-// a frame, stress load, with the neuron lanes; 79 737 with the unit alone)
+// 32x32 at 1 MS/s, the ECP5-85F target: its engine (49 013 clocks
+// a frame, stress load, with the neuron lanes; 78 713 with the unit alone)
 // does not fit the 40 MHz frame of the ADC's band, so the ULX3S flow gives
 // the ADC its own 40 MHz clock (the PLL's CLKOS) and the core 50 MHz:
 // samples cross in rtl/stream_cdc.v, a sample every 50 clocks give or take
