@@ -6,8 +6,8 @@
 // engine's synapse_weights reads over the IO bus) and the layer's spike
 // events. With the state in the engine (NEURON_UNIT alone) a neuron costs
 // the engine 14 clocks of operand and result traffic; here 3 (ld, out and
-// its share of the loop), which is what lets a 28x28 skin into a 1 ms frame
-// at 50 MHz (docs/bitstream.md, "What limits it").
+// its share of the loop), which is what lets a 32x32 skin at 1 MS/s into a
+// 1 ms frame at 50 MHz (docs/bitstream.md, "What limits it").
 //
 // The update of each neuron is IzhikevichLayer::update of
 // hls/izhikevich_layer.h (the spec of its Q formats, rounding and
@@ -26,12 +26,14 @@
 //   sv_we    the v of the next initialisation
 //   su_we    neuron idx := {v, U = data, x_prev = 0}, its flag 0; idx += 1
 //            (only while idle: the microcode's boot)
-// Timing (clock c: the one of x_we): c+1 the lane starts, with its state
-// read in clock c (the RAM's registered read); its results (lane out_valid)
-// are there in clock c+14, when they are written back: v, U, x_prev' =
-// input_change ? x : x_prev, the flag, and on a spike the event n at
-// position count (count += 1). The flags, the events, the count and
-// idle (no update started and not written back) show them from clock c+15.
+// Timing (clock c: the one of x_we): c+1 the lane starts (its handshake
+// edge ends c+1), with its state read in clock c (the RAM's registered
+// read); its results (lane out_valid) come 13 edges later, there in clock
+// c+15, when they are written back: v, U, x_prev' = input_change ? x :
+// x_prev, the flag, and on a spike the event n at position count (count
+// += 1). The flags, the events, the count and idle (no update started and
+// not written back) show them from clock c+16 (tests/rtl/
+// izhikevich_lanes_test.cpp measures all of it against the port model).
 // The same lane takes its next start 14 clocks after the last (the unit's
 // rate), so x_we may come every 14 / LANES clocks on average; a start to a
 // busy lane is ignored, which no microcode may rely on (the port model
