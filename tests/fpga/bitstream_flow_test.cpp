@@ -329,7 +329,7 @@ TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
   EXPECT_EQ(param(params, "BAUD"), "1000000");
   // 30x30 at 35 kS/s: its engine sets the clock (about 46 000 clocks a
-  // 35-sample frame of 1 ms, 45 346 at the night of 2026-11-27: 50 MHz, far
+  // 35-sample frame of 1 ms, 45 316 on the night of 2026-11-27: 50 MHz, far
   // above the ADC's 1 MHz and the DFT's), and the flow's messages give
   // that figure.
   const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 30, 35000.0),
@@ -534,14 +534,14 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
 
 // At 1 MS/s the AD7476A's SCLK ties the ADC to a 37.3-40 MHz clock (or
 // 74.7-80: SCLK = a / (2 H) <= 20 MHz with A - 28 H clocks of acquisition
-// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (23 409 of
-// 40 000 clocks with the neuron lanes, the night of 2026-11-27): one clock. A
-// 32x32 skin's (48 053) does not, and 75 MHz is beyond the ECP5 build's
+// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (23 389 of
+// 40 000 clocks with the neuron lanes, on the night of 2026-11-27): one clock. A
+// 32x32 skin's (48 021) does not, and 75 MHz is beyond the ECP5 build's
 // Fmax (about 50): the ULX3S gives the ADC a clock of its own from the
 // same PLL (VCO / CLKOS_DIV, 40 MHz, the fastest that converts) and the
 // core the slowest clock whose frame, floor(STEP clk A / a) - 1 clocks,
 // holds the engine and whose sample period holds the DFT's lanes: 50 MHz
-// (49 999 >= 48 053; 45 MHz's 44 999 does not). The iCE40 has no such
+// (49 999 >= 48 021; 45 MHz's 44 999 does not). The iCE40 has no such
 // clock; mixed_top (own_adc_clock false) neither.
 TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");

@@ -19,6 +19,7 @@
 #include "random_carriers.h"
 #include "hls/dtmf_chain.h"
 #include "hls/dtmf_top_config.h"
+#include "hls/dtmf_ucode.h"
 #include "hls/frame_engine.h"
 #include "hls/frame_engine_asm.h"
 #include "hls/synapse_weights.h"
@@ -543,6 +544,78 @@ TEST(DtmfUcode, OutputWordPortsSecondByteTakesTheNextClock) {
   EXPECT_EQ(fifo_bytes("ldi 0x0201\nout io[IO_OUT_BYTE]\nout io[IO_OUT_BYTE]\n"
                        "out io[IO_OUT_WORD]"),
             (B{0x01, 0x01, 0x01, 0x02}));
+}
+
+// The engine of a build with the barrel shifter, as large as the microcode
+// may address.
+struct BarrelEngine {
+  static constexpr int IW = hls::kDtmfImemBits, DW = 15, KW = 12;
+  static constexpr bool FAST_SHIFT = true;
+};
+
+// taxel_reconstruct's taxel loop, clock for clock, on the instruction-set
+// model with the barrel shifter (the ULX3S's engine). Called on its own
+// (PC at its label, the return stack's 0 as the way out) over a 10x10
+// skin's DMEM: the roots of every line, the sites as each case sets them,
+// RELEASE 0 (no site dropped: v >= 0) or 65535 (every site dropped: the
+// roots are small, so v < 65535). What the loop's comment claims, from
+// docs/frame_engine.md's Timing (one clock an instruction; min 2; rnd by
+// an immediate 2 with the barrel shifter; a DMEM read right after a `st`
+// waits a clock, a jump on A right after a write of A too):
+//  - a taxel without a site: 6 clocks (ld, lt, j.eq taken; st, addx, djnz);
+//  - a site after a site (tr_in): 16: ld, mpy, j.eq, ld.h15, mpy, apac,
+//    rnd 2, min 2, st, addx, sub, lt, j.lt, djnz, no wait anywhere;
+//  - a site that starts a row or follows a taxel without one (tr_nl): 17,
+//    the same instructions with lt in the test's slot and mpy after it.
+// So, against a frame without sites: sites only in column 0 add 11 a row;
+// sites everywhere add 17 + 16 (C - 1) - 6 C a row; one taxel without a
+// site in the middle of a row of sites saves 16 + 16 - (6 + 17) = 9; and
+// dropping every site adds tr_rl's ldi and two st: 3 a site. With the
+// release test's load right after the store of G (the loop before the
+// night of 2026-11-27) every site took 17: sites everywhere added R (C - 1)
+// more, and the hole saved 11 (both checked: this test fails on that
+// loop).
+TEST(DtmfUcode, TaxelLoopTakes16ClocksASiteAfterASite) {
+  const sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/staggered10x10.yaml");
+  auto spec = sim::dtmf_top_spec(sc, 96000000);
+  spec.engine_fast_shift = true;
+  const hls::DtmfTopPlan plan = hls::make_dtmf_top_plan(spec);
+  ASSERT_TRUE(plan.spec.ghost);  // the site rule is the GHOST branch
+  const hls::EngineImage im = hls::dtmf_engine_image(plan);
+  hls::fe_asm::Options opt;
+  for (const auto& [name, value] : im.symbols) opt.symbols[name] = value;
+  opt.imem_words = hls::kDtmfImemWords;
+  const auto prog = hls::fe_asm::assemble(hls::dtmf_ucode_source(), "dtmf_chain.fe", opt);
+  const int R = plan.R, C = plan.C;
+  // Clocks of one call of taxel_reconstruct with sites where site(i, j).
+  auto clocks = [&](auto site, uint32_t release) {
+    auto e = std::make_unique<hls::FrameEngine<BarrelEngine>>();
+    e->load_program(prog.words.data(), uint32_t(prog.words.size()));
+    e->load_krom(im.krom.data(), uint32_t(im.krom.size()));
+    for (int i = 0; i < R; ++i) e->set_dmem(uint32_t(im.symbol("ROOT") + i), 100 + i);
+    for (int j = 0; j < C; ++j) e->set_dmem(uint32_t(im.symbol("CRT") + j), 200 + j);
+    for (int i = 0; i < R; ++i)
+      for (int j = 0; j < C; ++j)
+        e->set_dmem(uint32_t(im.symbol("SITE") + i * C + j), site(i, j) ? 1 : 0);
+    e->set_dmem(uint32_t(im.symbol("RELEASE")), release);
+    e->reset();
+    e->set_pc(uint32_t(prog.symbols.at("taxel_reconstruct")));
+    hls::FrameEngineNullIo io;
+    e->run(io, 100000, [](const auto& f) { return f.pc() == 0; });
+    EXPECT_EQ(e->pc(), 0u) << "taxel_reconstruct did not return";
+    return int64_t(e->clocks());
+  };
+  const int64_t none = clocks([](int, int) { return false; }, 0);
+  const int64_t first = clocks([](int, int j) { return j == 0; }, 0);
+  const int64_t all = clocks([](int, int) { return true; }, 0);
+  const int64_t hole = clocks([](int i, int j) { return !(i == 4 && j == 5); }, 0);
+  const int64_t dropped = clocks([](int, int) { return true; }, 65535);
+  std::printf("taxel_reconstruct on %dx%d: no site %lld clocks, column 0 %lld, every taxel %lld\n",
+              R, C, (long long)none, (long long)first, (long long)all);
+  EXPECT_EQ(first - none, 11 * R);
+  EXPECT_EQ(all - none, int64_t(R) * (17 + 16 * (C - 1) - 6 * C));
+  EXPECT_EQ(all - hole, 9);
+  EXPECT_EQ(dropped - all, 3 * R * C);
 }
 
 }  // namespace

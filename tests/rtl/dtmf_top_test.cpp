@@ -638,8 +638,8 @@ TEST(DtmfTop, ScaleTable20x20AtOneMegasampleOnTheEcp5Core) {
                                                                                         38, 40);
 }
 
-// 32x32 at 1 MS/s, the ECP5-85F target: its engine (48 053 clocks
-// a frame, stress load, with the neuron lanes; 77 757 with the unit alone)
+// 32x32 at 1 MS/s, the ECP5-85F target: its engine (48 021 clocks
+// a frame, stress load, with the neuron lanes; 77 725 with the unit alone)
 // does not fit the 40 MHz frame of the ADC's band, so the ULX3S flow gives
 // the ADC its own 40 MHz clock (the PLL's CLKOS) and the core 50 MHz:
 // samples cross in rtl/stream_cdc.v, a sample every 50 clocks give or take
