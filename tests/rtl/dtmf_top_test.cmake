@@ -25,6 +25,23 @@
 #  s32m:    32x32, the issue's ECP5-85F target, with the ADC on its own
 #           40 MHz clock (ADC_CLK_HZ, rtl/stream_cdc.v) and the core at
 #           50 MHz: 64 channels in 10 lanes, N 256, 2 Mbaud.
+# ${out} = the list ${base} with each NAME=VALUE given replacing its
+# -GNAME=... entry; a NAME the list lacks stops the configure (a build would
+# otherwise keep the old value without a word).
+function(dtmf_params_with out base)
+  set(params ${${base}})
+  foreach(nv ${ARGN})
+    string(REGEX MATCH "^[A-Z_0-9]+" name "${nv}")
+    set(found ${params})
+    list(FILTER found INCLUDE REGEX "^-G${name}=")
+    if(NOT found)
+      message(FATAL_ERROR "dtmf_params_with: ${base} has no -G${name}")
+    endif()
+    list(TRANSFORM params REPLACE "^-G${name}=.*" "-G${nv}")
+  endforeach()
+  set(${out} ${params} PARENT_SCOPE)
+endfunction()
+
 set(dtmf_dir ${CMAKE_BINARY_DIR}/dtmf_top)
 set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
@@ -35,15 +52,11 @@ set(eskin_default_args ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucod
 eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10}
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10.krom.hex\")
-set(dtmf_s10fast ${dtmf_s10})
-list(TRANSFORM dtmf_s10fast REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=48000000")
-list(TRANSFORM dtmf_s10fast REPLACE "^-GENGINE_FAST_SHIFT=.*" "-GENGINE_FAST_SHIFT=1")
+dtmf_params_with(dtmf_s10fast dtmf_s10 CLK_HZ=48000000 ENGINE_FAST_SHIFT=1)
 eskin_verilate(${exe} Vdtmf_top_s10fast ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10fast}
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_fast.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10_fast.krom.hex\")
-set(dtmf_s10unit ${dtmf_s10fast})
-list(TRANSFORM dtmf_s10unit REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=24000000")
-list(TRANSFORM dtmf_s10unit REPLACE "^-GNEURON_UNIT=.*" "-GNEURON_UNIT=1")
+dtmf_params_with(dtmf_s10unit dtmf_s10fast CLK_HZ=24000000 NEURON_UNIT=1)
 eskin_verilate(${exe} Vdtmf_top_s10unit ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10unit}
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_unit.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10_unit.krom.hex\")
@@ -53,31 +66,17 @@ set(dtmf_s16m -GCLK_HZ=40000000 -GSAMPLE_HZ=1000000 -GBAUD=2000000 -GKS=32 -GN=1
 eskin_verilate(${exe} Vdtmf_top_s16m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s16m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_16x16_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_16x16_1msps.krom.hex\")
-set(dtmf_s18m ${dtmf_s16m})
-list(TRANSFORM dtmf_s18m REPLACE "^-GKS=.*" "-GKS=36")
-list(TRANSFORM dtmf_s18m REPLACE "^-GNEURON_BITS=.*" "-GNEURON_BITS=10")
-list(TRANSFORM dtmf_s18m REPLACE "^-GCOLS=.*" "-GCOLS=18")
+dtmf_params_with(dtmf_s18m dtmf_s16m KS=36 NEURON_BITS=10 COLS=18)
 eskin_verilate(${exe} Vdtmf_top_s18m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s18m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_18x18_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_18x18_1msps.krom.hex\")
-set(dtmf_s20m ${dtmf_s16m})
-list(TRANSFORM dtmf_s20m REPLACE "^-GKS=.*" "-GKS=40")
-list(TRANSFORM dtmf_s20m REPLACE "^-GSDFT_LANES=.*" "-GSDFT_LANES=7")
-list(TRANSFORM dtmf_s20m REPLACE "^-GCOLS=.*" "-GCOLS=20")
-list(TRANSFORM dtmf_s20m REPLACE "^-GNEURON_BITS=.*" "-GNEURON_BITS=10")
+dtmf_params_with(dtmf_s20m dtmf_s16m KS=40 SDFT_LANES=7 COLS=20 NEURON_BITS=10)
 eskin_verilate(${exe} Vdtmf_top_s20m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s20m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_20x20_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_20x20_1msps.krom.hex\")
-set(dtmf_s32m ${dtmf_s20m})
-list(TRANSFORM dtmf_s32m REPLACE "^-GKS=.*" "-GKS=64")
-list(TRANSFORM dtmf_s32m REPLACE "^-GN=.*" "-GN=256")
-list(TRANSFORM dtmf_s32m REPLACE "^-GACC_W=.*" "-GACC_W=21")
-list(TRANSFORM dtmf_s32m REPLACE "^-GCLK_HZ=.*" "-GCLK_HZ=50000000")
-list(TRANSFORM dtmf_s32m REPLACE "^-GADC_CLK_HZ=.*" "-GADC_CLK_HZ=40000000")
-list(TRANSFORM dtmf_s32m REPLACE "^-GOUT_DEPTH=.*" "-GOUT_DEPTH=8192")
-list(TRANSFORM dtmf_s32m REPLACE "^-GSDFT_LANES=.*" "-GSDFT_LANES=10")
-list(TRANSFORM dtmf_s32m REPLACE "^-GNEURON_BITS=.*" "-GNEURON_BITS=11")
-list(TRANSFORM dtmf_s32m REPLACE "^-GCOLS=.*" "-GCOLS=32")
+dtmf_params_with(dtmf_s32m dtmf_s20m
+  KS=64 N=256 ACC_W=21 CLK_HZ=50000000 ADC_CLK_HZ=40000000 OUT_DEPTH=8192 SDFT_LANES=10
+  NEURON_BITS=11 COLS=32)
 eskin_verilate(${exe} Vdtmf_top_s32m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s32m}
   -GUCODE_HEX=\"${dtmf_dir}/scale_32x32_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_32x32_1msps.krom.hex\")
