@@ -110,6 +110,13 @@ int neuron_lanes_for(const Board& b, int neuron_unit, int taxels) {
   return neuron_unit == 2 || 2 * taxels <= 2048 ? lanes : 0;
 }
 
+void apply_engine_options(const Board& b, int fast_shift, int neuron_unit,
+                          hls::DtmfTopSpec& spec) {
+  spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
+  spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
+  spec.neuron_lanes = neuron_lanes_for(b, neuron_unit, spec.rows * spec.cols);
+}
+
 namespace {
 
 // choose_core_clock for a plan made at spec's baud rate, among the clocks
@@ -191,9 +198,7 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
                             long clk_hz, int fast_shift, int neuron_unit, bool own_adc_clock) {
   hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
   // Before the load: the shifter and the neuron unit set the engine's clocks.
-  spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
-  spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
-  spec.neuron_lanes = neuron_lanes_for(b, neuron_unit, spec.rows * spec.cols);
+  apply_engine_options(b, fast_shift, neuron_unit, spec);
   // The scene's samples as the top takes them: 12-bit codes minus 2048.
   std::vector<int32_t> x;
   sim::WorldModel world(scene);

@@ -128,6 +128,11 @@ struct CoreClock {
 // taxels is then refused by make_dtmf_top_plan, naming the limit); -1, the
 // board's with its unit, 0 beyond 1024 taxels; else 0.
 int neuron_lanes_for(const Board& b, int neuron_unit, int taxels);
+// The engine a build of `spec` gets for the options fast_shift and
+// neuron_unit (FlowOptions; -1 the board's): the shifter, the neuron unit
+// and its lanes (neuron_lanes_for), set in `spec`.
+void apply_engine_options(const Board& b, int fast_shift, int neuron_unit,
+                          hls::DtmfTopSpec& spec);
 
 // fast_shift: the engine's barrel shifter, 1 on, 0 off, -1 the board's
 // (Board::engine_fast_shift); neuron_unit likewise (Board::neuron_unit; 2:

@@ -159,10 +159,7 @@ std::vector<ScaleRow> run_scale_table(const sim::Scene& base, const FlowOptions&
             r = run_flow(b, sc, o);
           } catch (const std::invalid_argument& e) {  // the plan rejects the skin
             r.spec = sim::dtmf_top_spec(sc);
-            r.spec.engine_fast_shift = fast_shift < 0 ? b.engine_fast_shift : fast_shift != 0;
-            r.spec.neuron_unit = neuron_unit < 0 ? b.neuron_unit : neuron_unit != 0;
-            r.spec.neuron_lanes =
-                neuron_lanes_for(b, neuron_unit, r.spec.rows * r.spec.cols);
+            apply_engine_options(b, fast_shift, neuron_unit, r.spec);
             r.failure = e.what();
           }
           rows.push_back(scale_row(t, r));
