@@ -308,7 +308,7 @@ struct IzhikevichLanesPort {
     uint64_t written = 0;  // the clock whose end wrote v .. flag
   };
   std::vector<Neuron> neurons;
-  std::vector<uint32_t> events;  // the layer's spiking neurons, in order
+  std::vector<uint32_t> spiked;  // the layer's spike events: its spiking neurons, in order
   uint32_t idx = 0;              // the next neuron to start or initialise
   int32_t init_v = 0;
   int next_lane = 0;
@@ -332,7 +332,7 @@ struct IzhikevichLanesPort {
     switch (a) {
       case kIoIzN:
         busy_check("set the next neuron", clock);
-        idx = d, events.clear();
+        idx = d, spiked.clear();
         return true;
       case kIoIzXGo: return start(int32_t(d), clock), true;
       case kIoIzSV: init_v = int32_t(d); return true;
@@ -360,18 +360,18 @@ struct IzhikevichLanesPort {
         throw std::logic_error("the microcode read the spike events in clock " +
                                std::to_string(clock) + ", before the updates end (clock " +
                                std::to_string(idle_clock) + ")");
-      if (a == kIoIzEvN) return d = uint32_t(events.size()), true;
+      if (a == kIoIzEvN) return d = uint32_t(spiked.size()), true;
       const size_t i = a & 0x0FFF;
-      if (i >= events.size())
+      if (i >= spiked.size())
         throw std::logic_error("the microcode read spike event " + std::to_string(i) + " of " +
-                               std::to_string(events.size()) + " in clock " +
+                               std::to_string(spiked.size()) + " in clock " +
                                std::to_string(clock));
-      return d = events[i], true;
+      return d = spiked[i], true;
     }
     return false;
   }
 
-  uint16_t events_at(uint64_t clock) const {
+  uint16_t events(uint64_t clock) const {
     return lanes != 0 && clock >= idle_clock ? kEvIzDone : 0;
   }
 
@@ -416,7 +416,7 @@ struct IzhikevichLanesPort {
     s.old_flag = s.flag;
     s.v = one.v(0), s.u = one.U(0), s.x_prev = one.x_prev(0), s.flag = spike;
     s.written = clock + kLaneWriteBack;
-    if (spike) events.push_back(idx);
+    if (spike) spiked.push_back(idx);
     ready = clock + 1 + kLaneRate;
     next_lane = (next_lane + 1) % lanes;
     idle_clock = s.written + 1;

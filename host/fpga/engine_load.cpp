@@ -70,7 +70,7 @@ struct LoadIo {
   }
   uint16_t events(uint64_t clock) const {
     return uint16_t((pending ? hls::kEvFramePending : 0) | (cmd.empty() ? 0 : hls::kEvCmdAvail) |
-                    neuron.events(clock) | lanes.events_at(clock));
+                    neuron.events(clock) | lanes.events(clock));
   }
 };
 

@@ -186,7 +186,7 @@ class TopModel {
     }
     uint16_t events(uint64_t clock) const {
       return uint16_t((pending ? 1 : 0) | (cmd.empty() ? 0 : 2) | neuron.events(clock) |
-                      lanes.events_at(clock));
+                      lanes.events(clock));
     }
   };
 

@@ -71,7 +71,7 @@ struct Lanes : ClockedDut<Vizhikevich_lanes> {
     m.su_we = op == hls::kIoIzSU;
     // The reads of this clock see the state before its write, which lands
     // at its end (the engine's `wait` never shares a clock with an `out`).
-    const bool idle = port.events_at(cycle) != 0;
+    const bool idle = port.events(cycle) != 0;
     const uint32_t a = uint32_t(g() % (1u << (kIndexBits + 1)));
     m.flag_addr = a;
     m.ev_addr = uint32_t(g() % (1u << kIndexBits));
@@ -119,7 +119,7 @@ struct Lanes : ClockedDut<Vizhikevich_lanes> {
                                std::to_string(at == ~uint64_t(0) ? cycle : at));
   }
   void wait_idle() {
-    while (port.events_at(cycle) == 0) clock();
+    while (port.events(cycle) == 0) clock();
   }
   // Every event of the layer, read in turn once idle.
   void check_events() {
