@@ -1,0 +1,368 @@
+// The figures the docs cite, from generated files only, and a check that
+// a doc's figure cannot differ from its file's.
+//
+// Three generated files hold every measured figure of docs/ and README.md:
+//  - docs/figures.csv (name,value,unit,source): written by this test from
+//    the real models: the default scene's plan (common/eskin/dtmf_top_plan.h
+//    and its Verilog parameters, ucode/dtmf_engine_image.h), the frame
+//    engine's longest frames on its instruction-set model
+//    (host/fpga/engine_load.h: ucode/frame_engine.h running the scene's
+//    microcode, clock exact against rtl/frame_engine.v) and the clocks of
+//    single instructions on that model. Regenerate it with
+//      ESKIN_UPDATE_FIGURES=1 build/bin/system_doc_figures_test
+//    (the test then writes the file and passes; without the variable it
+//    fails on any difference, naming the figure, the file's value and the
+//    measured one);
+//  - bench/baselines/latency.csv: `eskin bench latency --update-baseline`
+//    (Verilator, checked against the instruction-set model; CI:
+//    tests/system/bench_latency_test.cpp);
+//  - docs/scale_table.csv: `eskin bitstream --scale-table` (Yosys +
+//    nextpnr).
+// A doc marks each figure it cites with its name:
+//    <!--fig:NAME-->10 077<!--/fig-->
+// NAME is a row of docs/figures.csv, latency/CONFIG/STAGE (a row of
+// latency.csv) or scale/TARGET/RxC/SAMPLE_HZ/COLUMN (a row of the scale
+// table, SAMPLE_HZ as the CSV writes it). The text between the markers is
+// the number (spaces and commas as thousands separators allowed); a file
+// value with more decimals is compared rounded to the doc's decimals. The
+// docs check fails naming file:line for every marked figure that differs or
+// names nothing, and for a marker left open.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "eskin/dtmf_top_plan.h"
+#include "host/fpga/engine_load.h"
+#include "sim/dtmf_top_spec.h"
+#include "sim/scene.h"
+#include "sim/world_model.h"
+#include "ucode/dtmf_engine_image.h"
+#include "ucode/frame_engine.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace eskin;
+
+const fs::path kSrc = ESKIN_SOURCE_DIR;
+
+struct Figure {
+  std::string name, value, unit, source;
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// One CSV line, double quotes around a field allowed ("" inside).
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') out.back() += '"', ++i;
+      else if (c == '"') quoted = false;
+      else out.back() += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.emplace_back();
+    } else if (c != '\r') {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
+// Rows of a CSV file after its comment lines (#) and its header.
+std::vector<std::vector<std::string>> read_csv(const fs::path& p,
+                                               std::vector<std::string>* header = nullptr) {
+  std::istringstream in(read_text(p));
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  bool have_header = false;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    auto f = split_csv(line);
+    if (!have_header) {
+      if (header) *header = f;
+      have_header = true;
+      continue;
+    }
+    rows.push_back(f);
+  }
+  return rows;
+}
+
+// Clocks of instruction `w` on the instruction-set model, after a `ldx`
+// (a control instruction: no bubble before any instruction).
+template <bool FAST>
+struct ShiftConfig : hls::FrameEngineConfig {
+  static constexpr bool FAST_SHIFT = FAST;
+};
+
+template <bool FAST>
+uint32_t instruction_clocks(uint32_t w) {
+  hls::FrameEngine<ShiftConfig<FAST>> e;
+  const uint32_t prog[] = {hls::fe::ctl(hls::fe::kLdx, 1, 0, 1), w};
+  e.load_program(prog, 2);
+  e.reset();
+  e.set_a(1000000);
+  hls::FrameEngineNullIo io;
+  e.step(io);
+  return e.step(io);
+}
+
+// Every figure of docs/figures.csv, measured now.
+std::vector<Figure> measure_figures() {
+  std::vector<Figure> v;
+  auto add = [&](std::string name, double value, std::string unit, std::string source) {
+    char buf[64];
+    if (value == std::floor(value)) std::snprintf(buf, sizeof buf, "%.0f", value);
+    else std::snprintf(buf, sizeof buf, "%.6g", value);
+    v.push_back({std::move(name), buf, std::move(unit), std::move(source)});
+  };
+
+  // The default scene's build: the plan, its Verilog parameters, its load.
+  const sim::Scene sc = sim::load_scene((kSrc / "scenes/neuroskin2.yaml").string());
+  const auto plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(sc, hls::kDtmfTopClkHz));
+  const auto image = hls::dtmf_engine_image(plan);
+  const auto params = hls::dtmf_top_params(plan, image, "", "");
+  auto param = [&](const std::string& n) {
+    for (const auto& p : params)
+      if (p.name == n) return std::stol(p.value);
+    ADD_FAILURE() << "dtmf_top_params has no " << n;
+    return 0L;
+  };
+  const char* plan_src = "common/eskin/dtmf_top_plan.h (make_dtmf_top_plan, dtmf_top_params)";
+  const long period = std::lround(double(plan.spec.clk_hz) / plan.spec.sample_hz);
+  const long frame = period * plan.step;
+  add("default.clk_mhz", plan.spec.clk_hz / 1e6, "MHz", plan_src);
+  add("default.sample_clocks", period, "clocks", plan_src);
+  add("default.step", plan.step, "samples", plan_src);
+  add("default.frame_clocks", frame, "clocks", plan_src);
+  add("default.iw", param("IW"), "bits", plan_src);
+  add("default.dw", param("DW"), "bits", plan_src);
+  add("default.dmem_words", 1L << param("DW"), "words", plan_src);
+  add("default.kw", param("KW"), "bits", plan_src);
+  add("default.dft_channels", param("KS"), "channels", plan_src);
+
+  sim::WorldModel world(sc);
+  const auto codes = world.all_codes();
+  const int up = 12 - sc.skin.adc.bits;
+  std::vector<int32_t> x;
+  for (int c : codes) x.push_back((c << up) - 2048);
+  const fpga::EngineLoad load = fpga::measure_engine_load(plan, x);
+  const char* load_src = "host/fpga/engine_load.h (measure_engine_load, instruction-set model)";
+  add("default.longest_frame", double(load.scene_clocks), "clocks", load_src);
+  add("default.longest_frame_percent", std::round(100.0 * load.scene_clocks / frame), "%",
+      load_src);
+  add("default.idle_percent", std::round(100.0 - 100.0 * load.scene_clocks / frame), "%",
+      load_src);
+  add("default.scene_frames", load.scene_frames, "frames", load_src);
+  add("default.stress_frame", double(load.stress_bound()), "clocks", load_src);
+  add("default.longest_command", double(load.command_clocks), "clocks", load_src);
+  add("default.stress_plus_command", double(load.stress_total()), "clocks", load_src);
+  add("default.stress_plus_command_percent", std::round(100.0 * load.stress_total() / frame), "%",
+      load_src);
+
+  // Single instructions (docs/frame_engine.md, Timing): clocks each costs
+  // after an instruction that leaves A alone.
+  namespace fe = hls::fe;
+  const char* fe_src = "ucode/frame_engine.h (FrameEngine::step)";
+  add("fe.min_clocks", instruction_clocks<false>(fe::imm(fe::kMin, 5)), "clocks", fe_src);
+  add("fe.max_clocks", instruction_clocks<false>(fe::imm(fe::kMax, 5)), "clocks", fe_src);
+  add("fe.sqrt_clocks", instruction_clocks<false>(fe::ctl(fe::kSqrt, 0, 0, 0)), "clocks", fe_src);
+  add("fe.sqrtr_clocks", instruction_clocks<false>(fe::ctl(fe::kSqrtr, 0, 0, 0)), "clocks", fe_src);
+  add("fe.sqrt_clocks_fast", instruction_clocks<true>(fe::ctl(fe::kSqrt, 0, 0, 0)), "clocks",
+      fe_src);
+  add("fe.rnd12_clocks", instruction_clocks<false>(fe::imm(fe::kRnd, 12)), "clocks", fe_src);
+  add("fe.rnd12_clocks_fast", instruction_clocks<true>(fe::imm(fe::kRnd, 12)), "clocks", fe_src);
+  add("fe.shl15_clocks", instruction_clocks<false>(fe::imm(fe::kShl, 15)), "clocks", fe_src);
+  add("fe.shl15_clocks_fast", instruction_clocks<true>(fe::imm(fe::kShl, 15)), "clocks", fe_src);
+  return v;
+}
+
+const fs::path kFiguresCsv = kSrc / "docs/figures.csv";
+
+void write_figures(const std::vector<Figure>& figs) {
+  std::ofstream f(kFiguresCsv, std::ios::binary);
+  f << "# Measured figures the docs cite (<!--fig:NAME-->), written by\n"
+       "# tests/system/doc_figures_test.cpp (ESKIN_UPDATE_FIGURES=1\n"
+       "# build/bin/system_doc_figures_test); the test fails when a figure here\n"
+       "# differs from the models' or a doc's differs from here.\n"
+       "name,value,unit,source\n";
+  for (const auto& g : figs) f << g.name << ',' << g.value << ',' << g.unit << ",\"" << g.source << "\"\n";
+}
+
+// Every figure a doc may cite, by name.
+std::map<std::string, std::string> known_figures() {
+  std::map<std::string, std::string> m;
+  for (const auto& r : read_csv(kFiguresCsv))
+    if (r.size() >= 2) m[r[0]] = r[1];
+  for (const auto& r : read_csv(kSrc / "bench/baselines/latency.csv"))
+    if (r.size() == 3) m["latency/" + r[0] + "/" + r[1]] = r[2];
+  std::vector<std::string> h;
+  const auto rows = read_csv(kSrc / "docs/scale_table.csv", &h);
+  auto col = [&](const std::string& n) {
+    for (size_t i = 0; i < h.size(); ++i)
+      if (h[i] == n) return i;
+    ADD_FAILURE() << "docs/scale_table.csv has no column " << n;
+    return size_t(0);
+  };
+  const size_t target = col("target"), rows_c = col("rows"), cols_c = col("cols"),
+               rate = col("sample_hz");
+  for (const auto& r : rows) {
+    if (r.size() != h.size()) continue;
+    const std::string key =
+        "scale/" + r[target] + "/" + r[rows_c] + "x" + r[cols_c] + "/" + r[rate] + "/";
+    for (size_t i = 0; i < h.size(); ++i) m[key + h[i]] = r[i];
+  }
+  return m;
+}
+
+// The number a doc writes, without thousands separators (space, no-break
+// and thin spaces, commas); "" when it is not a number.
+std::string doc_number(std::string s) {
+  for (const char* sep : {"\xe2\x80\xaf", "\xc2\xa0", "\xe2\x80\x89", " ", ","}) {
+    for (size_t at; (at = s.find(sep)) != std::string::npos;) s.erase(at, std::strlen(sep));
+  }
+  return std::regex_match(s, std::regex("-?[0-9]+(\\.[0-9]+)?")) ? s : "";
+}
+
+// Whether a doc's number `d` cites the file's value `v` (rounded to d's
+// decimals when v has more).
+bool cites(const std::string& d, const std::string& v) {
+  if (d == v) return true;
+  const size_t dot = d.find('.');
+  const int decimals = dot == std::string::npos ? 0 : int(d.size() - dot - 1);
+  char* end = nullptr;
+  const double value = std::strtod(v.c_str(), &end);
+  if (v.empty() || *end) return false;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
+  return d == buf;
+}
+
+std::vector<fs::path> doc_files() {
+  std::vector<fs::path> v = {kSrc / "README.md"};
+  for (const auto& e : fs::directory_iterator(kSrc / "docs"))
+    if (e.path().extension() == ".md") v.push_back(e.path());
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// One message per marked figure of `text` (file `name`) that is wrong.
+std::vector<std::string> check_doc(const std::string& name, const std::string& text,
+                                   const std::map<std::string, std::string>& figs, int* marked) {
+  std::vector<std::string> bad;
+  std::istringstream in(text);
+  std::string line;
+  const std::regex mark("<!--fig:([^>]*?)-->(.*?)<!--/fig-->");
+  for (int n = 1; std::getline(in, line); ++n) {
+    const std::string where = name + ":" + std::to_string(n) + ": ";
+    size_t opened = 0;
+    for (size_t at = 0; (at = line.find("<!--fig:", at)) != std::string::npos; ++at) ++opened;
+    size_t closed = 0;
+    for (std::sregex_iterator it(line.begin(), line.end(), mark), end; it != end; ++it, ++closed) {
+      ++*marked;
+      const std::string fig = (*it)[1], text_value = (*it)[2];
+      const auto f = figs.find(fig);
+      const std::string d = doc_number(text_value);
+      if (f == figs.end())
+        bad.push_back(where + "figure " + fig + " is in no generated file");
+      else if (d.empty())
+        bad.push_back(where + "figure " + fig + ": \"" + text_value + "\" is not a number");
+      else if (!cites(d, f->second))
+        bad.push_back(where + "figure " + fig + " reads " + text_value + ", the generated value is " +
+                      f->second);
+    }
+    if (opened != closed) bad.push_back(where + "a <!--fig:...--> without its <!--/fig--> on the line");
+  }
+  return bad;
+}
+
+TEST(DocFigures, FiguresFileEqualsTheModels) {
+  const auto measured = measure_figures();
+  if (const char* u = std::getenv("ESKIN_UPDATE_FIGURES"); u && *u && std::string(u) != "0") {
+    write_figures(measured);
+    std::printf("wrote %s (%zu figures)\n", kFiguresCsv.c_str(), measured.size());
+  }
+  std::map<std::string, std::string> file;
+  for (const auto& r : read_csv(kFiguresCsv))
+    if (r.size() >= 2) file[r[0]] = r[1];
+  for (const auto& g : measured) {
+    std::printf("  %-32s %10s %s\n", g.name.c_str(), g.value.c_str(), g.unit.c_str());
+    const auto f = file.find(g.name);
+    if (f == file.end())
+      ADD_FAILURE() << "docs/figures.csv lacks " << g.name << " (measured " << g.value
+                    << "): regenerate it (ESKIN_UPDATE_FIGURES=1)";
+    else
+      EXPECT_EQ(f->second, g.value) << "docs/figures.csv: " << g.name << " is " << f->second
+                                    << ", the models give " << g.value
+                                    << " (regenerate: ESKIN_UPDATE_FIGURES=1, then fix the docs)";
+  }
+  EXPECT_EQ(file.size(), measured.size()) << "docs/figures.csv has figures nothing measures";
+}
+
+TEST(DocFigures, DocsCiteTheGeneratedFigures) {
+  const auto figs = known_figures();
+  int marked = 0;
+  std::vector<std::string> bad;
+  for (const auto& p : doc_files()) {
+    const auto b = check_doc(fs::relative(p, kSrc).string(), read_text(p), figs, &marked);
+    bad.insert(bad.end(), b.begin(), b.end());
+  }
+  for (const auto& b : bad) ADD_FAILURE() << b;
+  std::printf("%d marked figures\n", marked);
+  EXPECT_GE(marked, 20);
+}
+
+// The check itself: a wrong, unknown, non-numeric or unclosed figure fails,
+// a right one (with separators, or rounded) passes.
+TEST(DocFigures, CheckFailsOnAWrongFigure) {
+  const std::map<std::string, std::string> figs = {{"a", "10077"}, {"b", "54.27"}};
+  int marked = 0;
+  EXPECT_TRUE(check_doc("d.md", "x <!--fig:a-->10 077<!--/fig--> y <!--fig:b-->54.3<!--/fig-->", figs,
+                        &marked)
+                  .empty());
+  EXPECT_EQ(marked, 2);
+  const auto bad = check_doc("d.md", "ok\n<!--fig:a-->10 387<!--/fig-->\n<!--fig:c-->1<!--/fig-->\n"
+                             "<!--fig:a-->ten<!--/fig-->\n<!--fig:a-->10077\n<!--fig:b-->54.2<!--/fig-->",
+                             figs, &marked);
+  ASSERT_EQ(bad.size(), 5u);
+  EXPECT_EQ(bad[0], "d.md:2: figure a reads 10 387, the generated value is 10077");
+  EXPECT_NE(bad[1].find("d.md:3: figure c is in no generated file"), std::string::npos);
+  EXPECT_NE(bad[2].find("d.md:4:"), std::string::npos);
+  EXPECT_NE(bad[3].find("d.md:5: a <!--fig:"), std::string::npos);
+  EXPECT_NE(bad[4].find("d.md:6:"), std::string::npos);
+}
+
+// Docs say what is: dated notes and old measurements belong to git history.
+TEST(DocFigures, DocsCarryNoDatedNotes) {
+  const std::regex date("20[0-9][0-9]-[01][0-9]-[0-3][0-9]");
+  for (const auto& p : doc_files()) {
+    std::istringstream in(read_text(p));
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n)
+      EXPECT_FALSE(std::regex_search(line, date))
+          << fs::relative(p, kSrc).string() << ":" << n << ": a dated note: " << line;
+  }
+}
+
+}  // namespace
