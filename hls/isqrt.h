@@ -44,7 +44,7 @@ inline uint32_t isqrt(uint32_t x) {
 }
 
 // floor(sqrt(x)) for any 64-bit x, the same method two radicand bits per
-// step (32 steps); for models of wider roots (hls/frame_engine.h).
+// step (32 steps); for models of wider roots (ucode/frame_engine.h).
 inline uint64_t isqrt64(uint64_t x) {
   uint64_t rem = 0, root = 0;
   for (int i = 31; i >= 0; --i) {

@@ -6,7 +6,7 @@
 //     The default 18 MHz (DIVR 0, DIVF 47, DIVQ 5: VCO 576 MHz, as
 //     `icepll -i 12 -o 18` gives) is the fastest PLL clock below the top's
 //     Fmax (about 20 MHz) that is a multiple of the 3 Mbaud UART (6 clocks
-//     per bit); hls/dtmf_top_config.h's kDtmfTopClkHz. `eskin bitstream`
+//     per bit); common/eskin/dtmf_top_plan.h's kDtmfTopClkHz. `eskin bitstream`
 //     picks other dividers for other clocks (host/fpga/board.cpp) and
 //     passes the same clock to the core as its CLK_HZ.
 //   BTN_N -> the core's rst_n, which is also held low until the PLL locks
@@ -17,7 +17,7 @@
 // The core: by default dtmf_top with its default parameters but CLK_HZ
 // (no microcode: for lint only). `eskin bitstream` builds a scene's core:
 // it writes a wrapper module with the scene's dtmf_top parameters and
-// microcode files (hls/dtmf_ucode.h) and defines ESKIN_DTMF_CORE as its
+// microcode files (ucode/dtmf_ucode.h) and defines ESKIN_DTMF_CORE as its
 // name.
 module board_icebreaker #(
     parameter integer PLL_DIVR = 0,

@@ -18,7 +18,7 @@
 //
 // The core: by default dtmf_top with its default parameters but CLK_HZ;
 // `eskin bitstream` defines ESKIN_DTMF_CORE as the name of a wrapper module
-// with a scene's dtmf_top parameters (hls/dtmf_top_config.h).
+// with a scene's dtmf_top parameters (common/eskin/dtmf_top_plan.h).
 module board_ulx3s #(
     parameter integer CLKI_DIV = 5,
     parameter integer CLKFB_DIV = 6,

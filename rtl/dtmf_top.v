@@ -19,7 +19,7 @@
 // state and constants live in block RAM (DMEM: SPRAM on the UP5K, by its
 // ram_style attribute); every command is applied by its microcode at run
 // time. The bit-exact spec of the packets is hls/dtmf_chain.h; every
-// parameter below is generated from a scene by hls/dtmf_top_config.h
+// parameter below is generated from a scene by common/eskin/dtmf_top_plan.h
 // (dtmf_top_params); the defaults are the default scene's
 // (scenes/neuroskin2.yaml) on an iCE40 UP5K at 18 MHz (the board wrapper's
 // PLL: 12 MHz x 3/2).
@@ -44,11 +44,11 @@ module dtmf_top #(
     // 1: the engine's barrel shifter (frame_engine FAST_SHIFT): the same
     // packets in fewer clocks, for the larger FPGAs.
     parameter integer ENGINE_FAST_SHIFT = 0,
-    // Output FIFO bytes (hls/dtmf_top_config.h: the plan's longest packet
+    // Output FIFO bytes (common/eskin/dtmf_top_plan.h: the plan's longest packet
     // fits whole; the engine drops, and counts, a packet without room).
     parameter integer OUT_DEPTH = 512,
     // The scene's microcode and constants ($readmemh files written by
-    // hls/dtmf_ucode.h's write_dtmf_top_build, e.g. through `eskin bitstream`).
+    // ucode/dtmf_ucode.h's write_dtmf_top_build, e.g. through `eskin bitstream`).
     parameter UCODE_HEX = "",
     parameter KROM_HEX = "",
     // 0: this top owns the host link (link_framer -> uart_tx on uart_txd).
@@ -65,7 +65,7 @@ module dtmf_top #(
     // (ceil(KS / L) - 1) with L >= 2, KS + 8 from 6 lanes on (frame_capture
     // takes a token every clock; hls/sdft_bank.h's sdft_lanes_interval);
     // every other sample gives no tokens and takes 6 ceil(KS / L) + 2
-    // (sdft_skip_interval). hls/dtmf_top_config.h's budget says when the
+    // (sdft_skip_interval). common/eskin/dtmf_top_plan.h's budget says when the
     // ADC keeps up. 1 on the UP5K.
     parameter integer SDFT_LANES = 1,
     // 1: the hardware neuron unit (rtl/izhikevich_layer.v): the microcode
@@ -183,7 +183,7 @@ module dtmf_top #(
   // power_on_reset of adc_clk, which also holds the ADC from configuration
   // on), wr_clear as a toggle. The ADC's own output register, s_hold and
   // m_data hold a sample each, so the DFT may take one later than with the
-  // ADC on clk (hls/dtmf_top_config.h's budget assumes the one register of
+  // ADC on clk (common/eskin/dtmf_top_plan.h's budget assumes the one register of
   // that case).
   wire adc_valid, sdft_in_ready;
   wire [11:0] adc_code;
@@ -395,7 +395,7 @@ module dtmf_top #(
   // no side effects, so the register loads every clock (no enable from the
   // engine's decode), and the address is decoded partially: bit 9 picks
   // the frame buffer (0x000-0x0FF) or the registers (0x200-0x20F, bits
-  // 3:0); the microcode uses only these addresses (hls/dtmf_engine_config.h).
+  // 3:0); the microcode uses only these addresses (ucode/dtmf_engine_image.h).
   // Both keep the path IMEM -> ea adder -> this register short.
   // With lanes, bit 13 picks an event and bit 12 a spike flag (0x1000 +
   // flag address; 0x2000 + event).

@@ -1,6 +1,6 @@
 // frame_engine: the microcoded arithmetic unit behind the DTMF top
 // (docs/frame_engine.md: ISA, encoding, timing). Clock-exact executable spec:
-// hls/frame_engine.h; the two are compared instruction by instruction in
+// ucode/frame_engine.h; the two are compared instruction by instruction in
 // tests/rtl/frame_engine_test.cpp.
 //
 // Organisation (area first: one 48-bit adder, one logic unit, a 1-bit/clock

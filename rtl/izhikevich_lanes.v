@@ -14,7 +14,7 @@
 // saturation), computed by the unchanged izhikevich_layer; this module adds
 // only storage and sequencing, so no arithmetic of its own. The C++ models
 // of the top see these ports through hls::IzhikevichLanesPort
-// (hls/dtmf_engine_config.h), the clock-exact spec of the timing below.
+// (ucode/dtmf_engine_image.h), the clock-exact spec of the timing below.
 //
 // Neurons are numbered n = 0 .. 2^NB - 1 (layer l's neuron i: l T + i).
 // Writes (one a clock, `data` the bus word):

@@ -20,7 +20,7 @@
 //
 // The parameters are the two tops' own, by the same names (CLK_HZ and BAUD
 // are shared), so a scene's two generated parameter sets
-// (hls/dtmf_top_config.h, sim/hall_top_spec.h) apply unchanged. The
+// (common/eskin/dtmf_top_plan.h, sim/hall_top_spec.h) apply unchanged. The
 // defaults: the default DTMF scene's top at 18 MHz beside hall_top's
 // default two buses of two sensors, their conversion waits scaled to 18 MHz.
 // Packet timestamps stay each top's own: DTMF packets carry ADC sample

@@ -1,4 +1,4 @@
-// The FPGA top's spec (hls/dtmf_top_config.h) for a scene: the skin's
+// The FPGA top's spec (common/eskin/dtmf_top_plan.h) for a scene: the skin's
 // sizes, carriers, ADC and window, whether the carriers need demixing (any
 // off a DFT bin centre), the ghost thresholds, the neurons and whether the
 // scene wants spikes, and the FPGA clock.
@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "sim/scene.h"
 
 namespace eskin::sim {

@@ -1,7 +1,7 @@
 // Cycle-exact latency of one build of rtl/hall_top.v: from the DRDY of the
 // reading that completes a frame to the frame's first and last byte on the
 // host link. Not built by CMake: `eskin bench latency`
-// (bench/suite/latency.cpp) verilates hall_top with the parameters
+// (host/bench/latency.cpp) verilates hall_top with the parameters
 // sim/hall_top_spec.h generates for the scene and compiles this harness
 // against it (cached), on the bench tests/rtl/hall_top_test.cpp uses
 // (tests/rtl/hall_top_board.h).

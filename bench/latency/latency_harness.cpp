@@ -1,5 +1,5 @@
 // Cycle-exact stage latencies of one build of rtl/dtmf_top.v. Not built by
-// CMake: `eskin bench latency` (bench/suite/latency.cpp) verilates the top
+// CMake: `eskin bench latency` (host/bench/latency.cpp) verilates the top
 // with the build's parameters (its microcode and constants written by
 // hls::write_dtmf_top_build) and compiles this harness against it, one
 // build per parameter set, cached.

@@ -14,12 +14,12 @@
 #include <thread>
 #include <vector>
 
-#include "bench/suite/latency.h"
-#include "bench/suite/scale.h"
-#include "bench/suite/stability.h"
-#include "bench/suite/timing.h"
-#include "bench/suite/throughput.h"
-#include "bench/suite/tradeoff_run.h"
+#include "host/bench/latency.h"
+#include "host/bench/scale.h"
+#include "host/bench/stability.h"
+#include "host/bench/timing.h"
+#include "host/bench/throughput.h"
+#include "host/bench/tradeoff_run.h"
 #include "cli/command.h"
 #include "eskin/skin_config.h"
 #include "host/engine/engine_setup.h"

@@ -1,8 +1,8 @@
 // `eskin bitstream --board icebreaker|ulx3s [--scene SCENE.yaml] [--out DIR]
 //  [--seed N] [--seeds N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]`:
 // builds the core the scene needs (host/fpga/flow.h): its DTMF skin's
-// (parameters from hls/dtmf_top_config.h, microcode and constants from
-// hls/dtmf_ucode.h), its Hall sensors' (sim/hall_top_spec.h, with their I2C
+// (parameters from common/eskin/dtmf_top_plan.h, microcode and constants from
+// ucode/dtmf_ucode.h), its Hall sensors' (sim/hall_top_spec.h, with their I2C
 // and DRDY pins), or both on one link (rtl/mixed_top.v), in the board's
 // wrapper with Yosys, nextpnr and icepack / ecppack, writes the bitstream,
 // OUT/bitstream_report.json and OUT/bitstream_report.txt, prints the table,

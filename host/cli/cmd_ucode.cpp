@@ -4,14 +4,14 @@
 //     optionally with a listing; -D predefines symbols (e.g. IO ports).
 //   eskin ucode run FILE.fe [--trace] [--max-clocks N] [--krom FILE.hex]
 //                           [--events MASK] [-D ...]
-//     runs it on the instruction-set model (hls/frame_engine.h; IMEM 4096,
+//     runs it on the instruction-set model (ucode/frame_engine.h; IMEM 4096,
 //     DMEM 32768 and KROM 4096 words, the largest configuration) with nothing
 //     on the IO bus: reads give 0, writes are printed, the events are MASK in
 //     every clock (default 0). It stops at a jump to itself (the halt idiom),
 //     at a wait no event can end, or after N clocks; --trace prints every
 //     instruction.
 //   eskin ucode build SCENE.yaml [--out DIR] [--clk-mhz F]
-//     the DTMF top's build for a scene (hls/dtmf_top_config.h's plan at
+//     the DTMF top's build for a scene (common/eskin/dtmf_top_plan.h's plan at
 //     the given clock, default the UP5K's): writes DIR/NAME.ucode.hex and
 //     DIR/NAME.krom.hex (NAME = the scene's file stem; rtl/ucode/dtmf_chain.fe
 //     assembled with the scene's constants) and prints every Verilog
@@ -29,9 +29,9 @@
 
 #include "cli/command.h"
 #include "eskin/skin_config.h"
-#include "hls/frame_engine.h"
-#include "hls/frame_engine_asm.h"
-#include "hls/dtmf_ucode.h"
+#include "ucode/frame_engine.h"
+#include "ucode/frame_engine_asm.h"
+#include "ucode/dtmf_ucode.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
 

@@ -21,7 +21,7 @@ int decode_fpga(const SkinConfig& skin, const DecoderConfig& dec, const NeuronCo
                                                "off bin centres (auto, exact or ls), got ") +
                                        to_string(dec.variant));
   if (dec.hann) throw ConfigError("decoder.hann", "the fpga engine has a rectangular window only");
-  // The top's build for this skin (hls/dtmf_top_config.h); --hop (samples)
+  // The top's build for this skin (common/eskin/dtmf_top_plan.h); --hop (samples)
   // sets both packet decimations, a whole number of the build's frames.
   hls::DtmfTopPlan plan = engine::top_plan(skin, dec, neuron, opt.spikes);
   plan.spec.ghost = opt.ghost_correct;

@@ -53,7 +53,7 @@ struct EngineConfig {
   int mag_shift = 0;                  // magnitudes: sums >> mag_shift (u16)
   std::vector<uint32_t> inc;          // DFT channels: K carriers (+ DC, inc 0, when demixing)
   bool demix = false;
-  hls::CarrierDemixTables demix_tables;  // when demixing (hls/dtmf_top_config.h's plan)
+  hls::CarrierDemixTables demix_tables;  // when demixing (common/eskin/dtmf_top_plan.h's plan)
   hls::TaxelReconstructConfig taxel;
   bool ghost = true;
   hls::GhostFilterConfig ghost_cfg;

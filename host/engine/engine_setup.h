@@ -2,7 +2,7 @@
 // runtime EngineConfig of host/engine/dtmf_engine.h. Everything the top is
 // built with (sizes, widths, step, decimation, demixing, taxel, ghost,
 // synapse and neuron constants)
-// comes from hls/dtmf_top_config.h's plan, the one place the RTL builds and
+// comes from common/eskin/dtmf_top_plan.h's plan, the one place the RTL builds and
 // the HLS chain take theirs from; this file only copies it across, so the
 // engine follows the top when the plan changes.
 #pragma once
@@ -12,7 +12,7 @@
 
 #include "eskin/neuron_config.h"
 #include "eskin/skin_config.h"
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/engine/dtmf_engine.h"
 
 namespace eskin::engine {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 
 namespace eskin::fpga {
 
@@ -35,7 +35,7 @@ struct Board {
   // dtmf_top: each costs a multiplier, a block RAM and logic. A frame's
   // sample gets no shorter beyond 6 (the merger gives a token a clock:
   // KS + 8), but the other samples, which give no tokens, take
-  // 6 ceil(KS / L) + 2 (hls/dtmf_top_config.h's budget), so a 32x32 skin
+  // 6 ceil(KS / L) + 2 (common/eskin/dtmf_top_plan.h's budget), so a 32x32 skin
   // (KS 64) at 1 MS/s and 40 MHz needs 11.
   // iCEBreaker 1: the UP5K has no block RAM left for a second window.
   // ULX3S 16 (rtl/sdft_lanes.v's most): of the ECP5's 28 (25F) or 156 (85F)

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/fpga/board.h"
 #include "host/fpga/flow.h"
 #include "host/fpga/tool_run.h"

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 
 namespace eskin::fpga {
 

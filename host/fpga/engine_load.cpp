@@ -12,9 +12,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "hls/dtmf_engine_config.h"
-#include "hls/dtmf_ucode.h"
-#include "hls/frame_engine.h"
+#include "ucode/dtmf_engine_image.h"
+#include "ucode/engine_ports.h"
+#include "ucode/dtmf_ucode.h"
+#include "ucode/frame_engine.h"
 #include "hls/sdft_bank.h"
 
 namespace eskin::fpga {

@@ -1,7 +1,7 @@
 // How many clocks the frame engine of rtl/dtmf_top.v needs per frame for a
-// plan, measured on its instruction-set model (hls/frame_engine.h is clock
+// plan, measured on its instruction-set model (ucode/frame_engine.h is clock
 // exact against rtl/frame_engine.v) running the plan's microcode
-// (hls/dtmf_ucode.h) on the frames sdft_bank would deliver (the exact window
+// (ucode/dtmf_ucode.h) on the frames sdft_bank would deliver (the exact window
 // sums of hls/sdft_bank.h). hls::dtmf_top_clock_budget() checks the result
 // against STEP x the sample period.
 //
@@ -32,7 +32,7 @@
 #include <utility>
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 
 namespace eskin::fpga {
 

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "hls/dtmf_ucode.h"
+#include "ucode/dtmf_ucode.h"
 #include "host/fpga/core_flows.h"
 #include "host/fpga/core_wrapper.h"
 #include "host/fpga/tool_run.h"

@@ -2,7 +2,7 @@
 // through Yosys, nextpnr and icepack / ecppack (run by
 // scripts/synth_ice40.sh and scripts/synth_ecp5.sh, host/fpga/tool_run.h),
 // and the report of what it used and how fast it runs. The core:
-//   a skin only: rtl/dtmf_top.v (hls/dtmf_top_config.h) in rtl/board_<board>.v;
+//   a skin only: rtl/dtmf_top.v (common/eskin/dtmf_top_plan.h) in rtl/board_<board>.v;
 //   Hall sensors only: rtl/hall_top.v (sim/hall_top_spec.h) in
 //     rtl/board_<board>_hall.v, with the sensors' I2C and DRDY pins
 //     (hall_pins.h);
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/fpga/board.h"
 #include "host/fpga/engine_load.h"
 #include "host/fpga/hall_pins.h"

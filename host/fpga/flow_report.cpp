@@ -30,7 +30,7 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
   // The DFT's lanes (host/fpga/flow.h choose_sdft_lanes), its clocks per
   // sample at them (KS = carriers + DC when demixing): a frame's sample,
   // any other (no tokens), and the least sample period those allow
-  // (hls/dtmf_top_config.h's budget).
+  // (common/eskin/dtmf_top_plan.h's budget).
   j["dft"] = {{"lanes", r.spec.sdft_lanes},
               {"channels", r.spec.rows + r.spec.cols + (r.spec.demix ? 1 : 0)},
               {"frame_sample_clocks", r.budget.sdft_clocks},

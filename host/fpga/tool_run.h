@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/fpga/board.h"
 #include "host/fpga/flow.h"
 

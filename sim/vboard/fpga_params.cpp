@@ -13,7 +13,7 @@
 
 #include "eskin/fnv1a.h"
 #include "eskin/skin_config.h"
-#include "hls/dtmf_ucode.h"
+#include "ucode/dtmf_ucode.h"
 #include "sim/dtmf_top_spec.h"
 
 #ifndef ESKIN_SOURCE_DIR

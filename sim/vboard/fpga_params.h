@@ -1,6 +1,6 @@
 // Which build of the FPGA top (rtl/dtmf_top.v) a scene needs: its plan and
 // Verilog parameters from the project's one derivation
-// (hls/dtmf_top_config.h via sim/dtmf_top_spec.h), and a key naming the
+// (common/eskin/dtmf_top_plan.h via sim/dtmf_top_spec.h), and a key naming the
 // build. The key covers the integer parameters (sizes, clock, rates) only:
 // the scene's microcode and constants are files the model reads when it is
 // constructed (UCODE_HEX, KROM_HEX), written by fpga_build_for() into the
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "sim/scene.h"
 
 namespace eskin::vboard {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "hls/dtmf_chain.h"
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/engine/dtmf_engine.h"
 #include "host/engine/engine_setup.h"
 #include "sim/dtmf_top_spec.h"

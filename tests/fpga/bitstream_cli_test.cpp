@@ -63,7 +63,7 @@ fs::path one_msps_scene(const fs::path& dir) {
 
 // At 1 MS/s the default scene's DFT (6 carriers off bin centres + the DC
 // channel for demixing) needs 6 KS + 2 = 44 clocks per sample, so 44 MHz at
-// least (hls/dtmf_top_config.h); at 18 MHz the sample period is 18 clocks.
+// least (common/eskin/dtmf_top_plan.h); at 18 MHz the sample period is 18 clocks.
 // (Without --clk-mhz the flow would pick 75 MHz, where the ADC's SCLK
 // divider of 2 still fits a conversion, and let nextpnr say no.)
 TEST(BitstreamCli, ClockTooSlowForTheSampleRateFailsBeforeTheTools) {

@@ -9,8 +9,8 @@
 #include <set>
 #include <string>
 
-#include "hls/dtmf_engine_config.h"
-#include "hls/dtmf_top_config.h"
+#include "ucode/dtmf_engine_image.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/fpga/board.h"
 #include "host/fpga/flow.h"
 #include "host/fpga/scale_table.h"
@@ -308,7 +308,7 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
 // lanes, at the end of 2026-11-27) runs at 35 MHz, whose exact UART rate
 // is 1 Mbaud (35 MHz is no multiple of 2 or 3 MHz); the plan thins the
 // amplitude and taxel packets so that 1.5 x their bytes per frame fit the
-// link (hls/dtmf_top_config.h): 1.5 x ((10 + 2 x 48 + 2) + (10 + 2 + 2 x
+// link (common/eskin/dtmf_top_plan.h): 1.5 x ((10 + 2 x 48 + 2) + (10 + 2 + 2 x
 // 576 + 2)) = 1911 bytes against 100 a 1 ms frame at 1 Mbaud (10 bits a
 // byte): every 20th frame (ceil 19.1); planned for 3 Mbaud (300 bytes) it
 // would be every 7th, which would overrun the 1 Mbaud line. (Until then
@@ -415,7 +415,7 @@ TEST(CoreClock, BarrelShifterOnTheUlx3sAndOnTheUp5kWhenNeeded) {
 // the ULX3S: an 8x8 35 kS/s skin (128 neurons) under the stress signals,
 // with the barrel shifter either way; the izhikevich_layer routine and its
 // loop take at least 104 clocks a neuron and the unit's loop at most 28
-// (tests/hls/dtmf_ucode_test.cpp), so the unit saves at least 128 x 76 =
+// (tests/ucode/dtmf_ucode_test.cpp), so the unit saves at least 128 x 76 =
 // 9 728 clocks a frame; with the unit the ULX3S's 30 MHz default carries
 // it (30 000 clocks a frame).
 TEST(CoreClock, Ulx3sHasTheNeuronUnit) {

@@ -1,5 +1,5 @@
 // host/fpga/engine_load.h: the frame engine's measured clocks per frame and
-// command, and the clock budget of hls/dtmf_top_config.h built on them.
+// command, and the clock budget of common/eskin/dtmf_top_plan.h built on them.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "hls/dtmf_chain.h"
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/fpga/board.h"
 #include "host/fpga/engine_load.h"
 #include "host/fpga/flow.h"
@@ -15,7 +15,7 @@
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
-#include "tests/hls/dtmf_top_model.h"
+#include "tests/ucode/dtmf_top_model.h"
 
 namespace {
 
@@ -29,7 +29,7 @@ void print(const fpga::EngineLoad& l) {
 // The scene figure must be the longest frame of the clocked top model of
 // tests/hls (sdft_bank's HLS model, the same microcode on the same ISS,
 // checked packet for packet against the HLS chain by
-// tests/hls/dtmf_ucode_test.cpp) on the same samples: engine_load builds
+// tests/ucode/dtmf_ucode_test.cpp) on the same samples: engine_load builds
 // the frames from its own exact window sums, so any difference in the
 // frames or their timing shows. The stress figure drives the same paths
 // harder, so it must be at least the scene's, and (the same program) within

@@ -1,5 +1,5 @@
 // The DFT lanes in the plan and the flow (pure planning, no tools run):
-// hls/dtmf_top_config.h's budget at L lanes, dtmf_top_params' SDFT_LANES,
+// common/eskin/dtmf_top_plan.h's budget at L lanes, dtmf_top_params' SDFT_LANES,
 // and choose_sdft_lanes / choose_core_clock (host/fpga/flow.h) on both
 // boards. The lanes' clocks themselves are asserted against the RTL by
 // tests/rtl/sdft_lanes_test.cpp.
@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "hls/dtmf_engine_config.h"
-#include "hls/dtmf_top_config.h"
+#include "ucode/dtmf_engine_image.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/fpga/board.h"
 #include "host/fpga/flow.h"
 #include "host/fpga/scale_table.h"

@@ -2,7 +2,7 @@
 // scene's ground truth and against the golden model on the same samples:
 // the default scene (thesis carriers, off bin centres: demixing) and the
 // staggered 10x10 scene (bin-centred carriers: no demixing), with the
-// configuration the top is built with (hls/dtmf_top_config.h).
+// configuration the top is built with (common/eskin/dtmf_top_plan.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "hls/dtmf_chain.h"
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/golden/decode_score.h"
 #include "host/golden/golden_decoder.h"
 #include "sim/dtmf_top_spec.h"

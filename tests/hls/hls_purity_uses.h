@@ -72,8 +72,8 @@ template class eskin::hls::CarrierDemix<6, 32>;
 template struct eskin::hls::CarrierDemixConfig<6>;
 #endif
 
-#if __has_include("hls/frame_engine.h")
-#include "hls/frame_engine.h"
+#if __has_include("ucode/frame_engine.h")
+#include "ucode/frame_engine.h"
 template class eskin::hls::FrameEngine<>;
 template uint32_t eskin::hls::FrameEngine<>::step<eskin::hls::FrameEngineNullIo>(
     eskin::hls::FrameEngineNullIo&, uint64_t);

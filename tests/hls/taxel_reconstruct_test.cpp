@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "hls/dtmf_chain.h"
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "hls/taxel_reconstruct.h"
 #include "host/golden/taxel_reconstruct.h"
 #include "sim/dtmf_top_spec.h"

@@ -40,7 +40,7 @@
 #include "Vdft_capture_tb_l1.h"
 #include "Vdft_capture_tb_s32.h"
 #include "frame_rule.h"
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "hls/sdft_bank.h"
 #include "sdft_port.h"
 

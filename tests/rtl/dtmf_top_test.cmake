@@ -1,8 +1,8 @@
 # Builds of dtmf_top for tests/rtl/dtmf_top_test.cpp. The integer
-# parameters are those hls/dtmf_top_config.h derives for the scene and clock
+# parameters are those common/eskin/dtmf_top_plan.h derives for the scene and clock
 # (the test checks every one against the plan, so a stale value here fails
 # it); the microcode and constants are written by the test itself into
-# ${dtmf_dir} from the plan (hls/dtmf_ucode.h) before the model is built.
+# ${dtmf_dir} from the plan (ucode/dtmf_ucode.h) before the model is built.
 #  default: scenes/neuroskin2.yaml at 18 MHz (the iCE40 UP5K build: 12 MHz
 #           oscillator x 3/2 by the PLL);
 #  s10:     scenes/staggered10x10.yaml at 96 MHz (100 taxels, two neuron
@@ -97,7 +97,7 @@ target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_S18M_PARAMS="${dtmf_s18m_str}" DTMF_TOP_S18M_CLK_HZ=40000000
   DTMF_TOP_S20M_PARAMS="${dtmf_s20m_str}" DTMF_TOP_S20M_CLK_HZ=40000000
   DTMF_TOP_S32M_PARAMS="${dtmf_s32m_str}" DTMF_TOP_S32M_CLK_HZ=50000000)
-target_link_libraries(${exe} PRIVATE eskin_dtmf_ucode eskin_fpga)
+target_link_libraries(${exe} PRIVATE eskin_ucode eskin_fpga)
 # Verilator 5.006 leaves an unused delayed copy of power_on_reset's
 # synchroniser in the code it writes for the two-clock build (s32m):
 # GCC's -Wunused-but-set-variable on generated code, not ours.

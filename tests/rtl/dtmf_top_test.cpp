@@ -4,7 +4,7 @@
 // UART) -> UART line sampled bit by bit -> host/link LinkDecoder -> packets,
 // compared with hls/dtmf_chain.h on the same samples and scored against
 // the scene's truth. Each build's microcode and constants come from
-// hls/dtmf_ucode.h for its plan; the build's integer parameters (written in
+// ucode/dtmf_ucode.h for its plan; the build's integer parameters (written in
 // tests/rtl/dtmf_top_test.cmake) are checked against the plan first.
 //
 // Samples: the world model's 10-bit codes c10 are served as 12-bit codes
@@ -39,8 +39,8 @@
 #include "Vdtmf_top_s32m___024root.h"
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
-#include "hls/dtmf_top_config.h"
-#include "hls/dtmf_ucode.h"
+#include "eskin/dtmf_top_plan.h"
+#include "ucode/dtmf_ucode.h"
 #include "host/fpga/board.h"
 #include "host/fpga/engine_load.h"
 #include "host/fpga/flow.h"
@@ -51,7 +51,7 @@
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
-#include "tests/hls/random_carriers.h"
+#include "tests/ucode/random_carriers.h"
 
 namespace {
 

@@ -10,7 +10,7 @@ add_custom_command(OUTPUT ${fe_selftest_hex}
 add_custom_target(frame_engine_selftest_hex DEPENDS ${fe_selftest_hex})
 add_dependencies(${exe} frame_engine_selftest_hex)
 target_compile_definitions(${exe} PRIVATE FRAME_ENGINE_SELFTEST_HEX="${fe_selftest_hex}")
-target_link_libraries(${exe} PRIVATE eskin_frame_engine_asm)
+target_link_libraries(${exe} PRIVATE eskin_ucode)
 set(fe_dw14_params -GIW=10 -GDW=14 -GKW=8 -GKROM_INIT=8192'h0 "-GUCODE_HEX=\"${fe_selftest_hex}\"")
 verilate(${exe} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v
   TOP_MODULE frame_engine_tb PREFIX Vframe_engine_tb_dw14

@@ -1,4 +1,4 @@
-// rtl/frame_engine.v against its instruction-set model hls/frame_engine.h,
+// rtl/frame_engine.v against its instruction-set model ucode/frame_engine.h,
 // instruction for instruction and clock for clock.
 //
 // Bound: exact. Both run the same program from reset with the same KROM,
@@ -36,8 +36,8 @@
 #include "Vframe_engine_tb_dw14.h"
 #include "Vframe_engine_tb_fast.h"
 #include "clocked_dut.h"
-#include "hls/frame_engine.h"
-#include "hls/frame_engine_asm.h"
+#include "ucode/frame_engine.h"
+#include "ucode/frame_engine_asm.h"
 
 namespace {
 

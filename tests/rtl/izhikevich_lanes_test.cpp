@@ -1,4 +1,4 @@
-// rtl/izhikevich_lanes.v against hls/dtmf_engine_config.h (IzhikevichLanesPort,
+// rtl/izhikevich_lanes.v against ucode/dtmf_engine_image.h (IzhikevichLanesPort,
 // the C++ models' view of the lanes, whose neurons are
 // hls/izhikevich_layer.h's IzhikevichLayer::update), clock for clock.
 //
@@ -28,7 +28,8 @@
 
 #include "Vizhikevich_lanes.h"
 #include "clocked_dut.h"
-#include "hls/dtmf_engine_config.h"
+#include "ucode/dtmf_engine_image.h"
+#include "ucode/engine_ports.h"
 #include "hls/izhikevich_layer_config.h"
 
 namespace {

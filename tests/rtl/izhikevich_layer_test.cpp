@@ -6,7 +6,7 @@
 // Why exact: the RTL forms every C++ intermediate at a width that holds it
 // (module header), rounds with the same rnd and saturates at the same
 // points, so there is no tolerance to allow. Domain: any x, x_prev and any
-// configuration in the ranges of neuron_params() (hls/dtmf_engine_config.h);
+// configuration in the ranges of neuron_params() (ucode/dtmf_engine_image.h);
 // v in [-2^29 - 2^13, 2^29 - 2^13) and U in [-2^30, 2^30), the range where the
 // C++ is free of int32 overflow (beyond it w^2 and m3 * vh overflow int32,
 // undefined behaviour, so there is nothing to compare with). It contains
@@ -25,7 +25,8 @@
 
 #include "Vizhikevich_layer.h"
 #include "clocked_dut.h"
-#include "hls/dtmf_engine_config.h"
+#include "ucode/dtmf_engine_image.h"
+#include "ucode/engine_ports.h"
 #include "hls/izhikevich_layer.h"
 #include "hls/izhikevich_layer_config.h"
 

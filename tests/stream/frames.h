@@ -11,7 +11,7 @@
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
 #include "hls/dtmf_chain.h"
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
@@ -88,7 +88,7 @@ inline std::vector<uint8_t> concat(const std::vector<std::vector<uint8_t>>& fram
 
 // The default scene (scenes/neuroskin2.yaml) through the 3x3 chain
 // (hls/dtmf_chain.h) configured as its FPGA top is built (the plan of
-// hls/dtmf_top_config.h at the top's clock: amplitudes + dense taxels +
+// common/eskin/dtmf_top_plan.h at the top's clock: amplitudes + dense taxels +
 // spikes every frame; `mask`, when given, replaces that output mask, e.g.
 // 0x1F adds sparse taxels), up to sample `limit`. The world model's codes
 // reach the chain left-aligned to 12 bits, as the AD7476A delivers them.

@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "bench/suite/text_file.h"
+#include "host/bench/text_file.h"
 #include "cli_run.h"
 #include "hls/sdft_bank_config.h"
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "hls/dtmf_chain.h"
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "host/link/link_decoder.h"
 #include "host/link/link_encoder.h"
 #include "sim/scene.h"
@@ -91,7 +91,7 @@ std::string short_scene(double duration_s, const std::string& name) {
 }
 
 // The default scene's HLS chain, configured from the same derivation as
-// the board's FPGA build (hls/dtmf_top_config.h), default mask (no
+// the board's FPGA build (common/eskin/dtmf_top_plan.h), default mask (no
 // periodic status: the chain has none).
 using Sizes3 = eskin::hls::DtmfChainSizes<3, 3, 32>;
 using Chain3 = eskin::hls::DtmfChain<Sizes3>;

@@ -3,7 +3,7 @@
 # list of raw-string pieces (each below compilers' string-literal limits).
 file(READ ${IN} text)
 string(LENGTH "${text}" n)
-set(out "// Generated from ${IN} by hls/embed_text.cmake; do not edit.\n#pragma once\nstatic const char ${NAME}[] =\n")
+set(out "// Generated from ${IN} by ucode/embed_text.cmake; do not edit.\n#pragma once\nstatic const char ${NAME}[] =\n")
 set(pos 0)
 while(pos LESS n)
   string(SUBSTRING "${text}" ${pos} 8000 piece)

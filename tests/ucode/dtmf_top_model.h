@@ -1,5 +1,5 @@
 // A clocked model of rtl/dtmf_top.v around the frame engine's
-// instruction-set model (hls/frame_engine.h): the microcode
+// instruction-set model (ucode/frame_engine.h): the microcode
 // rtl/ucode/dtmf_chain.fe, assembled for a plan, runs against the top's IO
 // ports as the RTL wires them — sdft_bank (hls/sdft_bank.h) and the frame
 // capture at sample resolution, an output FIFO that the link drains, the
@@ -15,9 +15,10 @@
 #include <vector>
 
 #include "hls/dtmf_chain.h"
-#include "hls/dtmf_engine_config.h"
-#include "hls/frame_engine.h"
-#include "hls/dtmf_ucode.h"
+#include "ucode/dtmf_engine_image.h"
+#include "ucode/engine_ports.h"
+#include "ucode/frame_engine.h"
+#include "ucode/dtmf_ucode.h"
 
 namespace dtmf_model {
 

@@ -1,4 +1,4 @@
-// hls/dtmf_top_config.h's output FIFO depth (OUT_DEPTH of rtl/dtmf_top.v).
+// common/eskin/dtmf_top_plan.h's output FIFO depth (OUT_DEPTH of rtl/dtmf_top.v).
 // frame_engine writes a packet only when the whole of it fits the FIFO, and
 // drops it otherwise (rtl/ucode/dtmf_chain.fe, pkt_begin), so a packet longer
 // than the FIFO could never be sent. The lengths here come from
@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <string>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
 

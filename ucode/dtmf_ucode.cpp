@@ -1,4 +1,4 @@
-#include "hls/dtmf_ucode.h"
+#include "ucode/dtmf_ucode.h"
 
 #include <filesystem>
 #include <fstream>
@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "dtmf_chain_fe.h"  // generated: kDtmfChainFe, the source text
-#include "hls/frame_engine_asm.h"
+#include "ucode/frame_engine_asm.h"
 
 namespace eskin::hls {
 

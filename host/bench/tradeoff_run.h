@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/suite/tradeoff.h"
+#include "host/bench/tradeoff.h"
 
 namespace eskin::bench {
 

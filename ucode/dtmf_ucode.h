@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "hls/dtmf_engine_config.h"
+#include "ucode/dtmf_engine_image.h"
 
 namespace eskin::hls {
 

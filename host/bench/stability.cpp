@@ -1,4 +1,4 @@
-#include "bench/suite/stability.h"
+#include "host/bench/stability.h"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <memory>
 
-#include "bench/suite/timing.h"
+#include "host/bench/timing.h"
 #include "hls/izhikevich_layer.h"
 #include "hls/izhikevich_layer_config.h"
 #include "hls/sdft_bank.h"

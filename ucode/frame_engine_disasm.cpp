@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "hls/frame_engine.h"
-#include "hls/frame_engine_asm.h"
+#include "ucode/frame_engine.h"
+#include "ucode/frame_engine_asm.h"
 
 namespace eskin::hls::fe_asm {
 namespace {

@@ -1,4 +1,4 @@
-#include "bench/suite/scale.h"
+#include "host/bench/scale.h"
 
 #include <fmt/format.h>
 #include <malloc.h>
@@ -6,7 +6,7 @@
 #include <memory>
 #include <random>
 
-#include "bench/suite/timing.h"
+#include "host/bench/timing.h"
 #include "hls/sdft_bank.h"
 #include "hls/sdft_bank_config.h"
 #include "host/engine/exact_sdft.h"

@@ -1,4 +1,4 @@
-#include "bench/suite/tradeoff.h"
+#include "host/bench/tradeoff.h"
 
 #include <fmt/format.h>
 
@@ -15,10 +15,10 @@
 
 #include <unistd.h>
 
-#include "bench/suite/engine_model.h"
+#include "host/bench/engine_model.h"
 #include "eskin/fnv1a.h"
-#include "hls/dtmf_top_config.h"
-#include "hls/dtmf_ucode.h"
+#include "eskin/dtmf_top_plan.h"
+#include "ucode/dtmf_ucode.h"
 #include "hls/sdft_bank_config.h"
 #include "hls/sdft_damped.h"
 #include "host/engine/dtmf_engine.h"

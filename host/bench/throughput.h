@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 #include "sim/scene.h"
 
 namespace eskin::bench {

@@ -1,8 +1,8 @@
-// hls/frame_engine.h (the instruction-set model) and hls/frame_engine_asm.h
+// ucode/frame_engine.h (the instruction-set model) and ucode/frame_engine_asm.h
 // (assembler, disassembler) against expectations written here from the ISA
 // manual (docs/frame_engine.md) in plain 64/128-bit integer arithmetic.
 // Every check is exact: the ISA defines each result bit and each clock.
-#include "hls/frame_engine.h"
+#include "ucode/frame_engine.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "hls/frame_engine_asm.h"
+#include "ucode/frame_engine_asm.h"
 
 namespace {
 

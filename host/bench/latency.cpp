@@ -1,10 +1,10 @@
-#include "bench/suite/latency.h"
+#include "host/bench/latency.h"
 #include "eskin/fnv1a.h"
 #include "eskin/shell.h"
 
 #include <fmt/format.h>
 
-#include "bench/suite/text_file.h"
+#include "host/bench/text_file.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -21,9 +21,9 @@
 #include <unistd.h>
 #include <stdexcept>
 
-#include "bench/suite/engine_model.h"
-#include "bench/suite/timing.h"
-#include "hls/dtmf_ucode.h"
+#include "host/bench/engine_model.h"
+#include "host/bench/timing.h"
+#include "ucode/dtmf_ucode.h"
 #include "host/engine/engine_setup.h"
 #include "host/fpga/engine_load.h"
 #include "host/fpga/scale_table.h"

@@ -1,11 +1,11 @@
 // frame_engine_asm: the two-pass assembler (see the header).
-#include "hls/frame_engine_asm.h"
+#include "ucode/frame_engine_asm.h"
 
 #include <cctype>
 #include <fstream>
 #include <sstream>
 
-#include "hls/frame_engine.h"
+#include "ucode/frame_engine.h"
 
 namespace eskin::hls::fe_asm {
 namespace {

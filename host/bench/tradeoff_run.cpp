@@ -1,8 +1,8 @@
-#include "bench/suite/tradeoff_run.h"
+#include "host/bench/tradeoff_run.h"
 
 #include <fmt/format.h>
 
-#include "bench/suite/text_file.h"
+#include "host/bench/text_file.h"
 
 #include <atomic>
 #include <filesystem>

@@ -1,11 +1,11 @@
 // The frame engine's clocks per frame for any plan: the frame_engine
-// instruction-set model (hls/frame_engine.h, clock-exact with
-// rtl/frame_engine.v) running the plan's microcode (hls/dtmf_ucode.h)
+// instruction-set model (ucode/frame_engine.h, clock-exact with
+// rtl/frame_engine.v) running the plan's microcode (ucode/dtmf_ucode.h)
 // against the top's IO ports as rtl/dtmf_top.v wires them, at run-time
 // sizes: the DFT tokens of each frame from host/engine/exact_sdft.h (equal
 // to sdft_bank's), frames by frame_capture's rule (the window full, then
 // every STEP samples), an output FIFO the link drains. The run-time
-// counterpart of tests/hls/dtmf_top_model.h, for the latency benchmark's
+// counterpart of tests/ucode/dtmf_top_model.h, for the latency benchmark's
 // model check and the trade study's latency column.
 #pragma once
 
@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 
 namespace eskin::bench {
 

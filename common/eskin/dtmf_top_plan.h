@@ -89,7 +89,7 @@ struct VerilogParam {
 // Derived plan: sizes, widths, step and every constant of the chain, for
 // any skin size (host side, vectors); chain_config<S>() turns it into the
 // fixed-size configuration of hls/dtmf_chain.h, dtmf_engine_image() (in
-// hls/dtmf_engine_config.h) into the frame engine's constants.
+// ucode/dtmf_engine_image.h) into the frame engine's constants.
 struct DtmfTopPlan {
   DtmfTopSpec spec;
   int R = 0, C = 0, K = 0, T = 0, N = 0;

@@ -1,4 +1,4 @@
-#include "bench/suite/throughput.h"
+#include "host/bench/throughput.h"
 
 #include <fftw3.h>
 #include <fmt/format.h>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "bench/suite/timing.h"
+#include "host/bench/timing.h"
 #include "host/engine/dtmf_engine.h"
 #include "host/engine/engine_setup.h"
 #include "host/golden/golden_decoder.h"

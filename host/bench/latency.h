@@ -2,7 +2,7 @@
 // and end to end, measured in Verilator for a table of reference builds,
 // compared with the baseline in the repository (bench/baselines/latency.csv).
 //
-// Each build is the top as hls/dtmf_top_config.h plans it for a reference
+// Each build is the top as common/eskin/dtmf_top_plan.h plans it for a reference
 // scene and clock; hls::write_dtmf_top_build writes its microcode and
 // constants and returns its parameters, which go to Verilator as -G
 // arguments, and bench/latency/latency_harness.cpp (the
@@ -15,7 +15,7 @@
 // to the frame engine, the engine's first output byte, the frame released,
 // the first start bit of its packets on the UART, the stop bit of their
 // last byte (end to end). The engine's part is checked against the frame
-// engine's instruction-set model (bench/suite/engine_model.h).
+// engine's instruction-set model (host/bench/engine_model.h).
 //
 // The Hall top (rtl/hall_top.v as sim/hall_top_spec.h generates it for a
 // Hall scene; bench/latency/hall_latency_harness.cpp on the bench of
@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "hls/dtmf_top_config.h"
+#include "eskin/dtmf_top_plan.h"
 
 namespace eskin::bench {
 

@@ -1,6 +1,6 @@
 // The DTMF microcode (rtl/ucode/dtmf_chain.fe) on the frame engine's
 // instruction-set model, inside a clocked model of the top's IO
-// (tests/hls/dtmf_top_model.h), against hls/dtmf_chain.h: every data packet
+// (tests/ucode/dtmf_top_model.h), against hls/dtmf_chain.h: every data packet
 // equal, byte for byte, on the default scene, the staggered 10x10 scene and
 // a 5x7 skin under random carriers; the engine finishes every frame inside
 // its frame period (no frame lost), with the clock counts printed. With the
@@ -18,10 +18,10 @@
 #include "dtmf_top_model.h"
 #include "random_carriers.h"
 #include "hls/dtmf_chain.h"
-#include "hls/dtmf_top_config.h"
-#include "hls/dtmf_ucode.h"
-#include "hls/frame_engine.h"
-#include "hls/frame_engine_asm.h"
+#include "eskin/dtmf_top_plan.h"
+#include "ucode/dtmf_ucode.h"
+#include "ucode/frame_engine.h"
+#include "ucode/frame_engine_asm.h"
 #include "hls/synapse_weights.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
@@ -416,7 +416,7 @@ TEST(DtmfUcode, SetWeightKeepsTheSynapseTableExact) {
     ASSERT_TRUE(golden.configure(plan.synapse));
     const auto sym = [&top](const char* n) { return uint32_t(top.image().symbol(n)); };
     const uint32_t swt = sym("SWT"), s0 = sym("S0"), x2in = sym("X2IN");
-    // Weight d's bit in a pattern (the layout hls/dtmf_engine_config.h gives
+    // Weight d's bit in a pattern (the layout ucode/dtmf_engine_image.h gives
     // KC_SWBIT): column (1 - dc), row (1 - dr) within it.
     const auto bit = [](int d) { return 3 * (2 - d % 3) + (2 - d / 3); };
     std::vector<dtmf_model::Packet> want;

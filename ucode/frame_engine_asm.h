@@ -1,7 +1,7 @@
 // frame_engine_asm: assembler and disassembler for the frame_engine
 // microcode (docs/frame_engine.md, "Assembler"). Host-side tool code, like
 // the *_config.h builders: it allocates and throws; the kernel it serves is
-// hls/frame_engine.h, whose encoding helpers (eskin::hls::fe) it uses.
+// ucode/frame_engine.h, whose encoding helpers (eskin::hls::fe) it uses.
 //
 // Source: one statement per line, `;` starts a comment.
 //   label:                     (may precede a statement on the same line)

@@ -1,11 +1,11 @@
-#include "bench/suite/engine_model.h"
+#include "host/bench/engine_model.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "hls/dtmf_engine_config.h"
-#include "hls/dtmf_ucode.h"
-#include "hls/frame_engine.h"
+#include "ucode/dtmf_engine_image.h"
+#include "ucode/dtmf_ucode.h"
+#include "ucode/frame_engine.h"
 #include "host/engine/exact_sdft.h"
 
 namespace eskin::bench {
