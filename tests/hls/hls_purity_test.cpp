@@ -1,7 +1,7 @@
 // hls/ purity: every synthesizable kernel header is free of heap allocation,
-// exceptions, RTTI and floating point (the rules of docs/DESIGN.md and the
-// data path contract). Three independent layers, each with its own negative
-// control below, so each can fail:
+// exceptions, RTTI and floating point (the rules of docs/fpga.md, "The HLS
+// kernels' rules", and the data path contract). Three independent layers,
+// each with its own negative control below, so each can fail:
 //
 // A. Instantiated code, -mgeneral-regs-only. The generated unit
 //    (hls/CMakeLists.txt: #include of every hls/*.h except the kernels'
