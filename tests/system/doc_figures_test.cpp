@@ -21,7 +21,8 @@
 // A doc marks each figure it cites with its name:
 //    <!--fig:NAME-->10 077<!--/fig-->
 // NAME is a row of docs/figures.csv, latency/CONFIG/STAGE (a row of
-// latency.csv) or scale/TARGET/RxC/SAMPLE_HZ/COLUMN (a row of the scale
+// latency.csv; latency/CONFIG/STAGE/us: its cycles in µs at the build's
+// clock, bench::latency_configs()) or scale/TARGET/RxC/SAMPLE_HZ/COLUMN (a row of the scale
 // table, SAMPLE_HZ as the CSV writes it). The text between the markers is
 // the number (spaces and commas as thousands separators allowed); a file
 // value with more decimals is compared rounded to the doc's decimals. The
@@ -43,6 +44,7 @@
 #include <vector>
 
 #include "eskin/dtmf_top_plan.h"
+#include "host/bench/latency.h"
 #include "host/fpga/engine_load.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
@@ -215,8 +217,21 @@ std::map<std::string, std::string> known_figures() {
   std::map<std::string, std::string> m;
   for (const auto& r : read_csv(kFiguresCsv))
     if (r.size() >= 2) m[r[0]] = r[1];
-  for (const auto& r : read_csv(kSrc / "bench/baselines/latency.csv"))
-    if (r.size() == 3) m["latency/" + r[0] + "/" + r[1]] = r[2];
+  // latency/CONFIG/STAGE: cycles; latency/CONFIG/STAGE/us: the same at
+  // the reference build's clock (bench::latency_configs()).
+  std::map<std::string, long> clk;
+  for (const auto& c : bench::latency_configs()) clk[c.name] = c.clk_hz;
+  for (const auto& r : read_csv(kSrc / "bench/baselines/latency.csv")) {
+    if (r.size() != 3) continue;
+    m["latency/" + r[0] + "/" + r[1]] = r[2];
+    EXPECT_TRUE(clk.count(r[0])) << "bench/baselines/latency.csv: " << r[0]
+                                 << " is no reference build of bench::latency_configs()";
+    if (clk.count(r[0])) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.6f", std::stod(r[2]) * 1e6 / double(clk[r[0]]));
+      m["latency/" + r[0] + "/" + r[1] + "/us"] = buf;
+    }
+  }
   std::vector<std::string> h;
   const auto rows = read_csv(kSrc / "docs/scale_table.csv", &h);
   auto col = [&](const std::string& n) {
