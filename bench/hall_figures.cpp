@@ -11,7 +11,7 @@
 #include <cstring>
 #include <string>
 
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "hls/force_curve.h"
 #include "hls/force_curve_config.h"
 #include "hls/ft_calibrate.h"
@@ -34,7 +34,7 @@ struct Mean {
 
 sim::Scene scene(const char* name, int osr, int df) {
   sim::Scene s = sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/scenes/" + name);
-  cli::apply_speed(s.hall.config, osr, df);
+  hall::apply_speed(s.hall.config, osr, df);
   return s;
 }
 
@@ -58,7 +58,7 @@ void seed001(int osr, int df) {
   const sim::Scene s = scene("hall_001_split.yaml", osr, df);
   const sim::HallWorld w(s.hall);
   const HallConfig& h = w.config();
-  const cli::DecoupleCalibration cal = cli::calibrate_decouple(w, s.seed);
+  const hall::DecoupleCalibration cal = hall::calibrate_decouple(w, s.seed);
   hls::HallDecoupleConfig c;
   for (int a = 0; a < 3; ++a) c.gain[a] = uint32_t(std::lround(mlx90393::sensitivity_uT(h.mlx, a) * 65536));
   c.k1 = int16_t(std::lround(cal.params.k1 * 16384)), c.k2 = int16_t(std::lround(cal.params.k2 * 16384));
@@ -74,7 +74,7 @@ void seed001(int osr, int df) {
     hls::DecoupleToken o;
     if (!base.push(toks[0], d) || !k.push(d, o) || !o.valid) return;
     bool steady;
-    cli::active_stimuli(w.scene(), t, steady);
+    hall::active_stimuli(w.scene(), t, steady);
     if (!steady) return;
     golden::Decoupled g;
     g.rx = o.rx / 16777216.0, g.ry = o.ry / 16777216.0, g.sz = o.sz / 16777216.0, g.valid = true;
@@ -92,7 +92,7 @@ void seed002(int osr, int df) {
   const sim::Scene s = scene("hall_002_magtac.yaml", osr, df);
   const sim::HallWorld w(s.hall);
   const HallConfig& h = w.config();
-  const cli::WrenchCalibration cal = cli::calibrate_wrench(w, s.seed);
+  const hall::WrenchCalibration cal = hall::calibrate_wrench(w, s.seed);
   hls::FtCalibrate<16> k;
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 9; ++j)
@@ -107,7 +107,7 @@ void seed002(int osr, int df) {
       if (base.push(x, d)) out = k.push(d, o);
     }
     bool steady;
-    cli::active_stimuli(w.scene(), t, steady);
+    hall::active_stimuli(w.scene(), t, steady);
     if (!out || !steady) return;
     const auto tr = w.truth(t);
     const double truth[6] = {tr.force_n[0], tr.force_n[1], tr.force_n[2], tr.torque_nmm[0], tr.torque_nmm[1], tr.torque_nmm[2]};
@@ -124,7 +124,7 @@ void seed003(int osr, int df) {
   const sim::Scene s = scene("hall_003_metamaterial.yaml", osr, df);
   const sim::HallWorld w(s.hall);
   const HallConfig& h = w.config();
-  const auto curves = cli::calibrate_force_curves(w, s.seed);
+  const auto curves = hall::calibrate_force_curves(w, s.seed);
   constexpr int kNb = 13;
   hls::ForceCurveConfig<kNb, 3> cfg;
   for (int a = 0; a < 3; ++a) cfg.gain[a] = hls::force_curve_gain(mlx90393::sensitivity_uT(h.mlx, a));
@@ -137,7 +137,7 @@ void seed003(int osr, int df) {
   Mean top[3], rel[3];
   for_each_frame(w, s.duration_s, s.seed, [&](double t, const std::vector<hls::HallSampleToken>& toks) {
     bool steady;
-    cli::active_stimuli(w.scene(), t, steady);
+    hall::active_stimuli(w.scene(), t, steady);
     const auto tr = w.truth(t);
     for (const auto& x : toks) {
       hls::HallDeltaToken d;

@@ -11,7 +11,7 @@
 #include <fmt/ranges.h>
 
 #include "cli/command.h"
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "sim/scene.h"
 
 namespace eskin::cli {
@@ -37,14 +37,15 @@ int run_calibrate(const CalibrateArgs& a) {
       // Simulated presses as a recording, in the --from format.
       auto out = fmt::output_file(a.write_presses);
       out.print("b1x,b1y,b1z,b2x,b2y,b2z,b3x,b3y,b3z,fx,fy,fz,tx,ty,tz\n");
-      const WrenchPresses p = simulate_wrench_presses(w, scene.seed, a.presses);
+      const hall::WrenchPresses p = hall::simulate_wrench_presses(w, scene.seed, a.presses);
       for (size_t k = 0; k < p.db_ut.size(); ++k)
         out.print("{:.6f},{:.6f}\n", fmt::join(p.db_ut[k].data(), p.db_ut[k].data() + 9, ","),
                   fmt::join(p.wrench[k].data(), p.wrench[k].data() + 6, ","));
       fmt::print("wrote {} simulated presses to {}\n", a.presses, a.write_presses);
     }
-    const WrenchCalibration cal = a.from.empty() ? calibrate_wrench(w, scene.seed, a.presses)
-                                                 : calibrate_wrench_csv(a.from);
+    const hall::WrenchCalibration cal = a.from.empty()
+                                            ? hall::calibrate_wrench(w, scene.seed, a.presses)
+                                            : hall::calibrate_wrench_csv(a.from);
     fmt::print("wrench: C (6x9, N and N*mm per uT) from {} {} presses\n", cal.presses,
                a.from.empty() ? "simulated" : "recorded");
     std::vector<double> flat;
@@ -59,7 +60,7 @@ int run_calibrate(const CalibrateArgs& a) {
   }
   if (h.wants(HallDecode::Decouple)) {
     any = true;
-    const DecoupleCalibration cal = calibrate_decouple(w, scene.seed);
+    const hall::DecoupleCalibration cal = hall::calibrate_decouple(w, scene.seed);
     const DecoupleParams& p = cal.params;
     fmt::print("decouple: k1 {} c1 {:.2f} uT, k2 {} c2 {:.2f} uT; Fx(dRx) {}, Fy(dRy) {}, Fn(dSz) {}\n", p.k1,
                p.c1_ut, p.k2, p.c2_ut, yaml_list(p.poly[0]), yaml_list(p.poly[1]), yaml_list(p.poly[2]));
@@ -68,7 +69,7 @@ int run_calibrate(const CalibrateArgs& a) {
   }
   if (h.wants(HallDecode::ForceCurve)) {
     any = true;
-    const auto curves = calibrate_force_curves(w, scene.seed);
+    const auto curves = hall::calibrate_force_curves(w, scene.seed);
     yaml += "force_curves:\n";
     for (size_t c = 0; c < curves.size(); ++c) {
       fmt::print("force curve {}: dB {} uT -> F {} N\n", c, yaml_list(curves[c].db_ut), yaml_list(curves[c].force_n));

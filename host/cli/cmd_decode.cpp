@@ -1,6 +1,6 @@
 // eskin decode --skin SKIN.yaml INPUT.wav: decodes a recorded mono 16-bit PCM
 // WAV of a skin's summed signal with the golden decoder (or, --engine fpga,
-// the FPGA's fixed-point chain: cli/decode_fpga.h); NDJSON to stdout, one
+// the FPGA's fixed-point chain: host/engine/decode_fpga.h); NDJSON to stdout, one
 // line per frame.
 #include <fmt/format.h>
 #include <sndfile.h>
@@ -13,10 +13,10 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "cli/csv_fields.h"
-#include "cli/decode_fpga.h"
+#include "host/engine/decode_fpga.h"
 #include "host/golden/golden_decoder.h"
 #include "host/golden/sdft_bank.h"
+#include "host/report/csv_fields.h"
 #include "sim/scene.h"
 
 namespace eskin::cli {
@@ -120,8 +120,8 @@ int run_decode(const DecodeArgs& a) {
     std::vector<int> codes(pcm.size());
     for (size_t i = 0; i < pcm.size(); ++i)
       codes[i] = (shift >= 0 ? (int(pcm[i]) >> shift) : (int(pcm[i]) << -shift)) + half;
-    return decode_fpga(skin, dec, neuron, codes,
-                       {a.taxels || a.spikes, a.spikes, !a.no_ghost, a.threads, a.hop});
+    return engine::decode_fpga(skin, dec, neuron, codes,
+                               {a.taxels || a.spikes, a.spikes, !a.no_ghost, a.threads, a.hop});
   }
   dec.variant = golden::resolve_variant(dec.variant, skin.carrier_freqs_hz(), skin.adc.rate_hz, dec);
 
@@ -138,11 +138,11 @@ int run_decode(const DecodeArgs& a) {
     const golden::Frame& f = d.frame();
     line = fmt::format("{{\"sample\":{},\"t_ms\":{:.4f},\"amp_lsb\":[", f.sample,
                        1000.0 * double(f.sample) / rate);
-    line += join(f.amp_lsb);
+    line += report::join(f.amp_lsb);
     line += "]";
     if (opt.taxels) {
       line += ",\"pressure_kpa\":[";
-      line += join(f.pressure);
+      line += report::join(f.pressure);
       line += "]";
     }
     if (opt.spikes) {

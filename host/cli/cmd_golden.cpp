@@ -9,12 +9,12 @@
 #include <iostream>
 
 #include "cli/command.h"
-#include "cli/csv_fields.h"
-#include "cli/hall_chain.h"
 #include "host/golden/decode_score.h"
 #include "host/golden/golden_decoder.h"
 #include "host/golden/izhikevich_layer.h"
 #include "host/golden/sdft_bank.h"
+#include "host/hall/hall_chain.h"
+#include "host/report/csv_fields.h"
 #include "sim/hall_world.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
@@ -35,9 +35,9 @@ int run_golden(const GoldenArgs& a) {
   sim::Scene scene = sim::load_scene(a.scene);
   if (scene.has_hall) {
     fmt::print("scene {} ({}): magnetic skin\n", scene.name, a.scene);
-    apply_speed(scene.hall.config, a.hall_osr, a.hall_dig_filt);
+    hall::apply_speed(scene.hall.config, a.hall_osr, a.hall_dig_filt);
     const sim::HallWorld hall(scene.hall);
-    run_hall_golden(hall, scene.duration_s, scene.seed, a.out);
+    hall::run_hall_golden(hall, scene.duration_s, scene.seed, a.out);
     if (!scene.has_skin) return 0;
   }
   if (!a.variant.empty()) scene.decoder.variant = dft_variant_from_string(a.variant);
@@ -80,13 +80,13 @@ int run_golden(const GoldenArgs& a) {
     const double t_ms = 1000.0 * double(f.sample) / fs;
     if (opt.taxels) scorer.add(f);
     if (scene.outputs.amplitudes) {
-      amp_nd.print("{{\"sample\":{},\"t_ms\":{:.4f},\"amp_lsb\":[{}]}}\n", f.sample, t_ms, join(f.amp_lsb));
-      amp_csv.print("{},{:.4f},{}\n", f.sample, t_ms, join(f.amp_lsb));
+      amp_nd.print("{{\"sample\":{},\"t_ms\":{:.4f},\"amp_lsb\":[{}]}}\n", f.sample, t_ms, report::join(f.amp_lsb));
+      amp_csv.print("{},{:.4f},{}\n", f.sample, t_ms, report::join(f.amp_lsb));
     }
     if (scene.outputs.taxels) {
       tax_nd.print("{{\"sample\":{},\"t_ms\":{:.4f},\"pressure_kpa\":[{}]}}\n", f.sample, t_ms,
-                   join(f.pressure));
-      tax_csv.print("{},{:.4f},{}\n", f.sample, t_ms, join(f.pressure));
+                   report::join(f.pressure));
+      tax_csv.print("{},{:.4f},{}\n", f.sample, t_ms, report::join(f.pressure));
     }
   }
   const auto& spikes = dec.spike_times_ms();

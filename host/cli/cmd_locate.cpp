@@ -11,8 +11,8 @@
 #include <filesystem>
 
 #include "cli/command.h"
-#include "cli/hall_chain.h"
 #include "host/golden/hall_baseline.h"
+#include "host/hall/hall_chain.h"
 #include "sim/scene.h"
 
 namespace eskin::cli {
@@ -29,7 +29,7 @@ int run_locate(const LocateArgs& a) {
   if (!scene.has_hall) throw ConfigError("hall", a.scene + ": expected a scene with a hall: section");
   const sim::HallWorld w(scene.hall);
   const HallConfig& h = w.config();
-  const golden::ContactLocator loc = calibrate_locator(w, scene.seed);
+  const golden::ContactLocator loc = hall::calibrate_locator(w, scene.seed);
   namespace fs = std::filesystem;
   fs::create_directories(a.out);
   fmt::print("table: {}x{} entries at {:.2f} mm from a {} mm scan at {} N\n", loc.table_nx(), loc.table_ny(),

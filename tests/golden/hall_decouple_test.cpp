@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "sim/scene.h"
 
 namespace eskin::golden {
@@ -55,7 +55,7 @@ TEST(HallDecouple, FittedChainRecoversSeed001Forces) {
   // coupling (measured 4.7% at Fx = -0.9 N with 2.9 N normal).
   const sim::Scene s = sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/scenes/hall_001_split.yaml");
   const sim::HallWorld w(s.hall);
-  const cli::DecoupleCalibration cal = cli::calibrate_decouple(w, 1);
+  const hall::DecoupleCalibration cal = hall::calibrate_decouple(w, 1);
   const Decoupled rest = hall_decouple(cal.rest_film_ut, cal.params);
   ASSERT_TRUE(rest.valid);
   for (Vec3 f : {Vec3{0.3, -0.5, 1.1}, Vec3{-0.9, 0.2, 2.9}, Vec3{0.55, 0.75, 2.0}}) {

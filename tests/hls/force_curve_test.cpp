@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "hls/force_curve_config.h"
 #include "hls/hall_baseline.h"
 #include "host/golden/force_curve.h"
@@ -22,7 +22,7 @@ TEST(ForceCurveHls, WithinDerivedBoundOfGolden) {
   const auto data = test::hall_tokens("hall_003_metamaterial.yaml", 3.7);
   const sim::HallWorld w(data.scene.hall);
   const HallConfig& h = w.config();
-  const auto curves = cli::calibrate_force_curves(w, data.scene.seed);
+  const auto curves = hall::calibrate_force_curves(w, data.scene.seed);
   ASSERT_EQ(curves.size(), 9u);
   ASSERT_EQ(curves[0].db_ut.size(), size_t(kNb));
   hls::ForceCurveConfig<kNb, 3> cfg;

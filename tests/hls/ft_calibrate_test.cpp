@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "hls/ft_calibrate_config.h"
 #include "hls/hall_baseline.h"
 #include "tests/hls/hall_chain_data.h"
@@ -21,7 +21,7 @@ TEST(FtCalibrateHls, WithinEntryAndOutputRoundingOfGolden) {
   const auto data = test::hall_tokens("hall_002_magtac.yaml", 2.0);
   const sim::HallWorld w(data.scene.hall);
   const HallConfig& h = w.config();
-  const cli::WrenchCalibration cal = cli::calibrate_wrench(w, data.scene.seed, 120);
+  const hall::WrenchCalibration cal = hall::calibrate_wrench(w, data.scene.seed, 120);
   hls::FtCalibrate<kFrac> k;
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 9; ++j)

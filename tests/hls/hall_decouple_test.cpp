@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "hls/hall_baseline.h"
 #include "host/golden/hall_decouple.h"
 #include "tests/hls/hall_chain_data.h"
@@ -28,7 +28,7 @@ TEST(HallDecoupleHls, WithinDerivedBoundOfGolden) {
   const auto data = test::hall_tokens("hall_001_split.yaml", 3.7);
   const sim::HallWorld w(data.scene.hall);
   const HallConfig& h = w.config();
-  const cli::DecoupleCalibration cal = cli::calibrate_decouple(w, data.scene.seed);
+  const hall::DecoupleCalibration cal = hall::calibrate_decouple(w, data.scene.seed);
   // The golden uses the compensation exactly as the FPGA holds it.
   DecoupleParams p = cal.params;
   const hls::HallDecoupleConfig cfg = config(h, p);

@@ -15,7 +15,7 @@
 #include <random>
 
 #include "Vforce_curve.h"
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "hall_stream.h"
 #include "hls/force_curve.h"
 #include "hls/force_curve_config.h"
@@ -69,7 +69,7 @@ Bench make_bench() {
   s.k = std::make_unique<Kernel>(cfg);
   s.d = std::make_unique<ClockedDut<Vforce_curve>>();
   s.d->reset();
-  const auto curves = eskin::cli::calibrate_force_curves(w, data.scene.seed);
+  const auto curves = eskin::hall::calibrate_force_curves(w, data.scene.seed);
   for (int c = 0; c < 9; ++c) {
     const auto t = eskin::hls::force_curve_table<kNb>(curves[size_t(c)].db_ut.data(), curves[size_t(c)].force_n.data(), kNb);
     s.k->table(c) = t;

@@ -14,7 +14,7 @@
 #include <memory>
 
 #include "Vft_calibrate.h"
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "hall_stream.h"
 #include "hls/ft_calibrate.h"
 #include "hls/ft_calibrate_config.h"
@@ -79,7 +79,7 @@ std::vector<HallDeltaToken> deltas(double seconds) {
 TEST(FtCalibrateRtl, BitExactWithRuntimeCAndSkippedFrames) {
   const auto data = eskin::test::hall_tokens("hall_002_magtac.yaml", 0.01);
   const eskin::sim::HallWorld w(data.scene.hall);
-  const auto cal = eskin::cli::calibrate_wrench(w, data.scene.seed, 60);
+  const auto cal = eskin::hall::calibrate_wrench(w, data.scene.seed, 60);
   auto d = std::make_unique<ClockedDut<Vft_calibrate>>();
   d->reset();
   eskin::hls::FtCalibrate<16> k;

@@ -17,7 +17,7 @@
 #include <random>
 
 #include "Vhall_decouple.h"
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "hall_stream.h"
 #include "hls/hall_baseline.h"
 #include "hls/hall_decouple.h"
@@ -58,7 +58,7 @@ Bench make_bench() {
   const auto data = eskin::test::hall_tokens("hall_001_split.yaml", 3.7);
   const eskin::sim::HallWorld w(data.scene.hall);
   const auto& h = w.config();
-  const auto cal = eskin::cli::calibrate_decouple(w, data.scene.seed);
+  const auto cal = eskin::hall::calibrate_decouple(w, data.scene.seed);
   for (int a = 0; a < 3; ++a)
     b.cfg.gain[a] = uint32_t(std::lround(eskin::mlx90393::sensitivity_uT(h.mlx, a) * 65536));
   EXPECT_EQ(b.cfg.gain[0], 9830u);  // the RTL defaults are this setting

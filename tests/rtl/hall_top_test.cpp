@@ -29,7 +29,7 @@
 #include "Vhall_top_16s.h"
 #include "Vhall_top_deltas.h"
 #include "Vhall_top_mux8.h"
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "hall_top_board.h"
 #include "hls/ft_calibrate.h"
 #include "hls/ft_calibrate_config.h"
@@ -383,7 +383,7 @@ TEST(HallTop, Seed002WrenchWithCommandLoadedC) {
   EXPECT_NE(cmake_flat().find(want), std::string::npos) << "expected in the cmake file: " << want;
 
   const eskin::sim::HallWorld world(sc.hall);
-  const auto cal = eskin::cli::calibrate_wrench(world, sc.seed, 300);
+  const auto cal = eskin::hall::calibrate_wrench(world, sc.seed, 300);
   const double t0 = 0.14;  // 60 ms of rest (baseline capture), then the first wrench
   const ShiftedField field(world, t0);
   HallBoard<Vhall_top_002> b(field, sc.hall.config, spec);
@@ -436,7 +436,7 @@ TEST(HallTop, Seed002WrenchWithCommandLoadedC) {
     // In the holds, against the truth.
     const double ts = w.t * 1e-6 + t0;
     bool steady = false;
-    if (eskin::cli::active_stimuli(sc.hall, ts, steady) > 0 && steady) {
+    if (eskin::hall::active_stimuli(sc.hall, ts, steady) > 0 && steady) {
       const auto tr = world.truth(ts);
       const double truth[6] = {tr.force_n[0], tr.force_n[1], tr.force_n[2],
                                tr.torque_nmm[0], tr.torque_nmm[1], tr.torque_nmm[2]};
@@ -499,7 +499,7 @@ TEST(HallTop, Seed001DecouplingWithCommandSetCompensation) {
   ASSERT_TRUE(spec.decouple);
   const eskin::sim::HallWorld world(sc.hall);
   const auto& h = world.config();
-  const auto cal = eskin::cli::calibrate_decouple(world, sc.seed);
+  const auto cal = eskin::hall::calibrate_decouple(world, sc.seed);
   eskin::hls::HallDecoupleConfig cfg;
   for (int a = 0; a < 3; ++a) cfg.gain[a] = spec.dec_gain[a];
   cfg.k1 = int16_t(std::lround(cal.params.k1 * 16384)), cfg.k2 = int16_t(std::lround(cal.params.k2 * 16384));
@@ -550,7 +550,7 @@ TEST(HallTop, Seed001DecouplingWithCommandSetCompensation) {
     ASSERT_EQ(d.hall.decouple.flags, want.flags) << "output " << outs;
     bool steady = false;
     const double ts = d.t * 1e-6;
-    if (!want.valid || eskin::cli::active_stimuli(sc.hall, ts, steady) == 0 || !steady) continue;
+    if (!want.valid || eskin::hall::active_stimuli(sc.hall, ts, steady) == 0 || !steady) continue;
     eskin::golden::Decoupled g;
     g.rx = want.rx / 16777216.0, g.ry = want.ry / 16777216.0, g.sz = want.sz / 16777216.0, g.valid = true;
     const auto f = eskin::golden::decoupled_force(g, rest, cal.params);
@@ -595,7 +595,7 @@ TEST(HallTop, Seed003ForceCurvesWithCommandLoadedTables) {
   ASSERT_EQ(spec.nc, kNc);
   const eskin::sim::HallWorld world(sc.hall);
   const auto& h = world.config();
-  const auto curves = eskin::cli::calibrate_force_curves(world, sc.seed);
+  const auto curves = eskin::hall::calibrate_force_curves(world, sc.seed);
   eskin::hls::ForceCurveConfig<kNb, 3> cfg;
   for (int a = 0; a < 3; ++a) cfg.gain[a] = eskin::hls::force_curve_gain(eskin::mlx90393::sensitivity_uT(h.mlx, a));
   for (int r = 0; r < 3; ++r) cfg.lock_mn[r] = spec.lock_mn[size_t(r)];
@@ -653,7 +653,7 @@ TEST(HallTop, Seed003ForceCurvesWithCommandLoadedTables) {
       ASSERT_EQ(got.flags, want.flags) << "frame " << outs << " cell " << c;
       bool steady = false;
       const double ts = got.t * 1e-6;
-      if (eskin::cli::active_stimuli(sc.hall, ts, steady) == 0 || !steady) continue;
+      if (eskin::hall::active_stimuli(sc.hall, ts, steady) == 0 || !steady) continue;
       const double ft = -world.truth(ts).cells[size_t(c)].force_n[2];
       if (ft <= 0) continue;
       const size_t r = size_t(std::lower_bound(lock.begin(), lock.end(), ft) - lock.begin());

@@ -1,6 +1,6 @@
 // rtl/mixed_top.v's command routing, on the virtual board: the mixed build
 // for scenes/mixed_neuroskin_split.yaml (dtmf_top beside seed 001's Hall
-// top), its pty driven through host/stream (cli::run_board) like eskin
+// top), its pty driven through host/stream (stream::run_board) like eskin
 // simulate does. One run, these commands on the one line, in order:
 //   HALL_SET_DECOUPLE (well formed)        -> the Hall top accepts it
 //   HALL_SET_BASELINE sensor 3 of 1        -> the Hall top rejects it (index)
@@ -16,7 +16,7 @@
 
 #include <string>
 
-#include "cli/board_link.h"
+#include "host/stream/board_link.h"
 #include "host/link/hall_packets.h"
 #include "host/link/link_encoder.h"
 #include "sim/scene.h"
@@ -46,8 +46,8 @@ TEST(MixedCommands, EachCommandIsJudgedByExactlyOneTop) {
   cmds.push_back(enc.frame(0xA0, 0, {1, 2, 3}));
   cmds.push_back(enc.request_status());
 
-  eskin::vboard::VboardProcess board(exe, eskin::cli::board_args(scene_file, "", cmds));
-  const eskin::cli::BoardRun run = eskin::cli::run_board(
+  eskin::vboard::VboardProcess board(exe, eskin::stream::board_args(scene_file, "", cmds));
+  const eskin::stream::BoardRun run = eskin::stream::run_board(
       board, int(dtmf.baud()), cmds, 1, [](const Packet&) { return -1L; });
   EXPECT_EQ(board.wait(), 0);
   EXPECT_EQ(run.link.crc_errors + run.link.framing_errors + run.link.payload_errors, 0u);

@@ -7,7 +7,7 @@
 //    geomagnetic baseline the host set by command (quantised here from the
 //    scene and the MLX90393's sensitivity), saturated to 16 bits;
 //  * every DECOUPLE3 equals hls::HallDecouple run on its frame's delta,
-//    with the compensation the golden chain fits (cli::calibrate_decouple,
+//    with the compensation the golden chain fits (hall::calibrate_decouple,
 //    quantised here to the kernel's Q2.14 / 1/64 uT), bit for bit;
 //  * the FPGA's force against the truth within 2.5 % of full scale (mean,
 //    holds): the HLS chain over the scene gives 1.2 % shear and 0.6 %
@@ -29,7 +29,7 @@
 #include <sstream>
 #include <string>
 
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "eskin/mlx90393_config.h"
 #include "hls/hall_decouple.h"
 #include "run_command.h"
@@ -75,7 +75,7 @@ TEST(SimulateHall, Seed001OnTheVirtualBoardMatchesItsKernelsAndTheTruth) {
   const auto& h = sc.hall.config;
   const auto spec = eskin::sim::hall_top_spec(h);
   const eskin::sim::HallWorld world(sc.hall);
-  const auto cal = eskin::cli::calibrate_decouple(world, sc.seed);
+  const auto cal = eskin::hall::calibrate_decouple(world, sc.seed);
   eskin::hls::HallDecoupleConfig cfg;
   for (int a = 0; a < 3; ++a) cfg.gain[a] = spec.dec_gain[a];
   cfg.k1 = int16_t(std::lround(cal.params.k1 * 16384)), cfg.k2 = int16_t(std::lround(cal.params.k2 * 16384));

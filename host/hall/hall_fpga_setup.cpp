@@ -1,4 +1,4 @@
-#include "cli/hall_fpga_setup.h"
+#include "host/hall/hall_fpga_setup.h"
 
 #include <cmath>
 #include <string>
@@ -8,7 +8,7 @@
 #include "hls/ft_calibrate_config.h"
 #include "host/link/hall_packets.h"
 
-namespace eskin::cli {
+namespace eskin::hall {
 namespace {
 
 constexpr int kFtFrac = 16;  // rtl/hall_top.v's ft_calibrate C_FRAC
@@ -72,4 +72,4 @@ HallFpgaSetup hall_fpga_setup(const sim::HallWorld& w, const sim::HallTopSpec& s
   return s;
 }
 
-}  // namespace eskin::cli
+}  // namespace eskin::hall

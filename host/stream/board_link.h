@@ -14,12 +14,12 @@
 #include <utility>
 #include <vector>
 
-#include "cli/progress.h"
+#include "host/stream/progress.h"
 #include "host/link/link_decoder.h"
 #include "host/stream/link_stream.h"
 #include "sim/vboard/vboard_process.h"
 
-namespace eskin::cli {
+namespace eskin::stream {
 
 // The board executable's arguments: the scene, an FST trace if asked, and
 // the size of the host's start-up `commands` (run_board sends them): the
@@ -117,4 +117,4 @@ inline BoardRun run_board(vboard::VboardProcess& board, int baud,
   return finish_board_run(board, port, std::move(rx));
 }
 
-}  // namespace eskin::cli
+}  // namespace eskin::stream

@@ -1,4 +1,4 @@
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 
 #include <fmt/format.h>
 #include <fmt/os.h>
@@ -14,7 +14,7 @@
 #include "host/golden/force_curve.h"
 #include "host/golden/hall_baseline.h"
 
-namespace eskin::cli {
+namespace eskin::hall {
 namespace {
 
 constexpr int kBaselineFrames = 20;  // 40 ms at OSR 0 / DIG_FILT 2, before any stimulus
@@ -208,4 +208,4 @@ golden::ContactLocator calibrate_locator(const sim::HallWorld& w, uint64_t seed)
   return golden::ContactLocator(g, scan, h.table_subdivision);
 }
 
-}  // namespace eskin::cli
+}  // namespace eskin::hall

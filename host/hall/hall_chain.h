@@ -1,4 +1,4 @@
-// The Hall golden chain of the CLI (eskin golden/calibrate/locate): simulated
+// The Hall golden chain (eskin golden/calibrate/locate/simulate): simulated
 // calibration of each decoding block on the scene's own skin (the sampler's
 // device-quantised, noisy frames), then the scene's frames through baseline
 // and decoding, scored against the world's ground truth.
@@ -13,7 +13,7 @@
 #include "sim/hall_sampler.h"
 #include "sim/hall_world.h"
 
-namespace eskin::cli {
+namespace eskin::hall {
 
 // Sets OSR / DIG_FILT (-1: keep) and rescales the sensors' noise to it
 // (scaled_noise_ut); throws ConfigError for an illegal pair.
@@ -64,4 +64,4 @@ int active_stimuli(const sim::HallScene& s, double t, bool& steady);
 // per-frame outputs (NDJSON) to out_dir.
 int run_hall_golden(const sim::HallWorld& w, double duration_s, uint64_t seed, const std::string& out_dir);
 
-}  // namespace eskin::cli
+}  // namespace eskin::hall

@@ -15,7 +15,7 @@
 #include "eskin/neuron_config.h"
 #include "eskin/skin_config.h"
 
-namespace eskin::cli {
+namespace eskin::engine {
 
 struct FpgaDecodeOptions {
   bool taxels = false, spikes = false, ghost_correct = true;
@@ -28,4 +28,4 @@ struct FpgaDecodeOptions {
 int decode_fpga(const SkinConfig& skin, const DecoderConfig& dec, const NeuronConfig& neuron,
                 const std::vector<int>& codes, const FpgaDecodeOptions& opt);
 
-}  // namespace eskin::cli
+}  // namespace eskin::engine

@@ -1,4 +1,4 @@
-#include "cli/decode_fpga.h"
+#include "host/engine/decode_fpga.h"
 
 #include <fmt/format.h>
 
@@ -10,7 +10,7 @@
 #include "host/engine/dtmf_engine.h"
 #include "host/engine/engine_setup.h"
 
-namespace eskin::cli {
+namespace eskin::engine {
 
 int decode_fpga(const SkinConfig& skin, const DecoderConfig& dec, const NeuronConfig& neuron,
                 const std::vector<int>& codes, const FpgaDecodeOptions& opt) {
@@ -73,4 +73,4 @@ int decode_fpga(const SkinConfig& skin, const DecoderConfig& dec, const NeuronCo
   return 0;
 }
 
-}  // namespace eskin::cli
+}  // namespace eskin::engine

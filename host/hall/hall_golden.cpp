@@ -11,11 +11,11 @@
 #include <filesystem>
 #include <memory>
 
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "host/golden/force_curve.h"
 #include "host/golden/hall_baseline.h"
 
-namespace eskin::cli {
+namespace eskin::hall {
 namespace {
 
 constexpr int kBaselineFrames = 20;  // 40 ms at OSR 0 / DIG_FILT 2, before any stimulus
@@ -209,4 +209,4 @@ int run_hall_golden(const sim::HallWorld& w, double duration_s, uint64_t seed, c
   return 0;
 }
 
-}  // namespace eskin::cli
+}  // namespace eskin::hall

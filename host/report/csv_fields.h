@@ -1,5 +1,6 @@
-// Comma-separated number lists shared by the CLI's NDJSON and CSV writers,
-// so every command prints amplitudes and taxels the same way (%.6g).
+// Comma-separated number lists shared by the NDJSON and CSV writers of the
+// CLI and the reports, so every command prints amplitudes and taxels the
+// same way (%.6g).
 #pragma once
 
 #include <fmt/format.h>
@@ -7,7 +8,7 @@
 #include <Eigen/Dense>
 #include <string>
 
-namespace eskin::cli {
+namespace eskin::report {
 
 inline std::string join(const Eigen::VectorXd& v) {
   std::string s;
@@ -23,4 +24,4 @@ inline std::string join(const Eigen::MatrixXd& m) {
   return s;
 }
 
-}  // namespace eskin::cli
+}  // namespace eskin::report

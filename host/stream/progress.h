@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <string>
 
-namespace eskin::cli {
+namespace eskin::stream {
 
 class Progress {
  public:
@@ -40,4 +40,4 @@ class Progress {
   std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace eskin::cli
+}  // namespace eskin::stream

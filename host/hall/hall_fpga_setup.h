@@ -1,6 +1,6 @@
 // The run-time configuration a Hall top's decoding needs from its host
 // (docs/hall_fpga.md): the constants eskin's golden chain calibrates on the
-// scene's own skin (host/cli/hall_chain.h), quantised to the HLS kernels'
+// scene's own skin (host/hall/hall_chain.h), quantised to the HLS kernels'
 // formats and sent as link commands (docs/protocol.md section 9):
 //   DECOUPLE   3 HALL_SET_BASELINE (the geomagnetic field, recorded before
 //              the film is placed, as seed 001 does) and HALL_SET_DECOUPLE;
@@ -13,11 +13,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "cli/hall_chain.h"
+#include "host/hall/hall_chain.h"
 #include "host/link/link_encoder.h"
 #include "sim/hall_top_spec.h"
 
-namespace eskin::cli {
+namespace eskin::hall {
 
 struct HallFpgaSetup {
   std::vector<uint8_t> commands;  // framed, in the order to send
@@ -32,4 +32,4 @@ struct HallFpgaSetup {
 HallFpgaSetup hall_fpga_setup(const sim::HallWorld& w, const sim::HallTopSpec& spec,
                               uint64_t seed, link::LinkEncoder& enc);
 
-}  // namespace eskin::cli
+}  // namespace eskin::hall

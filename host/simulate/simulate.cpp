@@ -1,0 +1,147 @@
+#include "host/simulate/simulate.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "host/fpga/board.h"
+#include "host/fpga/flow.h"
+#include "host/hall/hall_fpga_setup.h"
+#include "host/link/link_encoder.h"
+#include "host/report/simulate_dtmf_report.h"
+#include "host/report/simulate_hall_report.h"
+#include "host/report/simulate_mixed_report.h"
+#include "host/simulate/golden_run.h"
+#include "host/stream/board_link.h"
+#include "sim/hall_world.h"
+#include "sim/scene.h"
+#include "sim/vboard/fpga_params.h"
+#include "sim/vboard/hall_build.h"
+#include "sim/vboard/mixed_build.h"
+#include "sim/vboard/vboard_build.h"
+#include "sim/vboard/vboard_process.h"
+
+namespace eskin::simulate {
+namespace {
+
+using link::Packet;
+
+// The scene's FPGA build on the virtual board, which models the
+// iCEBreaker: the default scene's build at 18 MHz, any other with the
+// engine and the slowest clock of the board's PLL at which the core keeps
+// up with the scene's frames, as `eskin bitstream` chooses them
+// (host/fpga/flow.h: the frame engine's measured load on the scene's
+// samples).
+vboard::FpgaBuild board_build(const sim::Scene& scene) {
+  vboard::FpgaBuild b = vboard::fpga_build_for(scene);  // names a bad field
+  if (b.key == "default") return b;
+  fpga::CoreClock cc;
+  try {
+    cc = fpga::choose_core_clock(fpga::find_board("icebreaker"), scene, fpga::LoadPolicy::Scene);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError("skin", e.what());
+  }
+  if (!cc.budget.ok()) {
+    std::string why;
+    for (const auto& p : cc.budget.problems) why += (why.empty() ? "" : "; ") + p;
+    throw ConfigError("skin", fmt::format("no clock of the iCEBreaker's PLL keeps the FPGA top up "
+                                          "with this scene (it needs at least {:.1f} MHz): {}",
+                                          double(cc.core_min_hz) / 1e6, why));
+  }
+  return vboard::fpga_build_for(scene, "", cc.plan.spec.clk_hz, cc.plan.spec.baud,
+                                {cc.plan.spec.engine_fast_shift, cc.plan.spec.neuron_unit});
+}
+
+void note(const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); }
+
+// The skin's outputs (amplitudes, taxels, spikes as the scene asks) plus
+// the periodic status, whose counters go into the report.
+std::vector<uint8_t> output_mask_command(const sim::Scene& scene, link::LinkEncoder& enc) {
+  return enc.set_output_mask(uint8_t((scene.outputs.amplitudes ? 1 : 0) |
+                                     (scene.outputs.taxels ? 2 : 0) |
+                                     (scene.outputs.spikes ? 4 : 0) | 8));
+}
+
+// The decoding's constants, calibrated by the golden chain on the scene's
+// skin and quantised for the FPGA, with the commands that load them
+// (host/hall/hall_fpga_setup.h).
+hall::HallFpgaSetup hall_simulation_setup(const sim::Scene& scene, const sim::HallTopSpec& spec) {
+  const sim::HallWorld world(scene.hall);
+  link::LinkEncoder enc;
+  return hall::hall_fpga_setup(world, spec, scene.seed, enc);
+}
+
+// A Hall scene (docs/vboard.md, "Hall skins"): the scene's Hall build of
+// rtl/hall_top.v with its MLX90393s on the I2C buses; the decoding
+// configured over the link from the golden chain's calibration.
+int run_simulate_hall(const sim::Scene& scene, const SimulateOptions& o) {
+  const vboard::HallBuild build = vboard::hall_build_for(scene);  // names a bad field
+  const hall::HallFpgaSetup setup = hall_simulation_setup(scene, build.spec);
+  const std::string exe = vboard::board_executable(build, note);
+  std::filesystem::create_directories(o.out);
+
+  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, {setup.commands}));
+  const stream::BoardRun run = stream::run_board(
+      board, int(build.baud), {setup.commands}, size_t(scene.duration_s * 1e6),
+      [](const Packet& p) { return p.type == link::kHallSamples ? long(p.t) : -1L; });
+  report::report_hall(scene, o.scene, build, setup, run, o.out);
+  return board.wait() == 0 ? 0 : 1;
+}
+
+// A scene with both a DTMF skin and Hall sensors: rtl/mixed_top.v on one
+// board, both tops' packets on one link. The host configures both (the
+// skin's outputs; the Hall decoding's calibration).
+int run_simulate_mixed(const sim::Scene& scene, const SimulateOptions& o) {
+  const vboard::FpgaBuild dtmf = board_build(scene);
+  const vboard::MixedBuild build = vboard::mixed_build_for(scene, dtmf);  // names a bad field
+  const hall::HallFpgaSetup setup = hall_simulation_setup(scene, build.hall.spec);
+  const std::string exe = vboard::board_executable(build, note);
+  std::filesystem::create_directories(o.out);
+
+  link::LinkEncoder enc;
+  const std::vector<std::vector<uint8_t>> commands = {output_mask_command(scene, enc),
+                                                      setup.commands};
+  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, commands));
+  const size_t total = board.ready().at("scene_samples");
+  report::GoldenRun gold;
+  const stream::BoardRun run = stream::run_board(
+      board, int(dtmf.baud()), commands, total,
+      [](const Packet& p) { return link::is_hall_packet(p.type) ? -1L : long(p.t); },
+      [&] { gold = run_golden(scene, dtmf.plan.step); });
+  report::report_mixed(scene, o.scene, build, dtmf, gold, setup, run, total, o.out);
+  return board.wait() == 0 ? 0 : 1;
+}
+
+// A DTMF skin: the board's serial port through the host streaming library
+// (host/stream), packets decoded and checked by host/link. The host
+// configures the board like a host program: the scene's outputs, plus the
+// periodic status (its counters go into the report).
+int run_simulate_dtmf(const sim::Scene& scene, const SimulateOptions& o) {
+  const vboard::FpgaBuild build = board_build(scene);
+  const std::string exe = vboard::board_executable(build, note);
+  std::filesystem::create_directories(o.out);
+
+  link::LinkEncoder enc;
+  const std::vector<std::vector<uint8_t>> commands = {output_mask_command(scene, enc)};
+  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, commands));
+  const size_t total = board.ready().at("scene_samples");
+  report::GoldenRun gold;
+  const stream::BoardRun run = stream::run_board(
+      board, int(build.baud()), commands, total,
+      [](const Packet& p) { return long(p.t); },
+      [&] { gold = run_golden(scene, build.plan.step); });
+  report::report_dtmf(scene, o.scene, build, gold, run, total, o.out);
+  return board.wait() == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int run_simulate(const SimulateOptions& o) {
+  const sim::Scene scene = sim::load_scene(o.scene);  // a bad scene fails here, before anything runs
+  if (scene.has_hall && scene.has_skin) return run_simulate_mixed(scene, o);
+  if (scene.has_hall) return run_simulate_hall(scene, o);
+  return run_simulate_dtmf(scene, o);
+}
+
+}  // namespace eskin::simulate

@@ -1,0 +1,23 @@
+// eskin simulate: a scene on the SystemC virtual board (sim/vboard/), read
+// over its serial port (a pty) like a real board; the golden model on the
+// same samples; both scored against the scene's ground truth; one
+// self-contained HTML report plus the raw outputs (docs/vboard.md). A DTMF
+// skin, Hall sensors (rtl/hall_top.v) or both on one board
+// (rtl/mixed_top.v), as the scene has them.
+#pragma once
+
+#include <string>
+
+namespace eskin::simulate {
+
+struct SimulateOptions {
+  std::string scene;             // scene file (YAML)
+  std::string out = "eskin-out"; // output directory (created)
+  std::string trace;             // FST waveform of the FPGA, if not empty
+};
+
+// Loads the scene (a bad scene throws before anything runs), runs it on
+// the virtual board and writes the report. Returns the process exit code.
+int run_simulate(const SimulateOptions& o);
+
+}  // namespace eskin::simulate
