@@ -28,8 +28,8 @@
 //
 // Hardware (the frame engine, docs/frame_engine.md): P from 16-bit halves
 //   of re and im on the engine's 16x16 multiplier (the SB_MAC16) into its
-//   48-bit accumulator, the root by its `sqrtr` instruction (one root digit
-//   per two clocks). k and last pass through unchanged.
+//   48-bit accumulator, the root by its `sqrt` instruction (the clocks:
+//   docs/frame_engine.md). k and last pass through unchanged.
 #pragma once
 
 #include <cstdint>

@@ -119,6 +119,8 @@ module dtmf_top #(
   power_on_reset u_por (.clk(clk), .rst_n(rst_n), .rst(rst));
 
   // ---------------- frame engine IO bus ---------------------------------
+  // Its addresses and event bits: generated from ucode/dtmf_io_map.h.
+`include "dtmf_io_map.vh"
   wire [15:0] io_raddr, io_waddr;
   wire        io_re, io_we;
   wire [31:0] io_wdata;
@@ -130,23 +132,23 @@ module dtmf_top #(
   wire [NEURON_BITS-1:0] lane_ev;
   wire [31:0] io_rdata = io_ev_q ? {{(32 - NEURON_BITS){1'b0}}, lane_ev} :
                          io_flag_q ? {29'd0, lane_flags} : io_frame_q ? cap_data : io_reg;
-  wire        wr_out = io_we && io_waddr == 16'h0200;
-  wire        wr_word = io_we && io_waddr == 16'h0209;  // two bytes (below)
-  wire        wr_done = io_we && io_waddr == 16'h0201;
-  wire        wr_pop = io_we && io_waddr == 16'h0202;
-  wire        wr_sdk = io_we && io_waddr == 16'h0203;
-  wire        wr_sdinc = io_we && io_waddr == 16'h0204;
-  wire        wr_clear = io_we && io_waddr == 16'h0205;
-  wire        wr_iz_x = io_we && io_waddr == 16'h0206;
-  wire        wr_iz_go = io_we && io_waddr == 16'h0207;  // the x_prev operand
-  wire        wr_iz_ugo = io_we && io_waddr == 16'h0208; // the U operand; starts (level input)
-  wire        wr_iz_v = io_we && io_waddr == 16'h020D;
-  wire        wr_iz_u = io_we && io_waddr == 16'h020E;
-  wire        wr_iz_cfg = io_we && io_waddr[15:5] == 11'h011;  // 0x220 + word
-  wire        wr_iz_n = io_we && io_waddr == 16'h020A;   // lanes: the next neuron
-  wire        wr_iz_xgo = io_we && io_waddr == 16'h020B; // lanes: its x; starts it
-  wire        wr_iz_sv = io_we && io_waddr == 16'h020C;  // lanes: v of an initialisation
-  wire        wr_iz_su = io_we && io_waddr == 16'h020F;  // lanes: U; initialises
+  wire        wr_out = io_we && io_waddr == IO_OUT_BYTE;
+  wire        wr_word = io_we && io_waddr == IO_OUT_WORD;  // two bytes (below)
+  wire        wr_done = io_we && io_waddr == IO_FRAME_DONE;
+  wire        wr_pop = io_we && io_waddr == IO_CMD_POP;
+  wire        wr_sdk = io_we && io_waddr == IO_SDFT_K;
+  wire        wr_sdinc = io_we && io_waddr == IO_SDFT_INC;
+  wire        wr_clear = io_we && io_waddr == IO_CLEAR;
+  wire        wr_iz_x = io_we && io_waddr == IO_IZ_X;
+  wire        wr_iz_go = io_we && io_waddr == IO_IZ_GO;  // the x_prev operand
+  wire        wr_iz_ugo = io_we && io_waddr == IO_IZ_UGO; // the U operand; starts (level input)
+  wire        wr_iz_v = io_we && io_waddr == IO_IZ_V;
+  wire        wr_iz_u = io_we && io_waddr == IO_IZ_U;
+  wire        wr_iz_cfg = io_we && io_waddr[15:5] == IO_IZ_CFG[15:5];  // IO_IZ_CFG + word
+  wire        wr_iz_n = io_we && io_waddr == IO_IZ_N;   // lanes: the next neuron
+  wire        wr_iz_xgo = io_we && io_waddr == IO_IZ_XGO; // lanes: its x; starts it
+  wire        wr_iz_sv = io_we && io_waddr == IO_IZ_SV;  // lanes: v of an initialisation
+  wire        wr_iz_su = io_we && io_waddr == IO_IZ_SU;  // lanes: U; initialises
 
   // ---------------- carrier table writes to the DFT ---------------------
   reg [7:0]  cfg_k;
@@ -385,7 +387,13 @@ module dtmf_top #(
   endgenerate
 
   // ---------------- the frame engine -------------------------------------
-  wire [15:0] events = {13'd0, iz_done, cmd_avail, frame_pending};
+  reg [15:0] events;  // the `wait` mask bits (ucode/dtmf_io_map.h)
+  always @* begin
+    events = 16'd0;
+    events[EV_FRAME_PENDING_BIT] = frame_pending;
+    events[EV_CMD_AVAIL_BIT] = cmd_avail;
+    events[EV_IZ_DONE_BIT] = iz_done;
+  end
   frame_engine #(.IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX),
                  .KROM_HEX(KROM_HEX), .FAST_SHIFT(ENGINE_FAST_SHIFT)) u_eng (
       .clk(clk), .rst(rst), .io_raddr(io_raddr), .io_re(io_re), .io_waddr(io_waddr), .io_rdata(io_rdata),
@@ -405,22 +413,22 @@ module dtmf_top #(
     io_flag_q <= LANES_ON && !io_raddr[13] && io_raddr[12];
     io_frame_q <= !io_raddr[9];
     case (io_raddr[3:0])
-      4'h0: io_reg <= frame_t;
-      4'h1: io_reg <= {30'd0, cmd_avail, frame_pending};
-      4'h2: io_reg <= {24'd0, cmd_head};
-      4'h3: io_reg <= {16'd0, out_free};
-      4'h4: io_reg <= adc_t;
-      4'h5: io_reg <= {16'd0, adc_overruns};
-      4'h6: io_reg <= {16'd0, rx_errors};
-      4'h7: io_reg <= {16'd0, cmd_crc_errors};
-      4'h8: io_reg <= {16'd0, cmd_frame_errors};
-      4'h9: io_reg <= {16'd0, frame_overruns};
-      4'hA: io_reg <= {31'd0, cfg_valid};
-      4'hB: io_reg <= {16'd0, cmd_overflows};
-      4'hC: io_reg <= {31'd0, iz_spike};
-      4'hD: io_reg <= iz_v;
-      4'hE: io_reg <= iz_u;
-      default: io_reg <= {{(31 - NEURON_BITS){1'b0}}, lane_ev_count};  // 0x20F: lanes' events
+      IO_FRAME_T[3:0]: io_reg <= frame_t;
+      IO_STATUS[3:0]: io_reg <= {30'd0, cmd_avail, frame_pending};
+      IO_CMD[3:0]: io_reg <= {24'd0, cmd_head};
+      IO_OUT_FREE[3:0]: io_reg <= {16'd0, out_free};
+      IO_ADC_T[3:0]: io_reg <= adc_t;
+      IO_ADC_OVR[3:0]: io_reg <= {16'd0, adc_overruns};
+      IO_RX_ERR[3:0]: io_reg <= {16'd0, rx_errors};
+      IO_CRC_ERR[3:0]: io_reg <= {16'd0, cmd_crc_errors};
+      IO_FRM_ERR[3:0]: io_reg <= {16'd0, cmd_frame_errors};
+      IO_FRAME_OVR[3:0]: io_reg <= {16'd0, frame_overruns};
+      IO_SDFT_BUSY[3:0]: io_reg <= {31'd0, cfg_valid};
+      IO_CMD_OVF[3:0]: io_reg <= {16'd0, cmd_overflows};
+      IO_IZ_SPIKE[3:0]: io_reg <= {31'd0, iz_spike};
+      IO_IZ_V[3:0]: io_reg <= iz_v;
+      IO_IZ_U[3:0]: io_reg <= iz_u;
+      default: io_reg <= {{(31 - NEURON_BITS){1'b0}}, lane_ev_count};  // IO_IZ_EVN: lanes' events
     endcase
   end
   wire unused_io = ^{io_re, io_raddr[15:10], io_raddr[8]};  // partial decode

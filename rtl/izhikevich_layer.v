@@ -35,8 +35,7 @@
 //   s11 spike = vacc >= V_PEAK; uacc = sat_u(uacc) + (spike ? u_jump : 0)
 //   s12 out_v = spike ? v_reset : max(vacc, V_MIN), out_u = sat_u(uacc),
 //       out_spike, out_valid = in_ready = 1 (edge E+13)
-//   (Until 2026-11-25 a pad clock before s12 made it 14, when the engine's
-//   loop took 15 clocks a neuron anyway; its 14-clock loop needs 13.)
+//   (13, not more: the engine's neuron loop takes 14 clocks a neuron.)
 //
 // Widths (the C++'s int64 intermediates; why nothing wraps, for ANY 32-bit
 // x, x_prev, v, U and any config): the operands are 16-bit, so |p| <= 2^30;
@@ -74,11 +73,10 @@
 // which the 47-bit round-shift unit is ~335 LUT4; 203 of the flip-flops
 // hold the configuration). ECP5 (scripts/synth_ecp5.sh izhikevich_layer
 // --pnr --freq 50 --device 85k): 1234 LUT4 (1550 placed), 578 FF, 1
-// MULT18X18D, Fmax 82.5 / 85.8 / 85.9 MHz at seeds 1-3. Until 2026-11-24
-// the unit also copied its constants at the handshake (so that they could
-// be written while it ran) and kept the next x_prev: 1448 LUT4 and 774
-// flip-flops on the iCE40, 1318 LUT4 and 806 FF on the ECP5; on the
-// iCE40 each of those flip-flops took a logic cell of its own.
+// MULT18X18D, Fmax 82.5 / 85.8 / 85.9 MHz at seeds 1-3. The constants are
+// not copied at the handshake (the microcode writes them between updates,
+// which ucode/engine_ports.h checks): on the iCE40 each such flip-flop
+// would take a logic cell of its own.
 module izhikevich_layer (
     input  wire        clk,
     input  wire        rst,

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "eskin/dtmf_commands.h"
 #include "eskin/dtmf_top_plan.h"
 #include "ucode/dtmf_io_map.h"
 
@@ -185,8 +186,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   table("KC_NLO", [](int q) { return neuron_params()[q].lo; }, 16);
   table("KC_NHI", [](int q) { return neuron_params()[q].hi; }, 16);
   table("KC_NOFF", [](int q) { return neuron_params()[q].word; }, 16);
-  static const int kCmdLen[9] = {5, 3, 5, 1, 3, 0, 0, 3, 4};  // payload bytes, 0x81 .. 0x89
-  table("KC_CLEN", [](int t) { return kCmdLen[t]; }, 9);
+  table("KC_CLEN", [](int t) { return kDtmfCommands[t].payload_bytes(); }, kDtmfCommandCount);
   // synapse_weights' pattern bit (a power of two) of weight d = (dr + 1) 3 +
   // (dc + 1): bit 3 (1 - dc) + (1 - dr): the newest column (dc = 1) in
   // bits 0..2, row r + 1 the lowest bit of each column (rtl/ucode/dtmf_chain.fe).
@@ -204,7 +204,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
                             im.symbol("PKTDROP"), io | kIoAdcOvr,
                             io | kIoRxErr, io | kIoFrameOvr, im.symbol("SPKDROP"), io | kIoCmdOvf};
   table("KC_STAT", [&stat](int f) { return stat[f]; }, 14);
-  kc("KC_BIT15", 0x8000), kc("KC_BIT14", 0x4000), kc("KC_LOW15", 0x3FFF);
+  kc("KC_BIT15", 0x8000), kc("KC_BIT14", 0x4000), kc("KC_LOW14", 0x3FFF);
   sym("SINE", int64_t(im.krom.size()));
   if (demix)
     for (int e = 0; e <= kQ; e += 2)
@@ -215,28 +215,17 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   sym("K", K), sym("KS", ks), sym("R", R), sym("C", C), sym("T", T), sym("DIM", dim);
   sym("STEP", p.step), sym("MAXSPK", p.max_spikes), sym("LK", lk), sym("NCS", kNeuronBlock);
   sym("DEMIX", demix), sym("GHOST", p.spec.ghost), sym("NEURONS", p.spec.spikes);
-  sym("NEURON_UNIT", p.spec.neuron_unit), sym("EV_IZ_DONE", kEvIzDone);
+  sym("NEURON_UNIT", p.spec.neuron_unit);
   sym("NEURON_LANES", p.spec.neuron_lanes);
+  sym("CMD_FIRST", kDtmfCommandFirst), sym("NCMD", kDtmfCommandCount);  // KC_CLEN's types
   // Layer 0's spike flags for synapse_weights: S0 in DMEM (SZ, zeros, the
   // row above it; S1 below), or the lanes' columns of three at FLAGS + n.
   if (p.spec.neuron_lanes) sym("FLAGS", kIoIzFlag + C);
   sym("CF", 14), sym("TW", 10), sym("QUART", kQ);
   sym("SHL_Q", p.mag_shift == 0 ? 2 : 0), sym("SHR_Q", p.mag_shift == 0 ? 0 : 2 * p.mag_shift - 2);
   sym("GRND", p.taxel.recip_shift + 14);
-  for (auto [n, v] : std::initializer_list<std::pair<const char*, int>>{
-           {"IO_FRAME", kIoFrame},     {"IO_FRAME_T", kIoFrameT},   {"IO_STATUS", kIoStatus},
-           {"IO_CMD", kIoCmd},         {"IO_OUT_FREE", kIoOutFree}, {"IO_ADC_T", kIoAdcT},
-           {"IO_ADC_OVR", kIoAdcOvr},  {"IO_RX_ERR", kIoRxErr},     {"IO_CRC_ERR", kIoCrcErr},
-           {"IO_FRM_ERR", kIoFrmErr},  {"IO_FRAME_OVR", kIoFrameOvr},
-           {"IO_SDFT_BUSY", kIoSdftBusy}, {"IO_CMD_OVF", kIoCmdOvf},
-           {"IO_OUT_BYTE", kIoOutByte}, {"IO_OUT_WORD", kIoOutWord}, {"IO_FRAME_DONE", kIoFrameDone},
-           {"IO_CMD_POP", kIoCmdPop},  {"IO_SDFT_K", kIoSdftK},     {"IO_SDFT_INC", kIoSdftInc},
-           {"IO_CLEAR", kIoClear},     {"IO_IZ_X", kIoIzX},         {"IO_IZ_V", kIoIzV},
-           {"IO_IZ_U", kIoIzU},        {"IO_IZ_GO", kIoIzGo},       {"IO_IZ_UGO", kIoIzUGo},
-           {"IO_IZ_CFG", kIoIzCfg},    {"IO_IZ_SPIKE", kIoIzSpike}, {"IO_IZ_N", kIoIzN},
-           {"IO_IZ_XGO", kIoIzXGo},    {"IO_IZ_SV", kIoIzSV},       {"IO_IZ_SU", kIoIzSU},
-           {"IO_IZ_EVN", kIoIzEvN},    {"IO_IZ_EV", kIoIzEv}})
-    sym(n, v);
+  for (const DtmfIoEntry& e : kDtmfIoPorts) sym(e.symbol, e.value);  // the IO map
+  for (const DtmfIoEntry& e : kDtmfEvents) sym(e.symbol, e.value);
   return im;
 }
 

@@ -29,8 +29,8 @@ namespace eskin::hls {
 // by the UP5K's PLL (VCO 576 MHz / 32). The top's place-and-route Fmax is
 // about 20 MHz (the frame engine's operand -> 48-bit adder path); 18 MHz
 // is the fastest PLL clock below it that divides into the 3 Mbaud link (6
-// clocks per bit). The default scene's longest frame takes 16 900 of the
-// 17 990 clocks between frames (docs/fpga.md).
+// clocks per bit). The default scene's longest frame and its share of
+// the clocks between frames: docs/figures.csv (docs/fpga.md).
 constexpr long kDtmfTopClkHz = 18000000;
 
 // What a skin asks of the FPGA top.

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "ucode/dtmf_engine_image.h"
+#include "ucode/dtmf_top_bus.h"
 #include "ucode/dtmf_ucode.h"
 #include "ucode/frame_engine.h"
 #include "host/engine/exact_sdft.h"
@@ -21,50 +22,19 @@ struct Widest {
 }  // namespace
 
 struct EngineCycleModel::Impl {
-  // The top's IO as the engine sees it (rtl/dtmf_top.v's IO decode).
-  struct Io {
-    Impl* m = nullptr;
-    uint32_t io_read(uint16_t a, uint64_t) {
-      if (a < 0x200) return uint32_t(a < m->frame.size() ? m->frame[a] : 0);
-      switch (a) {
-        case hls::kIoFrameT: return m->frame_t;
-        case hls::kIoStatus: return m->pending ? 1u : 0u;  // no commands
-        case hls::kIoOutFree: return uint32_t(m->plan.out_depth);  // the link keeps up
-        case hls::kIoAdcT: return m->adc_t;
-        case hls::kIoFrameOvr: return m->overruns;
-        default: return 0;  // other counters; a DFT write is never pending
-      }
-    }
-    void io_write(uint16_t a, uint32_t d, uint64_t clock) {
-      if (a == hls::kIoOutByte && !m->log.empty() && m->pending_log) {
-        FrameClocks& f = m->log.back();
-        if (f.first_out < 0) f.first_out = int64_t(clock - m->frame_start);
-        ++f.bytes;
-      }
-      if (a == hls::kIoFrameDone && m->pending) {
-        m->pending = false;
-        if (m->pending_log) m->log.back().done = int64_t(clock - m->frame_start);
-      }
-      if (a == hls::kIoSdftInc && m->cfg_last) m->adc_on = true;
-      if (a == hls::kIoSdftK) m->cfg_last = (d >> 8) & 1;
-    }
-    uint16_t events(uint64_t) const { return uint16_t(m->pending ? 1 : 0); }
-  };
-
   hls::DtmfTopPlan plan;
   long period;
   hls::FrameEngine<Widest> eng;
   engine::ExactSdft bank;
-  Io io;
-  std::vector<int32_t> frame, sums;
-  bool pending = false, pending_log = false, adc_on = false, cfg_last = false;
-  uint32_t frame_t = 0, adc_t = 0, overruns = 0;
+  hls::DtmfTopBus io;  // the top's IO bus; no commands come
+  std::vector<int32_t> sums;
+  bool pending_log = false;  // `log` has an entry: output bytes count for the newest frame
   uint64_t frame_start = 0, next_sample = 0;
   std::vector<FrameClocks> log;
 
   Impl(const hls::DtmfTopPlan& p, long per)
       : plan(p), period(per),
-        bank(engine::SdftWidthsRt{p.N, 12, 16, 10, p.acc_w, 0}, p.inc) {
+        bank(engine::SdftWidthsRt{p.N, 12, 16, 10, p.acc_w, 0}, p.inc), io(p) {
     const hls::EngineImage im = hls::dtmf_engine_image(p);
     const auto words = hls::dtmf_ucode_words(im);
     if (im.dend > (1 << Widest::DW) || im.krom.size() > (size_t(1) << Widest::KW))
@@ -76,29 +46,39 @@ struct EngineCycleModel::Impl {
     eng.load_program(words.data(), uint32_t(words.size()));
     eng.load_krom(im.krom.data(), uint32_t(im.krom.size()));
     eng.reset();
-    io.m = this;
-    frame.assign(size_t(2 * p.ks), 0);
     sums.assign(size_t(4 * p.ks), 0);
+    // Every byte the engine writes to the output FIFO, the word port's two
+    // included, counts for the open frame.
+    io.on_out = [this](uint64_t clock, int bytes) {
+      if (log.empty() || !pending_log) return;
+      FrameClocks& f = log.back();
+      if (f.first_out < 0) f.first_out = int64_t(clock - frame_start);
+      f.bytes += uint32_t(bytes);
+    };
+    io.on_release = [this](uint64_t clock) {
+      if (pending_log) log.back().done = int64_t(clock - frame_start);
+    };
     // Boot until the carrier table reaches the DFT (the ADC starts then).
-    eng.run(io, 2000000, [this](const auto&) { return adc_on; });
-    if (!adc_on) throw std::runtime_error("engine model: the microcode never loaded the carriers");
+    eng.run(io, 2000000, [this](const auto&) { return io.adc_on; });
+    if (!io.adc_on) throw std::runtime_error("engine model: the microcode never loaded the carriers");
   }
 
   void sample(uint16_t code) {
     const int32_t x = int32_t(code & 0xFFFu) - 2048;
     const engine::FrameClock clock{uint64_t(plan.N - 1), plan.step};
     const bool is_frame = bank.push_block(&x, 1, clock, sums.data()) == 1;
-    adc_t = uint32_t(next_sample++);
+    io.adc_t = uint32_t(next_sample++);
     if (is_frame) {
-      if (pending) {
-        ++overruns;
+      if (io.pending) {
+        ++io.frame_overruns;
       } else {
         for (int k = 0; k < plan.ks; ++k)
-          frame[size_t(2 * k)] = sums[size_t(k)], frame[size_t(2 * k + 1)] = sums[size_t(plan.ks + k)];
-        pending = pending_log = true;
-        frame_t = adc_t;
+          io.frame[size_t(2 * k)] = sums[size_t(k)],
+                      io.frame[size_t(2 * k + 1)] = sums[size_t(plan.ks + k)];
+        io.pending = pending_log = true;
+        io.frame_t = io.adc_t;
         frame_start = eng.clocks();
-        log.push_back({frame_t, -1, -1, 0});
+        log.push_back({io.frame_t, -1, -1, 0});
       }
     }
     eng.run(io, uint64_t(period));
@@ -110,7 +90,7 @@ EngineCycleModel::EngineCycleModel(const hls::DtmfTopPlan& plan, long clk_per_sa
 EngineCycleModel::~EngineCycleModel() = default;
 void EngineCycleModel::sample(uint16_t code) { d_->sample(code); }
 const std::vector<FrameClocks>& EngineCycleModel::frames() const { return d_->log; }
-uint32_t EngineCycleModel::frame_overruns() const { return d_->overruns; }
+uint32_t EngineCycleModel::frame_overruns() const { return d_->io.frame_overruns; }
 
 int64_t max_engine_clocks(const hls::DtmfTopPlan& plan, const std::vector<uint16_t>& codes,
                           long clk_per_sample) {

@@ -17,6 +17,9 @@
 //     assembled with the scene's constants) and prints every Verilog
 //     parameter of rtl/dtmf_top.v as NAME=VALUE, one per line, for a
 //     synthesis script (scripts/fit_check.sh).
+//   eskin ucode io-map [--out FILE]
+//     writes rtl/dtmf_io_map.vh (or FILE), the frame engine's IO map as the
+//     top's Verilog includes it, from its one definition (ucode/dtmf_io_map.h).
 #include <fmt/core.h>
 
 #include <cmath>
@@ -31,6 +34,7 @@
 #include "eskin/skin_config.h"
 #include "ucode/frame_engine.h"
 #include "ucode/frame_engine_asm.h"
+#include "ucode/dtmf_io_map.h"
 #include "ucode/dtmf_ucode.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
@@ -179,6 +183,16 @@ int run_build(const UcodeArgs& a) {
   return 0;
 }
 
+int run_io_map(const UcodeArgs& a) {
+  const std::string out = a.out.empty() ? std::string(ESKIN_SOURCE_DIR) + "/rtl/dtmf_io_map.vh" : a.out;
+  std::ofstream f(out, std::ios::binary);
+  f << eskin::hls::dtmf_io_map_verilog();
+  f.close();
+  if (!f) throw eskin::ConfigError(out, "cannot write the IO map include");
+  fmt::print("{}\n", out);
+  return 0;
+}
+
 std::function<int()> setup_ucode(CLI::App& app) {
   auto args = std::make_shared<UcodeArgs>();
   CLI::App* sub = app.add_subcommand("ucode", "frame_engine microcode: assemble, run on the model");
@@ -203,8 +217,11 @@ std::function<int()> setup_ucode(CLI::App& app) {
   bd->add_option("scene", args->file, "Scene (.yaml)")->required();
   bd->add_option("--out", args->out, "Directory for NAME.ucode.hex and NAME.krom.hex (default .)");
   bd->add_option("--clk-mhz", args->clk_mhz, "FPGA clock the plan is made for")->capture_default_str();
-  return [args, as, bd] {
+  CLI::App* io = sub->add_subcommand("io-map", "Write the IO map's Verilog include (rtl/dtmf_io_map.vh)");
+  io->add_option("--out", args->out, "Output file (default: rtl/dtmf_io_map.vh of the source tree)");
+  return [args, as, bd, io] {
     try {
+      if (io->parsed()) return run_io_map(*args);
       if (bd->parsed()) return run_build(*args);
       return as->parsed() ? run_asm(*args) : run_run(*args);
     } catch (const fa::AsmError& e) {

@@ -12,8 +12,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "eskin/dtmf_commands.h"
 #include "ucode/dtmf_engine_image.h"
-#include "ucode/engine_ports.h"
+#include "ucode/dtmf_top_bus.h"
 #include "ucode/dtmf_ucode.h"
 #include "ucode/frame_engine.h"
 #include "hls/sdft_bank.h"
@@ -30,51 +31,6 @@ struct EngineMax {
   static constexpr bool FAST_SHIFT = FAST;
 };
 
-// rtl/dtmf_top.v's IO ports as the microcode sees them: the frame buffer,
-// the command FIFO, an output FIFO that is always empty (OUT_DEPTH free), counters at 0, a
-// DFT that takes carrier writes at once, the neuron unit when the plan has one.
-struct LoadIo {
-  std::vector<int32_t> frame;
-  int out_depth = 512;  // the plan's OUT_DEPTH
-  bool pending = false, adc_on = false, done = false;
-  uint64_t done_clock = 0;
-  uint32_t t = 0;
-  std::deque<uint8_t> cmd;
-  int cfg_k = 0;
-  bool cfg_last = false;
-  hls::IzhikevichUnitPort neuron;
-  hls::IzhikevichLanesPort lanes;  // the plan's neuron lanes (they take the unit's place)
-  hls::OutFifoPort fifo;  // checks the word port's rule; the bytes are not kept
-
-  uint32_t io_read(uint16_t a, uint64_t clock) {
-    if (a < 0x200) return a < frame.size() ? uint32_t(frame[a]) : 0u;
-    if (uint32_t d = 0; neuron.read(a, d, clock) || lanes.read(a, d, clock)) return d;
-    switch (a) {
-      case hls::kIoFrameT: case hls::kIoAdcT: return t;
-      case hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);
-      case hls::kIoCmd: return cmd.empty() ? 0u : cmd.front();
-      case hls::kIoOutFree: return uint32_t(out_depth);
-      default: return 0;
-    }
-  }
-  void io_write(uint16_t a, uint32_t d, uint64_t clock) {
-    if (neuron.write(a, d, clock) || lanes.write(a, d, clock) ||
-        fifo.write(a, d, clock, nullptr))
-      return;
-    switch (a) {
-      case hls::kIoFrameDone: pending = false, done = true, done_clock = clock; break;
-      case hls::kIoCmdPop: if (!cmd.empty()) cmd.pop_front(); break;
-      case hls::kIoSdftK: cfg_k = int(d & 0xFF), cfg_last = (d >> 8) & 1; break;
-      case hls::kIoSdftInc: adc_on = adc_on || cfg_last; break;
-      default: break;
-    }
-  }
-  uint16_t events(uint64_t clock) const {
-    return uint16_t((pending ? hls::kEvFramePending : 0) | (cmd.empty() ? 0 : hls::kEvCmdAvail) |
-                    neuron.events(clock) | lanes.events(clock));
-  }
-};
-
 // sdft_bank's arithmetic (dtmf_top: XW 12, CW 16, TW 10, FB 0); its static
 // helpers do not depend on K_MAX, N or ACC_W.
 using Bank = hls::SdftBank<1, 2, 12, 16, 10, 14>;
@@ -86,7 +42,7 @@ class LoadRun {
   using Engine = hls::FrameEngine<EngineMax<FAST>>;
 
  public:
-  explicit LoadRun(const hls::DtmfTopPlan& p) : p_(p), im_(hls::dtmf_engine_image(p)) {
+  explicit LoadRun(const hls::DtmfTopPlan& p) : p_(p), im_(hls::dtmf_engine_image(p)), io_(p) {
     if (im_.dend > (1 << Engine::DW) || im_.krom.size() > (1u << Engine::KW))
       throw std::invalid_argument(fmt::format(
           "frame_engine: a {}x{} skin needs {} DMEM words and {} KROM words; the engine "
@@ -102,10 +58,7 @@ class LoadRun {
     eng_->load_program(words.data(), uint32_t(words.size()));
     eng_->load_krom(im_.krom.data(), uint32_t(im_.krom.size()));
     eng_->reset();
-    io_.frame.assign(size_t(2 * p.ks), 0);
-    io_.out_depth = p.out_depth;
-    io_.neuron.present = p.spec.neuron_unit && p.spec.neuron_lanes == 0;
-    if (p.spec.neuron_lanes) io_.lanes.configure(p.spec.neuron_lanes, 2 * p.T, p.C);
+    io_.on_release = [this](uint64_t) { done_ = true; };
     limit_ = 4000 * uint64_t(p.T + p.K) + 1000000;  // far above any frame, below a hang
     run_until(64 * uint64_t(im_.dend + im_.krom.size()) + 100000,
               [&] { return io_.adc_on && at_wait(); }, "its first wait");
@@ -126,9 +79,9 @@ class LoadRun {
       }
       io_.frame[size_t(2 * j)] = int32_t(re), io_.frame[size_t(2 * j + 1)] = int32_t(im);
     }
-    io_.t = t;
+    io_.frame_t = io_.adc_t = t;
     io_.pending = true;
-    io_.done = false;
+    done_ = false;
     const uint64_t start = eng_->clocks();
     uint64_t at = start;
     uint32_t pc = eng_->pc();
@@ -137,7 +90,7 @@ class LoadRun {
         (*pc_clocks)[pc] += eng_->clocks() - at;
         at = eng_->clocks(), pc = eng_->pc();
       }
-      return io_.done;
+      return done_;
     }, "the end of a frame");
     run_until(limit_, [&] { return at_wait(); }, "its wait after a frame");
     park();
@@ -187,24 +140,27 @@ class LoadRun {
   const hls::DtmfTopPlan& p_;
   hls::EngineImage im_;
   std::unique_ptr<Engine> eng_;
-  LoadIo io_;
+  // The top's IO bus: the frame buffer, the command FIFO, an output FIFO
+  // that is always empty, counters at 0, a DFT that takes carrier writes
+  // at once, the neuron unit or lanes when the plan has them.
+  hls::DtmfTopBus io_;
+  bool done_ = false;  // the frame was released
   uint64_t limit_ = 0;
 };
 
 // A command as cmd_decoder queues it: type, seq, len (LE), payload.
-std::vector<uint8_t> command(uint8_t type, const std::vector<uint8_t>& payload) {
+std::vector<uint8_t> queued(uint8_t type, const std::vector<uint8_t>& payload) {
   std::vector<uint8_t> b = {type, 0x5A, uint8_t(payload.size()), uint8_t(payload.size() >> 8)};
   for (uint8_t c : payload) b.push_back(c);
   return b;
 }
-std::vector<uint8_t> le(uint64_t v, int bytes) {
-  std::vector<uint8_t> b;
-  for (int i = 0; i < bytes; ++i) b.push_back(uint8_t(v >> (8 * i)));
-  return b;
-}
-std::vector<uint8_t> cat(std::vector<uint8_t> a, const std::vector<uint8_t>& b) {
-  for (uint8_t c : b) a.push_back(c);
-  return a;
+// A command of common/eskin/dtmf_commands.h, its fields at their widths.
+std::vector<uint8_t> command(dtmf_cmd::Type type, uint32_t index, uint32_t value) {
+  const DtmfCommand& c = *find_dtmf_command(type);
+  std::vector<uint8_t> p;
+  for (int i = 0; i < c.index.bytes; ++i) p.push_back(uint8_t(index >> (8 * i)));
+  for (int i = 0; i < c.value.bytes; ++i) p.push_back(uint8_t(value >> (8 * i)));
+  return queued(type, p);
 }
 
 template <bool FAST>
@@ -290,28 +246,29 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
   // (the measurement changes nothing), and each reason for a rejection.
   const int k = p.K - 1, dim = p.spec.demix ? 2 * p.K + 1 : 0;
   const auto& n1 = p.neuron[1];
+  using namespace dtmf_cmd;
   std::vector<std::pair<std::string, std::vector<uint8_t>>> cmds = {
-      {"SET_CARRIER_INC", command(0x81, cat({uint8_t(k)}, le(p.inc[size_t(k)], 4)))},
-      {"SET_THRESHOLD", command(0x82, cat({3}, le(p.ghost.pair_tol, 2)))},
-      {"SET_NEURON gain_shift", command(0x83, cat({0x13}, le(uint32_t(int32_t(n1.gain_shift)), 4)))},
-      {"SET_NEURON u_frac", command(0x83, cat({0x1C}, le(n1.u_frac, 4)))},
-      {"SET_OUTPUT_MASK", command(0x84, {p.mask})},
-      {"SET_DECIMATION", command(0x85, cat({1}, le(p.decim_tax, 2)))},
-      {"REQUEST_STATUS", command(0x86, {})},
-      {"CLEAR_COUNTERS", command(0x87, {})},
-      {"SET_DEMIX_COEF", command(0x89, cat(le(dim > 0 ? dim * dim - 1 : 0, 2),
-                                           le(dim > 0 ? uint16_t(p.demix.coef.back()) : 0, 2)))},
-      {"rejected: type", command(0x80, {})},
-      {"rejected: length", command(0x81, le(0, 8))},
-      {"rejected: index", command(0x82, cat({9}, le(0, 2)))},
-      {"rejected: value", command(0x83, cat({0x10}, le(0x7FFFFFFF, 4)))},
-      {"rejected: reserved bits", command(0x84, {0xE0})},
+      {"SET_CARRIER_INC", command(kSetCarrierInc, uint32_t(k), p.inc[size_t(k)])},
+      {"SET_THRESHOLD", command(kSetThreshold, 3, p.ghost.pair_tol)},
+      {"SET_NEURON gain_shift", command(kSetNeuron, 0x13, uint32_t(int32_t(n1.gain_shift)))},
+      {"SET_NEURON u_frac", command(kSetNeuron, 0x1C, n1.u_frac)},
+      {"SET_OUTPUT_MASK", command(kSetOutputMask, 0, p.mask)},
+      {"SET_DECIMATION", command(kSetDecimation, 1, p.decim_tax)},
+      {"REQUEST_STATUS", command(kRequestStatus, 0, 0)},
+      {"CLEAR_COUNTERS", command(kClearCounters, 0, 0)},
+      {"SET_DEMIX_COEF", command(kSetDemixCoef, uint32_t(dim > 0 ? dim * dim - 1 : 0),
+                                 dim > 0 ? uint16_t(p.demix.coef.back()) : 0)},
+      {"rejected: type", queued(kDtmfCommandFirst - 1, {})},
+      {"rejected: length", queued(kSetCarrierInc, std::vector<uint8_t>(8, 0))},
+      {"rejected: index", command(kSetThreshold, 9, 0)},
+      {"rejected: value", command(kSetNeuron, 0x10, 0x7FFFFFFF)},
+      {"rejected: reserved bits", command(kSetOutputMask, 0, 0xE0)},
   };
   // SET_WEIGHT for each weight: its cost depends on which (its bit of
   // synapse_weights' table codes, rtl/ucode/dtmf_chain.fe sw_table).
   for (uint8_t d = 0; d < 9; ++d)
     cmds.push_back({"SET_WEIGHT " + std::to_string(d),
-                    command(0x88, cat({d}, le(uint16_t(p.synapse.w[d]), 2)))});
+                    command(kSetWeight, d, uint16_t(p.synapse.w[d]))});
   for (const auto& [name, bytes] : cmds) {
     const uint64_t clocks = run.command(bytes);
     load.cases.emplace_back(name, clocks);

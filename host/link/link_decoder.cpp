@@ -44,6 +44,29 @@ bool fail(std::string* why, const char* msg) {
   return false;
 }
 
+uint32_t le(const uint8_t* p, int bytes) {
+  uint32_t v = 0;
+  for (int i = 0; i < bytes; ++i) v |= uint32_t(p[i]) << (8 * i);
+  return v;
+}
+
+// A command by its definition (common/eskin/dtmf_commands.h): cmd_index is
+// the index field's low byte, cmd_value the value field's bits; for
+// SET_DEMIX_COEF, whose index is 16 bits, cmd_value keeps both fields
+// (index | value << 16).
+bool parse_command(const DtmfCommand& c, const uint8_t* b, size_t n, Packet& p,
+                   std::string* why) {
+  if (n != size_t(c.payload_bytes())) {
+    if (why)
+      *why = std::string(c.name) + ": payload length must be " +
+             std::to_string(c.payload_bytes());
+    return false;
+  }
+  if (c.index.bytes) p.cmd_index = b[0];
+  p.cmd_value = c.type == dtmf_cmd::kSetDemixCoef ? le(b, 4) : le(b + c.index.bytes, c.value.bytes);
+  return true;
+}
+
 }  // namespace
 
 bool parse_payload(Packet& p, std::string* why) {
@@ -103,37 +126,8 @@ bool parse_payload(Packet& p, std::string* why) {
         p.hall_buses.push_back({le16(&b[i]), le16(&b[i + 2]), le16(&b[i + 4]), le16(&b[i + 6]),
                                 le16(&b[i + 8])});
       return true;
-    case kCmdSetCarrierInc:
-      if (n != 5) return fail(why, "set_carrier_inc: payload length must be 5");
-      p.cmd_index = b[0];
-      p.cmd_value = le32(&b[1]);
-      return true;
-    case kCmdSetThreshold:
-    case kCmdSetDecimation:
-    case kCmdSetWeight:
-      if (n != 3) return fail(why, "command: payload length must be 3");
-      p.cmd_index = b[0];
-      p.cmd_value = le16(&b[1]);
-      return true;
-    case kCmdSetNeuron:
-      if (n != 5) return fail(why, "set_neuron: payload length must be 5");
-      p.cmd_index = b[0];
-      p.cmd_value = le32(&b[1]);
-      return true;
-    case kCmdSetDemixCoef:
-      if (n != 4) return fail(why, "set_demix_coef: payload length must be 4");
-      p.cmd_index = b[0];  // low byte of the index; the value keeps both
-      p.cmd_value = le16(&b[0]) | uint32_t(le16(&b[2])) << 16;
-      return true;
-    case kCmdSetOutputMask:
-      if (n != 1) return fail(why, "set_output_mask: payload length must be 1");
-      p.cmd_value = b[0];
-      return true;
-    case kCmdRequestStatus:
-    case kCmdClearCounters:
-      if (n != 0) return fail(why, "command: payload must be empty");
-      return true;
     default: {
+      if (const DtmfCommand* c = find_dtmf_command(p.type)) return parse_command(*c, b.data(), n, p, why);
       bool known = false;
       const bool ok = parse_hall_payload(p.type, b, p.hall, known, why);
       return known ? ok : fail(why, "unknown packet type");

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "eskin/dtmf_commands.h"
 #include "host/link/hall_packets.h"
 
 namespace eskin::link {
@@ -33,15 +34,16 @@ enum PacketType : uint8_t {
   kStatus = 0x05,        // fixed 28-byte counter block (StatusBlock)
   kHallSamples = 0x10,   // n x HallSample (10 bytes): one frame of Hall sensor readings
   kHallBusStatus = 0x20, // n x HallBusStatus (10 bytes): per-I2C-bus counters
-  kCmdSetCarrierInc = 0x81,   // k u8, inc u32
-  kCmdSetThreshold = 0x82,    // id u8, value u16
-  kCmdSetNeuron = 0x83,       // id u8, value s32
-  kCmdSetOutputMask = 0x84,   // mask u8
-  kCmdSetDecimation = 0x85,   // stream u8, value u16
-  kCmdRequestStatus = 0x86,   // no payload
-  kCmdClearCounters = 0x87,   // no payload
-  kCmdSetWeight = 0x88,       // id u8 (0..8), value s16
-  kCmdSetDemixCoef = 0x89,    // index u16, value s16
+  // Commands: their payloads in common/eskin/dtmf_commands.h.
+  kCmdSetCarrierInc = dtmf_cmd::kSetCarrierInc,
+  kCmdSetThreshold = dtmf_cmd::kSetThreshold,
+  kCmdSetNeuron = dtmf_cmd::kSetNeuron,
+  kCmdSetOutputMask = dtmf_cmd::kSetOutputMask,
+  kCmdSetDecimation = dtmf_cmd::kSetDecimation,
+  kCmdRequestStatus = dtmf_cmd::kRequestStatus,
+  kCmdClearCounters = dtmf_cmd::kClearCounters,
+  kCmdSetWeight = dtmf_cmd::kSetWeight,
+  kCmdSetDemixCoef = dtmf_cmd::kSetDemixCoef,
 };
 
 // Reason codes of a rejected command (StatusBlock::last_reject_reason).

@@ -137,48 +137,37 @@ std::vector<uint8_t> LinkEncoder::status(uint32_t t, const StatusBlock& s) {
   return frame(kStatus, t, p);
 }
 
-std::vector<uint8_t> LinkEncoder::set_carrier_inc(uint8_t k, uint32_t inc) {
-  std::vector<uint8_t> p{k};
-  put32(p, inc);
-  return frame(kCmdSetCarrierInc, 0, p);
-}
-
-std::vector<uint8_t> LinkEncoder::set_threshold(uint8_t id, uint16_t value) {
-  std::vector<uint8_t> p{id};
-  put16(p, value);
-  return frame(kCmdSetThreshold, 0, p);
-}
-
-std::vector<uint8_t> LinkEncoder::set_neuron(uint8_t id, int32_t value) {
-  std::vector<uint8_t> p{id};
-  put32(p, uint32_t(value));
-  return frame(kCmdSetNeuron, 0, p);
-}
-
-std::vector<uint8_t> LinkEncoder::set_output_mask(uint8_t mask) {
-  return frame(kCmdSetOutputMask, 0, {mask});
-}
-
-std::vector<uint8_t> LinkEncoder::set_decimation(uint8_t stream, uint16_t value) {
-  std::vector<uint8_t> p{stream};
-  put16(p, value);
-  return frame(kCmdSetDecimation, 0, p);
-}
-
-std::vector<uint8_t> LinkEncoder::request_status() { return frame(kCmdRequestStatus, 0, {}); }
-std::vector<uint8_t> LinkEncoder::clear_counters() { return frame(kCmdClearCounters, 0, {}); }
-
-std::vector<uint8_t> LinkEncoder::set_weight(uint8_t id, int16_t value) {
-  std::vector<uint8_t> p{id};
-  put16(p, uint16_t(value));
-  return frame(kCmdSetWeight, 0, p);
-}
-
-std::vector<uint8_t> LinkEncoder::set_demix_coef(uint16_t index, int16_t value) {
+std::vector<uint8_t> LinkEncoder::command(uint8_t type, uint32_t index, uint32_t value) {
+  const DtmfCommand* c = find_dtmf_command(type);
+  if (!c) throw std::invalid_argument("LinkEncoder::command: no command of type " + std::to_string(type));
   std::vector<uint8_t> p;
-  put16(p, index);
-  put16(p, uint16_t(value));
-  return frame(kCmdSetDemixCoef, 0, p);
+  for (int i = 0; i < c->index.bytes; ++i) p.push_back(uint8_t(index >> (8 * i)));
+  for (int i = 0; i < c->value.bytes; ++i) p.push_back(uint8_t(value >> (8 * i)));
+  return frame(type, 0, p);
+}
+
+std::vector<uint8_t> LinkEncoder::set_carrier_inc(uint8_t k, uint32_t inc) {
+  return command(kCmdSetCarrierInc, k, inc);
+}
+std::vector<uint8_t> LinkEncoder::set_threshold(uint8_t id, uint16_t value) {
+  return command(kCmdSetThreshold, id, value);
+}
+std::vector<uint8_t> LinkEncoder::set_neuron(uint8_t id, int32_t value) {
+  return command(kCmdSetNeuron, id, uint32_t(value));
+}
+std::vector<uint8_t> LinkEncoder::set_output_mask(uint8_t mask) {
+  return command(kCmdSetOutputMask, 0, mask);
+}
+std::vector<uint8_t> LinkEncoder::set_decimation(uint8_t stream, uint16_t value) {
+  return command(kCmdSetDecimation, stream, value);
+}
+std::vector<uint8_t> LinkEncoder::request_status() { return command(kCmdRequestStatus, 0, 0); }
+std::vector<uint8_t> LinkEncoder::clear_counters() { return command(kCmdClearCounters, 0, 0); }
+std::vector<uint8_t> LinkEncoder::set_weight(uint8_t id, int16_t value) {
+  return command(kCmdSetWeight, id, uint16_t(value));
+}
+std::vector<uint8_t> LinkEncoder::set_demix_coef(uint16_t index, int16_t value) {
+  return command(kCmdSetDemixCoef, index, uint16_t(value));
 }
 
 }  // namespace eskin::link

@@ -39,6 +39,9 @@ class LinkEncoder {
   std::vector<uint8_t> status(uint32_t t, const StatusBlock& s);
 
   // Configuration commands (host -> FPGA); timestamp 0.
+  // A command of common/eskin/dtmf_commands.h, its index and value fields
+  // written at their widths (std::invalid_argument for an unknown type).
+  std::vector<uint8_t> command(uint8_t type, uint32_t index, uint32_t value);
   std::vector<uint8_t> set_carrier_inc(uint8_t k, uint32_t inc);
   std::vector<uint8_t> set_threshold(uint8_t id, uint16_t value);
   // id = layer << 4 | parameter (docs/protocol.md §5).

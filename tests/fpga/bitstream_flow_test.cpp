@@ -304,8 +304,8 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   EXPECT_EQ(slower_engine_hint(ice, sc, r), "");
 }
 // The packets are paced for the link the chosen clock gives. A 24x24 skin
-// at 35 kS/s on the ULX3S (engine 31 964 clocks a frame with the neuron
-// lanes, at the end of 2026-11-27) runs at 35 MHz, whose exact UART rate
+// at 35 kS/s on the ULX3S (its engine with the neuron lanes fits a frame
+// at 35 MHz) runs at 35 MHz, whose exact UART rate
 // is 1 Mbaud (35 MHz is no multiple of 2 or 3 MHz); the plan thins the
 // amplitude and taxel packets so that 1.5 x their bytes per frame fit the
 // link (common/eskin/dtmf_top_plan.h): 1.5 x ((10 + 2 x 48 + 2) + (10 + 2 + 2 x
@@ -329,9 +329,8 @@ TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
   EXPECT_EQ(param(params, "BAUD"), "1000000");
   // 30x30 at 35 kS/s: its engine sets the clock (about 46 000 clocks a
-  // 35-sample frame of 1 ms, 45 316 on the night of 2026-11-27: 50 MHz, far
-  // above the ADC's 1 MHz and the DFT's), and the flow's messages give
-  // that figure.
+  // 35-sample frame of 1 ms: 50 MHz, far above the ADC's 1 MHz and the
+  // DFT's), and the flow's messages give that figure.
   const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 30, 35000.0),
                                           LoadPolicy::Stress);
   EXPECT_GT(big.engine_clocks, 40000);
@@ -534,9 +533,9 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
 
 // At 1 MS/s the AD7476A's SCLK ties the ADC to a 37.3-40 MHz clock (or
 // 74.7-80: SCLK = a / (2 H) <= 20 MHz with A - 28 H clocks of acquisition
-// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (23 389 of
-// 40 000 clocks with the neuron lanes, on the night of 2026-11-27): one clock. A
-// 32x32 skin's (48 021) does not, and 75 MHz is beyond the ECP5 build's
+// >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (about 23 400
+// of 40 000 clocks with the neuron lanes): one clock. A 32x32 skin's
+// (about 48 000) does not, and 75 MHz is beyond the ECP5 build's
 // Fmax (about 50): the ULX3S gives the ADC a clock of its own from the
 // same PLL (VCO / CLKOS_DIV, 40 MHz, the fastest that converts) and the
 // core the slowest clock whose frame, floor(STEP clk A / a) - 1 clocks,

@@ -339,6 +339,8 @@ TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
   add(26, enc.set_carrier_inc(0, 0x80000000u), nullptr, kRejectBadValue);
   add(28, enc.set_weight(9, 0), nullptr, kRejectBadIndex);
   add(30, enc.set_demix_coef(169, 0), nullptr, kRejectBadIndex);
+  // Index and value both wrong: the index is checked first (protocol §5).
+  add(32, enc.set_decimation(3, 0), nullptr, kRejectBadIndex);
   // Accepted changes.
   add(40, enc.set_output_mask(0x1F), [](Chain3& c) { c.set_mask(0x1F); });
   add(50, enc.set_decimation(0, 3), [](Chain3& c) { c.set_decimation(0, 3); });
@@ -591,12 +593,11 @@ void scale_run_at_one_megasample(const Build& k, long frame_sdft, long skip_sdft
               b.received().size(), chosen.engine_clocks, chosen.budget.frame_clocks);
 }
 
-// The scale table's 16x16 skin at 1 MS/s as both ECP5 rows built it until
-// 2026-11-24 (docs/bitstream.md, the scale table): 40 MHz, the AD7476A's
-// first band; 32 DFT channels in 6 lanes at KS + 8 = 40 clocks a frame's
+// A 16x16 skin at 1 MS/s on an ECP5 core at 40 MHz, the AD7476A's first
+// band; 32 DFT channels in 6 lanes at KS + 8 = 40 clocks a frame's
 // sample, exactly the sample period, 38 any other; the barrel shifter and
-// the neuron unit's 5 lanes (the ULX3S's since 2026-11-27: the whole top
-// with rtl/izhikevich_lanes.v, its flags read by synapse_weights and its
+// the neuron unit's 5 lanes (the ULX3S's: the whole top with
+// rtl/izhikevich_lanes.v, its flags read by synapse_weights and its
 // events recorded); packets planned for its 2 Mbaud. The first whole-top
 // run of 6 lanes and of a DFT paced at the sample period. The window's
 // clear costs no clock (rtl/sdft_bank.v: a 128-clock clear lost a sample
@@ -628,10 +629,9 @@ TEST(DtmfTop, ScaleTable18x18AtOneMegasampleOnTheEcp5Core) {
                                                                                         38, 40);
 }
 
-// 20x20 at 40 MHz: 23 769 of the frame's 40 000 clocks under the stress
-// load, a frame's most packets and the longest command (host/fpga/
-// engine_load.h) with the neuron lanes (35 742 with the unit alone, late
-// on 2026-11-27). 40 channels in 7 lanes: a frame's sample F = KS + 8 = 48
+// 20x20 at 40 MHz: under 24 000 of the frame's 40 000 clocks under the
+// stress load, a frame's most packets and the longest command (host/fpga/
+// engine_load.h) with the neuron lanes. 40 channels in 7 lanes: a frame's sample F = KS + 8 = 48
 // clocks against P = 40, any other 6 ceil(40 / 7) + 2 = 38.
 TEST(DtmfTop, ScaleTable20x20AtOneMegasampleOnTheEcp5Core) {
   scale_run_at_one_megasample<Vdtmf_top_s20m, eskin::hls::DtmfChainSizes<20, 20, 128>>(kS20M, 48,

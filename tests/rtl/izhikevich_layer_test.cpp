@@ -431,8 +431,7 @@ TEST(IzhikevichLayerRtl, ConfigWrittenBetweenUpdatesAppliesToTheNextUpdate) {
 // its in_ready comes with the results, at edge E + kLatency, so the
 // earliest start it takes is at the next edge); from c + kLatency + 1 on
 // it starts the next update, kLatency + 1 clocks after the first as the
-// handshake test's back-to-back updates. (The model took a start at c +
-// kLatency until 2026-11-25: no microcode started the unit that soon.)
+// handshake test's back-to-back updates.
 TEST(IzhikevichLayerRtl, ModelRefusesConstantsAndStartsWhileBusy) {
   eskin::hls::IzhikevichUnitPort p;
   p.present = true;

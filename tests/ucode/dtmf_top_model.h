@@ -1,9 +1,8 @@
 // A clocked model of rtl/dtmf_top.v around the frame engine's
 // instruction-set model (ucode/frame_engine.h): the microcode
 // rtl/ucode/dtmf_chain.fe, assembled for a plan, runs against the top's IO
-// ports as the RTL wires them — sdft_bank (hls/sdft_bank.h) and the frame
-// capture at sample resolution, an output FIFO that the link drains, the
-// command FIFO, the counters. Used by the microcode tests to compare with
+// bus (ucode/dtmf_top_bus.h) with sdft_bank (hls/sdft_bank.h) and the frame
+// capture at sample resolution behind it. Used by the microcode tests to compare with
 // hls/dtmf_chain.h quickly; the Verilated top is compared in tests/rtl.
 #pragma once
 
@@ -16,7 +15,7 @@
 
 #include "hls/dtmf_chain.h"
 #include "ucode/dtmf_engine_image.h"
-#include "ucode/engine_ports.h"
+#include "ucode/dtmf_top_bus.h"
 #include "ucode/frame_engine.h"
 #include "ucode/dtmf_ucode.h"
 
@@ -44,17 +43,23 @@ class TopModel {
   using Bank = eskin::hls::SdftBank<KS_MAX, S::N, 12, 16, 10, S::ACC_W>;
 
   TopModel(const eskin::hls::DtmfTopPlan& plan, long clk_per_sample)
-      : plan_(plan), im_(eskin::hls::dtmf_engine_image(plan)), period_(clk_per_sample) {
+      : plan_(plan), im_(eskin::hls::dtmf_engine_image(plan)), period_(clk_per_sample), io_(plan) {
     const auto words = eskin::hls::dtmf_ucode_words(im_);
     eng_ = std::make_unique<eskin::hls::FrameEngine<EngineCfg>>();
     eng_->load_program(words.data(), uint32_t(words.size()));
     eng_->load_krom(im_.krom.data(), uint32_t(im_.krom.size()));
     eng_->reset();
-    cfg_inc_.assign(size_t(plan.ks), 0);
-    io_.inc = &cfg_inc_;
-    io_.out_depth = plan.out_depth;
-    io_.neuron.present = plan.spec.neuron_unit && plan.spec.neuron_lanes == 0;
-    if (plan.spec.neuron_lanes) io_.lanes.configure(plan.spec.neuron_lanes, 2 * plan.T, plan.C);
+    io_.out = &out_;
+    io_.on_release = [this](uint64_t clock) {
+      max_frame_ = std::max<uint64_t>(max_frame_, clock - frame_start_);
+    };
+    io_.on_carriers = [this](int carriers) {  // the DFT takes the table, its window refills
+      eskin::hls::SdftBankConfig<KS_MAX> c;
+      c.carriers = carriers;
+      for (int k = 0; k < carriers; ++k) c.inc[k] = io_.inc[size_t(k)];
+      bank_.configure(c);
+      refill_ = true;
+    };
     // Boot until the first carrier table reaches the DFT (the ADC starts then).
     eng_->run(io_, 2000000, [this](const auto&) { return io_.adc_on; });
   }
@@ -62,16 +67,17 @@ class TopModel {
   // One ADC sample (12-bit code); the engine runs one sample period.
   void sample(uint16_t code) {
     typename Bank::Token tok[KS_MAX];
-    io_.bank.push(int32_t(code & 0xFFFu) - 2048, tok);
+    bank_.push(int32_t(code & 0xFFFu) - 2048, tok);
     io_.adc_t = t_++;
     if (capture_frame()) {
       if (io_.pending) {
         ++io_.frame_overruns;
       } else {
-        for (int k = 0; k < plan_.ks; ++k) io_.frame[2 * k] = tok[k].re, io_.frame[2 * k + 1] = tok[k].im;
+        for (int k = 0; k < plan_.ks; ++k)
+          io_.frame[size_t(2 * k)] = tok[k].re, io_.frame[size_t(2 * k + 1)] = tok[k].im;
         io_.pending = true;
         io_.frame_t = io_.adc_t;
-        io_.frame_start = eng_->clocks();
+        frame_start_ = eng_->clocks();
       }
     }
     if (!profile_) {
@@ -95,7 +101,7 @@ class TopModel {
   // The engine's output bytes parsed as packets (type, t, len, payload).
   std::vector<Packet> packets() const {
     std::vector<Packet> v;
-    const auto& b = io_.out;
+    const auto& b = out_;
     for (size_t i = 0; i + 7 <= b.size();) {
       Packet p;
       p.type = b[i];
@@ -109,7 +115,7 @@ class TopModel {
     }
     return v;
   }
-  uint64_t max_frame_clocks() const { return io_.max_frame; }
+  uint64_t max_frame_clocks() const { return max_frame_; }
   uint32_t frames_done() const { return io_.frames_done; }  // frames the engine released
   uint32_t frame_overruns() const { return io_.frame_overruns; }
   size_t sdft_loads() const { return io_.sdft_loads; }
@@ -119,7 +125,7 @@ class TopModel {
  private:
   // hls/dtmf_chain.h's frame rule (rtl/frame_capture.v).
   bool capture_frame() {
-    if (io_.refill) filled_ = 0, io_.refill = false;
+    if (refill_) filled_ = 0, refill_ = false;
     if (filled_ < S::N) {
       if (++filled_ < S::N) return false;
       phase_ = 0;
@@ -129,74 +135,15 @@ class TopModel {
     return phase_ == 0;
   }
 
-  struct Io {
-    Bank bank;
-    bool adc_on = false, pending = false, refill = false;
-    int32_t frame[2 * KS_MAX] = {};
-    uint32_t frame_t = 0, adc_t = 0, frame_overruns = 0, frames_done = 0;
-    uint64_t frame_start = 0, max_frame = 0;
-    std::vector<uint8_t> out;
-    std::deque<uint8_t> cmd;
-    int out_depth = 512;  // the plan's OUT_DEPTH
-    int cfg_k = 0;
-    bool cfg_last = false;
-    std::vector<uint32_t>* inc = nullptr;
-    int ks = 0;
-    size_t sdft_loads = 0;
-    eskin::hls::IzhikevichUnitPort neuron;  // the plan's neuron unit (NEURON_UNIT)
-    eskin::hls::IzhikevichLanesPort lanes;  // or its lanes (NEURON_LANES)
-    eskin::hls::OutFifoPort fifo;           // its writes go to `out`
-    uint32_t io_read(uint16_t a, uint64_t clock) {
-      if (a < 0x200) return uint32_t(a < 2 * KS_MAX ? frame[a] : 0);
-      if (uint32_t d = 0; neuron.read(a, d, clock) || lanes.read(a, d, clock)) return d;
-      switch (a) {
-        case eskin::hls::kIoFrameT: return frame_t;
-        case eskin::hls::kIoStatus: return (pending ? 1u : 0u) | (cmd.empty() ? 0u : 2u);
-        case eskin::hls::kIoCmd: return cmd.empty() ? 0u : cmd.front();
-        case eskin::hls::kIoOutFree: return uint32_t(out_depth);  // the link keeps up
-        case eskin::hls::kIoAdcT: return adc_t;
-        case eskin::hls::kIoFrameOvr: return frame_overruns;
-        default: return 0;  // other counters, a DFT write never pending
-      }
-    }
-    void io_write(uint16_t a, uint32_t d, uint64_t clock) {
-      if (neuron.write(a, d, clock) || lanes.write(a, d, clock) || fifo.write(a, d, clock, &out))
-        return;
-      switch (a) {
-        case eskin::hls::kIoFrameDone:
-          pending = false;
-          max_frame = std::max<uint64_t>(max_frame, clock - frame_start);
-          ++frames_done;
-          break;
-        case eskin::hls::kIoCmdPop: if (!cmd.empty()) cmd.pop_front(); break;
-        case eskin::hls::kIoSdftK: cfg_k = int(d & 0xFF), cfg_last = (d >> 8) & 1; break;
-        case eskin::hls::kIoSdftInc:
-          (*inc)[size_t(cfg_k)] = d;
-          if (cfg_last) {
-            eskin::hls::SdftBankConfig<KS_MAX> c;
-            c.carriers = cfg_k + 1;
-            for (int k = 0; k <= cfg_k; ++k) c.inc[k] = (*inc)[size_t(k)];
-            bank.configure(c);
-            adc_on = true;
-            refill = true;
-            ++sdft_loads;
-          }
-          break;
-        default: break;
-      }
-    }
-    uint16_t events(uint64_t clock) const {
-      return uint16_t((pending ? 1 : 0) | (cmd.empty() ? 0 : 2) | neuron.events(clock) |
-                      lanes.events(clock));
-    }
-  };
-
   eskin::hls::DtmfTopPlan plan_;
   eskin::hls::EngineImage im_;
   long period_;
   std::unique_ptr<eskin::hls::FrameEngine<EngineCfg>> eng_;
-  std::vector<uint32_t> cfg_inc_;
-  Io io_;
+  eskin::hls::DtmfTopBus io_;  // the top's IO bus; the DFT and frame capture are below
+  Bank bank_;
+  bool refill_ = false;
+  uint64_t frame_start_ = 0, max_frame_ = 0;
+  std::vector<uint8_t> out_;
   int filled_ = 0, phase_ = 0;
   uint32_t t_ = 0;
   std::map<uint32_t, uint64_t>* profile_ = nullptr;

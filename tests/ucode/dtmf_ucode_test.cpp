@@ -570,11 +570,10 @@ struct BarrelEngine {
 // So, against a frame without sites: sites only in column 0 add 11 a row;
 // sites everywhere add 17 + 16 (C - 1) - 6 C a row; one taxel without a
 // site in the middle of a row of sites saves 16 + 16 - (6 + 17) = 9; and
-// dropping every site adds tr_rl's ldi and two st: 3 a site. With the
-// release test's load right after the store of G (the loop before the
-// night of 2026-11-27) every site took 17: sites everywhere added R (C - 1)
-// more, and the hole saved 11 (both checked: this test fails on that
-// loop).
+// dropping every site adds tr_rl's ldi and two st: 3 a site. A loop with
+// the release test's load right after the store of G (DMEM's one port
+// stalls it a clock) takes 17 every site: sites everywhere would add
+// R (C - 1) more and the hole save 11, which this test tells apart.
 TEST(DtmfUcode, TaxelLoopTakes16ClocksASiteAfterASite) {
   const sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/staggered10x10.yaml");
   auto spec = sim::dtmf_top_spec(sc, 96000000);
