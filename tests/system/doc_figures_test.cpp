@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "eskin/dtmf_top_plan.h"
+#include "hls/sdft_bank.h"
 #include "host/bench/latency.h"
 #include "host/fpga/engine_load.h"
 #include "sim/dtmf_top_spec.h"
@@ -197,6 +198,22 @@ std::vector<Figure> measure_figures() {
   add("fe.rnd12_clocks_fast", instruction_clocks<true>(fe::imm(fe::kRnd, 12)), "clocks", fe_src);
   add("fe.shl15_clocks", instruction_clocks<false>(fe::imm(fe::kShl, 15)), "clocks", fe_src);
   add("fe.shl15_clocks_fast", instruction_clocks<true>(fe::imm(fe::kShl, 15)), "clocks", fe_src);
+  add("fe.shr1_clocks", instruction_clocks<false>(fe::imm(fe::kShr, 1)), "clocks", fe_src);
+  add("fe.sqrt_clocks_saved",
+      double(instruction_clocks<false>(fe::ctl(fe::kSqrt, 0, 0, 0))) -
+          instruction_clocks<true>(fe::ctl(fe::kSqrt, 0, 0, 0)),
+      "clocks", fe_src);
+
+  // The DFT lanes' intervals (docs/fpga.md, DFT lanes; docs/bitstream.md,
+  // Clocks): clocks of a frame's sample and of a skipped one for KS
+  // channels in L lanes, the consumer taking a token a clock (frame_capture).
+  const char* lanes_src = "hls/sdft_bank.h (sdft_lanes_interval, sdft_skip_interval)";
+  for (const auto& [ks, lanes] : std::vector<std::pair<int, int>>{
+           {24, 3}, {24, 5}, {24, 6}, {64, 11}, {64, 10}, {32, 6}, {8, 1}, {8, 2}, {44, 8}}) {
+    const std::string key = "sdft.ks" + std::to_string(ks) + "_l" + std::to_string(lanes);
+    add(key + "_frame", double(hls::sdft_lanes_interval(ks, lanes, 1)), "clocks", lanes_src);
+    add(key + "_skip", double(hls::sdft_skip_interval(ks, lanes)), "clocks", lanes_src);
+  }
   return v;
 }
 
