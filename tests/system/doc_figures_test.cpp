@@ -46,6 +46,7 @@
 #include "eskin/dtmf_top_plan.h"
 #include "hls/sdft_bank.h"
 #include "host/bench/latency.h"
+#include "host/bench/tradeoff.h"
 #include "host/fpga/engine_load.h"
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
@@ -214,6 +215,11 @@ std::vector<Figure> measure_figures() {
     add(key + "_frame", double(hls::sdft_lanes_interval(ks, lanes, 1)), "clocks", lanes_src);
     add(key + "_skip", double(hls::sdft_skip_interval(ks, lanes)), "clocks", lanes_src);
   }
+
+  // The trade study's sweeps (docs/bench.md, Trade study).
+  const char* trade_src = "host/bench/tradeoff.cpp (tradeoff_points)";
+  add("tradeoff.quick_points", double(bench::tradeoff_points(true).size()), "points", trade_src);
+  add("tradeoff.points", double(bench::tradeoff_points(false).size()), "points", trade_src);
   return v;
 }
 
@@ -247,6 +253,25 @@ std::map<std::string, std::string> known_figures() {
       char buf[64];
       std::snprintf(buf, sizeof buf, "%.6f", std::stod(r[2]) * 1e6 / double(clk[r[0]]));
       m["latency/" + r[0] + "/" + r[1] + "/us"] = buf;
+    }
+  }
+  // tradeoff_synth/builds, tradeoff_synth/COLUMN_min, _max: the stored
+  // synthesis table of the trade study's quick builds
+  // (bench/baselines/tradeoff_synth.csv, `eskin bench tradeoff --quick
+  // --synth --write-synth-table`).
+  {
+    std::vector<std::string> th;
+    const auto trows = read_csv(kSrc / "bench/baselines/tradeoff_synth.csv", &th);
+    m["tradeoff_synth/builds"] = std::to_string(trows.size());
+    for (size_t i = 1; i < th.size(); ++i) {
+      long lo = 0, hi = 0;
+      for (size_t r = 0; r < trows.size(); ++r) {
+        const long x = std::stol(trows[r].at(i));
+        lo = r ? std::min(lo, x) : x;
+        hi = r ? std::max(hi, x) : x;
+      }
+      m["tradeoff_synth/" + th[i] + "_min"] = std::to_string(lo);
+      m["tradeoff_synth/" + th[i] + "_max"] = std::to_string(hi);
     }
   }
   std::vector<std::string> h;
