@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "eskin/dtmf_top_plan.h"
+#include "hls/carrier_demix_config.h"
 #include "hls/sdft_bank.h"
 #include "host/bench/latency.h"
 #include "host/bench/tradeoff.h"
@@ -215,6 +216,38 @@ std::vector<Figure> measure_figures() {
     add(key + "_frame", double(hls::sdft_lanes_interval(ks, lanes, 1)), "clocks", lanes_src);
     add(key + "_skip", double(hls::sdft_skip_interval(ks, lanes)), "clocks", lanes_src);
   }
+
+  // The demixing's conditioning (docs/carrier_demix.md): the thesis
+  // carriers at 35 kHz through the builder of the top's demix (K 6, TW 10,
+  // SW 16, CW 16, CF 14, the sums' gain of sdft_bank's Q1.15 amplitude).
+  const char* demix_src = "hls/carrier_demix_config.h (carrier_demix_tables)";
+  const std::vector<double> thesis = {1900, 3300, 5000, 7140, 8300, 10000};
+  auto demix = [&](const std::vector<double>& f, int n) {
+    hls::CarrierDemixTables t;
+    const double gain = (std::ldexp(1.0, 15) - 1) / std::ldexp(1.0, 15);
+    return hls::carrier_demix_tables(f, 35000, gain, n, 6, 10, 16, 16, 14, 1, 1 - n, t);
+  };
+  auto rounded = [](double x, int decimals) {
+    const double s = std::pow(10.0, decimals);
+    return std::round(x * s) / s;
+  };
+  for (int n : {32, 64, 24, 16}) {
+    const auto st = demix(thesis, n);
+    const std::string key = "demix.n" + std::to_string(n);
+    EXPECT_EQ(st.ok, n != 16) << key << ": " << st.message;
+    add(key + "_condition", rounded(st.condition, 3), "", demix_src);
+    if (n == 32) add(key + "_kappa", rounded(std::sqrt(st.condition), 3), "", demix_src);
+    if (st.ok) {
+      add(key + "_max_coef", rounded(st.max_coef, 3), "", demix_src);
+      add(key + "_row_norm", rounded(st.row_norm, 3), "", demix_src);
+    }
+  }
+  std::vector<double> bins;
+  for (int k = 2; k <= 7; ++k) bins.push_back(k * 35000.0 / 32);
+  const auto bin_st = demix(bins, 32);
+  add("demix.n32_bins_condition", rounded(bin_st.condition, 3), "", demix_src);
+  add("demix.n32_bins_max_coef", rounded(bin_st.max_coef, 3), "", demix_src);
+  add("demix.n32_bins_row_norm", rounded(bin_st.row_norm, 3), "", demix_src);
 
   // The trade study's sweeps (docs/bench.md, Trade study).
   const char* trade_src = "host/bench/tradeoff.cpp (tradeoff_points)";
