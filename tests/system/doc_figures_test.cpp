@@ -1,14 +1,17 @@
 // The figures the docs cite, from generated files only, and a check that
 // a doc's figure cannot differ from its file's.
 //
-// Three generated files hold every measured figure of docs/ and README.md:
+// Four generated files hold every measured figure of docs/ and README.md:
 //  - docs/figures.csv (name,value,unit,source): written by this test from
 //    the real models: the default scene's plan (common/eskin/dtmf_top_plan.h
 //    and its Verilog parameters, ucode/dtmf_engine_image.h), the frame
 //    engine's longest frames on its instruction-set model
 //    (host/fpga/engine_load.h: ucode/frame_engine.h running the scene's
-//    microcode, clock exact against rtl/frame_engine.v) and the clocks of
-//    single instructions on that model. Regenerate it with
+//    microcode, clock exact against rtl/frame_engine.v), the clocks of
+//    single instructions on that model, the DFT lanes' intervals
+//    (hls/sdft_bank.h), the demixing's conditioning
+//    (hls/carrier_demix_config.h) and the trade study's point counts
+//    (host/bench/tradeoff.h). Regenerate it with
 //      ESKIN_UPDATE_FIGURES=1 build/bin/system_doc_figures_test
 //    (the test then writes the file and passes; without the variable it
 //    fails on any difference, naming the figure, the file's value and the
@@ -17,17 +20,25 @@
 //    (Verilator, checked against the instruction-set model; CI:
 //    tests/system/bench_latency_test.cpp);
 //  - docs/scale_table.csv: `eskin bitstream --scale-table` (Yosys +
-//    nextpnr).
+//    nextpnr);
+//  - bench/baselines/tradeoff_synth.csv: `eskin bench tradeoff --quick
+//    --synth --write-synth-table` (Yosys).
 // A doc marks each figure it cites with its name:
 //    <!--fig:NAME-->10 077<!--/fig-->
 // NAME is a row of docs/figures.csv, latency/CONFIG/STAGE (a row of
 // latency.csv; latency/CONFIG/STAGE/us: its cycles in µs at the build's
 // clock, bench::latency_configs()) or scale/TARGET/RxC/SAMPLE_HZ/COLUMN (a row of the scale
-// table, SAMPLE_HZ as the CSV writes it). The text between the markers is
+// table, SAMPLE_HZ as the CSV writes it) or tradeoff_synth/builds,
+// tradeoff_synth/COLUMN_min and _max (the stored synthesis table's rows and
+// a column's extremes). The text between the markers is
 // the number (spaces and commas as thousands separators allowed); a file
 // value with more decimals is compared rounded to the doc's decimals. The
 // docs check fails naming file:line for every marked figure that differs or
-// names nothing, and for a marker left open.
+// names nothing, and for a marker left open. A last check scans the docs
+// for a number with a measurement unit outside any marker
+// (DocsHaveNoUnmarkedMeasuredFigures, kAllowed below): wall-clock speeds,
+// synthesis results and run errors are named by the command that reports
+// them, not written into the docs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -420,7 +431,7 @@ TEST(DocFigures, DocsCiteTheGeneratedFigures) {
   }
   for (const auto& b : bad) ADD_FAILURE() << b;
   std::printf("%d marked figures\n", marked);
-  EXPECT_GE(marked, 20);
+  EXPECT_GE(marked, 150);
 }
 
 // The check itself: a wrong, unknown, non-numeric or unclosed figure fails,
@@ -441,6 +452,91 @@ TEST(DocFigures, CheckFailsOnAWrongFigure) {
   EXPECT_NE(bad[2].find("d.md:4:"), std::string::npos);
   EXPECT_NE(bad[3].find("d.md:5: a <!--fig:"), std::string::npos);
   EXPECT_NE(bad[4].find("d.md:6:"), std::string::npos);
+}
+
+// A number with a measurement unit outside a marker, which no generated
+// file would check: clocks or cycles from 100 up (smaller counts are the
+// design's own: an instruction's, a pipeline's, a bit's clocks), MHz with
+// decimals (a clock somebody set is a whole MHz; an Fmax or a needed clock
+// has decimals), and every count of logic (LC, LUT, FF, flip-flops, EBR,
+// TRELLIS_COMB, DP16KD). A heuristic: it reads one line at a time, so a
+// number and its unit on two lines escape it.
+struct Allowed {
+  const char* figure;  // the number and unit as the scan reads them
+  const char* why;
+};
+// Design constants and arithmetic the scan would take for measurements.
+// Keep it short: a measured figure belongs in a generated file and a marker.
+const Allowed kAllowed[] = {
+    {"3.125 MHz", "the ECP5 PLL's least phase-detector frequency (datasheet)"},
+    {"37.3-40 MHz", "the AD7476A's first clock band at 1 MS/s (its datasheet's SCLK and tACQ)"},
+    {"74.7-80 MHz", "the AD7476A's second clock band at 1 MS/s"},
+    {"12.0 MHz", "the requirement in a quoted `misses timing` message (the Hall top's clock)"},
+    {"12000 clocks", "1 ms at 12 MHz"},
+    {"40000 clocks", "1 ms at 40 MHz (the AD7476A's first band)"},
+    {"44999 clocks", "a 1 ms frame at 45 MHz less the CDC's clock (the formula beside it)"},
+    {"29995 clocks", "35 samples of 857 clocks (30 MHz at 35 kS/s)"},
+    {"1800 cycles", "the virtual board's 100 us batch at 18 MHz"},
+    {"3170 clocks", "an I2C reading computed from the 34-clock bit beside it, not measured"},
+    {"64 flip-flops", "two 32-bit registers of the design (the unit's x_prev copy and result)"},
+    {"128 EBRs", "the divisor of the memory formula 2^IW / 128 EBRs"},
+    {"1000 LCs", "the frame engine's design target (well under 1000 LCs)"},
+};
+
+// One message per unmarked measured-looking figure of `text` (file `name`).
+std::vector<std::string> unmarked_figures(const std::string& name, const std::string& text) {
+  static const std::regex mark("<!--fig:[^>]*?-->.*?<!--/fig-->");
+  static const std::regex number(
+      "(^|[^\\w.])(\\d{1,3}(?: \\d{3})+|\\d+(?:\\.\\d+)?)((?:\\.\\.|-)\\d+(?:\\.\\d+)?)? ?"
+      "(clocks?|cycles?|LCs?|LUT4?s?|FFs?|flip-flops|EBRs?|MHz|TRELLIS_COMB|DP16KDs?)\\b");
+  std::vector<std::string> bad;
+  std::istringstream in(text);
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    std::string l = std::regex_replace(line, mark, "FIG");
+    for (const char* sep : {"\xe2\x80\xaf", "\xc2\xa0", "\xe2\x80\x89"})
+      for (size_t at; (at = l.find(sep)) != std::string::npos;) l.replace(at, std::strlen(sep), " ");
+    for (std::sregex_iterator it(l.begin(), l.end(), number), end; it != end; ++it) {
+      std::string num = (*it)[2], range = (*it)[3];
+      const std::string unit = (*it)[4];
+      num.erase(std::remove(num.begin(), num.end(), ' '), num.end());
+      if (range.rfind("..", 0) == 0) range = "-" + range.substr(2);
+      const bool counts = unit.rfind("clock", 0) == 0 || unit.rfind("cycle", 0) == 0;
+      if (counts && std::stod(num) < 100) continue;
+      if (unit == "MHz" && (num + range).find('.') == std::string::npos) continue;
+      const std::string fig = num + range + " " + unit;
+      bool allowed = false;
+      for (const auto& a : kAllowed) allowed = allowed || fig == a.figure;
+      if (!allowed)
+        bad.push_back(name + ":" + std::to_string(n) + ": \"" + fig +
+                      "\" is in no marker: cite a generated file (<!--fig:NAME-->), or name "
+                      "the command that reports it");
+    }
+  }
+  return bad;
+}
+
+TEST(DocFigures, DocsHaveNoUnmarkedMeasuredFigures) {
+  for (const auto& p : doc_files())
+    for (const auto& b : unmarked_figures(fs::relative(p, kSrc).string(), read_text(p)))
+      ADD_FAILURE() << b;
+}
+
+// The scan itself: measured-looking figures fail, marked ones, small
+// clock counts, whole-MHz clocks and allowed constants pass.
+TEST(DocFigures, ScanFailsOnAnUnmarkedFigure) {
+  EXPECT_TRUE(unmarked_figures("d.md",
+                               "takes <!--fig:a-->5259<!--/fig--> LC at 18 MHz; `min` 2 clocks;\n"
+                               "the band 37.3..40 MHz, 1 ms = 12 000 clocks at 12 MHz\n")
+                  .empty());
+  const auto bad = unmarked_figures(
+      "d.md", "ok\n5259 LC, Fmax 19.85 MHz\nits frame takes 10 077 clocks\n3 EBRs and 1234 TRELLIS_COMB\n");
+  ASSERT_EQ(bad.size(), 5u);
+  EXPECT_EQ(bad[0].rfind("d.md:2: \"5259 LC\"", 0), 0u) << bad[0];
+  EXPECT_EQ(bad[1].rfind("d.md:2: \"19.85 MHz\"", 0), 0u) << bad[1];
+  EXPECT_EQ(bad[2].rfind("d.md:3: \"10077 clocks\"", 0), 0u) << bad[2];
+  EXPECT_EQ(bad[3].rfind("d.md:4: \"3 EBRs\"", 0), 0u) << bad[3];
+  EXPECT_EQ(bad[4].rfind("d.md:4: \"1234 TRELLIS_COMB\"", 0), 0u) << bad[4];
 }
 
 // Docs say what is: dated notes and old measurements belong to git history.
