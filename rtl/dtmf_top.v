@@ -387,13 +387,16 @@ module dtmf_top #(
   endgenerate
 
   // ---------------- the frame engine -------------------------------------
-  reg [15:0] events;  // the `wait` mask bits (ucode/dtmf_io_map.h)
-  always @* begin
-    events = 16'd0;
-    events[EV_FRAME_PENDING_BIT] = frame_pending;
-    events[EV_CMD_AVAIL_BIT] = cmd_avail;
-    events[EV_IZ_DONE_BIT] = iz_done;
-  end
+  // The `wait` mask bits, in the order of the generated map's EV_*_BIT
+  // (ucode/dtmf_io_map.h): a map that moves them stops elaboration, so the
+  // concatenation cannot drift from it. (A concatenation: the same wiring
+  // written as shifts by EV_*_BIT maps to a few more LUTs under abc9.)
+  wire [15:0] events = {13'd0, iz_done, cmd_avail, frame_pending};
+  generate
+    if (EV_FRAME_PENDING_BIT != 0 || EV_CMD_AVAIL_BIT != 1 || EV_IZ_DONE_BIT != 2) begin : g_bad_events
+      dtmf_top_illegal_event_bits u_stop ();  // no such module: stops elaboration
+    end
+  endgenerate
   frame_engine #(.IW(IW), .IMEM_WORDS(IMEM_WORDS), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX),
                  .KROM_HEX(KROM_HEX), .FAST_SHIFT(ENGINE_FAST_SHIFT)) u_eng (
       .clk(clk), .rst(rst), .io_raddr(io_raddr), .io_re(io_re), .io_waddr(io_waddr), .io_rdata(io_rdata),

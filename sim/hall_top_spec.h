@@ -32,7 +32,7 @@ struct HallTopSpec {
   uint32_t curve_gain[3] = {0, 0, 0};  // UQ4.12 uT/LSB (hls/force_curve.h)
   std::vector<int> lock_mn;            // the cells' range ends, mN
   // Breakpoints per range of the force curves eskin's calibration fits
-  // (host/cli/hall_chain.h calibrate_force_curves' default): NB = 4 NR + 1.
+  // (host/hall/hall_chain.h calibrate_force_curves' default): NB = 4 NR + 1.
   static constexpr int kCurvePerRange = 4;
 
   // Packs one field per slot, slot 0 in the low bits, as a Verilog literal.

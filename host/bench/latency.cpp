@@ -1,6 +1,7 @@
 #include "host/bench/latency.h"
 #include "eskin/fnv1a.h"
 #include "eskin/shell.h"
+#include "eskin/source_tree.h"
 
 #include <fmt/format.h>
 
@@ -90,15 +91,16 @@ struct HarnessBuild {
 
 // The harness for one parameter set: cached under cache_dir/<hash>.
 fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& build_seconds) {
-  const fs::path src = ESKIN_SOURCE_DIR;
+  const fs::path src = eskin::source_dir();
   const fs::path harness = src / "bench/latency" / (hb.harness + ".cpp");
   uint64_t h = fnv1a(slurp(harness));
   std::vector<fs::path> deps;
   for (const auto& e : fs::directory_iterator(src / "rtl"))
-    if (e.path().extension() == ".v") deps.push_back(e.path());
+    if (e.path().extension() == ".v" || e.path().extension() == ".vh") deps.push_back(e.path());
   std::sort(deps.begin(), deps.end());
   for (const auto& f : hb.deps) deps.push_back(src / f);
-  for (const char* lib : {ESKIN_LINK_LIB, ESKIN_COMMON_LIB, ESKIN_SIM_LIB}) deps.push_back(lib);
+  for (const char* lib : {ESKIN_LINK_LIB, ESKIN_COMMON_LIB, ESKIN_SIM_LIB})
+    deps.push_back(eskin::in_build_dir(lib));
   for (const auto& d : deps) h = fnv1a(d.filename().string() + slurp(d), h);
   for (const auto& d : hb.data) h = fnv1a(slurp(d), h);
   std::string args;
@@ -174,7 +176,7 @@ LatencyRun measure_hall_latency(const LatencyConfig& c, const fs::path& cache_di
                                 std::ostream& log) {
   LatencyRun run;
   run.config = c;
-  const std::string scene_path = std::string(ESKIN_SOURCE_DIR) + "/" + c.scene;
+  const std::string scene_path = eskin::source_dir() + "/" + c.scene;
   const sim::Scene scene = sim::load_scene(scene_path);
   if (!scene.has_hall) throw std::runtime_error(c.scene + ": no hall section for the Hall top");
   const sim::HallTopSpec spec = sim::hall_top_spec(scene.hall.config, double(c.clk_hz));
@@ -186,7 +188,8 @@ LatencyRun measure_hall_latency(const LatencyConfig& c, const fs::path& cache_di
   hb.g_args.push_back("-GCLK_HZ=" + std::to_string(c.clk_hz));
   hb.deps = {"tests/rtl/hall_top_board.h", "tests/rtl/clocked_dut.h", "sim/i2c_pin_bus.h", "sim/hall_sensor_array.h", "sim/hall_sensor_array.cpp",
              "tests/rtl/uart_line.h"};
-  hb.ldflags = std::string(ESKIN_SIM_LIB) + " " + ESKIN_LINK_LIB + " " + ESKIN_COMMON_LIB +
+  hb.ldflags = eskin::in_build_dir(ESKIN_SIM_LIB) + " " + eskin::in_build_dir(ESKIN_LINK_LIB) + " " +
+               eskin::in_build_dir(ESKIN_COMMON_LIB) +
                " -lyaml-cpp -lsndfile";
   log << fmt::format("latency {}: {} (hall_top: {} buses of {} sensors{}) at {} MHz\n", c.name,
                      c.scene, spec.nb, spec.nsb, spec.deltas ? ", hall_baseline" : "",
@@ -209,7 +212,7 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
   if (c.top == LatencyConfig::Top::Hall) return measure_hall_latency(c, cache_dir, log);
   LatencyRun run;
   run.config = c;
-  sim::Scene scene = sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/" + c.scene);
+  sim::Scene scene = sim::load_scene(eskin::source_dir() + "/" + c.scene);
   if (c.scale_n > 0) scene = fpga::scale_scene(scene, c.scale_n, 35000.0);
   run.plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, c.clk_hz));
   if (c.sparse_taxels) run.plan.mask = uint8_t((run.plan.mask & ~hls::kMaskTaxels) | hls::kMaskSparse);
@@ -239,7 +242,7 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
     if (q.name == "UCODE_HEX" || q.name == "KROM_HEX") hb.data.push_back(q.value.substr(1, q.value.size() - 2));
   hb.deps = {"tests/rtl/dtmf_top_board.h", "sim/ad7476_model.h", "host/link/link_decoder.h",
              "host/link/link_encoder.h"};
-  hb.ldflags = std::string(ESKIN_LINK_LIB) + " " + ESKIN_COMMON_LIB;
+  hb.ldflags = eskin::in_build_dir(ESKIN_LINK_LIB) + " " + eskin::in_build_dir(ESKIN_COMMON_LIB);
   const fs::path exe = harness_for(hb, cache_dir, run.build_seconds);
   if (run.build_seconds > 0) log << fmt::format("  built {} in {:.0f} s\n", exe.string(), run.build_seconds);
   const std::string stem = fmt::format("{}.{}", c.name, ::getpid());  // concurrent runs

@@ -1,4 +1,5 @@
 #include "host/bench/tradeoff.h"
+#include "eskin/source_tree.h"
 
 #include <fmt/format.h>
 
@@ -140,7 +141,7 @@ std::vector<TradePoint> tradeoff_points(bool quick) {
 namespace {
 
 sim::Scene scene_for(const TradePoint& p) {
-  sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  sim::Scene sc = sim::load_scene(eskin::source_dir() + "/scenes/neuroskin2.yaml");
   sc.decoder.window = p.n;
   sc.decoder.hop = 1;
   if (p.carriers == "bin") {
@@ -237,7 +238,7 @@ SynthEntry synthesize(const TradePoint& p, const std::string& cache_dir) {
     // The project's flow (scripts/synth_ice40.sh: -dsp -spram -abc9), as
     // docs/fpga.md's figures; it writes stat.txt into --out.
     const std::string cmd = fmt::format(
-        "'{}/scripts/synth_ice40.sh' '{}' --out '{}' > /dev/null 2>&1", ESKIN_SOURCE_DIR,
+        "'{}/scripts/synth_ice40.sh' '{}' --out '{}' > /dev/null 2>&1", eskin::source_dir(),
         (fs::absolute(tmp) / "tradeoff_top.v").string(), fs::absolute(tmp).string());
     if (std::system(cmd.c_str()) != 0)
       throw std::runtime_error("yosys failed for " + p.key() + ": see " + (tmp / "yosys.log").string());

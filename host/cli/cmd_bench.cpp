@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "eskin/source_tree.h"
 #include "host/bench/latency.h"
 #include "host/bench/scale.h"
 #include "host/bench/stability.h"
@@ -38,7 +39,8 @@ struct ThroughputArgs {
 int run_throughput(const ThroughputArgs& a) {
   std::vector<std::string> scenes = a.scenes;
   if (scenes.empty())
-    scenes = {ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml", ESKIN_SOURCE_DIR "/scenes/skin32x32.yaml"};
+    scenes = {eskin::source_dir() + "/scenes/neuroskin2.yaml",
+              eskin::source_dir() + "/scenes/skin32x32.yaml"};
   std::cout << fmt::format(
       "throughput: best pass of >= {:.1f} s; single-thread rows by thread CPU time, threaded rows "
       "by wall clock beside the same engine on 1 thread\n\n", a.min_seconds);
@@ -59,8 +61,8 @@ int run_throughput(const ThroughputArgs& a) {
 
 struct LatencyArgs {
   bool update = false;
-  std::string baseline = ESKIN_SOURCE_DIR "/bench/baselines/latency.csv";
-  std::string cache = ESKIN_BUILD_DIR "/bench/latency";
+  std::string baseline = eskin::source_dir() + "/bench/baselines/latency.csv";
+  std::string cache = eskin::build_dir() + "/bench/latency";
   std::vector<std::string> configs;
   bool ci = false;  // only the builds the CI test measures
 };
@@ -111,7 +113,7 @@ struct TradeArgs {
 };
 
 int run_tradeoff(TradeArgs a) {
-  if (a.synth && a.o.synth_cache.empty()) a.o.synth_cache = ESKIN_BUILD_DIR "/bench/synth";
+  if (a.synth && a.o.synth_cache.empty()) a.o.synth_cache = eskin::build_dir() + "/bench/synth";
   if (a.run_point >= 0) {  // one Slurm array task
     if (a.points.empty() || a.part.empty())
       throw ConfigError("--run-point", "needs --points FILE and --part FILE");
@@ -144,7 +146,7 @@ struct StabilityArgs {
   double samples = 1e9, neuron_steps = 1e7;
   int checkpoints = 40;
   std::string out = "stability.html";
-  std::string scene = ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml";
+  std::string scene = eskin::source_dir() + "/scenes/neuroskin2.yaml";
 };
 
 int run_stability(const StabilityArgs& a) {
@@ -178,7 +180,7 @@ std::function<int()> setup(CLI::App& app) {
   auto d = std::make_shared<TradeArgs>();
   d->o.out_dir = "tradeoff";
   d->o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  d->o.synth_table = ESKIN_SOURCE_DIR "/bench/baselines/tradeoff_synth.csv";
+  d->o.synth_table = eskin::source_dir() + "/bench/baselines/tradeoff_synth.csv";
   d->o.eskin_bin = std::filesystem::canonical("/proc/self/exe").string();
   CLI::App* tr = bench->add_subcommand(
       "tradeoff", "speed/accuracy/resources sweep: CSV and HTML report with Pareto fronts");

@@ -32,9 +32,7 @@
 #include "eskin/skin_config.h"
 #include "sim/scene.h"
 
-#ifndef ESKIN_SOURCE_DIR
-#error "ESKIN_SOURCE_DIR must be defined (host/CMakeLists.txt)"
-#endif
+#include "eskin/source_tree.h"
 
 namespace {
 
@@ -56,12 +54,7 @@ struct BitstreamArgs {
   eskin::fpga::ScaleSelection scale;  // --targets, --rates, --sizes
 };
 
-// The source tree: ESKIN_SOURCE_DIR from the environment (an installed or
-// moved binary), else the tree this binary was built from.
-std::string source_dir() {
-  const char* env = std::getenv("ESKIN_SOURCE_DIR");
-  return env && *env ? env : ESKIN_SOURCE_DIR;
-}
+using eskin::source_dir;  // $ESKIN_SOURCE_DIR, else the tree built from
 
 std::string scene_or_default(const std::string& scene) {
   return scene.empty() ? source_dir() + "/scenes/neuroskin2.yaml" : scene;

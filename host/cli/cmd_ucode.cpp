@@ -32,6 +32,7 @@
 
 #include "cli/command.h"
 #include "eskin/skin_config.h"
+#include "eskin/source_tree.h"
 #include "ucode/frame_engine.h"
 #include "ucode/frame_engine_asm.h"
 #include "ucode/dtmf_io_map.h"
@@ -184,7 +185,7 @@ int run_build(const UcodeArgs& a) {
 }
 
 int run_io_map(const UcodeArgs& a) {
-  const std::string out = a.out.empty() ? std::string(ESKIN_SOURCE_DIR) + "/rtl/dtmf_io_map.vh" : a.out;
+  const std::string out = a.out.empty() ? eskin::source_dir() + "/rtl/dtmf_io_map.vh" : a.out;
   std::ofstream f(out, std::ios::binary);
   f << eskin::hls::dtmf_io_map_verilog();
   f.close();

@@ -16,9 +16,7 @@
 #include "ucode/dtmf_ucode.h"
 #include "sim/dtmf_top_spec.h"
 
-#ifndef ESKIN_SOURCE_DIR
-#error "ESKIN_SOURCE_DIR: where scenes/neuroskin2.yaml (the default scene) is"
-#endif
+#include "eskin/source_tree.h"  // the default scene: scenes/neuroskin2.yaml
 
 namespace eskin::vboard {
 namespace {
@@ -63,7 +61,7 @@ FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir, long c
   b.plan = plan_of(scene, clk_hz, baud, engine);
   const std::string mine = integer_params(b.plan);
   static const std::string defaults = integer_params(
-      plan_of(sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml"), hls::kDtmfTopClkHz));
+      plan_of(sim::load_scene(eskin::source_dir() + "/scenes/neuroskin2.yaml"), hls::kDtmfTopClkHz));
   if (mine == defaults) {
     b.key = "default";
   } else {

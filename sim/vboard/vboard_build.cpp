@@ -2,6 +2,8 @@
 
 #include "eskin/shell.h"
 
+#include "eskin/source_tree.h"
+
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -50,7 +52,7 @@ void run_logged(const std::string& args, const std::string& log, const std::stri
 std::string ensure_board(const std::string& target, const std::string& key,
                          const std::string& cmake_call, const std::string& what,
                          const std::function<void(const std::string&)>& note) {
-  const std::string dir = ESKIN_VBOARD_DIR, bin = ESKIN_VBOARD_BIN_DIR;
+  const std::string dir = in_build_dir(ESKIN_VBOARD_DIR), bin = in_build_dir(ESKIN_VBOARD_BIN_DIR);
   const std::string exe = bin + "/" + target, list = dir + "/builds.cmake";
   BuildLock lock(dir, "builds");  // one writer of the list, one CMake run at a time
   const bool listed = read_text(list).find("(" + target + " ") != std::string::npos;
@@ -67,7 +69,7 @@ std::string ensure_board(const std::string& target, const std::string& key,
          " (Verilator and C++, a few minutes, once; log " + log + ")");
     std::ofstream(log, std::ios::trunc);
   }
-  const std::string cmake = shell_quote(ESKIN_CMAKE_COMMAND), tree = shell_quote(ESKIN_BINARY_DIR);
+  const std::string cmake = shell_quote(ESKIN_CMAKE_COMMAND), tree = shell_quote(in_build_dir(ESKIN_BINARY_DIR));
   if (!listed) run_logged(cmake + " " + tree, log, "configuring the build tree for " + target);
   run_logged(cmake + " --build " + tree + " --target " + target, log, "building " + target);
   return exe;
@@ -77,7 +79,7 @@ std::string ensure_board(const std::string& target, const std::string& key,
 
 std::string board_executable(const FpgaBuild& b,
                              const std::function<void(const std::string&)>& note) {
-  if (b.key == "default") return std::string(ESKIN_VBOARD_BIN_DIR) + "/eskin-vboard";
+  if (b.key == "default") return in_build_dir(ESKIN_VBOARD_BIN_DIR) + "/eskin-vboard";
   const std::string target = "eskin-vboard-" + b.key;
   std::string call = "eskin_vboard_target(" + target + " " + b.key + " " +
                      std::to_string(b.plan.spec.clk_hz) + " " + std::to_string(b.plan.spec.baud);

@@ -163,3 +163,18 @@ TEST(Ucode, BuildWritesTheScenesImagesAndPrintsTheTopsParameters) {
 }
 
 }  // namespace
+
+// `eskin ucode io-map` writes the IO map's include into the source tree it
+// is pointed at (ESKIN_SOURCE_DIR, common/eskin/source_tree.h), not the
+// one it was built from, and what it writes is the tree's include.
+TEST(Ucode, IoMapWritesTheIncludeOfTheTreeItIsPointedAt) {
+  const fs::path tree = dir() / "tree";
+  fs::create_directories(tree / "rtl");
+  ::setenv("ESKIN_SOURCE_DIR", tree.c_str(), 1);
+  const CliResult r = run_eskin("ucode io-map");
+  ::unsetenv("ESKIN_SOURCE_DIR");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const fs::path out = tree / "rtl/dtmf_io_map.vh";
+  EXPECT_NE(r.out.find(out.string()), std::string::npos) << r.out;
+  EXPECT_EQ(read(out), read(fs::path(ESKIN_SOURCE_DIR) / "rtl/dtmf_io_map.vh"));
+}
