@@ -244,6 +244,24 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
   return p;
 }
 
+// The plan's constants after the DFT, the same in every configuration
+// built from it (chain_config below; the fast engine's, host/engine).
+template <class C>
+void copy_chain_constants(const DtmfTopPlan& p, C& c) {
+  c.taxel = p.taxel;
+  c.ghost = p.spec.ghost;
+  c.ghost_cfg = p.ghost;
+  c.neurons = p.spec.spikes;
+  c.neuron[0] = p.neuron[0];
+  c.neuron[1] = p.neuron[1];
+  c.synapse = p.synapse;
+  c.step = p.step;
+  c.decim_amp = p.decim_amp;
+  c.decim_tax = p.decim_tax;
+  c.sparse_min = p.sparse_min;
+  c.mask = p.mask;
+}
+
 // The fixed-size configuration of hls/dtmf_chain.h for the plan; the chain's
 // sizes S must be the plan's.
 template <class S>
@@ -266,18 +284,7 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
     for (size_t i = 0; i < p.demix.qsin.size(); ++i) c.demix_cfg.qsin[i] = p.demix.qsin[i];
     for (size_t i = 0; i < p.demix.coef.size(); ++i) c.demix_cfg.coef[i] = p.demix.coef[i];
   }
-  c.taxel = p.taxel;
-  c.ghost = p.spec.ghost;
-  c.ghost_cfg = p.ghost;
-  c.neurons = p.spec.spikes;
-  c.neuron[0] = p.neuron[0];
-  c.neuron[1] = p.neuron[1];
-  c.synapse = p.synapse;
-  c.step = p.step;
-  c.decim_amp = p.decim_amp;
-  c.decim_tax = p.decim_tax;
-  c.sparse_min = p.sparse_min;
-  c.mask = p.mask;
+  copy_chain_constants(p, c);
   return c;
 }
 

@@ -43,18 +43,7 @@ EngineConfig engine_config(const hls::DtmfTopPlan& p) {
   c.inc = p.inc;
   c.demix = p.spec.demix;
   if (c.demix) c.demix_tables = p.demix;
-  c.taxel = p.taxel;
-  c.ghost = p.spec.ghost;
-  c.ghost_cfg = p.ghost;
-  c.neurons = p.spec.spikes;
-  c.neuron[0] = p.neuron[0];
-  c.neuron[1] = p.neuron[1];
-  c.synapse = p.synapse;
-  c.step = p.step;
-  c.decim_amp = p.decim_amp;
-  c.decim_tax = p.decim_tax;
-  c.sparse_min = p.sparse_min;
-  c.mask = p.mask;
+  hls::copy_chain_constants(p, c);
   c.max_spikes = p.max_spikes;
   return c;
 }
