@@ -5,7 +5,8 @@
 #   check_bitstream.sh ESKIN OUT fits -- ARGS...
 #     exit 0; the report says it fits and meets timing, every resource's use
 #     is within what the device has, every clock's Fmax reaches its
-#     requirement, and the bitstream is there. A Hall build on the iCE40
+#     requirement, and the bitstream is there, in OUT, as are the $readmemh
+#     files the core wrapper names. A Hall build on the iCE40
 #     must also have its I2C pins as tristates in the bitstream: icebox_vlog
 #     of the placed design shows each as an inout driven `? ... : 1'bz`, one
 #     per bus line the report lists.
@@ -36,6 +37,17 @@ if [ "$want" = fits ]; then
     >/dev/null || fail "report: a clock below its requirement"
   bit=$(jq -r .bitstream "$report")
   [ -s "$bit" ] || fail "no bitstream at '$bit'"
+  # Everything it names is in OUT (an ECP5 build under /tmp is staged
+  # elsewhere and copied here: no path may name the staging folder).
+  outdir=$(realpath "$out")
+  case "$(realpath "$bit")" in "$outdir"/*) ;; *) fail "bitstream '$bit' is not in $outdir" ;; esac
+  for v in "$out"/*.v; do
+    [ -f "$v" ] || continue
+    for hex in $(grep -o '"/[^"]*\.hex"' "$v" | tr -d '"'); do
+      [ -s "$hex" ] || fail "$v names $hex, which is not there"
+      case "$hex" in "$outdir"/*) ;; *) fail "$v names $hex, outside $outdir" ;; esac
+    done
+  done
   lines=$(jq '[.hall.pins // [] | .[] | select(.open_drain)] | length' "$report")
   asc=${bit%.bin}.asc
   if [ "$lines" -gt 0 ] && [ -f "$asc" ]; then
