@@ -75,6 +75,12 @@ struct Collector {
     }
     return false;
   }
+  // The packets so far, copied under the lock (the stream's reader thread
+  // may still be appending).
+  std::vector<Packet> snapshot() {
+    std::lock_guard<std::mutex> lk(mu);
+    return got;
+  }
   size_t count(LinkEvent::Kind k) {
     std::lock_guard<std::mutex> lk(mu);
     size_t c = 0;
@@ -109,7 +115,7 @@ StreamOptions pty_options(const std::string& path) {
   std::thread writer([&] { write_fully(pty.master(), wire); });
   const bool all = c.wait_packets(n);
   writer.join();
-  if (!all) return ::testing::AssertionFailure() << c.got.size() << " of " << n << " packets";
+  if (!all) return ::testing::AssertionFailure() << c.snapshot().size() << " of " << n << " packets";
   return ::testing::AssertionSuccess();
 }
 
@@ -120,7 +126,7 @@ TEST(LinkStreamPty, DeliversEveryPacketToCallbackAndQueue) {
   LinkStream s(pty_options(pty.slave_path()));
   Collector c;
   ASSERT_TRUE(pump(s, c, pty, concat(frames), sent.size()));
-  expect_same(sent, c.got);
+  expect_same(sent, c.snapshot());
   std::vector<Packet> pulled;
   Packet p;
   while (s.pop(p, 100ms)) pulled.push_back(p);
@@ -147,7 +153,7 @@ TEST(LinkStreamPty, DefaultSceneChainPacketsArriveUnchanged) {
   LinkStream s(pty_options(pty.slave_path()));
   Collector c;
   ASSERT_TRUE(pump(s, c, pty, wire, sent.size()));
-  expect_same(sent, c.got);
+  expect_same(sent, c.snapshot());
   EXPECT_EQ(s.stats().corrupt(), 0u);
   std::printf("default scene: %zu packets (%zu spike packets), %zu wire bytes\n", sent.size(),
               spikes, wire.size());
@@ -188,8 +194,18 @@ TEST(LinkStreamPty, CorruptAndMissingFramesAreCountedAndTheStreamGoesOn) {
   LinkStream s(pty_options(pty.slave_path()));
   Collector c;
   ASSERT_TRUE(pump(s, c, pty, wire, want.size()));
-  std::this_thread::sleep_for(50ms);
-  expect_same(want, c.got);
+  // The losses after the last packet that arrives are counted once the
+  // bytes behind it are decoded: wait until the counts reach what was sent
+  // (an over-count still fails below), then stop the reader.
+  auto reached = [&](const auto& st) {
+    return st.link.crc_errors >= crc_bad && st.link.framing_errors >= merged &&
+           st.link.lost_packets >= lost;
+  };
+  for (auto end = std::chrono::steady_clock::now() + 10s;
+       !reached(s.stats()) && std::chrono::steady_clock::now() < end;)
+    std::this_thread::sleep_for(5ms);
+  s.stop();
+  expect_same(want, c.snapshot());
   const auto st = s.stats();
   EXPECT_EQ(st.link.crc_errors, crc_bad);
   EXPECT_EQ(st.link.framing_errors, merged);
@@ -261,7 +277,7 @@ TEST(LinkStreamPty, ReportsALostDeviceAndReopensIt) {
   ASSERT_TRUE(c.wait_event(LinkEvent::Kind::Opened, 2));
   ASSERT_TRUE(write_fully(board2->master(), concat({frames.begin() + 100, frames.end()})));
   ASSERT_TRUE(c.wait_packets(200));
-  expect_same(sent, c.got);
+  expect_same(sent, c.snapshot());
   const auto st = s.stats();
   EXPECT_EQ(st.connects, 2u);
   EXPECT_EQ(st.disconnects, 1u);
@@ -293,7 +309,7 @@ TEST(LinkStreamTcp, DeliversPacketsAndReconnectsOverLoopback) {
   ASSERT_TRUE(c.wait_packets(1000));
   EXPECT_EQ(s.stats().connects, 2u);  // before closing: then it reconnects at once
   ::close(conn);
-  expect_same(sent, c.got);
+  expect_same(sent, c.snapshot());
 }
 
 TEST(LinkStreamTcp, ParsesHostPortAndNamesErrors) {

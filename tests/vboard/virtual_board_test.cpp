@@ -232,11 +232,12 @@ TEST(VirtualBoard, ReaderAtTheWrongBaudRateIsReported) {
 }
 
 // `--hold-for-host-bytes N` (what `eskin simulate` uses for its start-up
-// commands): the host opens the port, then waits 1.5 s of wall clock, far
-// longer than this 20 ms scene takes to simulate, before it sends
-// SET_OUTPUT_MASK(status only). Held, the board has not moved: the mask
-// acts before the first frame, so not one amplitude, taxel or spike packet
-// arrives (the default mask sends all three), and periodic status does.
+// commands): the host opens the port and watches it for 1.5 s of wall
+// clock, far longer than this 20 ms scene takes to simulate, asserting that
+// not one byte comes (a board that ran would have sent its packets), before
+// it sends SET_OUTPUT_MASK(status only). Held, the board has not moved: the
+// mask acts before the first frame, so not one amplitude, taxel or spike
+// packet arrives (the default mask sends all three), and periodic status does.
 TEST(VirtualBoard, HeldBoardStartsWithTheHostsCommands) {
   eskin::link::LinkEncoder enc;
   const std::vector<uint8_t> cmd = enc.set_output_mask(eskin::hls::kMaskStatus);
@@ -244,7 +245,8 @@ TEST(VirtualBoard, HeldBoardStartsWithTheHostsCommands) {
                                       std::to_string(cmd.size())});
   const int fd = open_serial(vb.pty(), B3000000);
   ASSERT_GE(fd, 0);
-  usleep(1500000);
+  pollfd quiet{fd, POLLIN, 0};
+  ASSERT_EQ(poll(&quiet, 1, 1500), 0) << "the held board sent bytes before the host's";
   ASSERT_EQ(write(fd, cmd.data(), cmd.size()), ssize_t(cmd.size()));
   const Capture c = capture(vb, fd, [](const Packet&) {});
   close(fd);
