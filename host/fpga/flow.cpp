@@ -11,9 +11,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <unistd.h>
-
-#include "eskin/source_tree.h"
 #include "ucode/dtmf_ucode.h"
 #include "host/fpga/core_flows.h"
 #include "host/fpga/core_wrapper.h"
@@ -271,71 +268,10 @@ bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& 
   return true;
 }
 
-namespace {
-
-FlowReport run_flow_in(const Board& b, const sim::Scene& scene, const FlowOptions& opt);
-
-// Whether a path lies under /tmp, which the YoWASP (WebAssembly) ECP5 tools
-// cannot see: they have a private /tmp of their own.
-bool under_tmp(const fs::path& p) {
-  const std::string s = fs::weakly_canonical(fs::absolute(p)).string() + "/";
-  return s.rfind("/tmp/", 0) == 0;
-}
-
-void replace_all(std::string& s, const std::string& from, const std::string& to) {
-  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
-    s.replace(at, from.size(), to);
-}
-
-// Removes the staging folder however the flow ends.
-struct StageGuard {
-  fs::path dir;
-  ~StageGuard() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-};
-
-}  // namespace
-
-// An ECP5 build asked for under /tmp (a plain user's first try) runs in a
-// staging folder of the build tree, which the tools can see, and everything
-// it wrote is copied to the folder asked for; the paths in the report and in
-// the core wrapper (its $readmemh files) name that folder.
+// An ECP5 build asked for under /tmp (a plain user's first try) runs there
+// like any other: scripts/synth_ecp5.sh lets the WebAssembly tools, which
+// have a private /tmp of their own, see the folder (tool_run.h).
 FlowReport run_flow(const Board& b, const sim::Scene& scene, const FlowOptions& opt) {
-  if (b.family != Family::Ecp5 || !under_tmp(opt.out_dir)) return run_flow_in(b, scene, opt);
-  static int builds = 0;
-  const fs::path out = fs::weakly_canonical(fs::absolute(opt.out_dir));
-  const fs::path stage = fs::path(eskin::build_dir()) / "bitstream-stage" /
-                         fmt::format("{}-{}", ::getpid(), builds++);
-  if (under_tmp(stage))
-    throw std::runtime_error("the ECP5 tools cannot see " + out.string() + " (under /tmp) and the " +
-                             "staging folder " + stage.string() + " is under /tmp too: set " +
-                             "ESKIN_BUILD_DIR to a folder elsewhere, or give --out outside /tmp");
-  StageGuard guard{stage};
-  fs::remove_all(stage);
-  fs::create_directories(stage);
-  FlowOptions staged = opt;
-  staged.out_dir = stage.string();
-  FlowReport r = run_flow_in(b, scene, staged);
-  fs::create_directories(out);
-  fs::copy(stage, out, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
-  for (const auto& e : fs::recursive_directory_iterator(out)) {
-    if (!e.is_regular_file() || e.path().extension() != ".v") continue;
-    std::ifstream in(e.path());
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string v = text.str();
-    replace_all(v, stage.string(), out.string());
-    std::ofstream(e.path(), std::ios::trunc) << v;
-  }
-  for (std::string* f : {&r.bitstream, &r.failure, &r.log}) replace_all(*f, stage.string(), out.string());
-  return r;
-}
-
-namespace {
-
-FlowReport run_flow_in(const Board& b, const sim::Scene& scene, const FlowOptions& opt) {
   FlowReport r;
   r.board = b.name;
   r.device = b.device;
@@ -366,7 +302,5 @@ FlowReport run_flow_in(const Board& b, const sim::Scene& scene, const FlowOption
                              r.core_min_reason);
   return r;
 }
-
-}  // namespace
 
 }  // namespace eskin::fpga

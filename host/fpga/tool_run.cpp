@@ -1,15 +1,20 @@
 #include "host/fpga/tool_run.h"
 
+#include <fcntl.h>
 #include <fmt/core.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "eskin/shell.h"
 
@@ -82,6 +87,30 @@ std::string first_error(const std::string& log) {
 
 namespace {
 
+// Runs argv[0] with the arguments argv (no shell), its stdout and stderr
+// into `log` (truncated); the wait status, or -1 if it could not be started
+// (errno set).
+int run_logged(const std::vector<std::string>& argv, const fs::path& log) {
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
+  pid_t pid = -1;
+  const int e = posix_spawn(&pid, args[0], &fa, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (e != 0) {
+    errno = e;
+    return -1;
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return status;
+}
+
 // One run of the tools at opt.seed.
 void run_once(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowReport& r) {
   const bool ice = b.family == Family::Ice40;
@@ -89,8 +118,8 @@ void run_once(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowRepo
   const fs::path out = fs::absolute(opt.out_dir);
   const fs::path bit = out / (t.top + (ice ? ".bin" : ".bit"));
   for (const fs::path& stale : {out / "report.json", out / "nextpnr.log", bit}) fs::remove(stale);
-  std::string cmd = shell_quote((src / "scripts" / (ice ? "synth_ice40.sh" : "synth_ecp5.sh")).string());
-  auto arg = [&](const std::string& a) { cmd += " " + shell_quote(a); };
+  std::vector<std::string> cmd{(src / "scripts" / (ice ? "synth_ice40.sh" : "synth_ecp5.sh")).string()};
+  auto arg = [&](const std::string& a) { cmd.push_back(a); };
   arg(t.top);
   for (const char* a : {"--pnr", "--freq"}) arg(a);
   arg(mhz(double(t.clk_hz)));
@@ -111,12 +140,17 @@ void run_once(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowRepo
   }
   const fs::path log = out / "flow.log";
   const auto t0 = std::chrono::steady_clock::now();
-  const int status = std::system((cmd + " >" + shell_quote(log.string()) + " 2>&1").c_str());
+  const int status = run_logged(cmd, log);
+  const std::string why = status == -1 ? std::strerror(errno) : "";
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.ran_tools = true;
   r.log = slurp(log);
-  if (status == -1 || !WIFEXITED(status))
-    throw std::runtime_error("could not run " + cmd);
+  if (status == -1 || !WIFEXITED(status)) {
+    std::string line;
+    for (const auto& a : cmd) line += (line.empty() ? "" : " ") + shell_quote(a);
+    throw std::runtime_error("could not run " + line +
+                             (status == -1 ? ": " + why : " (it ended on a signal)"));
+  }
   if (WEXITSTATUS(status) == 3) throw std::runtime_error(r.log);  // a tool is missing
 
   if (fs::exists(out / "report.json")) {

@@ -2,7 +2,10 @@
 // wrapper with its generated core through scripts/synth_ice40.sh or
 // scripts/synth_ecp5.sh (Yosys, nextpnr, icepack / ecppack), and the
 // verdict from what nextpnr reported. Every core (DTMF, Hall, mixed) goes
-// through it.
+// through it. The script runs from an argument vector (no shell), its
+// output into OUT/flow.log. An OUT under /tmp is fine for the ECP5 too:
+// synth_ecp5.sh mounts the folder for the WebAssembly tools, whose own /tmp
+// is a private one.
 #pragma once
 
 #include <string>

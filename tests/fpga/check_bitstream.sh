@@ -37,8 +37,9 @@ if [ "$want" = fits ]; then
     >/dev/null || fail "report: a clock below its requirement"
   bit=$(jq -r .bitstream "$report")
   [ -s "$bit" ] || fail "no bitstream at '$bit'"
-  # Everything it names is in OUT (an ECP5 build under /tmp is staged
-  # elsewhere and copied here: no path may name the staging folder).
+  # Everything it names is in OUT (an ECP5 build under /tmp too, whose
+  # tools have a private /tmp of their own: synth_ecp5.sh mounts OUT for
+  # them).
   outdir=$(realpath "$out")
   case "$(realpath "$bit")" in "$outdir"/*) ;; *) fail "bitstream '$bit' is not in $outdir" ;; esac
   for v in "$out"/*.v; do
