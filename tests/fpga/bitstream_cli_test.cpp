@@ -61,13 +61,15 @@ fs::path one_msps_scene(const fs::path& dir) {
   return p;
 }
 
-// scenes/skin32x32.yaml (64 carriers on bin centres of a 256-sample window)
-// at 1 MS/s with spikes: its DFT needs KS + 8 = 72 clocks a frame's sample
-// even on 16 lanes (docs/bitstream.md, Clocks), and no board clock gives
-// that many at 1 MS/s below 72 MHz; so on the ULX3S at --clk-mhz 30 (30
-// clocks a sample) every engine and neuron choice is refused by the clock
-// budget, before any tool runs. (The default scene at 1 MS/s is not: there
-// the ULX3S gives the ADC a clock of its own and builds.)
+// scenes/skin32x32.yaml (64 carriers on bin centres of a 256-sample window,
+// a frame every 1000 samples) at 1 MS/s with spikes: its DFT takes 72
+// clocks on a frame's sample and 38 on the others even on 11 lanes, so a
+// sample period of 39 clocks at least, and the frame engine needs 28.8 to
+// 289 MHz by the engine and neuron choice (`eskin bitstream` prints both);
+// so on the ULX3S at --clk-mhz 30 (30 clocks a sample) every engine and
+// neuron choice is refused by the clock budget (the core needs 39 MHz or
+// more), before any tool runs. (The default scene at 1 MS/s is not: there
+// the ULX3S gives the ADC a clock of its own and builds, for 10 minutes.)
 fs::path big_fast_scene(const fs::path& dir) {
   std::string y = slurp(ESKIN_SOURCE_DIR "/scenes/skin32x32.yaml");
   y = std::regex_replace(y, std::regex("rate_hz: 280000"), "rate_hz: 1000000");
@@ -85,8 +87,10 @@ fs::path big_fast_scene(const fs::path& dir) {
 // divider of 2 still fits a conversion, and let nextpnr say no.)
 TEST(BitstreamCli, ClockTooSlowForTheSampleRateFailsBeforeTheTools) {
   const fs::path d = tmpdir();
-  const Result r = sh("--board icebreaker --clk-mhz 18 --scene " + one_msps_scene(d).string() +
-                      " --out " + (d / "out").string());
+  // (The iCE40 tools hidden: a case that needs none runs none.)
+  const Result r = sh("PATH", "/nonexistent",
+                      "--board icebreaker --clk-mhz 18 --scene " + one_msps_scene(d).string() +
+                          " --out " + (d / "out").string());
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("does not keep up with 1000000 S/s at 18 MHz"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("sdft_bank: needs 6 KS + 2 = 44 clocks per sample, the sample period is 18"),
@@ -102,8 +106,9 @@ TEST(BitstreamCli, ClockTooSlowForTheSampleRateFailsBeforeTheTools) {
 // One engine option (`option VALUE`) on the command line: each case's
 // arguments on a scene that fails its clock budget at the case's clock (the
 // iCEBreaker's: the default scene at 1 MS/s, 18 MHz; the ULX3S's: the
-// 32x32 one above, 30 MHz), so the report is written before any tool
-// runs (no yosys.log, checked); it must say
+// 32x32 one above, 30 MHz), so the planner refuses it (its message and the
+// report's core_min_hz above the clock, checked) and the report is written
+// before any tool runs (no flow.log or yosys.log, checked); it must say
 // `json` in the JSON and `table` in the table. Then a bad value, and a
 // Hall-only scene (no skin, so no `what`): both refused, naming the option.
 struct ChoiceCase {
@@ -119,11 +124,27 @@ void expect_engine_choice(const std::string& option, const std::vector<ChoiceCas
   for (const auto& c : cases) {
     const fs::path out = d / ("out" + std::to_string(i++));
     const bool ulx3s = c.args.find("--board ulx3s") != std::string::npos;
-    const Result r = sh(c.args + " --scene " + (ulx3s ? big : small) + " --out " + out.string());
-    EXPECT_NE(r.out.find("does not keep up"), std::string::npos) << c.args << "\n" << r.out;
+    // The tools hidden (the board's: the ECP5 venv, the iCE40 PATH): were
+    // the case not refused before them, it would stop at once on a missing
+    // tool (and fail the checks below) instead of running them for minutes.
+    const Result r = sh(ulx3s ? "ESKIN_VENV" : "PATH", ulx3s ? "/nonexistent/venv" : "/nonexistent",
+                        c.args + " --scene " + (ulx3s ? big : small) + " --out " + out.string());
+    const int clk_mhz = ulx3s ? 30 : 18;
+    EXPECT_NE(r.out.find("timing: the core does not keep up with 1000000 S/s at " +
+                         std::to_string(clk_mhz) + " MHz"),
+              std::string::npos) << c.args << "\n" << r.out;
     EXPECT_EQ(r.status, 1) << c.args << "\n" << r.out;
+    // No tool ran: the flow writes flow.log as it starts the script, and
+    // the script yosys.log as it starts Yosys.
     EXPECT_FALSE(fs::exists(out / "yosys.log")) << c.args;
+    EXPECT_FALSE(fs::exists(out / "flow.log")) << c.args;
     const std::string json = slurp(out / "bitstream_report.json");
+    // Refused by the planner: the core needs more than the clock asked.
+    std::smatch min_hz;
+    ASSERT_TRUE(std::regex_search(json, min_hz, std::regex(R"("core_min_hz": (\d+))")))
+        << c.args << "\n" << json;
+    EXPECT_GT(std::stol(min_hz[1]), clk_mhz * 1000000L) << c.args;
+    EXPECT_NE(json.find("\"fits\": false"), std::string::npos) << c.args << "\n" << json;
     EXPECT_NE(json.find(c.json), std::string::npos) << c.args << "\n" << json;
     EXPECT_NE(slurp(out / "bitstream_report.txt").find(c.table), std::string::npos) << c.args;
   }
