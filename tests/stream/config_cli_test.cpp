@@ -221,7 +221,9 @@ TEST(ConfigLibrary, CommandRightAfterStartWaitsForTheLink) {
   // The board's data (an amplitude packet every ~50 ms) still flows.
   const auto amps = [&] { return s.stats().packets_by_type[eskin::link::kAmplitudes]; };
   const uint64_t before = amps();
-  for (int i = 0; i < 400 && amps() == before; ++i) std::this_thread::sleep_for(5ms);
+  for (auto end = std::chrono::steady_clock::now() + 10s;
+       amps() == before && std::chrono::steady_clock::now() < end;)
+    std::this_thread::sleep_for(5ms);
   EXPECT_GT(amps(), before) << "no data packet after the commands";
 }
 

@@ -127,9 +127,13 @@ TEST(LinkStreamPty, DeliversEveryPacketToCallbackAndQueue) {
   Collector c;
   ASSERT_TRUE(pump(s, c, pty, concat(frames), sent.size()));
   expect_same(sent, c.snapshot());
+  // The queue is filled after the callback runs: pop until every packet
+  // sent is out (each has arrived, so a long wait ends at once), then the
+  // queue must be empty.
   std::vector<Packet> pulled;
   Packet p;
-  while (s.pop(p, 100ms)) pulled.push_back(p);
+  while (pulled.size() < sent.size() && s.pop(p, 10s)) pulled.push_back(p);
+  while (s.pop(p, 0ms)) pulled.push_back(p);
   expect_same(sent, pulled);
   const auto st = s.stats();
   EXPECT_EQ(st.link.frames_ok, sent.size());

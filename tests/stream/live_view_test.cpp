@@ -73,9 +73,15 @@ TEST(LiveView, ChromiumScreenshotShowsThePressedTaxel) {
     ++n;
   });
   stream.start();
-  for (int i = 0; i < 500 && !stream.connected(); ++i) std::this_thread::sleep_for(10ms);
+  // Polled with a deadline: each wait ends as soon as its condition holds.
+  for (auto end = std::chrono::steady_clock::now() + 10s;
+       !stream.connected() && std::chrono::steady_clock::now() < end;)
+    std::this_thread::sleep_for(5ms);
+  ASSERT_TRUE(stream.connected()) << "the stream did not open " << pty.slave_path();
   ASSERT_TRUE(write_fully(pty.master(), wire));
-  for (int i = 0; i < 1000 && n < sent.size(); ++i) std::this_thread::sleep_for(10ms);
+  for (auto end = std::chrono::steady_clock::now() + 30s;
+       n < sent.size() && std::chrono::steady_clock::now() < end;)
+    std::this_thread::sleep_for(5ms);
   ASSERT_EQ(n, sent.size());
 
   // The data endpoint over HTTP.

@@ -159,11 +159,34 @@ void expect_hdf5_matches(const std::string& path, const std::vector<json>& want)
 
 size_t lines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
 
+// An int64 dataset's values and dims, quietly: false if it does not open
+// or read (no test failure: a file being written may not be there yet).
+bool try_read_set(hid_t file, const std::string& name, std::vector<int64_t>& v,
+                  std::vector<hsize_t>& dims) {
+  const hid_t d = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+  if (d < 0) return false;
+  const hid_t sp = H5Dget_space(d);
+  const int nd = sp < 0 ? -1 : H5Sget_simple_extent_ndims(sp);
+  bool ok = nd > 0;
+  if (ok) {
+    dims.assign(size_t(nd), 0);
+    H5Sget_simple_extent_dims(sp, dims.data(), nullptr);
+    hsize_t n = 1;
+    for (hsize_t x : dims) n *= x;
+    v.assign(n, 0);
+    ok = n == 0 || H5Dread(d, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) >= 0;
+  }
+  if (sp >= 0) H5Sclose(sp);
+  H5Dclose(d);
+  return ok;
+}
+
 // Whether the HDF5 file, read while its writer still runs (file locking
-// off: the writer holds the lock), already holds as many rows in every
-// table as the expected lines have: what the writer has flushed. False
-// while the file or a table does not open yet, or is short.
-bool hdf5_has_all_rows(const std::string& path, const std::vector<json>& want) {
+// off: the writer holds the lock), already holds exactly the expected
+// lines' values in every table, as expect_hdf5_matches checks them: what
+// the writer has flushed. False while the file or a table does not open
+// yet, or is short.
+bool hdf5_holds(const std::string& path, const std::vector<json>& want) {
   H5E_auto2_t func;
   void* data;
   H5Eget_auto2(H5E_DEFAULT, &func, &data);
@@ -172,20 +195,29 @@ bool hdf5_has_all_rows(const std::string& path, const std::vector<json>& want) {
   H5Pset_file_locking(fapl, false, true);
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
   bool all = f >= 0;
+  std::vector<int64_t> v;
+  std::vector<hsize_t> dims;
   for (const char* table : {"amplitudes", "taxels", "taxels_sparse", "spikes", "status"}) {
     if (!all) break;
-    const auto rows = size_t(std::count_if(want.begin(), want.end(),
-                                           [&](const json& j) { return j["type"] == table; }));
-    if (rows == 0) continue;
-    const hid_t d = H5Dopen2(f, (std::string("/") + table + "/t").c_str(), H5P_DEFAULT);
-    hsize_t n = 0;
-    if (d >= 0) {
-      const hid_t sp = H5Dget_space(d);
-      H5Sget_simple_extent_dims(sp, &n, nullptr);
-      H5Sclose(sp);
-      H5Dclose(d);
+    std::vector<const json*> rows;
+    for (const json& j : want)
+      if (j["type"] == table) rows.push_back(&j);
+    if (rows.empty()) continue;
+    for (const auto& [column, value] : rows[0]->items()) {
+      if (column == "type" || value.is_array()) continue;
+      all = all && try_read_set(f, std::string("/") + table + "/" + column, v, dims) &&
+            v.size() == rows.size();
+      for (size_t i = 0; all && i < rows.size(); ++i) all = v[i] == (*rows[i])[column].get<int64_t>();
     }
-    all = d >= 0 && n == rows;
+    const char* vec = std::string(table) == "amplitudes" ? "amp"
+                      : std::string(table) == "taxels"   ? "taxel"
+                                                         : nullptr;
+    if (!vec || !all) continue;
+    all = try_read_set(f, std::string("/") + table + "/" + vec, v, dims) && dims.size() == 2 &&
+          dims[0] == rows.size();
+    for (size_t i = 0; all && i < rows.size(); ++i)
+      for (size_t k = 0; all && k < dims[1]; ++k)
+        all = v[i * dims[1] + k] == (*rows[i])[vec][k].get<int64_t>();
   }
   if (f >= 0) H5Fclose(f);
   H5Pclose(fapl);
@@ -282,7 +314,8 @@ TEST(StreamCli, LostBoardIsReportedReopenedAndTheRecordingKept) {
 }
 
 // SIGKILL, no chance to close the file: everything flushed before the kill
-// (every packet's row, seen in the file by a reader) is in a file that opens.
+// (every packet's row, seen in the file by a reader while the recorder
+// runs) is in a file that opens.
 TEST(StreamCli, KilledRunLeavesAReadableHdf5File) {
   const fs::path dir = tmpdir();
   std::vector<Sent> sent;
@@ -298,12 +331,14 @@ TEST(StreamCli, KilledRunLeavesAReadableHdf5File) {
   const size_t all_lines = ndjson_rows(sent);
   ASSERT_TRUE(p.wait_output([&](const std::string& o) { return lines(o) >= all_lines; }, false,
                             10s));
-  // Killed once a flush has put every row in the file (polled, not timed).
+  // Killed once a flush has put every row in the file: a reader sees them
+  // all, value for value (polled until it does, not timed).
   bool flushed = false;
-  for (auto end = std::chrono::steady_clock::now() + 10s;
-       !flushed && std::chrono::steady_clock::now() < end; std::this_thread::sleep_for(20ms))
-    flushed = hdf5_has_all_rows((dir / "run.h5").string(), want);
-  ASSERT_TRUE(flushed) << "no flush put every row in the file within 10 s";
+  for (auto end = std::chrono::steady_clock::now() + 30s;
+       !(flushed = hdf5_holds((dir / "run.h5").string(), want)) &&
+       std::chrono::steady_clock::now() < end;)
+    std::this_thread::sleep_for(20ms);
+  ASSERT_TRUE(flushed) << "no flush put every row in the file within 30 s";
   p.signal(SIGKILL);
   EXPECT_EQ(p.wait_exit(10s), 128 + SIGKILL);
   expect_hdf5_matches((dir / "run.h5").string(), want);

@@ -264,18 +264,45 @@ TEST(VirtualBoard, HeldBoardStartsWithTheHostsCommands) {
 
 // A host that closes the port before it has sent the bytes the board holds
 // for: the board never starts and exits with an error (status 2, no done
-// line), instead of running without the host's configuration.
+// line), instead of running without the host's configuration. The host
+// closes right after its 3 bytes, with no wait: what the pty's reader set
+// (its baud rate) and sent stays for the board to find after the close, so
+// the board refuses because the host closed early, which its message
+// (captured from its stderr) says, not because its reader timeout ran out.
 TEST(VirtualBoard, HeldBoardRefusesToStartWithoutTheHostsBytes) {
-  VboardProcess vb(ESKIN_VBOARD_BIN,
-                   {short_scene(0.02, "vboard_hold_short"), "--hold-for-host-bytes", "100"});
-  const int fd = open_serial(vb.pty(), B3000000);
+  const std::string err_path = testing::TempDir() + "vboard_hold_short.err";
+  const int saved_err = dup(STDERR_FILENO);
+  ASSERT_GE(saved_err, 0);
+  const int err_fd = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ASSERT_GE(err_fd, 0) << err_path;
+  dup2(err_fd, STDERR_FILENO);  // the board inherits it
+  close(err_fd);
+  std::unique_ptr<VboardProcess> vb;
+  try {
+    vb = std::make_unique<VboardProcess>(
+        ESKIN_VBOARD_BIN,
+        std::vector<std::string>{short_scene(0.02, "vboard_hold_short"), "--hold-for-host-bytes",
+                                 "100"});
+  } catch (...) {
+    dup2(saved_err, STDERR_FILENO);
+    close(saved_err);
+    throw;
+  }
+  dup2(saved_err, STDERR_FILENO);
+  close(saved_err);
+  const int fd = open_serial(vb->pty(), B3000000);
   ASSERT_GE(fd, 0);
   const uint8_t three[3] = {0, 1, 2};
   ASSERT_EQ(write(fd, three, 3), 3);
-  usleep(200000);
   close(fd);
-  EXPECT_EQ(vb.wait(), 2);
-  EXPECT_TRUE(vb.done().is_null());
+  EXPECT_EQ(vb->wait(), 2);
+  EXPECT_TRUE(vb->done().is_null());
+  std::ifstream in(err_path);
+  const std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(err.find("of the 100 bytes the board was told to wait for (--hold-for-host-bytes) "
+                     "before it closed " + vb->pty()),
+            std::string::npos)
+      << err;
 }
 
 }  // namespace
