@@ -96,6 +96,18 @@ TEST(BenchTradeoff, QuickSweepWritesTheMapAndItsFiguresHold) {
 }
 
 // A one-node Slurm cluster in a temporary directory; stopped by its pids.
+// Polls `cond` until it holds (true) or `timeout` has passed (false, after
+// one last look): a wait on a condition, never a fixed sleep.
+template <class Cond>
+bool wait_until(Cond cond, std::chrono::milliseconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (!cond()) {
+    if (std::chrono::steady_clock::now() >= end) return cond();
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
 class SlurmCluster {
  public:
   explicit SlurmCluster(const fs::path& dir) : dir_(dir) {
@@ -130,9 +142,7 @@ class SlurmCluster {
     ok_ = sh("munged --socket=" + d + "/munge.sock --key-file=" + d + "/munge.key --pid-file=" + d +
              "/munged.pid --log-file=" + d + "/munged.log --seed-file=" + d + "/munge.seed --force") &&
           sh("slurmctld -f " + conf_) && sh("slurmd -f " + conf_ + " -N localhost");
-    for (int i = 0; ok_ && i < 60 && !idle(); ++i)
-      std::this_thread::sleep_for(std::chrono::milliseconds(500));
-    ok_ = ok_ && idle();
+    ok_ = ok_ && wait_until([this] { return idle(); }, std::chrono::seconds(30));
   }
   // Stops the daemons it started (by their pid files): SIGTERM, up to 10 s
   // to exit, then SIGKILL; then removes the directory.
@@ -142,9 +152,8 @@ class SlurmCluster {
       long p = 0;
       if (!(f >> p) || p <= 1) continue;
       ::kill(pid_t(p), SIGTERM);
-      for (int i = 0; i < 100 && ::kill(pid_t(p), 0) == 0; ++i)
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      if (::kill(pid_t(p), 0) == 0) ::kill(pid_t(p), SIGKILL);
+      if (!wait_until([p] { return ::kill(pid_t(p), 0) != 0; }, std::chrono::seconds(10)))
+        ::kill(pid_t(p), SIGKILL);
     }
     std::error_code ec;
     fs::remove_all(dir_, ec);
