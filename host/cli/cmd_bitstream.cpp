@@ -201,8 +201,8 @@ std::function<int()> setup_bitstream(CLI::App& app) {
   sub->add_option("--scene", args->scene, "Scene YAML (default scenes/neuroskin2.yaml)");
   sub->add_option("--out", args->out,
                   "Output directory (default build/bitstream/BOARD; scale table: "
-                  "build/bitstream/scale); an ECP5 build asked for under /tmp runs in the build "
-                  "tree and is copied there (the ECP5 tools cannot see /tmp)");
+                  "build/bitstream/scale); under /tmp too (the ECP5 tools get its folder "
+                  "mounted)");
   sub->add_option("--seed", args->seed, "nextpnr placer seed (the first one tried)")
       ->capture_default_str();
   sub->add_option("--seeds", args->seeds,
