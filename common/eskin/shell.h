@@ -1,6 +1,8 @@
-// Shell command lines built from arguments: the one quoting helper of the
-// code that runs the project's tools through std::system (the bitstream
-// flow, the latency bench's Verilator builds, the virtual boards' builds).
+// Shell command lines built from arguments: the one quoting helper, for the
+// latency bench's Verilator builds (their command line sets OBJCACHE from
+// the shell's `command -v ccache`) and harness runs, and for printing an
+// argument vector as a command a user can paste. Tools that need no shell run from an argument
+// vector (eskin/process.h).
 #pragma once
 
 #include <string>

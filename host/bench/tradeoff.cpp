@@ -1,4 +1,7 @@
 #include "host/bench/tradeoff.h"
+#include <sys/wait.h>
+
+#include "eskin/process.h"
 #include "eskin/source_tree.h"
 
 #include <fmt/format.h>
@@ -237,10 +240,11 @@ SynthEntry synthesize(const TradePoint& p, const std::string& cache_dir) {
     std::ofstream(tmp / "tradeoff_top.v") << fpga::dtmf_core_wrapper("tradeoff_top", params);
     // The project's flow (scripts/synth_ice40.sh: -dsp -spram -abc9), as
     // docs/fpga.md's figures; it writes stat.txt into --out.
-    const std::string cmd = fmt::format(
-        "'{}/scripts/synth_ice40.sh' '{}' --out '{}' > /dev/null 2>&1", eskin::source_dir(),
-        (fs::absolute(tmp) / "tradeoff_top.v").string(), fs::absolute(tmp).string());
-    if (std::system(cmd.c_str()) != 0)
+    const int st = eskin::run_logged(
+        {eskin::source_dir() + "/scripts/synth_ice40.sh", (fs::absolute(tmp) / "tradeoff_top.v").string(),
+         "--out", fs::absolute(tmp).string()},
+        "/dev/null");
+    if (st == -1 || !WIFEXITED(st) || WEXITSTATUS(st) != 0)
       throw std::runtime_error("yosys failed for " + p.key() + ": see " + (tmp / "yosys.log").string());
     std::error_code ec;
     fs::rename(tmp, dir, ec);

@@ -1,8 +1,6 @@
 #include "host/fpga/tool_run.h"
 
-#include <fcntl.h>
 #include <fmt/core.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "eskin/process.h"
 #include "eskin/shell.h"
 
 namespace eskin::fpga {
@@ -87,29 +86,6 @@ std::string first_error(const std::string& log) {
 
 namespace {
 
-// Runs argv[0] with the arguments argv (no shell), its stdout and stderr
-// into `log` (truncated); the wait status, or -1 if it could not be started
-// (errno set).
-int run_logged(const std::vector<std::string>& argv, const fs::path& log) {
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-  pid_t pid = -1;
-  const int e = posix_spawn(&pid, args[0], &fa, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (e != 0) {
-    errno = e;
-    return -1;
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return status;
-}
 
 // One run of the tools at opt.seed.
 void run_once(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowReport& r) {
@@ -140,7 +116,7 @@ void run_once(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowRepo
   }
   const fs::path log = out / "flow.log";
   const auto t0 = std::chrono::steady_clock::now();
-  const int status = run_logged(cmd, log);
+  const int status = eskin::run_logged(cmd, log.string());
   const std::string why = status == -1 ? std::strerror(errno) : "";
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.ran_tools = true;

@@ -1,7 +1,7 @@
 #include "sim/vboard/vboard_build.h"
 
-#include "eskin/shell.h"
 
+#include "eskin/process.h"
 #include "eskin/source_tree.h"
 
 #include <sys/wait.h>
@@ -40,9 +40,9 @@ std::string tail(const std::string& path, size_t lines) {
   return s;
 }
 
-// Runs `args` (already quoted) with stdout and stderr appended to `log`.
-void run_logged(const std::string& args, const std::string& log, const std::string& what) {
-  const int st = std::system((args + " >>" + shell_quote(log) + " 2>&1").c_str());
+// Runs `argv` (no shell) with stdout and stderr appended to `log`.
+void run_step(const std::vector<std::string>& argv, const std::string& log, const std::string& what) {
+  const int st = eskin::run_logged(argv, log, eskin::LogMode::Append);
   if (st != 0 || !WIFEXITED(st))
     throw std::runtime_error(what + " failed (" + log + "), its last lines:\n" + tail(log, 15));
 }
@@ -69,9 +69,9 @@ std::string ensure_board(const std::string& target, const std::string& key,
          " (Verilator and C++, a few minutes, once; log " + log + ")");
     std::ofstream(log, std::ios::trunc);
   }
-  const std::string cmake = shell_quote(ESKIN_CMAKE_COMMAND), tree = shell_quote(in_build_dir(ESKIN_BINARY_DIR));
-  if (!listed) run_logged(cmake + " " + tree, log, "configuring the build tree for " + target);
-  run_logged(cmake + " --build " + tree + " --target " + target, log, "building " + target);
+  const std::string cmake = ESKIN_CMAKE_COMMAND, tree = in_build_dir(ESKIN_BINARY_DIR);
+  if (!listed) run_step({cmake, tree}, log, "configuring the build tree for " + target);
+  run_step({cmake, "--build", tree, "--target", target}, log, "building " + target);
   return exe;
 }
 
