@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace eskin {
 
@@ -71,6 +72,16 @@ constexpr const DtmfCommand* find_dtmf_command(uint8_t type) {
   return type >= kDtmfCommandFirst && type < kDtmfCommandFirst + kDtmfCommandCount
              ? &kDtmfCommands[type - kDtmfCommandFirst]
              : nullptr;
+}
+
+// The payload of command c: its index and value fields at their widths,
+// little-endian.
+inline std::vector<uint8_t> dtmf_command_payload(const DtmfCommand& c, uint32_t index,
+                                                 uint32_t value) {
+  std::vector<uint8_t> p;
+  for (int i = 0; i < c.index.bytes; ++i) p.push_back(uint8_t(index >> (8 * i)));
+  for (int i = 0; i < c.value.bytes; ++i) p.push_back(uint8_t(value >> (8 * i)));
+  return p;
 }
 
 // The payload as docs/protocol.md writes it: "k u8, inc u32", "(none)".

@@ -156,11 +156,7 @@ std::vector<uint8_t> queued(uint8_t type, const std::vector<uint8_t>& payload) {
 }
 // A command of common/eskin/dtmf_commands.h, its fields at their widths.
 std::vector<uint8_t> command(dtmf_cmd::Type type, uint32_t index, uint32_t value) {
-  const DtmfCommand& c = *find_dtmf_command(type);
-  std::vector<uint8_t> p;
-  for (int i = 0; i < c.index.bytes; ++i) p.push_back(uint8_t(index >> (8 * i)));
-  for (int i = 0; i < c.value.bytes; ++i) p.push_back(uint8_t(value >> (8 * i)));
-  return queued(type, p);
+  return queued(type, dtmf_command_payload(*find_dtmf_command(type), index, value));
 }
 
 template <bool FAST>

@@ -140,10 +140,7 @@ std::vector<uint8_t> LinkEncoder::status(uint32_t t, const StatusBlock& s) {
 std::vector<uint8_t> LinkEncoder::command(uint8_t type, uint32_t index, uint32_t value) {
   const DtmfCommand* c = find_dtmf_command(type);
   if (!c) throw std::invalid_argument("LinkEncoder::command: no command of type " + std::to_string(type));
-  std::vector<uint8_t> p;
-  for (int i = 0; i < c->index.bytes; ++i) p.push_back(uint8_t(index >> (8 * i)));
-  for (int i = 0; i < c->value.bytes; ++i) p.push_back(uint8_t(value >> (8 * i)));
-  return frame(type, 0, p);
+  return frame(type, 0, dtmf_command_payload(*c, index, value));
 }
 
 std::vector<uint8_t> LinkEncoder::set_carrier_inc(uint8_t k, uint32_t inc) {

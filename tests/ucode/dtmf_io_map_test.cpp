@@ -77,8 +77,12 @@ TEST(DtmfIoMap, NoTwoPortsShareAnAddressInOneDirection) {
     const bool r = what.rfind("r:", 0) == 0, w = what.rfind("w:", 0) == 0 ||
                                                  what.find("; w:") != std::string::npos;
     ASSERT_TRUE(r || w) << e.symbol;
-    if (r) EXPECT_TRUE(seen['r'].insert(e.value).second) << e.symbol << " (read)";
-    if (w) EXPECT_TRUE(seen['w'].insert(e.value).second) << e.symbol << " (write)";
+    if (r) {
+      EXPECT_TRUE(seen['r'].insert(e.value).second) << e.symbol << " (read)";
+    }
+    if (w) {
+      EXPECT_TRUE(seen['w'].insert(e.value).second) << e.symbol << " (write)";
+    }
   }
   uint16_t bits = 0;
   for (const auto& e : kDtmfEvents) {
