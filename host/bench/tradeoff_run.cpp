@@ -92,12 +92,9 @@ std::vector<TradeRow> run_slurm(const std::vector<TradePoint>& pts, const TradeR
   const fs::path script = dir / "tradeoff.sbatch";
   {
     std::ofstream f(script);
-    f << "#!/bin/sh
-"
-         "# One point of eskin's trade study per array task (eskin bench tradeoff --slurm).
-"
-         "# The command comes as arguments; the row goes to TASK.csv in the working directory.
-"
+    f << "#!/bin/sh\n"
+         "# One point of eskin's trade study per array task (eskin bench tradeoff --slurm).\n"
+         "# The command comes as arguments; the row goes to TASK.csv in the working directory.\n"
          "exec \"$@\" --run-point \"$SLURM_ARRAY_TASK_ID\" --part \"$SLURM_ARRAY_TASK_ID.csv\"\n";
     if (!f) throw std::runtime_error(script.string() + ": cannot write the Slurm job script");
   }
