@@ -55,7 +55,7 @@ std::vector<std::string> canaries_found() {
   const std::string prefix = "eskin_canary_" + std::to_string(::getpid()) + "_";
   for (const auto& e : fs::recursive_directory_iterator(work_dir()))
     if (e.path().filename().string().rfind(prefix, 0) == 0) found.push_back(e.path().string());
-  for (const fs::path dir : {fs::path("/tmp"), fs::path(ESKIN_SOURCE_DIR), fs::current_path()})
+  for (const fs::path& dir : {fs::path("/tmp"), fs::path(ESKIN_SOURCE_DIR), fs::current_path()})
     for (int n = 1; n <= 4; ++n)
       if (fs::exists(dir / canary(n))) found.push_back((dir / canary(n)).string());
   return found;
@@ -187,10 +187,13 @@ TEST(HostilePaths, BitstreamRefusesADoubleQuoteNamingThePath) {
   EXPECT_NO_CANARY();
 }
 
-// The default scene cut to 50 ms (as tests/vboard/simulate_test.cpp).
+// The default scene's skin for 50 ms, one press (as tests/vboard/simulate_test.cpp).
 fs::path short_scene() {
   std::string text = slurp(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   text.replace(text.find("duration_s: 0.6"), 15, "duration_s: 0.05");
+  text.erase(text.find("stimuli:"));
+  text += "stimuli:\n  - press: {taxel: [1, 2], pressure_kpa: 50, t_start_s: 0.010, ramp_s: 0.005, "
+          "hold_s: 0.020, release_s: 0.005}\noutputs: [amplitudes, taxels, spikes]\n";
   const fs::path p = work_dir() / "short.yaml";
   std::ofstream(p) << text;
   return p;
