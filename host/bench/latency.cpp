@@ -19,6 +19,7 @@
 #include <regex>
 #include <sstream>
 
+#include <stdlib.h>
 #include <unistd.h>
 #include <stdexcept>
 
@@ -111,9 +112,23 @@ fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& 
   build_seconds = 0;
   if (fs::exists(exe)) return exe;
   // Built aside and renamed into place: concurrent runs never see half a build.
-  const fs::path tmp = cache_dir / fmt::format("{:016x}.tmp{}", h, ::getpid());
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
+  // GNU Make (Verilator's --build) cannot build in a folder whose path
+  // has a space, and expands '$' in it: a cache whose path is not a plain
+  // word is built in a fresh folder of /tmp, then moved into the cache.
+  const std::string cache_abs = fs::absolute(cache_dir).string();
+  const bool plain = cache_abs.find_first_not_of(
+                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_./+,@%=-") ==
+                     std::string::npos;
+  fs::path tmp = cache_dir / fmt::format("{:016x}.tmp{}", h, ::getpid());
+  fs::create_directories(cache_dir);
+  if (plain) {
+    fs::remove_all(tmp);
+    fs::create_directories(tmp);
+  } else {
+    std::string t = (fs::temp_directory_path() / "eskin-verilator.XXXXXX").string();
+    if (!::mkdtemp(t.data())) throw std::runtime_error(t + ": cannot create a build folder");
+    tmp = t;
+  }
   const double t0 = wall_seconds();
   // Built in `tmp` with a relative --Mdir: Verilator runs make on its
   // object directory through a shell of its own, which must never see the
@@ -136,6 +151,13 @@ fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& 
   run_logged(cmd, tmp / "build.log", ctx);
   build_seconds = wall_seconds() - t0;
   std::error_code ec;
+  if (!plain) {  // into the cache's file system first, then the same rename
+    const fs::path staged = cache_dir / fmt::format("{:016x}.tmp{}", h, ::getpid());
+    fs::remove_all(staged);
+    fs::copy(tmp, staged, fs::copy_options::recursive);
+    fs::remove_all(tmp);
+    tmp = staged;
+  }
   fs::rename(tmp, dir, ec);
   if (ec) fs::remove_all(tmp);  // another run built it first
   return exe;
