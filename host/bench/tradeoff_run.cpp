@@ -2,9 +2,14 @@
 
 #include <fmt/format.h>
 
+#include "eskin/process.h"
 #include "host/bench/text_file.h"
 
+#include <sys/wait.h>
+
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -79,19 +84,38 @@ std::vector<TradeRow> run_slurm(const std::vector<TradePoint>& pts, const TradeR
     std::ofstream f(points);
     for (const auto& p : pts) f << p.key() << "\n";
   }
-  std::string task = fmt::format("'{}' bench tradeoff --run-point \"$SLURM_ARRAY_TASK_ID\" "
-                                 "--points '{}' --part '{}'/\"$SLURM_ARRAY_TASK_ID\".csv",
-                                 o.eskin_bin, points.string(), parts.string());
-  if (!o.synth_table.empty()) task += " --synth-table '" + o.synth_table + "'";
-  if (!o.synth_cache.empty()) task += " --synth-cache '" + o.synth_cache + "'";
+  // The job script is fixed text: every path and option reaches the task
+  // as an argument (sbatch passes the words after the script name to it as
+  // "$@"), so no path is ever read by a shell as code. The task writes its
+  // row and log into the job's working directory (--chdir: the parts
+  // folder), so Slurm's filename patterns (%a) never meet a user's path.
   const fs::path script = dir / "tradeoff.sbatch";
-  std::ofstream(script) << "#!/bin/sh\n#SBATCH --job-name=eskin-tradeoff\n"
-                        << fmt::format("#SBATCH --array=0-{}\n", pts.size() - 1)
-                        << "#SBATCH --output=" << (parts / "%a.log").string() << "\n"
-                        << "exec " << task << "\n";
-  const std::string cmd = "sbatch --wait --parsable " + o.sbatch_args + " '" + script.string() +
-                          "' > '" + (dir / "sbatch.out").string() + "' 2>&1";
-  const int st = std::system(cmd.c_str());
+  {
+    std::ofstream f(script);
+    f << "#!/bin/sh\n"
+         "# One point of eskin's trade study per array task (eskin bench tradeoff --slurm).\n"
+         "# The command comes as arguments; the row goes to TASK.csv in the working directory.\n"
+         "exec \"$@\" --run-point \"$SLURM_ARRAY_TASK_ID\" --part \"$SLURM_ARRAY_TASK_ID.csv\"\n";
+    if (!f) throw std::runtime_error(script.string() + ": cannot write the Slurm job script");
+  }
+  std::vector<std::string> cmd{"sbatch", "--wait", "--parsable", "--job-name=eskin-tradeoff",
+                               fmt::format("--array=0-{}", pts.size() - 1),
+                               "--chdir=" + parts.string(), "--output=%a.log"};
+  // --sbatch-args: options separated by blanks, each given to sbatch as one
+  // argument (no shell reads them).
+  {
+    std::istringstream words(o.sbatch_args);
+    for (std::string w; words >> w;) cmd.push_back(w);
+  }
+  for (const auto& a : {script.string(), o.eskin_bin, std::string("bench"), std::string("tradeoff"),
+                        std::string("--points"), points.string()})
+    cmd.push_back(a);
+  if (!o.synth_table.empty()) cmd.push_back("--synth-table"), cmd.push_back(fs::absolute(o.synth_table).string());
+  if (!o.synth_cache.empty()) cmd.push_back("--synth-cache"), cmd.push_back(fs::absolute(o.synth_cache).string());
+  const int st = eskin::run_logged(cmd, (dir / "sbatch.out").string());
+  if (st == -1)
+    throw std::runtime_error("could not run sbatch (" + std::string(std::strerror(errno)) +
+                             "): is Slurm installed and on PATH? " + eskin::printable_command(cmd));
   std::vector<TradeRow> rows;
   for (size_t i = 0; i < pts.size(); ++i) {
     const fs::path part = parts / (std::to_string(i) + ".csv");
@@ -99,7 +123,7 @@ std::vector<TradeRow> run_slurm(const std::vector<TradePoint>& pts, const TradeR
     while (!line.empty() && line.back() == '\n') line.pop_back();
     if (line.empty())
       throw std::runtime_error(fmt::format("slurm task {} ({}) wrote no row; sbatch exit {}; see {} "
-                                           "and {}", i, pts[i].key(), st,
+                                           "and {}", i, pts[i].key(), WIFEXITED(st) ? WEXITSTATUS(st) : -1,
                                            (parts / (std::to_string(i) + ".log")).string(),
                                            (dir / "sbatch.out").string()));
     rows.push_back(parse_row(line));

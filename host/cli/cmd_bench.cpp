@@ -188,7 +188,7 @@ std::function<int()> setup(CLI::App& app) {
   tr->add_option("--out", d->o.out_dir, "output directory (tradeoff.csv, tradeoff.html)");
   tr->add_option("--threads", d->o.threads, "local worker threads")->check(CLI::Range(1, 256));
   tr->add_flag("--slurm", d->o.slurm, "run the points as a Slurm job array (sbatch --array --wait)");
-  tr->add_option("--sbatch-args", d->o.sbatch_args, "extra sbatch arguments (e.g. -p PARTITION)");
+  tr->add_option("--sbatch-args", d->o.sbatch_args, "extra sbatch arguments, split at blanks, each word one argument (e.g. \"-p PARTITION\")");
   tr->add_flag("--synth", d->synth, "run Yosys for builds not in the synthesis table (cached)");
   tr->add_option("--synth-cache", d->o.synth_cache, "directory of cached Yosys runs");
   tr->add_option("--synth-table", d->o.synth_table, "stored synthesis results (CSV)");

@@ -79,6 +79,7 @@ int run_scale_table(const BitstreamArgs& a) {
   eskin::fpga::FlowOptions opt;
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/scale" : a.out;
+  eskin::fpga::check_out_dir_for_tools(opt.out_dir);
   opt.seed = a.seed;
   opt.seeds = a.seeds;
   // The CSV is rewritten after every probe, so an interrupted run keeps
@@ -146,6 +147,7 @@ int run_bitstream(const BitstreamArgs& a) {
   eskin::fpga::FlowOptions opt;
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/" + board.name : a.out;
+  eskin::fpga::check_out_dir_for_tools(opt.out_dir);
   opt.seed = a.seed;
   opt.seeds = a.seeds;
   opt.clk_hz = std::lround(a.clk_mhz * 1e6);

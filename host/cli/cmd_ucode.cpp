@@ -1,6 +1,7 @@
 // `eskin ucode`: the frame_engine microcode tools (docs/frame_engine.md).
 //   eskin ucode asm FILE.fe [-o FILE.hex] [--list FILE.lst] [-D NAME=VALUE]... [--iw N]
-//     assembles FILE.fe into a $readmemh image (default: FILE.hex beside it),
+//     assembles FILE.fe into a $readmemh image (default: FILE's name with
+//     .hex in the current directory, never beside the source),
 //     optionally with a listing; -D predefines symbols (e.g. IO ports).
 //   eskin ucode run FILE.fe [--trace] [--max-clocks N] [--krom FILE.hex]
 //                           [--events MASK] [-D ...]
@@ -96,12 +97,9 @@ void write_file(const std::string& path, const std::string& text) {
 int run_asm(const UcodeArgs& a) {
   const auto prog = fa::assemble_file(a.file, options(a));
   std::string out = a.out;
-  if (out.empty()) {
-    const size_t dot = a.file.rfind('.');
-    const size_t slash = a.file.rfind('/');
-    out = (dot != std::string::npos && (slash == std::string::npos || dot > slash) ? a.file.substr(0, dot)
-                                                                                    : a.file) + ".hex";
-  }
+  // The source may be in a tree the user does not mean to write (rtl/,
+  // the repository): the default image goes where the user is.
+  if (out.empty()) out = std::filesystem::path(a.file).stem().string() + ".hex";
   write_file(out, fa::readmemh_text(prog.words));
   if (!a.list.empty()) write_file(a.list, fa::listing_text(prog));
   fmt::print("{}: {} words, {} symbols -> {}\n", a.file, prog.words.size(), prog.symbols.size(), out);
@@ -204,7 +202,7 @@ std::function<int()> setup_ucode(CLI::App& app) {
   };
   CLI::App* as = sub->add_subcommand("asm", "Assemble FILE.fe into a $readmemh image");
   add_common(as);
-  as->add_option("-o", args->out, "Output image (default: FILE.hex)");
+  as->add_option("-o", args->out, "Output image (default: FILE's name with .hex, in the current directory)");
   as->add_option("--list", args->list, "Also write a listing (addresses, words, symbols)");
   as->add_option("--iw", args->iw, "IMEM address bits of the target (4..12)")->capture_default_str();
   CLI::App* rn = sub->add_subcommand("run", "Run FILE.fe on the instruction-set model, null IO");

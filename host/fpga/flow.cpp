@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "ucode/dtmf_ucode.h"
+#include "eskin/skin_config.h"
 #include "host/fpga/core_flows.h"
 #include "host/fpga/core_wrapper.h"
 #include "host/fpga/tool_run.h"
@@ -266,6 +267,17 @@ bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& 
   // which names them by absolute path.
   params = hls::write_dtmf_top_build(plan, out.string(), "dtmf_scene");
   return true;
+}
+
+void check_out_dir_for_tools(const std::string& out_dir) {
+  const std::string abs = fs::absolute(out_dir).string();
+  for (const char c : abs)
+    if (c == '"' || c == '\\' || c == '\n')
+      throw ConfigError("--out", fmt::format("'{}': a folder whose path holds a double quote, a "
+                                             "backslash or a newline cannot be given to Yosys "
+                                             "(the core's $readmemh names are Verilog strings); "
+                                             "choose another",
+                                             abs));
 }
 
 // An ECP5 build asked for under /tmp (a plain user's first try) runs there

@@ -147,6 +147,13 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
                             long clk_hz = 0, int fast_shift = -1, int neuron_unit = -1,
                             bool own_adc_clock = true);
 
+// Throws ConfigError("--out", ...) naming the path when the tools cannot be
+// given it: the core wrapper names its $readmemh files in Verilog strings
+// and Yosys takes file names in its own quotes, neither of which can hold a
+// double quote, a backslash or a newline. Any other character (spaces,
+// quotes, $, ;) is fine.
+void check_out_dir_for_tools(const std::string& out_dir);
+
 // Builds the scene's core (scene_core) on board `b`: for a skin the plan,
 // the engine's load (engine_load.h), the clock, the microcode and constant
 // files; for Hall sensors hall_top's parameters at the Hall clock

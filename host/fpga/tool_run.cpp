@@ -15,12 +15,10 @@
 #include <vector>
 
 #include "eskin/process.h"
-#include "eskin/shell.h"
 
 namespace eskin::fpga {
 
 namespace fs = std::filesystem;
-using eskin::shell_quote;
 
 std::string slurp(const std::string& path) {
   std::ifstream f(path);
@@ -122,9 +120,7 @@ void run_once(const Board& b, const FlowOptions& opt, const ToolRun& t, FlowRepo
   r.ran_tools = true;
   r.log = slurp(log);
   if (status == -1 || !WIFEXITED(status)) {
-    std::string line;
-    for (const auto& a : cmd) line += (line.empty() ? "" : " ") + shell_quote(a);
-    throw std::runtime_error("could not run " + line +
+    throw std::runtime_error("could not run " + eskin::printable_command(cmd) +
                              (status == -1 ? ": " + why : " (it ended on a signal)"));
   }
   if (WEXITSTATUS(status) == 3) throw std::runtime_error(r.log);  // a tool is missing

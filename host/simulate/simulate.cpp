@@ -2,9 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
+#include "eskin/skin_config.h"
 #include "host/fpga/board.h"
 #include "host/fpga/flow.h"
 #include "host/hall/hall_fpga_setup.h"
@@ -137,8 +143,27 @@ int run_simulate_dtmf(const sim::Scene& scene, const SimulateOptions& o) {
 
 }  // namespace
 
+// The output folder, created and written to once (a file made and removed)
+// before the simulation: an unwritable --out is found in a second, not
+// after the whole run. Throws ConfigError naming the path and the reason.
+void check_out_dir(const std::string& out) {
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec)
+    throw ConfigError("--out", fmt::format("'{}': cannot create the output folder: {}", out,
+                                           ec.message()));
+  const std::string probe = (std::filesystem::path(out) / (".eskin-write-probe." + std::to_string(::getpid()))).string();
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0)
+    throw ConfigError("--out", fmt::format("'{}': cannot write in the output folder: {}", out,
+                                           std::strerror(errno)));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 int run_simulate(const SimulateOptions& o) {
   const sim::Scene scene = sim::load_scene(o.scene);  // a bad scene fails here, before anything runs
+  check_out_dir(o.out);
   if (scene.has_hall && scene.has_skin) return run_simulate_mixed(scene, o);
   if (scene.has_hall) return run_simulate_hall(scene, o);
   return run_simulate_dtmf(scene, o);

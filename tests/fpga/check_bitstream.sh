@@ -44,10 +44,11 @@ if [ "$want" = fits ]; then
   case "$(realpath "$bit")" in "$outdir"/*) ;; *) fail "bitstream '$bit' is not in $outdir" ;; esac
   for v in "$out"/*.v; do
     [ -f "$v" ] || continue
-    for hex in $(grep -o '"/[^"]*\.hex"' "$v" | tr -d '"'); do
+    # One name a line: OUT's path may hold spaces.
+    while IFS= read -r hex; do
       [ -s "$hex" ] || fail "$v names $hex, which is not there"
       case "$hex" in "$outdir"/*) ;; *) fail "$v names $hex, outside $outdir" ;; esac
-    done
+    done < <(grep -o '"/[^"]*\.hex"' "$v" | tr -d '"')
   done
   lines=$(jq '[.hall.pins // [] | .[] | select(.open_drain)] | length' "$report")
   asc=${bit%.bin}.asc

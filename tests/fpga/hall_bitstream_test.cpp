@@ -7,6 +7,8 @@
 // and bitstream.*_mixed_* ctests (tests/fpga/CMakeLists.txt).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -15,7 +17,7 @@
 #include <sstream>
 #include <string>
 
-#include "eskin/shell.h"
+#include "eskin/process.h"
 #include "host/fpga/board.h"
 #include "host/fpga/core_flows.h"
 #include "host/fpga/hall_pins.h"
@@ -208,13 +210,16 @@ TEST_P(HallBuild, GeneratedCoreInItsWrapperLintsCleanAndEveryPinIsPlaced) {
   const std::string pins = slurp(t.constraints);
   for (const auto& p : r.hall.pins.pins)
     EXPECT_NE(pins.find(p.signal), std::string::npos) << p.signal;
-  std::string cmd = "verilator --lint-only -Wall -y " + eskin::shell_quote(ESKIN_SOURCE_DIR "/rtl") +
-                    " --top-module " + t.top;
-  for (const auto& d : t.defines) cmd += " +define+" + d;
-  for (const auto& p : t.params) cmd += " -G" + p.name + "=" + p.value;
-  cmd += " " + eskin::shell_quote(std::string(ESKIN_SOURCE_DIR) + "/rtl/" + t.top + ".v");
-  for (const auto& f : t.reads) cmd += " " + eskin::shell_quote(f);
-  EXPECT_EQ(std::system((cmd + " 2>&1").c_str()), 0) << cmd;
+  std::vector<std::string> cmd{"verilator", "--lint-only", "-Wall", "-y", ESKIN_SOURCE_DIR "/rtl",
+                               "--top-module", t.top};
+  for (const auto& d : t.defines) cmd.push_back("+define+" + d);
+  for (const auto& p : t.params) cmd.push_back("-G" + p.name + "=" + p.value);
+  cmd.push_back(std::string(ESKIN_SOURCE_DIR) + "/rtl/" + t.top + ".v");
+  for (const auto& f : t.reads) cmd.push_back(f);
+  const std::string log = (std::filesystem::temp_directory_path() /
+                           ("hall_lint_" + t.top + "_" + std::to_string(::getpid()) + ".log")).string();
+  EXPECT_EQ(eskin::run_logged(cmd, log), 0) << eskin::printable_command(cmd) << "\n" << slurp(log);
+  std::filesystem::remove(log);
 }
 
 INSTANTIATE_TEST_SUITE_P(

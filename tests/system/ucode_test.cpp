@@ -46,7 +46,8 @@ const char* const kSumProgram =
 TEST(Ucode, AsmWritesTheImageAndListing) {
   const fs::path d = dir();
   write(d / "sum.fe", kSumProgram);
-  const Result r = sh("ucode asm " + (d / "sum.fe").string() + " -D COUNT=3 -D PORT=0x20 --list " +
+  const Result r = sh("ucode asm " + (d / "sum.fe").string() + " -D COUNT=3 -D PORT=0x20 -o " +
+                      (d / "sum.hex").string() + " --list " +
                       (d / "sum.lst").string());
   ASSERT_EQ(r.status, 0) << r.out;
   // ldx x1,3 | ld 0 | add k[0 + x1] | djnz x1,2 | st [3] | out io[0x20] | j 6
