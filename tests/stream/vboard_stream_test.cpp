@@ -296,16 +296,20 @@ TEST(StreamOnVirtualBoard, ConfigTwiceThenStreamOnOneBoardRun) {
 }
 
 // At the end of its scene the board hangs up once its reader has read
-// every byte: `eskin stream` ends on its own, exit 0, with every packet the
-// board sent (one per frame delimiter in the done line's frame_end_ns,
-// with no link error).
+// every byte: `eskin stream` (on the board's --pty-link, as a user runs it)
+// ends on its own, exit 0, with every packet the board sent (one per frame
+// delimiter in the done line's frame_end_ns, with no link error), and the
+// board's pty and symlink are gone.
 TEST(StreamOnVirtualBoard, StreamEndsWhenTheBoardHangsUpWithEveryPacket) {
-  VboardProcess vb(ESKIN_VBOARD_BIN, {scene_cut(0.1, "stream_vboard_end")});
   const std::string dir = ::testing::TempDir();
-  eskin::testing::Process st({ESKIN_BIN, "stream", "--port", vb.pty(), "-q"},
-                             dir + "vb_end_out", dir + "vb_end_err");
+  const std::string link = dir + "vb_end_board.tty";
+  VboardProcess vb(ESKIN_VBOARD_BIN, {scene_cut(0.1, "stream_vboard_end"), "--pty-link", link});
+  eskin::testing::Process st({ESKIN_BIN, "stream", "--port", link, "-q"}, dir + "vb_end_out",
+                             dir + "vb_end_err");
   ASSERT_EQ(st.wait_exit(90s), 0) << "eskin stream did not end on its own:\n" << st.err();
   EXPECT_EQ(vb.wait(), 0);
+  EXPECT_FALSE(std::filesystem::is_symlink(link)) << "the board left its --pty-link behind";
+  EXPECT_FALSE(std::filesystem::exists(vb.pty())) << "the pty outlived its board";
   ASSERT_FALSE(vb.done().is_null());
   const long frames = long(vb.done().at("frame_end_ns").size());
   ASSERT_GT(frames, 100);
