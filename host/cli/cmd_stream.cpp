@@ -17,8 +17,8 @@
 #include <thread>
 
 #include "cli/command.h"
-#include "eskin/exit_codes.h"
 #include "cli/link_options.h"
+#include "eskin/exit_codes.h"
 #include "host/stream/link_stream.h"
 #include "host/stream/live_view.h"
 #include "host/stream/record_hdf5.h"
