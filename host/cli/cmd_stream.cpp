@@ -1,7 +1,10 @@
 // eskin stream: read the FPGA link (serial device, the virtual board's pty,
 // or TCP), print decoded packets as NDJSON, record CSV / HDF5, and serve a
-// live view. Runs until --duration / --count or SIGINT/SIGTERM; a link that
-// drops is reported on stderr and reopened, and recordings stay intact.
+// live view. Runs until --duration / --count or SIGINT/SIGTERM, or until the
+// board hangs up (the virtual board's pty, at the end of its scene); a
+// serial device or TCP link that drops is reported on stderr and reopened,
+// and recordings stay intact. Bytes that decode to no packet (a wrong
+// --baud) end the run with the rate that decodes named, exit code 5.
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -15,6 +18,7 @@
 
 #include "cli/command.h"
 #include "cli/link_options.h"
+#include "eskin/exit_codes.h"
 #include "host/stream/link_stream.h"
 #include "host/stream/live_view.h"
 #include "host/stream/record_hdf5.h"
@@ -97,6 +101,16 @@ void print_event(const LinkEvent& e) {
         std::cerr << "eskin stream: " << e.message << " (attempt " << e.attempt
                   << "; retrying)\n";
       break;
+    case LinkEvent::Kind::HungUp:
+      std::cerr << "eskin stream: " << e.message << "; the stream ends\n";
+      break;
+    case LinkEvent::Kind::Idle:
+    case LinkEvent::Kind::Resumed:
+      std::cerr << "eskin stream: " << e.message << "\n";
+      break;
+    case LinkEvent::Kind::WrongBaud:
+      std::cerr << "eskin stream: error: " << e.message << "\n";
+      break;
   }
 }
 
@@ -141,7 +155,7 @@ int run_stream(const StreamArgs& a) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   auto last_flush = t0;
-  while (!g_interrupted) {
+  while (!g_interrupted && stream.ended() == StreamEnd::Running) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
     const auto now = clock::now();
     if (a.count && packets >= a.count) break;
@@ -166,6 +180,15 @@ int run_stream(const StreamArgs& a) {
   if (st.connects == 0) {
     std::cerr << "eskin stream: error: the link never opened (" << ep.describe() << ")\n";
     return 1;
+  }
+  // A wrong baud rate (print_event said which rate decodes), or a run too
+  // short to find out: bytes and link errors but not one packet.
+  if (stream.ended() == StreamEnd::WrongBaud) return eskin::exit_code(eskin::Exit::no_packets);
+  if (st.link.frames_ok == 0 && st.corrupt() > 0) {
+    std::cerr << "eskin stream: error: " << st.link.bytes << " bytes with " << st.corrupt()
+              << " link errors and no packet decoded (" << ep.describe()
+              << "): is --baud the board's rate?\n";
+    return eskin::exit_code(eskin::Exit::no_packets);
   }
   return 0;
 }

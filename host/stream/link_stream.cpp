@@ -1,6 +1,10 @@
 #include "host/stream/link_stream.h"
 
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 namespace eskin::stream {
@@ -17,6 +21,22 @@ void add(link::DecoderStats& a, const link::DecoderStats& b) {
   a.payload_errors += b.payload_errors;
   a.seq_gaps += b.seq_gaps;
   a.lost_packets += b.lost_packets;
+}
+
+// A UNIX98 pty slave (char major 136-143, Documentation/admin-guide/
+// devices.txt): the virtual board's port, or another program's pty. fstat
+// on the open descriptor, so a symlink to it counts as what it points to.
+bool is_pty_slave(int fd) {
+  struct stat st {};
+  if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISCHR(st.st_mode)) return false;
+  const unsigned m = major(st.st_rdev);
+  return m >= 136 && m <= 143;
+}
+
+std::string seconds_text(double s) {
+  char b[32];
+  std::snprintf(b, sizeof b, s == double(long(s)) ? "%.0f" : "%.1f", s);
+  return b;
 }
 
 // A connection's decoder statistics without the partial first frame.
@@ -39,6 +59,7 @@ void LinkStream::on_event(EventFn fn) { on_event_ = std::move(fn); }
 void LinkStream::start() {
   if (running_) return;
   stop_ = false;
+  ended_ = StreamEnd::Running;
   if (!opt_.reconnect) {  // the first open must work: fail here, in the caller
     Channel ch(opt_.endpoint);
     std::lock_guard<std::mutex> lk(chan_mu_);
@@ -80,6 +101,7 @@ bool LinkStream::open_with_backoff(int& failures) {
 }
 
 void LinkStream::run() {
+  using clock = std::chrono::steady_clock;
   std::vector<uint8_t> buf(1 << 16);
   int failures = 0;
   bool first = true;
@@ -97,21 +119,30 @@ void LinkStream::run() {
       std::lock_guard<std::mutex> lk(mu_);
       ++stats_.connects;
     }
+    const bool serial = opt_.endpoint.kind == Endpoint::Kind::Serial;
+    const bool on_pty = serial && is_pty_slave(channel_.fd());
     connected_ = true;
     if (on_event_) on_event_({LinkEvent::Kind::Opened, opt_.endpoint.describe(), 0});
 
     link::LinkDecoder dec(opt_.max_payload);
     dec.on_packet([this](const link::Packet& p) { deliver(p); });
+    last_packet_at_ = clock::now();
+    idle_reported_ = false;
+    std::optional<clock::time_point> first_byte_at;
     // A connection may start inside a frame: if the bytes up to its first
     // 0x00 do not decode, they are a partial frame (sync_bytes), not an error.
     bool synced = false;
     link::DecoderStats excused;
     std::string why;
+    bool wrong_baud = false;
     while (!stop_) {
       size_t got = 0;
       const ReadStatus st = channel_.read(buf.data(), buf.size(), got, 50, &why);
+      const auto now = clock::now();
+      check_idle(now);
       if (st == ReadStatus::Timeout) continue;
       if (st == ReadStatus::Closed) break;
+      if (!first_byte_at) first_byte_at = now;
       size_t from = 0;
       if (!synced) {
         const auto* z = std::find(buf.data(), buf.data() + got, uint8_t(0));
@@ -126,10 +157,22 @@ void LinkStream::run() {
         }
       }
       dec.feed(buf.data() + from, got - from);
-      std::lock_guard<std::mutex> lk(mu_);
-      stats_.link = closed_links_;
-      add(stats_.link, connection_stats(dec.stats(), excused));
-      stats_.sync_bytes = sync_closed_ + excused.bytes;
+      {
+        std::lock_guard<std::mutex> lk(mu_);
+        stats_.link = closed_links_;
+        add(stats_.link, connection_stats(dec.stats(), excused));
+        stats_.sync_bytes = sync_closed_ + excused.bytes;
+      }
+      // Bytes, link errors and not one packet: the line runs at another
+      // rate than ours (a real UART then reads garbage with framing errors).
+      const link::DecoderStats& d = dec.stats();
+      if (serial && opt_.detect_baud && d.frames_ok == 0 &&
+          d.crc_errors + d.framing_errors + d.payload_errors >= 2 &&
+          (d.bytes >= opt_.baud_check_bytes ||
+           now - *first_byte_at >= std::chrono::milliseconds(opt_.baud_check_ms))) {
+        wrong_baud = true;
+        break;
+      }
     }
     {
       std::lock_guard<std::mutex> lk(mu_);
@@ -137,21 +180,115 @@ void LinkStream::run() {
       sync_closed_ += excused.bytes;
       stats_.sync_bytes = sync_closed_;
       stats_.link = closed_links_;
-      if (!stop_) ++stats_.disconnects;
+      if (!stop_ && !wrong_baud) ++stats_.disconnects;
     }
     {
       std::lock_guard<std::mutex> lk(chan_mu_);
       channel_.close();
     }
     connected_ = false;
-    if (!stop_ && on_event_) on_event_({LinkEvent::Kind::Lost, why, 0});
-    if (!opt_.reconnect) break;
+    if (wrong_baud) {
+      const link::DecoderStats d = dec.stats();
+      const int found = probe_rates();
+      if (stop_) break;
+      ended_ = StreamEnd::WrongBaud;
+      if (on_event_) on_event_({LinkEvent::Kind::WrongBaud, wrong_baud_message(d, found), found});
+      break;
+    }
+    if (stop_) break;
+    // A pty's master closed: that board is gone for good (a board started
+    // again gets a new pty; the old /dev/pts/N no longer exists).
+    if (on_pty && opt_.pty_hangup_ends) {
+      ended_ = StreamEnd::HungUp;
+      if (on_event_)
+        on_event_({LinkEvent::Kind::HungUp,
+                   opt_.endpoint.path + ": the board hung up (the virtual board's scene is over)",
+                   0});
+      break;
+    }
+    if (on_event_) on_event_({LinkEvent::Kind::Lost, why, 0});
+    if (!opt_.reconnect) {
+      ended_ = StreamEnd::Lost;
+      break;
+    }
   }
   connected_ = false;
   cv_.notify_all();
 }
 
+// On the reader thread, at every read: an open link without a packet for
+// idle_after_ms is reported once (deliver() reports the packets' return).
+void LinkStream::check_idle(std::chrono::steady_clock::time_point now) {
+  if (opt_.idle_after_ms <= 0 || idle_reported_ ||
+      now - last_packet_at_ < std::chrono::milliseconds(opt_.idle_after_ms))
+    return;
+  idle_reported_ = true;
+  if (on_event_)
+    on_event_({LinkEvent::Kind::Idle,
+               "no packets for " + seconds_text(opt_.idle_after_ms / 1000.0) +
+                   " s: the board is idle",
+               0});
+}
+
+// Reopens the port at each of probe_bauds() (not the rate that failed) for
+// up to probe_ms; returns the first at which two packets decode (0: none).
+// A board (and the virtual board, which follows its reader's rate) sends
+// at its own rate whatever ours is, so the right rate decodes at once.
+int LinkStream::probe_rates() {
+  using clock = std::chrono::steady_clock;
+  std::vector<uint8_t> buf(1 << 16);
+  for (int baud : probe_bauds()) {
+    if (baud == opt_.endpoint.baud) continue;
+    Endpoint ep = opt_.endpoint;
+    ep.baud = baud;
+    Channel ch;
+    try {
+      ch = Channel(ep);
+    } catch (const LinkError&) {
+      continue;  // the driver refuses the rate: it cannot be the line's
+    }
+    link::LinkDecoder dec(opt_.max_payload);
+    const auto end = clock::now() + std::chrono::milliseconds(opt_.probe_ms);
+    while (!stop_ && clock::now() < end && dec.stats().frames_ok < 2) {
+      size_t got = 0;
+      const ReadStatus st = ch.read(buf.data(), buf.size(), got, 20, nullptr);
+      if (st == ReadStatus::Closed) break;
+      dec.feed(buf.data(), got);
+    }
+    if (stop_) return 0;
+    if (dec.stats().frames_ok >= 2) return baud;
+  }
+  return 0;
+}
+
+std::string LinkStream::wrong_baud_message(const link::DecoderStats& d, int found) const {
+  std::string errors = std::to_string(d.framing_errors) + " framing errors";
+  if (d.crc_errors) errors += ", " + std::to_string(d.crc_errors) + " CRC errors";
+  if (d.payload_errors) errors += ", " + std::to_string(d.payload_errors) + " payload errors";
+  std::string m = opt_.endpoint.path + ": no packet decoded at " +
+                  std::to_string(opt_.endpoint.baud) + " baud (" + errors + " in " +
+                  std::to_string(d.bytes) + " bytes); ";
+  if (found > 0)
+    return m + "the line decodes at " + std::to_string(found) + " baud: use --baud " +
+           std::to_string(found);
+  std::string rates;
+  for (int b : probe_bauds())
+    if (b != opt_.endpoint.baud) rates += (rates.empty() ? "" : ", ") + std::to_string(b);
+  return m + "no packet decoded at " + rates + " either: is it the board's link?";
+}
+
 void LinkStream::deliver(const link::Packet& p) {
+  const auto now = std::chrono::steady_clock::now();
+  if (idle_reported_) {
+    idle_reported_ = false;
+    if (on_event_)
+      on_event_({LinkEvent::Kind::Resumed,
+                 "packets again after " +
+                     seconds_text(std::chrono::duration<double>(now - last_packet_at_).count()) +
+                     " s",
+                 0});
+  }
+  last_packet_at_ = now;
   if (on_packet_) on_packet_(p);
   const auto it = on_type_.find(p.type);
   if (it != on_type_.end()) it->second(p);

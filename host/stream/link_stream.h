@@ -6,7 +6,14 @@
 //   * a bounded pull queue (pop): when full, the oldest packet is dropped
 //     and counted, so a slow consumer never stalls the link.
 // A link that drops (EOF, EIO, device removed, connection reset) is reported
-// through on_event and reopened with exponential back-off; every connection
+// through on_event and reopened with exponential back-off, except a
+// pseudo-terminal (the virtual board's pty) that hangs up: a board that
+// closes its pty has ended (a new one gets a new pty), so the stream ends
+// (LinkEvent::HungUp, ended()). A link on which bytes arrive but no packet
+// decodes (framing errors only) is at the wrong baud rate: the stream
+// probes the common rates, says which one decodes (LinkEvent::WrongBaud)
+// and ends. A link open with no packet for idle_after_ms is reported idle,
+// once, and again when packets resume. Every connection
 // starts a fresh decoder; if the bytes up to its first 0x00 do not decode,
 // they were the tail of a frame sent before we listened and count as
 // sync_bytes, not as an error. The statistics add up over connections.
@@ -45,14 +52,39 @@ struct StreamOptions {
   int backoff_max_ms = 2000;
   size_t queue_capacity = 65536;  // pull queue bound; 0 = no queue (callbacks only)
   size_t max_payload = 65535;     // decoder's frame bound (larger: framing error)
+  // A pty that hangs up ends the stream (false: reopen it like a serial
+  // device, e.g. a pty standing in for a /dev/ttyUSB in a test).
+  bool pty_hangup_ends = true;
+  int idle_after_ms = 3000;       // report "idle" after this long without a packet (0: never)
+  // A serial link whose bytes decode to nothing: after baud_check_ms from
+  // its first byte, or baud_check_bytes bytes, with at least two link
+  // errors and no packet, probe kProbeBauds (0 / false: never).
+  bool detect_baud = true;
+  int baud_check_ms = 1000;
+  uint64_t baud_check_bytes = 3000;
+  int probe_ms = 1000;            // per rate: listen this long for two good packets
 };
 
+// The rates probed at a wrong baud rate, most likely first (the board's
+// own rate, then the common USB-serial ones).
+inline const std::vector<int>& probe_bauds() {
+  static const std::vector<int> v{3000000, 2000000, 1000000, 921600, 460800, 230400, 115200};
+  return v;
+}
+
 struct LinkEvent {
-  enum class Kind { Opened, Lost, OpenFailed };
+  // HungUp: a pty's board closed it (the stream ends). Idle: no packet for
+  // idle_after_ms on an open link; Resumed: packets again after Idle.
+  // WrongBaud: bytes but no packet; the message names the rate that decodes
+  // (the stream ends).
+  enum class Kind { Opened, Lost, OpenFailed, HungUp, Idle, Resumed, WrongBaud };
   Kind kind;
   std::string message;  // names the endpoint and the cause
-  int attempt = 0;      // OpenFailed: consecutive failures so far
+  int attempt = 0;      // OpenFailed: consecutive failures so far; WrongBaud: the rate that decodes (0: none)
 };
+
+// Why the reader stopped on its own (LinkStream::ended()).
+enum class StreamEnd { Running, Lost, HungUp, WrongBaud };
 
 struct StreamStats {
   link::DecoderStats link;        // summed over all connections
@@ -93,6 +125,9 @@ class LinkStream {
   void stop();  // joins the reader; idempotent
   bool running() const { return running_; }
   bool connected() const { return connected_; }
+  // Running until the reader stops on its own: a lost link without
+  // reconnect, a pty that hung up, a wrong baud rate.
+  StreamEnd ended() const { return ended_; }
 
   // Pull API: waits up to `wait` for a packet.
   bool pop(link::Packet& out, std::chrono::milliseconds wait = std::chrono::milliseconds(0));
@@ -121,6 +156,9 @@ class LinkStream {
   void run();
   bool open_with_backoff(int& failures);
   void deliver(const link::Packet& p);
+  void check_idle(std::chrono::steady_clock::time_point now);
+  int probe_rates();
+  std::string wrong_baud_message(const link::DecoderStats& d, int found) const;
 
   StreamOptions opt_;
   PacketFn on_packet_;
@@ -131,6 +169,11 @@ class LinkStream {
   std::atomic<bool> running_{false};
   std::atomic<bool> stop_{false};
   std::atomic<bool> connected_{false};
+  std::atomic<StreamEnd> ended_{StreamEnd::Running};
+  // Reader thread only: the last packet's arrival (or the link's opening),
+  // and whether the idle time was reported.
+  std::chrono::steady_clock::time_point last_packet_at_;
+  bool idle_reported_ = false;
 
   mutable std::mutex chan_mu_;  // channel_ (reader reopens, command() writes)
   Channel channel_;

@@ -1,6 +1,7 @@
 #include "sim/vboard/pty_port.h"
 
 #include <fcntl.h>
+#include <sys/ioctl.h>
 #include <poll.h>
 #include <termios.h>
 #include <unistd.h>
@@ -59,9 +60,29 @@ PtyPort::PtyPort() {
   if (tcsetattr(fd_, TCSANOW, &t) != 0) fail("tcsetattr");
 }
 
-PtyPort::~PtyPort() {
+PtyPort::~PtyPort() { hang_up(); }
+
+void PtyPort::hang_up() {
   if (!link_.empty()) ::unlink(link_.c_str());
+  link_.clear();
   if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+}
+
+long PtyPort::unread() const {
+  if (fd_ < 0) return 0;
+  // TIOCGPTPEER opens this master's own slave (no path lookup, no race
+  // with another pty taking the name).
+  int s = -1;
+#ifdef TIOCGPTPEER
+  s = ::ioctl(fd_, TIOCGPTPEER, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+#endif
+  if (s < 0) s = ::open(slave_.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (s < 0) return -1;
+  int n = 0;
+  const int rc = ::ioctl(s, FIONREAD, &n);
+  ::close(s);
+  return rc == 0 ? long(n) : -1;
 }
 
 void PtyPort::link(const std::string& path) {

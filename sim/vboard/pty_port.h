@@ -6,6 +6,20 @@
 //
 // The slave starts raw at speed B0 ("not configured"), so the board can
 // tell when a reader has opened and configured the port.
+//
+// Linux pty semantics the board relies on (checked by experiment, and by
+// tests/vboard and tests/stream/vboard_stream_test.cpp):
+//  - after the slave's last close the master polls POLLHUP, until the
+//    slave is opened again, which works while the master is open;
+//  - the slave's termios (raw mode, the reader's baud rate) outlive that
+//    close: a reopening reader finds the last rate, as a USB serial
+//    adapter's driver keeps its settings;
+//  - bytes written to the master while nobody has the slave open are kept
+//    (about 12 KB, then writes would block) for the next reader;
+//  - closing the master discards what the reader has not read yet and the
+//    slave device goes away (its next read returns end of file, a new open
+//    of /dev/pts/N fails): a board hangs up only once the reader has read
+//    everything (unread() is 0).
 #pragma once
 
 #include <cstddef>
@@ -35,6 +49,14 @@ class PtyPort {
   // Blocks until the master can take more bytes, the reader closes, or
   // timeout_ms passes; false on timeout or close.
   bool wait_writable(int timeout_ms);
+  // Bytes written to the master that the reader has not read yet (FIONREAD
+  // on a descriptor of the slave opened for the question); -1 when it
+  // cannot be known (the slave refused a second open: TIOCEXCL).
+  long unread() const;
+  // The board hangs up: closes the master (the reader sees end of file) and
+  // removes the symlink.
+  void hang_up();
+  bool hung_up() const { return fd_ < 0; }
 
  private:
   int fd_ = -1;

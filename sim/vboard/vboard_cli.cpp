@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <systemc>
@@ -81,16 +83,40 @@ void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra) {
                       {"usb_framing_errors", s.usb_framing_errors},
                       {"reader_baud", s.reader_baud},
                       {"baud_mismatches", s.baud_mismatches},
-                      {"reader_closed", s.reader_closed},
+                      {"reader_closes", s.reader_closes},
+                      {"bytes_dropped", s.bytes_dropped},
                       {"frame_end_ns", s.frame_end_ns}};
   j.update(extra);
   std::fprintf(json, "%s\n", j.dump().c_str());
   std::fflush(json);
 }
 
-void wait_for_reader(const PtyPort& pty, const BoardStats& s, double timeout_s) {
-  for (int i = 0; i < int(timeout_s * 100) && !pty.reader_closed() && s.reader_baud > 0; ++i)
+void hang_up_when_read(PtyPort& pty, const BoardStats& s, double timeout_s) {
+  using clock = std::chrono::steady_clock;
+  auto progress = clock::now();
+  long last = -2;
+  int empty = 0;
+  while (s.reader_baud > 0 && !pty.reader_closed()) {
+    const long n = pty.unread();
+    if (n == 0 && ++empty >= 2) break;
+    if (n != 0) empty = 0;
+    if (n != last) progress = clock::now();
+    last = n;
+    // Unknown (-1): a reader that reads at all drains the pty's few KB
+    // within milliseconds; a second is plenty.
+    const double limit = n < 0 ? std::min(timeout_s, 1.0) : timeout_s;
+    if (clock::now() - progress > std::chrono::duration<double>(limit)) {
+      std::fprintf(stderr,
+                   n > 0 ? "virtual board: the reader left %ld bytes unread for %.0f s (--reader-timeout): "
+                           "hanging up\n"
+                         : "virtual board: cannot tell what the reader has read (%ld): hanging up "
+                           "after %.0f s\n",
+                   n, limit);
+      break;
+    }
     usleep(10000);
+  }
+  pty.hang_up();
 }
 
 void require_build(const std::string& scene_file, const std::string& kind,

@@ -56,8 +56,14 @@ void print_ready(FILE* json, const PtyPort& pty, const std::string& key, double 
 // {"event":"done", the board's figures, extra...}; throws if the board
 // stopped with an error.
 void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra);
-// The reader may still be draining the pty: closing the master now would
-// hang up its side. Waits until it closes (or the timeout).
-void wait_for_reader(const PtyPort& pty, const BoardStats& s, double timeout_s);
+// The end of a run, after the done line: the board hangs up (closes the
+// pty master, removes its symlink), so that a reader sees the end of the
+// stream instead of waiting on a board with nothing more to send. Closing
+// the master discards what the reader has not read yet, so it hangs up
+// once the reader has read every byte (the pty's queue seen empty twice,
+// 10 ms apart: a write may still be on its way into the queue), or at
+// once when nobody reads, or when the reader has read nothing for
+// `timeout_s` (then it says so on stderr).
+void hang_up_when_read(PtyPort& pty, const BoardStats& s, double timeout_s);
 
 }  // namespace eskin::vboard

@@ -7,7 +7,8 @@
 //
 // stdout carries one JSON object per line for the program that started the
 // board: {"event":"ready",...} once the pty exists, {"event":"done",...}
-// when every byte is in it. Messages go to stderr.
+// when every byte is in it; then, once the reader has read them, the board
+// hangs up (closes the pty). Messages go to stderr.
 
 #include <cmath>
 #include <cstdio>
@@ -115,7 +116,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   sc_core::sc_start();
   fpga.close_trace();
   eskin::vboard::print_done(json, board.stats(), nlohmann::json::object());
-  eskin::vboard::wait_for_reader(pty, board.stats(), a.reader_timeout_s);
+  eskin::vboard::hang_up_when_read(pty, board.stats(), a.reader_timeout_s);
   return 0;
 }
 

@@ -129,7 +129,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   sc_core::sc_start();
   fpga.close_trace();
   eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", eskin::vboard::drdy_times_ns(sensors)}});
-  eskin::vboard::wait_for_reader(pty, board.stats(), a.reader_timeout_s);
+  eskin::vboard::hang_up_when_read(pty, board.stats(), a.reader_timeout_s);
   return 0;
 }
 

@@ -79,6 +79,10 @@ bool VboardProcess::poll_done() {
 
 int VboardProcess::wait() {
   if (!exited_) {
+    // Its last lines first: a done line longer than the pipe holds would
+    // keep the child from exiting, and done() must hold it afterwards.
+    while (out_ >= 0 && read_lines(100)) {
+    }
     int st = 0;
     while (waitpid(pid_, &st, 0) < 0 && errno == EINTR) {
     }

@@ -27,7 +27,9 @@ class VboardProcess {
   // Non-blocking: true once the done line has arrived (then done() holds it).
   bool poll_done();
   const nlohmann::json& done() const { return done_; }
-  // Waits for the child to exit; returns its exit status (128 + signal).
+  // Reads the child's remaining status lines (done() then holds its done
+  // line, if it printed one) and waits for it to exit; returns its exit
+  // status (128 + signal).
   int wait();
 
  private:

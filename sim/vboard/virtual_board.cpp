@@ -78,7 +78,7 @@ void VirtualBoard::fpga_thread() {
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = cpu_seconds();
   const uint64_t batch = uint64_t(std::llround(kBatch.to_seconds() * cfg_.clk_hz));
-  while (running() && !stats_.reader_closed) {
+  while (running()) {
     run_cycles(cycle_ + batch);
     wait(time_of(cycle_) - sc_core::sc_time_stamp());
   }
@@ -103,22 +103,35 @@ void VirtualBoard::follow_reader_baud() {
 
 // Bridge -> pty (blocking while a reader is connected and behind: the
 // simulation waits for the host instead of dropping its data), pty ->
-// bridge (non-blocking).
+// bridge (non-blocking). With nobody reading (no reader has set a rate yet,
+// or the reader closed the pty) the bytes are dropped, as on a board whose
+// USB port nobody has open; a reader that opens the pty again resumes the
+// delivery.
 void VirtualBoard::move_bytes() {
   auto& out = usb_.to_host();
   auto& when = usb_.byte_times();
-  while (sent_to_host_ < out.size()) {
+  const bool reading = stats_.reader_baud > 0 && !pty_.reader_closed();
+  if (reading != reading_) {
+    if (!reading) ++stats_.reader_closes;
+    std::fprintf(stderr,
+                 !reading ? "virtual board: the reader closed %s: bytes to the host are dropped "
+                            "until a reader opens it again\n"
+                 : stats_.reader_closes > 0 ? "virtual board: a reader opened %s again: bytes to "
+                                              "the host resume\n"
+                                            : "virtual board: a reader opened %s\n",
+                 pty_.slave_path().c_str());
+    reading_ = reading;
+  }
+  while (reading && sent_to_host_ < out.size()) {
     const size_t w = pty_.write(out.data() + sent_to_host_, out.size() - sent_to_host_);
     for (size_t i = sent_to_host_; i < sent_to_host_ + w; ++i)
       if (out[i] == 0) stats_.frame_end_ns.push_back(when[i]);
     sent_to_host_ += w;
     if (w > 0) continue;
-    if (stats_.reader_baud == 0 || pty_.reader_closed()) {  // nobody reading: lost, as on a board
-      sent_to_host_ = out.size();
-      break;
-    }
+    if (pty_.reader_closed()) break;  // closed while we waited: the rest is lost
     pty_.wait_writable(100);
   }
+  stats_.bytes_dropped += out.size() - sent_to_host_;
   out.clear();
   when.clear();
   sent_to_host_ = 0;
@@ -180,13 +193,11 @@ void VirtualBoard::usb_thread() {
   }
   started_ = true;
   reader_ready_.notify(sc_core::SC_ZERO_TIME);
+  reading_ = stats_.reader_baud > 0;
   for (int visit = 1; !finished_; ++visit) {
     wait(kUsbPeriod);
     move_bytes();
-    if (visit % kBaudCheckEvery == 0) {
-      follow_reader_baud();
-      if (stats_.reader_baud > 0 && pty_.reader_closed()) stats_.reader_closed = true;
-    }
+    if (visit % kBaudCheckEvery == 0) follow_reader_baud();
   }
   move_bytes();
   stats_.cycles = cycle_;

@@ -12,6 +12,10 @@
 //          their real times, then waits for the batch's time to pass;
 //   usb    every kUsbPeriod moves bytes between the bridge and the pty,
 //          follows the reader's baud rate and reports a mismatch.
+// A reader may close the pty and open it again, as a program does with a
+// USB serial adapter: while nobody reads, the bytes for the host are
+// dropped (a board sends them all the same) and time goes on; a reader
+// that opens the port again gets the bytes from then on.
 // Cycles are never SystemC events: one event per clock edge would cost
 // more than the model (docs/vboard.md).
 #pragma once
@@ -59,7 +63,8 @@ struct BoardStats {
   uint64_t usb_framing_errors = 0;      // stop bits the bridge read as 0
   double reader_baud = 0;               // last rate the reader set
   uint64_t baud_mismatches = 0;         // times the reader's rate differed from the FPGA's
-  bool reader_closed = false;           // the reader went away before the end
+  uint64_t reader_closes = 0;           // times the reader closed the port while the board ran
+  uint64_t bytes_dropped = 0;           // bytes for the host while nobody was reading
   std::vector<double> frame_end_ns;     // time each 0x00 frame delimiter reached the host
   std::string error;                    // why the run stopped early (empty: it did not)
 };
@@ -93,6 +98,7 @@ SC_MODULE(VirtualBoard) {
   sc_core::sc_event reader_ready_;
   bool started_ = false, finished_ = false;
   size_t sent_to_host_ = 0;  // bytes of usb_.to_host() already in the pty
+  bool reading_ = false;     // a reader had the pty open at the last visit
   BoardStats stats_;
 };
 

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <termios.h>
 #include <thread>
 
 #include "host/link/link_encoder.h"
@@ -251,9 +252,11 @@ TEST(LinkStreamPty, OpenErrorsNameTheDevice) {
   EXPECT_THROW(s.start(), eskin::stream::LinkError);
 }
 
-// The board vanishes (pty master closed): the stream reports it, keeps
-// retrying, and picks up the new board at the same path (a symlink, as a
-// udev rule or the virtual board provides). Packets of both sessions arrive.
+// A serial device vanishes (a USB adapter unplugged): the stream reports
+// it, keeps retrying, and picks up the new device at the same path (a
+// symlink, as a udev rule provides). A pty stands in for the device, with
+// pty_hangup_ends off: a pty's hang-up otherwise ends the stream (next
+// test). Packets of both sessions arrive.
 TEST(LinkStreamPty, ReportsALostDeviceAndReopensIt) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("eskin_stream_reopen_" + std::to_string(getpid()));
@@ -264,7 +267,9 @@ TEST(LinkStreamPty, ReportsALostDeviceAndReopensIt) {
 
   auto board = std::make_unique<PtyPair>();
   std::filesystem::create_symlink(board->slave_path(), link);
-  LinkStream s(pty_options(link.string()));
+  StreamOptions o = pty_options(link.string());
+  o.pty_hangup_ends = false;
+  LinkStream s(o);
   Collector c;
   c.attach(s);
   s.start();
@@ -288,6 +293,175 @@ TEST(LinkStreamPty, ReportsALostDeviceAndReopensIt) {
   EXPECT_EQ(st.corrupt(), 0u);
   s.stop();
   std::filesystem::remove_all(dir);
+}
+
+// The board closes its pty (the virtual board at the end of its scene):
+// a pty that hangs up never comes back (a board started again gets a new
+// one), so the stream ends at once, saying so, instead of retrying; every
+// packet sent before the hang-up has arrived. Through a symlink, as
+// `eskin-vboard --pty-link` gives it.
+TEST(LinkStreamPty, APtyThatHangsUpEndsTheStream) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("eskin_stream_hangup_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const auto link = dir / "board.tty";
+  std::vector<Sent> sent;
+  const auto frames = random_frames(100, 5, sent);
+  PtyPair board;
+  std::filesystem::create_symlink(board.slave_path(), link);
+  LinkStream s(pty_options(link.string()));
+  Collector c;
+  c.attach(s);
+  s.start();
+  ASSERT_TRUE(c.wait_event(LinkEvent::Kind::Opened, 1));
+  ASSERT_TRUE(write_fully(board.master(), concat(frames)));
+  ASSERT_TRUE(c.wait_packets(sent.size()));
+  board.close_master();
+  ASSERT_TRUE(c.wait_event(LinkEvent::Kind::HungUp, 1)) << "the stream did not see the hang-up";
+  for (auto end = std::chrono::steady_clock::now() + 5s;
+       s.ended() == eskin::stream::StreamEnd::Running && std::chrono::steady_clock::now() < end;)
+    std::this_thread::sleep_for(5ms);
+  EXPECT_EQ(s.ended(), eskin::stream::StreamEnd::HungUp);
+  std::this_thread::sleep_for(300ms);  // backoff_min_ms is 10: a retry would have come by now
+  EXPECT_EQ(c.count(LinkEvent::Kind::OpenFailed), 0u) << "it retried a pty that hung up";
+  EXPECT_EQ(c.count(LinkEvent::Kind::Lost), 0u);
+  {
+    std::lock_guard<std::mutex> lk(c.mu);
+    for (const auto& e : c.events)
+      if (e.kind == LinkEvent::Kind::HungUp) {
+        EXPECT_NE(e.message.find("the board hung up (the virtual board's scene is over)"),
+                  std::string::npos) << e.message;
+        EXPECT_NE(e.message.find(link.string()), std::string::npos) << e.message;
+      }
+  }
+  expect_same(sent, c.snapshot());
+  EXPECT_EQ(s.stats().connects, 1u);
+  s.stop();
+  std::filesystem::remove_all(dir);
+}
+
+// An open link with nothing on it is reported idle once, and the packets'
+// return is reported too.
+TEST(LinkStreamPty, AnIdleLinkIsReportedOnceAndItsEnd) {
+  PtyPair pty;
+  StreamOptions o = pty_options(pty.slave_path());
+  o.idle_after_ms = 200;
+  LinkStream s(o);
+  Collector c;
+  c.attach(s);
+  s.start();
+  ASSERT_TRUE(c.wait_event(LinkEvent::Kind::Idle, 1, 3s));
+  std::this_thread::sleep_for(500ms);
+  EXPECT_EQ(c.count(LinkEvent::Kind::Idle), 1u) << "said more than once";
+  std::vector<Sent> sent;
+  ASSERT_TRUE(write_fully(pty.master(), concat(random_frames(20, 6, sent))));
+  ASSERT_TRUE(c.wait_packets(sent.size()));
+  ASSERT_TRUE(c.wait_event(LinkEvent::Kind::Resumed, 1));
+  std::lock_guard<std::mutex> lk(c.mu);
+  EXPECT_EQ(c.events[1].message, "no packets for 0.2 s: the board is idle");
+  EXPECT_EQ(c.events[2].message.rfind("packets again after ", 0), 0u) << c.events[2].message;
+}
+
+// A fake board on a pty that, like a UART and like the virtual board's
+// bridge, sends its frames intact only when its reader's rate (the pty's
+// termios, read on the master) is the board's, and bytes that decode to
+// nothing otherwise. `board_baud` 0: never intact.
+class BaudFollowingBoard {
+ public:
+  BaudFollowingBoard(PtyPair& pty, speed_t board_baud) : pty_(pty), baud_(board_baud) {
+    th_ = std::thread([this] { run(); });
+  }
+  ~BaudFollowingBoard() {
+    stop_ = true;
+    th_.join();
+  }
+
+ private:
+  void run() {
+    std::mt19937 rng(7);
+    std::vector<Sent> sent;
+    const auto frames = random_frames(200000, 8, sent);
+    size_t next = 0;
+    while (!stop_) {
+      termios t{};
+      tcgetattr(pty_.master(), &t);
+      std::vector<uint8_t> chunk;
+      if (baud_ != 0 && cfgetospeed(&t) == baud_) {
+        for (int i = 0; i < 4; ++i) {
+          const auto& f = frames[next++ % frames.size()];
+          chunk.insert(chunk.end(), f.begin(), f.end());
+        }
+      } else {
+        for (int i = 0; i < 200; ++i) chunk.push_back(uint8_t(rng()));
+      }
+      // Non-blocking, the rest dropped when the pty is full: once the
+      // stream has ended nobody reads, and the test must still end.
+      pollfd q{pty_.master(), POLLOUT, 0};
+      if (::poll(&q, 1, 10) == 1 && (q.revents & POLLOUT)) {
+        const int fl = fcntl(pty_.master(), F_GETFL);
+        fcntl(pty_.master(), F_SETFL, fl | O_NONBLOCK);
+        const ssize_t w = ::write(pty_.master(), chunk.data(), chunk.size());
+        (void)w;
+        fcntl(pty_.master(), F_SETFL, fl);
+      }
+      std::this_thread::sleep_for(2ms);
+    }
+  }
+  PtyPair& pty_;
+  speed_t baud_;
+  std::atomic<bool> stop_{false};
+  std::thread th_;
+};
+
+// At the wrong rate bytes arrive and nothing decodes: the stream finds it
+// within the run (after baud_check_ms), probes the common rates, names the
+// one that decodes, and ends.
+TEST(LinkStreamPty, AWrongBaudRateIsFoundAndTheRightOneNamed) {
+  PtyPair pty;
+  BaudFollowingBoard board(pty, B2000000);
+  StreamOptions o = pty_options(pty.slave_path());
+  o.endpoint.baud = 115200;
+  o.baud_check_ms = 300;
+  o.probe_ms = 400;
+  LinkStream s(o);
+  Collector c;
+  c.attach(s);
+  const auto t0 = std::chrono::steady_clock::now();
+  s.start();
+  ASSERT_TRUE(c.wait_event(LinkEvent::Kind::WrongBaud, 1, 20s));
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, 10s);
+  EXPECT_EQ(s.ended(), eskin::stream::StreamEnd::WrongBaud);
+  EXPECT_TRUE(c.snapshot().empty()) << "no packet at 115200 baud";
+  std::lock_guard<std::mutex> lk(c.mu);
+  const LinkEvent& e = c.events.back();
+  EXPECT_EQ(e.attempt, 2000000);
+  EXPECT_NE(e.message.find("no packet decoded at 115200 baud ("), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find(" framing errors in "), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("the line decodes at 2000000 baud: use --baud 2000000"),
+            std::string::npos)
+      << e.message;
+  EXPECT_EQ(s.stats().link.frames_ok, 0u);
+}
+
+TEST(LinkStreamPty, GarbageAtEveryRateSaysNoRateDecodes) {
+  PtyPair pty;
+  BaudFollowingBoard board(pty, 0);
+  StreamOptions o = pty_options(pty.slave_path());
+  o.baud_check_ms = 300;
+  o.probe_ms = 150;
+  LinkStream s(o);
+  Collector c;
+  c.attach(s);
+  s.start();
+  ASSERT_TRUE(c.wait_event(LinkEvent::Kind::WrongBaud, 1, 20s));
+  std::lock_guard<std::mutex> lk(c.mu);
+  const LinkEvent& e = c.events.back();
+  EXPECT_EQ(e.attempt, 0);
+  EXPECT_NE(e.message.find("no packet decoded at 3000000 baud ("), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("no packet decoded at 2000000, 1000000, 921600, 460800, 230400, 115200 "
+                           "either"),
+            std::string::npos)
+      << e.message;
 }
 
 TEST(LinkStreamTcp, DeliversPacketsAndReconnectsOverLoopback) {

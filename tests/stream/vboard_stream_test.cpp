@@ -253,4 +253,93 @@ TEST(StreamOnVirtualBoard, ConfigCliReportsTheFpgasRejection) {
   EXPECT_EQ(vb.wait(), 0);
 }
 
+// The number in "eskin stream: N packets; link ..." (-1: not printed).
+long stream_packets(const std::string& err) {
+  std::smatch m;
+  if (!std::regex_search(err, m, std::regex(R"(eskin stream: (\d+) packets; link)"))) return -1;
+  return std::stol(m[1]);
+}
+
+// "status: accepted N" in eskin config's report (-1: not printed).
+long config_accepted(const std::string& out) {
+  std::smatch m;
+  if (!std::regex_search(out, m, std::regex(R"(status: accepted (\d+))"))) return -1;
+  return std::stol(m[1]);
+}
+
+// A reader closing the pty is not the end of the board, as with a USB
+// serial adapter: `eskin config` twice, then `eskin stream`, one board run.
+// The FPGA's command counter goes on from one config to the next (the same
+// FPGA, not a new board), and the board ends at its scene's end, exit 0.
+TEST(StreamOnVirtualBoard, ConfigTwiceThenStreamOnOneBoardRun) {
+  VboardProcess vb(ESKIN_VBOARD_BIN, {scene_cut(1.5, "stream_vboard_reopen")});
+  const std::string dir = ::testing::TempDir();
+  eskin::testing::Process c1({ESKIN_BIN, "config", "--port", vb.pty(), "set-mask", "0x1F"},
+                             dir + "vb_reopen_c1_out", dir + "vb_reopen_c1_err");
+  ASSERT_EQ(c1.wait_exit(120s), 0) << c1.out() << c1.err();
+  eskin::testing::Process c2({ESKIN_BIN, "config", "--port", vb.pty(), "set-threshold", "0", "3000"},
+                             dir + "vb_reopen_c2_out", dir + "vb_reopen_c2_err");
+  ASSERT_EQ(c2.wait_exit(120s), 0) << c2.out() << c2.err();
+  const long a1 = config_accepted(c1.out()), a2 = config_accepted(c2.out());
+  ASSERT_GT(a1, 0) << c1.out();
+  EXPECT_GT(a2, a1) << "the second config's FPGA did not count the first's commands:\n"
+                    << c1.out() << c2.out();
+  eskin::testing::Process st({ESKIN_BIN, "stream", "--port", vb.pty(), "-q", "--count", "20"},
+                             dir + "vb_reopen_st_out", dir + "vb_reopen_st_err");
+  ASSERT_EQ(st.wait_exit(120s), 0) << st.err();
+  EXPECT_EQ(stream_packets(st.err()), 20) << st.err();
+  EXPECT_NE(st.err().find("\"crc_errors\":0,\"framing_errors\":0"), std::string::npos) << st.err();
+  EXPECT_EQ(vb.wait(), 0);
+  ASSERT_FALSE(vb.done().is_null());
+  EXPECT_GE(vb.done().at("reader_closes").get<uint64_t>(), 2u);
+  EXPECT_EQ(vb.done().at("baud_mismatches").get<uint64_t>(), 0u);
+}
+
+// At the end of its scene the board hangs up once its reader has read
+// every byte: `eskin stream` (on the board's --pty-link, as a user runs it)
+// ends on its own, exit 0, with every packet the board sent (one per frame
+// delimiter in the done line's frame_end_ns, with no link error), and the
+// board's pty and symlink are gone.
+TEST(StreamOnVirtualBoard, StreamEndsWhenTheBoardHangsUpWithEveryPacket) {
+  const std::string dir = ::testing::TempDir();
+  const std::string link = dir + "vb_end_board.tty";
+  VboardProcess vb(ESKIN_VBOARD_BIN, {scene_cut(0.1, "stream_vboard_end"), "--pty-link", link});
+  eskin::testing::Process st({ESKIN_BIN, "stream", "--port", link, "-q"}, dir + "vb_end_out",
+                             dir + "vb_end_err");
+  ASSERT_EQ(st.wait_exit(90s), 0) << "eskin stream did not end on its own:\n" << st.err();
+  EXPECT_EQ(vb.wait(), 0);
+  EXPECT_FALSE(std::filesystem::is_symlink(link)) << "the board left its --pty-link behind";
+  EXPECT_FALSE(std::filesystem::exists(vb.pty())) << "the pty outlived its board";
+  ASSERT_FALSE(vb.done().is_null());
+  const long frames = long(vb.done().at("frame_end_ns").size());
+  ASSERT_GT(frames, 100);
+  EXPECT_EQ(stream_packets(st.err()), frames) << st.err();
+  EXPECT_NE(st.err().find("the board hung up (the virtual board's scene is over)"),
+            std::string::npos)
+      << st.err();
+  EXPECT_NE(st.err().find("\"crc_errors\":0,\"framing_errors\":0,\"payload_errors\":0,"
+                          "\"seq_gaps\":0,\"lost_packets\":0"),
+            std::string::npos)
+      << st.err();
+  EXPECT_EQ(vb.done().at("bytes_dropped").get<uint64_t>(), 0u);
+}
+
+// At 115200 baud the board's bridge garbles the 3 Mbaud line, as a UART
+// does: eskin stream finds it within the run, probes the common rates (the
+// board follows its reader's rate) and names the board's, exit 5.
+TEST(StreamOnVirtualBoard, WrongBaudRateIsFoundAndTheBoardsRateNamed) {
+  VboardProcess vb(ESKIN_VBOARD_BIN, {kScene});
+  const std::string dir = ::testing::TempDir();
+  eskin::testing::Process st({ESKIN_BIN, "stream", "--port", vb.pty(), "--baud", "115200", "-q"},
+                             dir + "vb_baud_out", dir + "vb_baud_err");
+  ASSERT_EQ(st.wait_exit(90s), 5) << st.err();
+  EXPECT_NE(st.err().find("no packet decoded at 115200 baud ("), std::string::npos) << st.err();
+  EXPECT_NE(st.err().find("the line decodes at 3000000 baud: use --baud 3000000"),
+            std::string::npos)
+      << st.err();
+  EXPECT_EQ(stream_packets(st.err()), 0) << st.err();
+  EXPECT_EQ(vb.wait(), 0);
+  EXPECT_GE(vb.done().at("baud_mismatches").get<uint64_t>(), 1u);
+}
+
 }  // namespace

@@ -1,7 +1,7 @@
 // The figures the docs cite, from generated files only, and a check that
 // a doc's figure cannot differ from its file's.
 //
-// Four generated files hold every measured figure of docs/ and README.md:
+// Five generated files hold every measured figure of docs/ and README.md:
 //  - docs/figures.csv (name,value,unit,source): written by this test from
 //    the real models: the default scene's plan (common/eskin/dtmf_top_plan.h
 //    and its Verilog parameters, ucode/dtmf_engine_image.h), the frame
@@ -22,7 +22,9 @@
 //  - docs/scale_table.csv: `eskin bitstream --scale-table` (Yosys +
 //    nextpnr);
 //  - bench/baselines/tradeoff_synth.csv: `eskin bench tradeoff --quick
-//    --synth --write-synth-table` (Yosys).
+//    --synth --write-synth-table` (Yosys);
+//  - docs/vboard_figures.csv: the default scene's `eskin simulate` figures
+//    (tests/vboard/simulate_test.cpp, DefaultSceneFiguresAreTheDocs).
 // A doc marks each figure it cites with its name:
 //    <!--fig:NAME-->10 077<!--/fig-->
 // NAME is a row of docs/figures.csv, latency/CONFIG/STAGE (a row of
@@ -30,7 +32,8 @@
 // clock, bench::latency_configs()) or scale/TARGET/RxC/SAMPLE_HZ/COLUMN (a row of the scale
 // table, SAMPLE_HZ as the CSV writes it) or tradeoff_synth/builds,
 // tradeoff_synth/COLUMN_min and _max (the stored synthesis table's rows and
-// a column's extremes). The text between the markers is
+// a column's extremes) or vboard/NAME (a row of docs/vboard_figures.csv).
+// The text between the markers is
 // the number (spaces and commas as thousands separators allowed); a file
 // value with more decimals is compared rounded to the doc's decimals. The
 // docs check fails naming file:line for every marked figure that differs or
@@ -299,6 +302,11 @@ std::map<std::string, std::string> known_figures() {
       m["latency/" + r[0] + "/" + r[1] + "/us"] = buf;
     }
   }
+  // vboard/NAME: the default scene on the virtual board, as `eskin
+  // simulate` prints it (docs/vboard_figures.csv, written and checked by
+  // tests/vboard/simulate_test.cpp, DefaultSceneFiguresAreTheDocs).
+  for (const auto& r : read_csv(kSrc / "docs/vboard_figures.csv"))
+    if (r.size() >= 2) m["vboard/" + r[0]] = r[1];
   // tradeoff_synth/builds, tradeoff_synth/COLUMN_min, _max: the stored
   // synthesis table of the trade study's quick builds
   // (bench/baselines/tradeoff_synth.csv, `eskin bench tradeoff --quick

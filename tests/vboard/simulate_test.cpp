@@ -2,12 +2,16 @@
 // the virtual board behind a real pty, the report and raw outputs on disk.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "run_command.h"
+#include "tests/stream/process.h"
 
 namespace {
 
@@ -89,6 +93,85 @@ TEST(Simulate, WritesASelfContainedReportWithTheRunsNumbers) {
   EXPECT_GE(fpga_us, 263.0);
   EXPECT_LE(fpga_us, 2377.0);
   EXPECT_NE(html.find(std::to_string(int(fpga_us))), std::string::npos);
+}
+
+// The default scene's figures the docs cite (docs/vboard.md,
+// <!--fig:vboard/NAME-->), from `eskin simulate scenes/neuroskin2.yaml` run
+// as a user runs it: its summary.json, whose latency_median_us is the
+// figure the command prints ("latency touch onset -> first FPGA frame on
+// the host: median N us"). Simulated time, the exact RTL, a fixed scene and
+// the host's commands held for (--hold-for-host-bytes): the same on every
+// machine, so docs/vboard_figures.csv must equal the run's figures as
+// written. ESKIN_UPDATE_FIGURES=1 writes the file instead;
+// tests/system/doc_figures_test.cpp checks the docs against it.
+TEST(Simulate, DefaultSceneFiguresAreTheDocs) {
+  const fs::path out = fs::path(testing::TempDir()) / "sim_doc_figures_out";
+  fs::remove_all(out);
+  eskin::testing::Process p({ESKIN_BIN, "simulate", ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml",
+                             "--out", out.string()},
+                            testing::TempDir() + "sim_doc_figures.out",
+                            testing::TempDir() + "sim_doc_figures.err");
+  ASSERT_EQ(p.wait_exit(std::chrono::minutes(10)), 0) << p.out() << p.err();
+  const auto sum = nlohmann::json::parse(slurp(out / "summary.json"));
+  ASSERT_EQ(sum.at("link_errors"), 0) << "latencies need an error-free link";
+  const auto fixed = [](double v, int decimals) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.*f", decimals, v);
+    return std::string(b);
+  };
+  struct Row {
+    std::string name, value, unit;
+  };
+  const std::string source = "tests/vboard/simulate_test.cpp (eskin simulate scenes/neuroskin2.yaml, summary.json)";
+  const std::vector<Row> run = {
+      {"default.packets", std::to_string(sum.at("packets").get<long>()), "packets"},
+      {"default.latency_median_us", fixed(sum.at("latency_median_us").get<double>(), 1), "us"},
+      {"default.fpga_spikes", std::to_string(sum.at("fpga_spikes").get<long>()), "spikes"},
+      {"default.fpga_spikes_layer2", std::to_string(sum.at("fpga_spikes_layer2").get<long>()),
+       "spikes"},
+      {"default.fpga_worst_rms_kpa", fixed(sum.at("fpga_worst_rms_kpa").get<double>(), 3), "kPa"},
+  };
+  // The command prints the latency as the file holds it, rounded.
+  EXPECT_NE(p.out().find("median " + fixed(sum.at("latency_median_us").get<double>(), 0) + " us"),
+            std::string::npos)
+      << p.out();
+  const fs::path file = ESKIN_SOURCE_DIR "/docs/vboard_figures.csv";
+  if (const char* u = std::getenv("ESKIN_UPDATE_FIGURES"); u && *u && std::string(u) != "0") {
+    std::ofstream f(file, std::ios::binary);
+    f << "# The default scene on the virtual board, as the docs cite it\n"
+         "# (<!--fig:vboard/NAME-->): written by tests/vboard/simulate_test.cpp\n"
+         "# (ESKIN_UPDATE_FIGURES=1 build/bin/vboard_simulate_test\n"
+         "# --gtest_filter=*DefaultSceneFiguresAreTheDocs), which fails when a run\n"
+         "# differs from it; simulated time, the same on every machine.\n"
+         "name,value,unit,source\n";
+    for (const Row& r : run) f << r.name << ',' << r.value << ',' << r.unit << ",\"" << source << "\"\n";
+    return;
+  }
+  std::map<std::string, std::string> have;
+  std::istringstream in(slurp(file));
+  std::string line;
+  for (bool header = true; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (header) {
+      header = false;
+      continue;
+    }
+    const size_t c1 = line.find(',');
+    const size_t c2 = line.find(',', c1 + 1);
+    have[line.substr(0, c1)] = line.substr(c1 + 1, c2 - c1 - 1);
+  }
+  for (const Row& r : run) {
+    const auto it = have.find(r.name);
+    if (it == have.end()) {
+      ADD_FAILURE() << file << " lacks " << r.name << " (the run gives " << r.value
+                    << "): regenerate it (ESKIN_UPDATE_FIGURES=1)";
+      continue;
+    }
+    EXPECT_EQ(it->second, r.value) << file << ": " << r.name << " is " << it->second
+                                   << ", the run gives " << r.value
+                                   << " (regenerate: ESKIN_UPDATE_FIGURES=1, then fix the docs)";
+  }
+  EXPECT_EQ(have.size(), run.size()) << file << " has figures this run does not give";
 }
 
 // A bad scene is refused before anything runs: the error names the file

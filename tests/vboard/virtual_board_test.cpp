@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -168,6 +169,36 @@ TEST(VirtualBoard, DefaultSceneThroughThePtyMatchesTheChain) {
               "CPU s, %.2f M FPGA cycles per CPU s\n",
               sim_s, cpu_s, c.done.at("wall_s").get<double>(), sim_s / cpu_s,
               c.done.at("cycles").get<double>() / cpu_s / 1e6);
+}
+
+// A reader that closes the port mid-scene does not end the board, as
+// closing a USB serial adapter does not end a board: the board runs its
+// whole scene (every sample it was given), drops the bytes nobody reads,
+// counts the close, then hangs up (nobody reads) and exits 0.
+TEST(VirtualBoard, AReaderClosingMidSceneDoesNotEndTheBoard) {
+  VboardProcess vb(ESKIN_VBOARD_BIN, {short_scene(0.1, "vboard_close")});
+  const int fd = open_serial(vb.pty(), B3000000);
+  ASSERT_GE(fd, 0) << vb.pty();
+  eskin::link::LinkDecoder dec;
+  size_t packets = 0;
+  dec.on_packet([&](const Packet&) { ++packets; });
+  uint8_t buf[4096];
+  for (auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+       packets < 20 && std::chrono::steady_clock::now() < end;) {
+    pollfd pf{fd, POLLIN, 0};
+    poll(&pf, 1, 20);
+    const ssize_t n = read(fd, buf, sizeof buf);
+    if (n > 0) dec.feed(buf, size_t(n));
+  }
+  ASSERT_GE(packets, 20u);
+  close(fd);
+  EXPECT_EQ(vb.wait(), 0);
+  const nlohmann::json& d = vb.done();
+  ASSERT_FALSE(d.is_null()) << "no done line";
+  EXPECT_EQ(d.at("samples"), vb.ready().at("samples")) << "the board stopped before its scene's end";
+  EXPECT_EQ(d.at("reader_closes"), 1);
+  EXPECT_GT(d.at("bytes_dropped").get<uint64_t>(), 0u);
+  EXPECT_LT(d.at("bytes_dropped").get<uint64_t>(), d.at("bytes_to_host").get<uint64_t>());
 }
 
 // Commands written to the pty reach the FPGA's uart_rx as serial bits:
