@@ -172,11 +172,26 @@ module frame_engine #(
   (* ram_style = DMEM_STYLE *) reg [31:0] dmem [0:(1<<DW)-1];
   reg [31:0] kq, dq;
   integer k;
+`ifdef VERILATOR
+  // A Verilated model may be given its files at run time (+UCODE_HEX=PATH,
+  // +KROM_HEX=PATH): the virtual board writes each run's microcode into its
+  // user's own directory, not into a build tree shared by every user
+  // (sim/vboard/fpga_params.h, RunFiles). Synthesis never sees this.
+  reg [8*1024-1:0] ucode_file, krom_file;
+  initial begin
+    if ($value$plusargs("UCODE_HEX=%s", ucode_file)) $readmemh(ucode_file, imem);
+    else if (UCODE_HEX != "") $readmemh(UCODE_HEX, imem);
+    if ($value$plusargs("KROM_HEX=%s", krom_file)) $readmemh(krom_file, krom);
+    else if (KROM_HEX != "") $readmemh(KROM_HEX, krom);
+    else for (k = 0; k < (1 << KW); k = k + 1) krom[k] = KROM_INIT[32*k +: 32];
+  end
+`else
   initial begin
     if (UCODE_HEX != "") $readmemh(UCODE_HEX, imem);
     if (KROM_HEX != "") $readmemh(KROM_HEX, krom);
     else for (k = 0; k < (1 << KW); k = k + 1) krom[k] = KROM_INIT[32*k +: 32];
   end
+`endif
 
   // One address for both ports so the SPRAM (single-ported) can hold it:
   // B writes at its registered ea, A reads at the decoded one (never in the

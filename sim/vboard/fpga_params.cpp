@@ -79,6 +79,15 @@ FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir, long c
   return b;
 }
 
+RunFiles::RunFiles(const sim::Scene& scene, long clk_hz, long baud, EngineOptions engine)
+    : dir_(user_cache_dir() + "/vboard", "run"),
+      build_(fpga_build_for(scene, dir_.path(), clk_hz, baud, engine)) {}
+
+std::vector<std::string> RunFiles::plusargs() const {
+  const std::string stem = dir_.path() + "/" + build_.key;
+  return {"+UCODE_HEX=" + stem + ".ucode.hex", "+KROM_HEX=" + stem + ".krom.hex"};
+}
+
 BuildLock::BuildLock(const std::string& dir, const std::string& key) {
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/" + key + ".lock";

@@ -2,10 +2,9 @@
 // Verilog parameters from the project's one derivation
 // (common/eskin/dtmf_top_plan.h via sim/dtmf_top_spec.h), and a key naming the
 // build. The key covers the integer parameters (sizes, clock, rates) only:
-// the scene's microcode and constants are files the model reads when it is
-// constructed (UCODE_HEX, KROM_HEX), written by fpga_build_for() into the
-// build's directory, so one Verilated model serves every scene of its
-// sizes. The prebuilt eskin-vboard is the default scene's build, key
+// the scene's microcode and constants are files the model reads at its
+// first evaluation (+UCODE_HEX, +KROM_HEX: RunFiles below), so one
+// Verilated model serves every scene of its sizes. The prebuilt eskin-vboard is the default scene's build, key
 // "default".
 #pragma once
 
@@ -13,6 +12,7 @@
 #include <vector>
 
 #include "eskin/dtmf_top_plan.h"
+#include "eskin/user_dirs.h"
 #include "sim/scene.h"
 
 namespace eskin::vboard {
@@ -47,9 +47,9 @@ FpgaBuild fpga_build_for(const sim::Scene& scene, const std::string& dir = "",
                          long clk_hz = hls::kDtmfTopClkHz, long baud = 3000000,
                          EngineOptions engine = {});
 
-// An exclusive lock on one build's files (DIR/KEY.lock, flock): boards of
-// the same build running different scenes hold it from writing their files
-// until their model has read them, so none reads another's constants.
+// An exclusive lock on DIR/KEY.lock (flock): `eskin simulate` holds the
+// build tree's list of boards with it while it adds a board and runs CMake
+// (sim/vboard/vboard_build.cpp), one writer at a time.
 class BuildLock {
  public:
   BuildLock(const std::string& dir, const std::string& key);
@@ -59,6 +59,26 @@ class BuildLock {
 
  private:
   int fd_ = -1;
+};
+
+// One board run's microcode and constants: written by fpga_build_for()
+// into a fresh directory of the user's cache (eskin/user_dirs.h) and given
+// to the Verilated model as plusargs (rtl/frame_engine.v reads
+// +UCODE_HEX=PATH and +KROM_HEX=PATH at its first evaluation); removed
+// when the run ends. Per run, so boards of one build never read each
+// other's files, and a user runs the boards of a build tree another user
+// (root, say) owns without writing to it.
+class RunFiles {
+ public:
+  RunFiles(const sim::Scene& scene, long clk_hz, long baud, EngineOptions engine);
+  const FpgaBuild& build() const { return build_; }
+  // "+UCODE_HEX=DIR/KEY.ucode.hex", "+KROM_HEX=DIR/KEY.krom.hex", for
+  // Verilated::commandArgsAdd before the model's first evaluation.
+  std::vector<std::string> plusargs() const;
+
+ private:
+  ScratchDir dir_;
+  FpgaBuild build_;
 };
 
 }  // namespace eskin::vboard

@@ -34,9 +34,6 @@
 #if !defined(VBOARD_ENGINE_FAST_SHIFT) || !defined(VBOARD_NEURON_UNIT)
 #error "VBOARD_ENGINE_FAST_SHIFT, VBOARD_NEURON_UNIT: the frame engine of this board's build (0/1)"
 #endif
-#ifndef VBOARD_BUILD_DIR
-#error "VBOARD_BUILD_DIR: where the model reads KEY.ucode.hex and KEY.krom.hex"
-#endif
 
 ESKIN_EXPOSE_EVAL_STEP(Vdtmf_top)
 
@@ -97,14 +94,11 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);
-  // The model reads the scene's microcode and constants (UCODE_HEX,
-  // KROM_HEX: fixed paths in VBOARD_BUILD_DIR) when it is constructed;
-  // another board of this build may be about to write its own there.
-  std::unique_ptr<eskin::vboard::BuildLock> lock =
-      std::make_unique<eskin::vboard::BuildLock>(VBOARD_BUILD_DIR, VBOARD_PARAMS_KEY);
-  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR, VBOARD_CLK_HZ, VBOARD_BAUD, kEngine);
+  // The scene's microcode and constants, this run's own files, read by the
+  // model at its first evaluation (during sc_start).
+  const eskin::vboard::RunFiles files(scene, VBOARD_CLK_HZ, VBOARD_BAUD, kEngine);
+  add_plusargs(files);
   VerilatedFpga fpga;
-  lock.reset();
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz())));
   eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
 

@@ -33,8 +33,8 @@
 #if !defined(VBOARD_ENGINE_FAST_SHIFT) || !defined(VBOARD_NEURON_UNIT)
 #error "VBOARD_ENGINE_FAST_SHIFT, VBOARD_NEURON_UNIT: the frame engine of this board's build (0/1)"
 #endif
-#if !defined(VBOARD_CLK_HZ) || !defined(VBOARD_BAUD) || !defined(VBOARD_BUILD_DIR)
-#error "VBOARD_CLK_HZ, VBOARD_BAUD, VBOARD_BUILD_DIR: the build's clock, UART rate, files"
+#if !defined(VBOARD_CLK_HZ) || !defined(VBOARD_BAUD)
+#error "VBOARD_CLK_HZ, VBOARD_BAUD: the build's clock and UART rate"
 #endif
 
 ESKIN_EXPOSE_EVAL_STEP(Vmixed_top)
@@ -110,12 +110,11 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);
-  // The DTMF part reads the scene's microcode and constants when the model
-  // is constructed (as in vboard_main.cpp).
-  auto lock = std::make_unique<eskin::vboard::BuildLock>(VBOARD_BUILD_DIR, dtmf.key);
-  eskin::vboard::fpga_build_for(scene, VBOARD_BUILD_DIR, VBOARD_CLK_HZ, VBOARD_BAUD, kEngine);
+  // The DTMF part's microcode and constants, this run's own files (as in
+  // vboard_main.cpp).
+  const eskin::vboard::RunFiles files(scene, VBOARD_CLK_HZ, VBOARD_BAUD, kEngine);
+  add_plusargs(files);
   VerilatedMixedFpga fpga;
-  lock.reset();
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / cfg.clk_hz)));
   eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
 

@@ -10,11 +10,24 @@
 #include <memory>
 #include <string>
 
+#include <vector>
+
 #include "sim/vboard/direct_wire.h"
 #include "sim/vboard/fpga_model.h"
+#include "sim/vboard/fpga_params.h"
+#include "verilated.h"
 #include "verilated_fst_c.h"
 
 namespace eskin::vboard {
+
+// Gives the model this run's microcode files (RunFiles::plusargs) before its
+// first evaluation reads them.
+inline void add_plusargs(const RunFiles& files) {
+  const std::vector<std::string> args = files.plusargs();
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  Verilated::commandArgsAdd(int(argv.size()), argv.data());
+}
 
 template <class V>
 class VerilatedTop : public FpgaModel {

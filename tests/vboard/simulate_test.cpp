@@ -9,6 +9,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 #include "run_command.h"
 #include "tests/stream/process.h"
@@ -188,6 +191,56 @@ TEST(Simulate, BadSceneFailsBeforeRunning) {
   EXPECT_NE(log.find("sim_bad.yaml"), std::string::npos) << log;
   EXPECT_NE(log.find("skin.rows"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// The build tree belongs to whoever built it (root, on a lab machine); a
+// user runs the default scene's board without writing to it: the board's
+// per-run microcode files go to the user's cache (sim/vboard/fpga_params.h,
+// RunFiles), which is empty again after the run. As root, the run drops to
+// uid/gid 65534 (nobody) with setpriv; otherwise it runs as this user. The
+// build tree's vboard folder must not change (the board used to write and
+// lock files there, which a user who does not own it cannot).
+TEST(Simulate, AUserWhoDoesNotOwnTheBuildTreeRunsTheDefaultScene) {
+  const fs::path home = fs::path(testing::TempDir()) / "sim_user";
+  fs::remove_all(home);
+  fs::create_directories(home / "cache");
+  std::vector<std::string> argv;
+  if (::getuid() == 0) {
+    for (const fs::path& d : {home, home / "cache"})
+      ASSERT_EQ(::chown(d.c_str(), 65534, 65534), 0) << d;
+    argv = {"/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"};
+    // The tree must be readable to another user at all (a clone in a 0700
+    // folder is not): that is the machine's choice, not eskin's.
+    eskin::testing::Process probe(
+        {"/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups", "/usr/bin/test",
+         "-x", ESKIN_BIN},
+        (home / "probe.out").string(), (home / "probe.err").string());
+    if (probe.wait_exit(std::chrono::seconds(10)) != 0)
+      GTEST_SKIP() << ESKIN_BIN << " is not reachable for uid 65534 (a parent folder is private)";
+  }
+  for (const std::string& a : std::vector<std::string>{"/usr/bin/env", "-i", "PATH=/usr/bin:/bin", "XDG_CACHE_HOME=" + (home / "cache").string(),
+        std::string(ESKIN_BIN), "simulate", ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml", "--out",
+        (home / "out").string()})
+    argv.push_back(a);
+  const fs::path vboard_dir = fs::path(ESKIN_BIN).parent_path().parent_path() / "vboard";
+  auto listing = [&] {
+    std::map<std::string, fs::file_time_type> m;
+    if (fs::exists(vboard_dir))
+      for (const auto& e : fs::directory_iterator(vboard_dir)) m[e.path().string()] = e.last_write_time();
+    return m;
+  };
+  const auto before = listing();
+  eskin::testing::Process sim(argv, (home / "sim.out").string(), (home / "sim.err").string());
+  ASSERT_EQ(sim.wait_exit(std::chrono::seconds(300)), 0) << sim.out() << sim.err();
+  // The same packets as this process's own run of the scene.
+  std::string log;
+  ASSERT_EQ(run(std::string(ESKIN_BIN) + " simulate " ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml --out " +
+                    (home / "out_self").string(), &log), 0) << log;
+  const std::string packets = slurp(home / "out/fpga_packets.ndjson");
+  EXPECT_GT(packets.size(), 1000u);
+  EXPECT_EQ(packets, slurp(home / "out_self/fpga_packets.ndjson"));
+  EXPECT_TRUE(fs::is_empty(home / "cache/eskin/vboard")) << "the run's files were not removed";
+  EXPECT_EQ(listing(), before) << vboard_dir << " changed";
 }
 
 // A scene that needs another FPGA build gets its virtual board built by
