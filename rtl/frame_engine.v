@@ -172,11 +172,12 @@ module frame_engine #(
   (* ram_style = DMEM_STYLE *) reg [31:0] dmem [0:(1<<DW)-1];
   reg [31:0] kq, dq;
   integer k;
-`ifdef VERILATOR
-  // A Verilated model may be given its files at run time (+UCODE_HEX=PATH,
-  // +KROM_HEX=PATH): the virtual board writes each run's microcode into its
-  // user's own directory, not into a build tree shared by every user
-  // (sim/vboard/fpga_params.h, RunFiles). Synthesis never sees this.
+`ifdef ESKIN_HEX_PLUSARGS
+  // The virtual board's models (Verilator -DESKIN_HEX_PLUSARGS) are given
+  // their files at run time (+UCODE_HEX=PATH, +KROM_HEX=PATH): each run's
+  // microcode goes to its user's own directory, not into a build tree
+  // shared by every user (sim/vboard/fpga_params.h, RunFiles). Other
+  // simulations and synthesis read the parameters' files.
   reg [8*1024-1:0] ucode_file, krom_file;
   initial begin
     if ($value$plusargs("UCODE_HEX=%s", ucode_file)) $readmemh(ucode_file, imem);
