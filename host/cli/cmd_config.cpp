@@ -1,12 +1,23 @@
 // eskin config: send one configuration command to the FPGA by name and
 // report its verdict (accepted, or rejected with the decoded reason); the
 // hall-* commands go to a Hall top and are judged by its HALL_DECODE_STATUS.
-// Exit codes: 0 accepted, 3 rejected, 4 no verdict (no STATUS came back).
+// Exit codes: 0 accepted, 3 rejected, 4 no verdict (no STATUS came back),
+// 6 the port is held by a process that takes no commands (another config).
+// When `eskin stream` holds the serial port, the command goes through it
+// (its control socket: host/stream/control_server.h) with the same output;
+// otherwise config opens the port itself, holding it for the command.
+#include <chrono>
 #include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
 
 #include "cli/command.h"
 #include "cli/link_options.h"
+#include "eskin/exit_codes.h"
+#include "host/stream/control_server.h"
 #include "host/stream/link_stream.h"
+#include "host/stream/port_lock.h"
 
 namespace {
 
@@ -37,6 +48,36 @@ void print_hall_status(const eskin::link::HallDecodeStatus& s) {
             << "\n";
 }
 
+int report(const ConfigArgs& a, const CommandSpec* spec, const CommandReply& r) {
+  std::cout << a.name << " (type 0x" << std::hex << int(r.type) << std::dec << ", seq "
+            << int(r.seq) << "): " << r.message << "\n";
+  if (r.ack != Ack::Pending && spec->hall) print_hall_status(r.hall_status);
+  else if (r.ack != Ack::Pending) print_status(r.status);
+  return ack_exit_code(r.ack);
+}
+
+// Through the stream that holds the port: its reply, or nothing when no
+// stream answers on the socket (not up yet, or the holder is no stream).
+std::optional<int> via_stream(const ConfigArgs& a, const CommandSpec* spec,
+                              const PortPaths& port, const PortHolder& holder) {
+  std::string line;
+  try {
+    // The stream waits up to --timeout-ms for the verdict: allow for that.
+    line = control_request(port.socket, request_json(a.name, a.args, a.timeout_ms),
+                           std::chrono::milliseconds(a.timeout_ms + 5000));
+  } catch (const LinkError&) {
+    return std::nullopt;
+  }
+  std::cerr << "eskin config: sent through eskin stream (pid " << holder.pid << "), which holds "
+            << port.port << "\n";
+  const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+  if (j.is_object() && j.value("ok", true) == false) {
+    std::cerr << "eskin: error: " << j.value("error", line) << "\n";
+    return j.value("exit", eskin::exit_code(eskin::Exit::failure));
+  }
+  return report(a, spec, reply_from_json(line));
+}
+
 int run_config(const ConfigArgs& a) {
   const CommandSpec* spec = find_command(a.name);
   if (!spec) {
@@ -49,21 +90,29 @@ int run_config(const ConfigArgs& a) {
   opt.endpoint = a.link.endpoint();
   opt.reconnect = false;
   opt.queue_capacity = 0;
+  PortLock lock;
+  if (opt.endpoint.kind == Endpoint::Kind::Serial) {
+    // A second reader of the tty would split its bytes with the holder:
+    // go through the holding stream, or wait (up to the timeout) for a
+    // holder that takes no commands (another config) to finish.
+    const PortPaths port = port_paths(opt.endpoint.path);
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(a.timeout_ms);
+    PortHolder holder;
+    while (!lock.try_acquire(port, "eskin config", false, &holder)) {
+      if (holder.serves_commands)
+        if (const auto rc = via_stream(a, spec, port, holder)) return *rc;
+      if (std::chrono::steady_clock::now() >= end) {
+        std::cerr << "eskin config: error: " << held_message(port, holder) << "\n";
+        return eskin::exit_code(eskin::Exit::port_held);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
   LinkStream stream(opt);
   stream.start();
   const CommandReply r = stream.command(*spec, values, std::chrono::milliseconds(a.timeout_ms));
   stream.stop();
-  std::cout << a.name << " (type 0x" << std::hex << int(r.type) << std::dec << ", seq "
-            << int(r.seq) << "): " << r.message << "\n";
-  if (r.ack != Ack::Pending && spec->hall) print_hall_status(r.hall_status);
-  else if (r.ack != Ack::Pending) print_status(r.status);
-  switch (r.ack) {
-    case Ack::Accepted: return 0;
-    case Ack::Rejected: return 3;
-    case Ack::Unknown: return 4;
-    case Ack::Pending: break;
-  }
-  return 4;
+  return report(a, spec, r);
 }
 
 std::function<int()> setup(CLI::App& app) {

@@ -145,7 +145,10 @@ class LinkStream {
   // STATUS if none was seen, then sends the command and REQUEST_STATUS and
   // judges the STATUS packets that follow. Throws LinkError if the link is
   // not open by then. Never call it from a packet callback: the verdict
-  // arrives through the reader thread that runs the callback.
+  // arrives through the reader thread that runs the callback. Any other
+  // thread may call it while packets are delivered (a stream takes
+  // commands through its control socket as it records: control_server.h);
+  // commands go out one at a time.
   // Throws std::invalid_argument for an unknown name or bad arguments.
   CommandReply command(const std::string& name, const std::vector<std::string>& args,
                        std::chrono::milliseconds timeout = std::chrono::milliseconds(2000));

@@ -58,6 +58,40 @@ bool append_rows(hid_t set, const int64_t* data, hsize_t old_rows, hsize_t rows,
   return rc >= 0;
 }
 
+// An empty extendible 1-D dataset of variable-length UTF-8 strings.
+hid_t create_string_set(hid_t group, const char* name) {
+  const hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {64};
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  const hid_t space = H5Screate_simple(1, dims, maxdims);
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, 1, chunk);
+  const hid_t set = H5Dcreate2(group, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  H5Tclose(type);
+  return set;
+}
+
+bool append_strings(hid_t set, const std::vector<const char*>& v, hsize_t old_rows) {
+  const hsize_t rows = v.size();
+  const hsize_t new_dims[1] = {old_rows + rows};
+  if (H5Dset_extent(set, new_dims) < 0) return false;
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  const hid_t fspace = H5Dget_space(set);
+  const hsize_t start[1] = {old_rows}, count[1] = {rows};
+  H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr);
+  const hid_t mspace = H5Screate_simple(1, count, nullptr);
+  const herr_t rc = H5Dwrite(set, type, mspace, fspace, H5P_DEFAULT, v.data());
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  H5Tclose(type);
+  return rc >= 0;
+}
+
 }  // namespace
 
 Hdf5Recorder::Hdf5Recorder(const std::string& path,
@@ -91,6 +125,8 @@ Hdf5Recorder::~Hdf5Recorder() {
     if (t.vector_set >= 0) H5Dclose(t.vector_set);
     H5Gclose(t.group);
   }
+  for (hid_t s : command_sets_) H5Dclose(s);
+  if (commands_group_ >= 0) H5Gclose(commands_group_);
   if (file_ >= 0) H5Fclose(file_);
 }
 
@@ -142,9 +178,56 @@ void Hdf5Recorder::append(const std::string& name, Table& t) {
   t.pending_rows = 0;
 }
 
+void Hdf5Recorder::command(const CommandRecord& c) { pending_commands_.push_back(c); }
+
+void Hdf5Recorder::append_commands() {
+  if (pending_commands_.empty()) return;
+  const auto& cols = command_columns();
+  if (commands_group_ < 0) {
+    commands_group_ = H5Gcreate2(file_, "commands", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (commands_group_ < 0) throw h5_error(path_, "cannot create group /commands");
+    for (const char* c : cols) {
+      const std::string n = c;
+      const bool text = n == "command" || n == "args" || n == "ack" || n == "message";
+      command_sets_.push_back(text ? create_string_set(commands_group_, c)
+                                   : create_set(commands_group_, c, 0));
+    }
+  }
+  std::vector<std::string> args;
+  for (const CommandRecord& r : pending_commands_) {
+    std::string a;
+    for (const std::string& x : r.args) a += (a.empty() ? "" : " ") + x;
+    args.push_back(a);
+  }
+  bool ok = true;
+  for (size_t i = 0; i < cols.size(); ++i) {
+    const std::string n = cols[i];
+    std::vector<const char*> text;
+    std::vector<int64_t> ints;
+    for (size_t k = 0; k < pending_commands_.size(); ++k) {
+      const CommandRecord& r = pending_commands_[k];
+      if (n == "command") text.push_back(r.command.c_str());
+      else if (n == "args") text.push_back(args[k].c_str());
+      else if (n == "ack") text.push_back(r.ack.c_str());
+      else if (n == "message") text.push_back(r.message.c_str());
+      else if (n == "host_ms") ints.push_back(r.host_ms);
+      else if (n == "samples") ints.push_back(r.samples);
+      else if (n == "cmd_type") ints.push_back(r.cmd_type);
+      else ints.push_back(r.seq);
+    }
+    ok &= text.empty() ? append_rows(command_sets_[i], ints.data(), commands_on_disk_,
+                                     ints.size(), 0)
+                       : append_strings(command_sets_[i], text, commands_on_disk_);
+  }
+  if (!ok) throw h5_error(path_, "cannot append to /commands");
+  commands_on_disk_ += pending_commands_.size();
+  pending_commands_.clear();
+}
+
 void Hdf5Recorder::flush() {
   if (file_ < 0) return;
   for (auto& [name, t] : tables_) append(name, t);
+  append_commands();
   pending_ = 0;
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw h5_error(path_, "flush failed");
 }

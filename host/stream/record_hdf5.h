@@ -6,6 +6,10 @@
 //   /<table>/<vector>      int64 [N, width]   the vector column, if any
 // with <table> and the columns from packet_table.h (e.g. /amplitudes/t,
 // /amplitudes/amp, /taxels/taxel, /spikes/neuron, /status/cmd_accepted).
+//   /commands/<column>     [N] the commands sent during the run and their
+//                          verdicts (recorder.h: command_columns()): int64
+//                          host_ms, samples, cmd_type, seq; variable-length
+//                          UTF-8 strings command, args, ack, message
 //
 // Datasets are chunked and extendible; rows are buffered and appended on
 // flush() (the caller flushes regularly; at least every kFlushRows rows it
@@ -36,6 +40,7 @@ class Hdf5Recorder : public Recorder {
   Hdf5Recorder& operator=(const Hdf5Recorder&) = delete;
 
   void write(const PacketKind& kind, const std::vector<Row>& rows) override;
+  void command(const CommandRecord& c) override;  // appended at the next flush()
   void flush() override;
   uint64_t rejected_rows() const { return rejected_; }  // vector width changed
 
@@ -56,6 +61,11 @@ class Hdf5Recorder : public Recorder {
   std::string path_;
   int64_t file_ = -1;
   std::map<std::string, Table> tables_;
+  void append_commands();
+  int64_t commands_group_ = -1;
+  std::vector<int64_t> command_sets_;  // hid_t per command_columns() entry
+  uint64_t commands_on_disk_ = 0;
+  std::vector<CommandRecord> pending_commands_;
   size_t pending_ = 0;
   uint64_t rejected_ = 0;
 };

@@ -17,6 +17,24 @@
 
 namespace eskin::stream {
 
+// A command the stream carried out while it recorded, with its verdict:
+// recorded beside the data (NDJSON {"type":"command",...}, commands.csv,
+// the HDF5 /commands group), in the order the verdicts came.
+struct CommandRecord {
+  int64_t host_ms = 0;     // wall clock at the verdict, ms since the Unix epoch
+  int64_t samples = -1;    // the FPGA's sample counter in the STATUS that decided
+                           // it (compare the rows' t); -1: no verdict
+  std::string command;     // "set-mask"
+  std::vector<std::string> args;  // as given ("0x7")
+  std::string ack;         // accepted, rejected, unknown, no_verdict, error (not sent)
+  std::string message;     // "rejected: value out of range", ...
+  int64_t cmd_type = 0;    // the wire type and seq it went out with
+  int64_t seq = 0;
+};
+
+// The columns of the commands table, in order (CSV header, HDF5 datasets).
+const std::vector<const char*>& command_columns();
+
 class Recorder {
  public:
   virtual ~Recorder() = default;
@@ -25,19 +43,32 @@ class Recorder {
   // has no rows).
   virtual void packet(const link::Packet&) {}
   virtual void write(const PacketKind& kind, const std::vector<Row>& rows) = 0;
+  virtual void command(const CommandRecord&) {}
   virtual void flush() = 0;
 };
 
-// One JSON object per row and line (packet_table.h: ndjson_line).
+// One JSON object per row and line (packet_table.h: ndjson_line). A
+// failed write (stdout is a pipe whose reader went away: EPIPE, with
+// SIGPIPE ignored) does not throw, so the other recorders still get every
+// packet: output stops, failed() says so and error() gives the errno.
 class NdjsonRecorder : public Recorder {
  public:
   explicit NdjsonRecorder(std::ostream& out) : out_(out) {}
   void write(const PacketKind& kind, const std::vector<Row>& rows) override;
-  void flush() override { out_.flush(); }
+  void command(const CommandRecord& c) override;
+  void flush() override;
+  bool failed() const { return failed_; }
+  int error() const { return error_; }
 
  private:
+  void check();
   std::ostream& out_;
+  bool failed_ = false;
+  int error_ = 0;
 };
+
+// The NDJSON line of a command (no newline).
+std::string command_ndjson(const CommandRecord& c);
 
 // DIR/<table>.csv, one per packet table, header line first: the scalar
 // columns, then the vector column as NAME0..NAME(n-1) (n from the first
@@ -47,6 +78,8 @@ class CsvRecorder : public Recorder {
  public:
   explicit CsvRecorder(const std::string& dir);  // creates DIR; throws std::runtime_error
   void write(const PacketKind& kind, const std::vector<Row>& rows) override;
+  // DIR/commands.csv (command_columns(); args joined by spaces; text quoted).
+  void command(const CommandRecord& c) override;
   void flush() override;
   uint64_t rejected_rows() const { return rejected_; }
 
@@ -56,6 +89,7 @@ class CsvRecorder : public Recorder {
     size_t width = 0;
   };
   std::string dir_;
+  std::ofstream commands_;
   std::map<std::string, Table> tables_;
   uint64_t rejected_ = 0;
 };
@@ -67,6 +101,7 @@ class RecorderSet {
   void add(Recorder* r) { borrowed_.push_back(r); }
   // Packets of types without a packet_table entry are ignored (false).
   bool write(const link::Packet& p);
+  void command(const CommandRecord& c);
   void flush();
 
  private:
@@ -74,5 +109,11 @@ class RecorderSet {
   std::vector<Recorder*> borrowed_;
   std::vector<Row> rows_;
 };
+
+// Refuses to record over an earlier recording: throws std::invalid_argument
+// naming the file and --force when `hdf5_file` exists, or when `csv_dir`
+// holds a table file this run would write (<table>.csv, commands.csv),
+// unless `force`. Empty names are not checked.
+void check_new_recording(const std::string& hdf5_file, const std::string& csv_dir, bool force);
 
 }  // namespace eskin::stream

@@ -47,6 +47,7 @@ class Process {
     }
   }
   bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   void signal(int sig) { ::kill(pid_, sig); }
   // Exit code, 128 + signal when killed, -1 on timeout.
   int wait_exit(std::chrono::milliseconds timeout) {
