@@ -1,5 +1,8 @@
 #include "host/stream/port_lock.h"
 
+#include "eskin/fnv1a.h"
+#include "eskin/user_dirs.h"
+
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -21,35 +24,6 @@ namespace eskin::stream {
 
 namespace {
 
-std::string env(const char* name) {
-  const char* v = std::getenv(name);
-  return v ? v : "";
-}
-
-// mkdir -p with mode 0700 for the directories it creates; `own` (the last
-// one or two, which are ours) is set to 0700 even if it existed.
-void make_private_dir(const std::string& path, size_t own_from) {
-  for (size_t at = 1; at <= path.size(); ++at) {
-    if (at < path.size() && path[at] != '/') continue;
-    const std::string part = path.substr(0, at);
-    if (::mkdir(part.c_str(), 0700) != 0 && errno != EEXIST)
-      throw std::runtime_error(part + ": cannot create the runtime directory: " +
-                               std::strerror(errno));
-    if (at >= own_from) {
-      struct stat st {};
-      if (::stat(part.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
-        throw std::runtime_error(part + ": not a directory (eskin's runtime directory)");
-      if ((st.st_mode & 0777) != 0700 && st.st_uid == ::getuid()) ::chmod(part.c_str(), 0700);
-    }
-  }
-}
-
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
 // A file name for the port: readable (its path's tail) and unique (a hash
 // of the whole canonical path).
 std::string port_name(const std::string& canonical) {
@@ -59,7 +33,7 @@ std::string port_name(const std::string& canonical) {
   while (!s.empty() && s.front() == '_') s.erase(s.begin());
   if (s.size() > 32) s = s.substr(s.size() - 32);
   char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(canonical)));
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(eskin::fnv1a(canonical)));
   return s + "-" + hash;
 }
 
@@ -98,24 +72,7 @@ bool read_record(int fd, PortHolder& h) {
 
 }  // namespace
 
-std::string runtime_dir() {
-  const std::string xdg_run = env("XDG_RUNTIME_DIR");
-  if (!xdg_run.empty() && xdg_run[0] == '/') {
-    const std::string d = xdg_run + "/eskin";
-    make_private_dir(d, d.size());
-    return d;
-  }
-  std::string cache = env("XDG_CACHE_HOME");
-  if (cache.empty() || cache[0] != '/') {
-    const std::string home = env("HOME");
-    if (home.empty() || home[0] != '/')
-      throw std::runtime_error("no runtime directory: set XDG_RUNTIME_DIR or HOME");
-    cache = home + "/.cache";
-  }
-  const std::string d = cache + "/eskin/run";
-  make_private_dir(d, cache.size() + 1);
-  return d;
-}
+std::string runtime_dir() { return eskin::user_runtime_dir(); }
 
 PortPaths port_paths(const std::string& port) {
   PortPaths p;

@@ -21,8 +21,7 @@
 
 namespace eskin::stream {
 
-// The runtime directory (created with mode 0700 if missing); throws
-// std::runtime_error naming it when it cannot be created.
+// The runtime directory: eskin::user_runtime_dir() (eskin/user_dirs.h).
 std::string runtime_dir();
 
 // Where a port's lock, record and control socket live.
