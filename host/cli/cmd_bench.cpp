@@ -22,6 +22,7 @@
 #include "host/bench/throughput.h"
 #include "host/bench/tradeoff_run.h"
 #include "cli/command.h"
+#include "eskin/exit_codes.h"
 #include "eskin/skin_config.h"
 #include "host/engine/engine_setup.h"
 #include "sim/scene.h"
@@ -89,7 +90,7 @@ int run_latency(const LatencyArgs& a) {
                              r.config.name, r.sample, r.model_clocks, r.model_first_byte,
                              r.engine_clocks, r.engine_first_byte, same ? "agrees" : "DISAGREES");
   }
-  if (!model_ok) return 1;
+  if (!model_ok) return eskin::exit_code(eskin::Exit::failure);
   if (a.update) {
     bench::write_latency_baseline(a.baseline, runs);
     std::cout << "baseline written: " << a.baseline << "\n";
@@ -232,7 +233,7 @@ std::function<int()> setup(CLI::App& app) {
       std::cout << bench::format_scale(bench::run_scale(sc->first, sc->second));
       return 0;
     }
-    return 1;
+    return eskin::exit_code(eskin::Exit::failure);
   };
 }
 

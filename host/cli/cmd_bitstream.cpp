@@ -27,6 +27,7 @@
 #include <unistd.h>
 
 #include "cli/command.h"
+#include "eskin/exit_codes.h"
 #include "host/fpga/flow.h"
 #include "host/fpga/scale_table.h"
 #include "eskin/skin_config.h"
@@ -190,7 +191,7 @@ int run_bitstream(const BitstreamArgs& a) {
                     : std::string("docs/hall_fpga.md (Area) lists what each Hall build needs "
                                   "on each FPGA"))
             << "\n";
-  return 1;
+  return eskin::exit_code(eskin::Exit::failure);
 }
 
 std::function<int()> setup_bitstream(CLI::App& app) {

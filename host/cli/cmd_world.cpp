@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "eskin/exit_codes.h"
 #include "sim/scene.h"
 #include "sim/wav_io.h"
 #include "sim/world_model.h"
@@ -46,7 +47,7 @@ int run_world(const WorldArgs& a) {
     scene = eskin::sim::load_scene(a.scene);
   } catch (const eskin::sim::SceneError& e) {
     std::cerr << "eskin world: " << e.what() << "\n";
-    return 2;
+    return eskin::exit_code(eskin::Exit::usage);
   }
   eskin::sim::WorldModel wm(scene);
   std::vector<int> codes = wm.all_codes();
