@@ -1,5 +1,7 @@
 #include "eskin/skin_config.h"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -64,6 +66,19 @@ std::vector<double> SkinConfig::carrier_freqs_hz() const {
   std::vector<double> f(row_freq_hz);
   f.insert(f.end(), col_freq_hz.begin(), col_freq_hz.end());
   return f;
+}
+
+std::vector<std::string> SkinConfig::carrier_labels() const {
+  std::vector<std::string> l;
+  const std::vector<double> f = carrier_freqs_hz();
+  for (size_t k = 0; k < f.size(); ++k) {
+    const bool row = int(k) < rows;
+    char hz[32];
+    std::snprintf(hz, sizeof hz, "%g", f[k]);
+    l.push_back(std::string(row ? "row " : "col ") + std::to_string(row ? int(k) : int(k) - rows) +
+                " \u00b7 " + hz + " Hz");
+  }
+  return l;
 }
 
 std::vector<double> SkinConfig::actual_freqs_hz() const {

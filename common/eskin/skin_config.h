@@ -68,6 +68,8 @@ struct SkinConfig {
   std::vector<double> carrier_freqs_hz() const;
   // Actual oscillator frequencies (nominal with freq_error applied).
   std::vector<double> actual_freqs_hz() const;
+  // Each carrier's name for charts, rows first: "row 0 · 1209 Hz".
+  std::vector<std::string> carrier_labels() const;
   // Amplitude in ADC LSB that one carrier reaches at the ADC when the taxels
   // on its line pass a total conductance fraction of 1.
   double full_carrier_lsb() const {

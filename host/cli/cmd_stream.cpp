@@ -167,6 +167,13 @@ int run_stream(const StreamArgs& a) {
   if (!a.live.empty()) {
     live = std::make_unique<LiveView>(live_at.addr, live_at.port);
     live->set_link_stats([&stream] { return stats_json(stream.stats()); });
+    if (!a.scene_file.empty()) {  // carriers by frequency, taxels in kPa
+      const auto sc = eskin::sim::load_scene(a.scene_file);
+      live->set_carrier_labels(sc.skin.carrier_labels());
+      live->set_taxel_unit("kPa", [skin = sc.skin](int64_t code) {
+        return skin.conductance.inverse(double(code) / 32768.0);  // UQ1.15 taxel
+      });
+    }
     recorders.add(live.get());
     std::cerr << "eskin stream: live view at " << live->url() << "\n";
     if (!live_at.loopback)
@@ -208,6 +215,8 @@ int run_stream(const StreamArgs& a) {
     });
     std::cerr << "eskin stream: taking commands (eskin config --port " << ep.path << " ...) on "
               << control->path() << "\n";
+    if (live)  // the page's command form: the same requests, the same records
+      live->set_command_handler([c = control.get()](const std::string& req) { return c->handle(req); });
   }
 
   using clock = std::chrono::steady_clock;
@@ -233,6 +242,7 @@ int run_stream(const StreamArgs& a) {
       last_flush = now;
     }
   }
+  if (live) live->set_command_handler(nullptr);
   control.reset();  // no command after the last packet is recorded
   stream.stop();
   {

@@ -8,6 +8,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
+#include "host/stream/commands.h"
 #include "host/stream/live_view_page.h"
 
 #ifndef ESKIN_CHARTJS
@@ -46,6 +49,37 @@ LiveView::LiveView(const std::string& addr, int port)
     res.set_header("Cache-Control", "no-store");
     res.set_content(data_json(), "application/json");
   });
+  server_->Get("/commands.json", [](const httplib::Request&, httplib::Response& res) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const CommandSpec& c : command_specs()) {
+      nlohmann::json args = nlohmann::json::array();
+      for (const CommandArg& a : c.args) args.push_back(a.name);
+      list.push_back({{"name", c.name}, {"help", c.help}, {"args", args}});
+    }
+    res.set_content(list.dump(), "application/json");
+  });
+  server_->Post("/command", [this](const httplib::Request& req, httplib::Response& res) {
+    std::function<std::string(const std::string&)> handler;
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      handler = command_handler_;
+    }
+    if (!handler) {
+      res.status = 503;
+      res.set_content(nlohmann::json{{"ok", false},
+                                     {"error", "this stream takes no commands (a TCP link, or "
+                                               "it is ending)"}}.dump(),
+                      "application/json");
+      return;
+    }
+    if (!nlohmann::json::accept(req.body)) {
+      res.status = 400;
+      res.set_content(nlohmann::json{{"ok", false}, {"error", "the request body is not JSON"}}.dump(),
+                      "application/json");
+      return;
+    }
+    res.set_content(handler(req.body), "application/json");
+  });
   port_ = port == 0 ? server_->bind_to_any_port(addr) : (server_->bind_to_port(addr, port) ? port : -1);
   if (port_ < 0)
     throw std::runtime_error("--live: cannot listen on " + addr + ":" + std::to_string(port));
@@ -72,6 +106,22 @@ std::string LiveView::url() const {
 void LiveView::set_link_stats(std::function<std::string()> fn) {
   std::lock_guard<std::mutex> lk(mu_);
   link_stats_ = std::move(fn);
+}
+
+void LiveView::set_carrier_labels(std::vector<std::string> labels) {
+  std::lock_guard<std::mutex> lk(mu_);
+  carrier_labels_ = std::move(labels);
+}
+
+void LiveView::set_taxel_unit(std::string unit, std::function<double(int64_t)> to_unit) {
+  std::lock_guard<std::mutex> lk(mu_);
+  taxel_unit_ = std::move(unit);
+  to_unit_ = std::move(to_unit);
+}
+
+void LiveView::set_command_handler(std::function<std::string(const std::string&)> handler) {
+  std::lock_guard<std::mutex> lk(mu_);
+  command_handler_ = std::move(handler);
 }
 
 void LiveView::packet(const link::Packet& p) {
@@ -118,7 +168,13 @@ std::string LiveView::data_json() const {
   std::lock_guard<std::mutex> lk(mu_);
   std::string s = "{\"taxels\":{\"t\":" + std::to_string(taxel_t_) +
                   ",\"rows\":" + std::to_string(rows_) + ",\"cols\":" + std::to_string(cols_) +
-                  ",\"values\":" + json_array(taxels_) + "},\"amplitudes\":[";
+                  ",\"values\":" + json_array(taxels_);
+  if (to_unit_) {
+    nlohmann::json v = nlohmann::json::array();
+    for (int64_t code : taxels_) v.push_back(to_unit_(code));
+    s += ",\"unit\":" + nlohmann::json(taxel_unit_).dump() + ",\"values_unit\":" + v.dump();
+  }
+  s += "},\"amplitudes\":[";
   for (size_t i = 0; i < amps_.size(); ++i)
     s += std::string(i ? "," : "") + "{\"t\":" + std::to_string(amps_[i].t) +
          ",\"amp\":" + json_array(amps_[i].amp) + "}";
@@ -128,7 +184,8 @@ std::string LiveView::data_json() const {
          ",\"layer\":" + std::to_string(spikes_[i].layer) +
          ",\"neuron\":" + std::to_string(spikes_[i].neuron) + "}";
   s += "],\"status\":" + status_json_;
-  s += ",\"link\":" + (link_stats_ ? link_stats_() : std::string("null")) + "}";
+  s += ",\"link\":" + (link_stats_ ? link_stats_() : std::string("null"));
+  s += ",\"carriers\":" + nlohmann::json(carrier_labels_).dump() + "}";
   return s;
 }
 

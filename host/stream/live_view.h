@@ -4,9 +4,15 @@
 //   GET /           the page: taxel heatmap, carrier amplitudes over time,
 //                   spike raster, link statistics; it polls /data.json
 //                   (GET /?static: the data at request time, no polling)
-//   GET /data.json  {"taxels":{"t","rows","cols","values"},"amplitudes":
-//                   [{"t","amp":[..]}],"spikes":[{"t","neuron","layer"}],
-//                   "status":{..},"link":{..}}
+//   GET /data.json  {"taxels":{"t","rows","cols","values"[,"unit",
+//                   "values_unit"]},"amplitudes":[{"t","amp":[..]}],
+//                   "spikes":[{"t","neuron","layer"}],"status":{..},
+//                   "link":{..},"carriers":[labels]}
+//   GET /commands.json  the configuration commands the form offers
+//                   (host/stream/commands.h: name, help, args)
+//   POST /command   {"command":NAME,"args":[..]} to the command handler
+//                   (ControlServer::handle), its JSON verdict back; 503
+//                   without a handler, 400 on a body that is not JSON
 // It is a Recorder: the stream's packets reach it like any other recorder.
 #pragma once
 
@@ -44,6 +50,15 @@ class LiveView : public Recorder {
   std::string url() const;
   // JSON object with link statistics, called on each /data.json request.
   void set_link_stats(std::function<std::string()> fn);
+  // Carrier names for the amplitude chart, rows then columns ("row 0 ·
+  // 1209 Hz"); without, "carrier K".
+  void set_carrier_labels(std::vector<std::string> labels);
+  // Taxel codes in a physical unit (e.g. kPa through the scene's
+  // conductance curve); the heat map and its colour bar then show it.
+  void set_taxel_unit(std::string unit, std::function<double(int64_t code)> to_unit);
+  // Answers POST /command (a JSON request line -> a JSON reply line);
+  // nullptr: none (503). Thread-safe; clear it before its target goes.
+  void set_command_handler(std::function<std::string(const std::string&)> handler);
 
   // Sparse taxel frames are taken whole from the packet (an empty one
   // clears the map); when dense taxels of the same frame arrived first,
@@ -73,6 +88,10 @@ class LiveView : public Recorder {
   std::deque<Spike> spikes_;
   std::string status_json_ = "null";
   std::function<std::string()> link_stats_;
+  std::vector<std::string> carrier_labels_;
+  std::string taxel_unit_;
+  std::function<double(int64_t)> to_unit_;
+  std::function<std::string(const std::string&)> command_handler_;
 
   std::string chart_js_;
   std::string addr_;

@@ -11,11 +11,16 @@
 #include <png.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "host/stream/link_stream.h"
+#include "host/stream/commands.h"
 #include "host/stream/live_view.h"
+#include "host/stream/live_view_page.h"
+#include "sim/scene.h"
 #include "tests/stream/frames.h"
 #include "tests/stream/pty_pair.h"
 
@@ -28,6 +33,13 @@ namespace {
 struct Rgb {
   int r, g, b;
 };
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path);
+  std::ostringstream o;
+  o << f.rdbuf();
+  return o.str();
+}
 
 // Decodes a PNG into 8-bit RGB.
 bool read_png(const std::string& path, int& w, int& h, std::vector<uint8_t>& rgb) {
@@ -136,8 +148,116 @@ TEST(LiveView, ChromiumScreenshotShowsThePressedTaxel) {
         EXPECT_GT(px.b, px.r) << "(" << r << "," << c << ") drawn hot";
       }
     }
+  // The colour bar beside the map (live_view_page.h): the ramp's top (red,
+  // the maximum) and bottom (blue, 0), same ramp as the cells, +-2.
+  const auto px = [&](int x, int y) {
+    const size_t i = (size_t(y) * size_t(w) + size_t(x)) * 3;
+    return Rgb{rgb[i], rgb[i + 1], rgb[i + 2]};
+  };
+  using G = eskin::stream::LiveViewGeometry;
+  const int bx = G::bar_x(3) + G::kBarWidth / 2;
+  const Rgb bar_top = px(bx, G::kHeatY + 1), bar_bottom = px(bx, G::kHeatY + 3 * G::kCell - 2);
+  EXPECT_NEAR(bar_top.r, 230, 2) << "colour bar top";
+  EXPECT_NEAR(bar_top.b, 30, 2) << "colour bar top";
+  EXPECT_NEAR(bar_bottom.r, 20, 2) << "colour bar bottom";
+  EXPECT_NEAR(bar_bottom.b, 160, 2) << "colour bar bottom";
+
+  // The page's text after its scripts ran: the bar's scale and unit, the
+  // link's health with every error count (0 here: a clean pty).
+  const std::string dom_file = (dir / "dom.html").string();
+  const std::string dom_cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu "
+                              "--virtual-time-budget=2000 --user-data-dir=" +
+                              (dir / "profile").string() + " --dump-dom " + live.url() + "?static > " +
+                              dom_file + " 2>/dev/null";
+  ASSERT_EQ(std::system(dom_cmd.c_str()), 0) << dom_cmd;
+  const std::string full = slurp(dom_file);
+  // The page's text without the inlined chart library (for the messages).
+  const size_t lib = full.find("<script>"), lib_end = full.find("</script>", lib);
+  const std::string dom = lib == std::string::npos || lib_end == std::string::npos
+                              ? full
+                              : full.substr(0, lib) + full.substr(lib_end);
+  const auto text_of = [&](const std::string& id) {  // a div's text, its style attribute aside
+    const size_t at = dom.find("<div id=\"" + id + "\"");
+    if (at == std::string::npos) return std::string("(no #" + id + ")");
+    const size_t open = dom.find('>', at) + 1;
+    return dom.substr(open, dom.find("</div>", open) - open);
+  };
+  EXPECT_EQ(text_of("barmax"), std::to_string(max) + " code");
+  EXPECT_EQ(text_of("barmin"), "0 code");
+  EXPECT_NE(dom.find("link: " + std::to_string(sent.size()) +
+                     " packets, framing errors 0, CRC errors 0, payload errors 0, sequence gaps 0, "
+                     "lost packets 0"),
+            std::string::npos)
+      << dom;
+  EXPECT_NE(dom.find("<option>set-mask</option>"), std::string::npos) << "command form\n" << dom;
   stream.stop();
   fs::remove_all(dir);
+}
+
+// With the scene (eskin stream --live --scene): taxels in kPa through its
+// conductance curve, g = p / (p + 50 kPa) for scenes/neuroskin2.yaml, so
+// p = 50 g / (1 - g) with g = code / 32768 (UQ1.15); carriers named by row
+// or column and frequency (the scene's 1900 ... 10000 Hz).
+TEST(LiveView, WithTheSceneTaxelsAreInKpaAndCarriersNamedByFrequency) {
+  const auto sc = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  eskin::stream::LiveView live("127.0.0.1", 0);
+  live.set_carrier_labels(sc.skin.carrier_labels());
+  live.set_taxel_unit("kPa", [skin = sc.skin](int64_t c) { return skin.conductance.inverse(c / 32768.0); });
+  eskin::stream::RecorderSet recorders;
+  recorders.add(&live);
+  eskin::link::LinkEncoder enc;
+  eskin::link::LinkDecoder dec;
+  dec.on_packet([&](const eskin::link::Packet& p) { recorders.write(p); });
+  const std::vector<uint16_t> codes = {0, 1000, 4096, 8192, 16384, 20000, 24576, 100, 10};
+  dec.feed(enc.taxels_dense(35, 3, 3, codes));
+  const auto d = nlohmann::json::parse(live.data_json());
+  EXPECT_EQ(d["taxels"]["unit"], "kPa");
+  ASSERT_EQ(d["taxels"]["values_unit"].size(), codes.size());
+  for (size_t i = 0; i < codes.size(); ++i) {
+    const double g = codes[i] / 32768.0;
+    EXPECT_NEAR(d["taxels"]["values_unit"][i].get<double>(), 50 * g / (1 - g), 1e-9) << i;
+  }
+  EXPECT_EQ(d["carriers"].get<std::vector<std::string>>(),
+            (std::vector<std::string>{"row 0 \u00b7 1900 Hz", "row 1 \u00b7 3300 Hz",
+                                      "row 2 \u00b7 5000 Hz", "col 0 \u00b7 7140 Hz",
+                                      "col 1 \u00b7 8300 Hz", "col 2 \u00b7 10000 Hz"}));
+}
+
+// The command form's route: POST /command hands the body to the handler
+// (the stream's ControlServer::handle) and returns its reply unchanged;
+// 503 with none, 400 for a body that is not JSON; /commands.json is
+// host/stream/commands.h's list.
+TEST(LiveView, CommandRoutePassesRequestsToTheHandler) {
+  eskin::stream::LiveView live("127.0.0.1", 0);
+  httplib::Client cli("127.0.0.1", live.port());
+  const std::string req = R"({"command":"set-mask","args":["0x7"]})";
+  auto none = cli.Post("/command", req, "application/json");
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->status, 503);
+  EXPECT_FALSE(nlohmann::json::parse(none->body)["ok"].get<bool>());
+  std::vector<std::string> got;
+  live.set_command_handler([&](const std::string& body) {
+    got.push_back(body);
+    return std::string(R"({"ok":true,"ack":"accepted","message":"accepted"})");
+  });
+  auto bad = cli.Post("/command", "set-mask 0x7", "text/plain");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400);
+  EXPECT_TRUE(got.empty()) << "a body that is not JSON reached the handler";
+  auto ok = cli.Post("/command", req, "application/json");
+  ASSERT_TRUE(ok);
+  EXPECT_EQ(ok->status, 200);
+  EXPECT_EQ(ok->body, R"({"ok":true,"ack":"accepted","message":"accepted"})");
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0], req);
+  auto list = cli.Get("/commands.json");
+  ASSERT_TRUE(list);
+  const auto cmds = nlohmann::json::parse(list->body);
+  ASSERT_EQ(cmds.size(), eskin::stream::command_specs().size());
+  bool mask = false;
+  for (const auto& c : cmds)
+    if (c["name"] == "set-mask") mask = c["args"].size() == 1;
+  EXPECT_TRUE(mask) << list->body;
 }
 
 // Sparse taxel frames (docs/protocol.md §4, mask bit 4) in the heatmap's
