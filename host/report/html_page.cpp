@@ -1,5 +1,9 @@
 #include "host/report/html_page.h"
 
+#include "host/report/report_style.h"
+
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -56,9 +60,10 @@ function eskinHeatmap(canvas) {
     ctx.fillText(m.row_labels[r] || '', left - 6, (y0 + y1) / 2 + 4);
   }
   ctx.textAlign = 'center';
-  for (let k = 0; k <= 5 && cols; ++k) {
-    const c = Math.min(cols - 1, Math.round(k * (cols - 1) / 5));
-    ctx.fillText(String(Math.round(m.x[c] * 100) / 100), left + (c + 0.5) * pw / cols, H - 12);
+  for (const t of m.x_ticks) {  // round times (html_page.cpp, round_ticks), at their place
+    const x = left + t.at * pw / cols;
+    ctx.fillRect(x - 0.5, top + ph, 1, 4);
+    ctx.fillText(t.label, x, H - 12);
   }
   ctx.fillText(m.x_unit, left + pw / 2, H - 1);
   for (let k = 0; k < ph; ++k) {
@@ -74,6 +79,25 @@ document.querySelectorAll('canvas.heatmap').forEach(eskinHeatmap);
 )JS";
 
 }  // namespace
+
+std::vector<double> round_ticks(double lo, double hi, int max_ticks) {
+  if (!(hi > lo) || max_ticks < 2) return {lo};
+  // step = m x 10^e, m in {1, 2, 5}; a tick k x step is computed as
+  // (k m) x 10^e or (k m) / 10^-e, so 0.5 comes out as 0.5, not 0.5000000001.
+  int e = int(std::floor(std::log10((hi - lo) / max_ticks)));
+  const int ms[] = {1, 2, 5};
+  const auto value = [&](double km) { return e >= 0 ? km * std::pow(10.0, e) : km / std::pow(10.0, -e); };
+  for (int i = 0;; ++i) {
+    const int m = ms[i % 3];
+    if (i > 0 && i % 3 == 0) ++e;
+    const double step = value(m);
+    const double k0 = std::ceil(lo / step - 1e-9), k1 = std::floor(hi / step + 1e-9);
+    if (k1 - k0 + 1 > max_ticks) continue;
+    std::vector<double> t;
+    for (double k = k0; k <= k1; k += 1) t.push_back(k == 0 ? 0.0 : value(k * m));
+    return t;
+  }
+}
 
 std::string escape(const std::string& s) {
   std::string o;
@@ -120,13 +144,44 @@ void Page::chart(const nlohmann::json& config, int height_px) {
 }
 
 void Page::heatmap(const Heatmap& h, int height_px) {
+  // Ticks at round x values, placed by interpolation between the cells'
+  // x (cell centres at column + 0.5).
+  nlohmann::json ticks = nlohmann::json::array();
+  if (h.x.size() >= 2)
+    for (double t : round_ticks(h.x.front(), h.x.back(), 6)) {
+      size_t i = 0;
+      while (i + 2 < h.x.size() && h.x[i + 1] < t) ++i;
+      const double at = double(i) + (t - h.x[i]) / (h.x[i + 1] - h.x[i]) + 0.5;
+      char label[32];
+      std::snprintf(label, sizeof label, "%g", t);
+      ticks.push_back({{"at", at}, {"label", label}});
+    }
   const nlohmann::json m = {{"row_labels", h.row_labels}, {"x", h.x},       {"values", h.values},
                             {"vmin", h.vmin},             {"vmax", h.vmax}, {"unit", h.unit},
-                            {"x_unit", h.x_unit}};
+                            {"x_unit", h.x_unit},         {"x_ticks", ticks}};
   if (!h.title.empty()) body_ += "<h3>" + escape(h.title) + "</h3>\n";
   body_ += "<canvas class=\"heatmap\" style=\"width:100%;height:" + std::to_string(height_px) +
            "px\" data-map=\"" + escape(m.dump()) + "\"></canvas>\n";
   heatmaps_ = true;
+}
+
+void Page::chart_grid(const std::vector<nlohmann::json>& configs, int columns, int height_px) {
+  char border[64];
+  std::snprintf(border, sizeof border, "%dpx solid rgb(%d,%d,%d)", kPanelBorderPx, kPanelBorder.r,
+                kPanelBorder.g, kPanelBorder.b);
+  body_ += "<div style=\"display:grid;grid-template-columns:repeat(" + std::to_string(columns) +
+           ",1fr);gap:8px;margin:.5em 0\">\n";
+  for (const nlohmann::json& config : configs) {
+    const std::string id = "chart" + std::to_string(next_id_++);
+    nlohmann::json cfg = config;
+    cfg["options"]["maintainAspectRatio"] = false;
+    cfg["options"]["animation"] = false;
+    body_ += "<div class=\"chart\" style=\"height:" + std::to_string(height_px) + "px;border:" +
+             border + "\"><canvas id=\"" + id + "\"></canvas></div>\n<script>new Chart(document.getElementById('" +
+             id + "'), " + script_json(cfg) + ");</script>\n";
+  }
+  body_ += "</div>\n";
+  charts_ = true;
 }
 
 std::string Page::html() const {

@@ -27,6 +27,10 @@ struct Heatmap {
   std::string unit, x_unit;
 };
 
+// Round tick values for an axis from lo to hi: steps of 1, 2 or 5 x 10^k,
+// the smallest that gives at most max_ticks ticks, each in [lo, hi].
+std::vector<double> round_ticks(double lo, double hi, int max_ticks);
+
 class Page {
  public:
   explicit Page(std::string title);
@@ -37,6 +41,9 @@ class Page {
   // A Chart.js 3.9 chart; `config` is its {type, data, options} object.
   void chart(const nlohmann::json& config, int height_px = 320);
   void heatmap(const Heatmap& h, int height_px = 240);
+  // Small multiples: one Chart.js chart per config, `columns` to a row,
+  // each in a framed panel (report_style.h) of height_px.
+  void chart_grid(const std::vector<nlohmann::json>& configs, int columns, int height_px);
 
   std::string html() const;
   void write(const std::string& path) const;  // throws std::runtime_error naming the path

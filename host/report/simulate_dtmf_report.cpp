@@ -58,11 +58,10 @@ void init_report(const DtmfRun& d, const std::string& scene_file, SimulateReport
   rep.scene_file = scene_file;
   for (int i = 0; i < d.R; ++i)
     for (int j = 0; j < d.C; ++j) rep.taxel_labels.push_back(fmt::format("r{}c{}", i, j));
-  const auto freqs = d.skin.carrier_freqs_hz();
+  rep.carrier_labels = d.skin.carrier_labels();
   for (int k = 0; k < d.K; ++k) {
-    rep.carrier_labels.push_back(fmt::format("{} {} Hz", k < d.R ? "row" : "col", freqs[size_t(k)]));
-    rep.fpga_amp.push_back({"FPGA " + rep.carrier_labels.back(), {}, {}});
-    rep.golden_amp.push_back({"golden " + rep.carrier_labels.back(), {}, {}});
+    rep.fpga_amp.push_back({"FPGA " + rep.carrier_labels[size_t(k)], {}, {}});
+    rep.golden_amp.push_back({"golden " + rep.carrier_labels[size_t(k)], {}, {}});
   }
   rep.fpga_kpa.assign(size_t(d.T), {});
   rep.golden_kpa.assign(size_t(d.T), {});

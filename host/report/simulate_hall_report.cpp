@@ -370,6 +370,14 @@ void score_frames(const HallChain& c, const HallRx& hr, const std::string& out_d
 
 void series_chart(Page& page, const std::vector<TimeSeries>& ss, const std::string& y) {
   nlohmann::json sets = nlohmann::json::array();
+  double lo = 0, hi = 0;  // the data's time extent: a tight axis
+  bool any = false;
+  for (const TimeSeries& s : ss)
+    for (double t : s.t) {
+      lo = any ? std::min(lo, t) : t;
+      hi = any ? std::max(hi, t) : t;
+      any = true;
+    }
   for (const TimeSeries& s : ss) {
     nlohmann::json pts = nlohmann::json::array();
     for (size_t i = 0; i < s.t.size(); ++i) pts.push_back({{"x", s.t[i]}, {"y", s.v[i]}});
@@ -379,13 +387,13 @@ void series_chart(Page& page, const std::vector<TimeSeries>& ss, const std::stri
     if (s.style == 2) d["borderDash"] = {1, 2};
     sets.push_back(d);
   }
+  nlohmann::json x = {{"type", "linear"}, {"title", {{"display", true}, {"text", "time (s)"}}}};
+  if (hi > lo) x.update({{"min", lo}, {"max", hi}, {"ticks", {{"includeBounds", false}}}});
   page.chart({{"type", "line"},
               {"data", {{"datasets", sets}}},
               {"options",
                {{"parsing", false},
-                {"scales",
-                 {{"x", {{"type", "linear"}, {"title", {{"display", true}, {"text", "time (s)"}}}}},
-                  {"y", {{"title", {{"display", true}, {"text", y}}}}}}}}}},
+                {"scales", {{"x", x}, {"y", {{"title", {{"display", true}, {"text", y}}}}}}}}}},
              340);
 }
 

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "host/report/html_page.h"
+#include "host/report/report_style.h"
 
 namespace eskin::report {
 namespace {
@@ -19,42 +21,87 @@ nlohmann::json xy(const std::vector<double>& x, const std::vector<double>& y) {
   return pts;
 }
 
-nlohmann::json axes(const std::string& x, const std::string& y) {
-  return {{"x", {{"type", "linear"}, {"title", {{"display", true}, {"text", x}}}}},
-          {"y", {{"title", {{"display", true}, {"text", y}}}}}};
+std::string css(Rgb8 c) { return fmt::format("rgb({},{},{})", c.r, c.g, c.b); }
+
+// Linear axes; x tight on [x_lo, x_hi] (the data's extent), its ticks
+// Chart.js's round ones inside it, not the bounds themselves.
+nlohmann::json axes(const std::string& x, const std::string& y, double x_lo, double x_hi) {
+  nlohmann::json a = {{"x", {{"type", "linear"}, {"title", {{"display", true}, {"text", x}}}}},
+                      {"y", {{"title", {{"display", true}, {"text", y}}}}}};
+  if (x_hi > x_lo) {
+    a["x"]["min"] = x_lo;
+    a["x"]["max"] = x_hi;
+    a["x"]["ticks"]["includeBounds"] = false;
+  }
+  return a;
 }
 
-void amplitude_chart(Page& page, const SimulateReport& r) {
-  nlohmann::json sets = nlohmann::json::array();
+// One panel per carrier (small multiples), titled by its row or column and
+// frequency: the FPGA's amplitude on the left axis and FPGA - golden at the
+// same samples on the right axis (the two agree to a fraction of an LSB, so
+// drawn on one axis the golden line would hide under the FPGA's).
+void amplitude_panels(Page& page, const SimulateReport& r) {
+  std::vector<nlohmann::json> panels;
   for (size_t k = 0; k < r.fpga_amp.size(); ++k) {
-    const char* c = kColours[k % 10];
-    sets.push_back({{"label", r.fpga_amp[k].label}, {"data", xy(r.fpga_amp[k].t_ms, r.fpga_amp[k].value)},
-                    {"borderColor", c}, {"pointRadius", 0}, {"borderWidth", 1.5}});
+    const Series& f = r.fpga_amp[k];
+    std::map<double, double> fpga_at;
+    for (size_t i = 0; i < f.t_ms.size(); ++i) fpga_at[f.t_ms[i]] = f.value[i];
+    std::vector<double> dt, dv;
     if (k < r.golden_amp.size())
-      sets.push_back({{"label", r.golden_amp[k].label},
-                      {"data", xy(r.golden_amp[k].t_ms, r.golden_amp[k].value)},
-                      {"borderColor", c}, {"borderDash", {4, 3}}, {"pointRadius", 0},
-                      {"borderWidth", 1}});
+      for (size_t i = 0; i < r.golden_amp[k].t_ms.size(); ++i) {
+        const auto it = fpga_at.find(r.golden_amp[k].t_ms[i]);
+        if (it == fpga_at.end()) continue;
+        dt.push_back(it->first);
+        dv.push_back(it->second - r.golden_amp[k].value[i]);
+      }
+    nlohmann::json sc = axes("time (ms)", "amplitude (LSB peak)", f.t_ms.empty() ? 0 : f.t_ms.front(),
+                             f.t_ms.empty() ? 0 : f.t_ms.back());
+    sc["y"]["ticks"]["color"] = css(kFpgaRgb);
+    sc["y2"] = {{"position", "right"},
+                {"title", {{"display", true}, {"text", "FPGA - golden (LSB)"}}},
+                {"ticks", {{"color", css(kDiffRgb)}}},
+                {"grid", {{"drawOnChartArea", false}}}};
+    const std::string label = k < r.carrier_labels.size() ? r.carrier_labels[k] : f.label;
+    panels.push_back(
+        {{"type", "line"},
+         {"data",
+          {{"datasets",
+            {{{"label", "FPGA"}, {"data", xy(f.t_ms, f.value)}, {"borderColor", css(kFpgaRgb)},
+              {"backgroundColor", css(kFpgaRgb)}, {"pointRadius", 0}, {"borderWidth", 2},
+              {"yAxisID", "y"}},
+             {{"label", "FPGA - golden"}, {"data", xy(dt, dv)}, {"borderColor", css(kDiffRgb)},
+              {"backgroundColor", css(kDiffRgb)}, {"pointRadius", 0}, {"borderWidth", 2},
+              {"yAxisID", "y2"}}}}}},
+         {"options",
+          {{"parsing", false},
+           {"scales", sc},
+           {"plugins", {{"title", {{"display", true}, {"text", label}}},
+                        {"legend", {{"labels", {{"boxWidth", 12}}}}}}}}}});
   }
-  page.chart({{"type", "line"},
-              {"data", {{"datasets", sets}}},
-              {"options", {{"parsing", false}, {"scales", axes("time (ms)", "carrier amplitude (LSB peak)")}}}},
-             380);
+  page.chart_grid(panels, kPanelColumns, kPanelHeightPx);
 }
 
 void raster_chart(Page& page, const SimulateReport& r) {
   nlohmann::json sets = nlohmann::json::array();
+  double t_hi = 0;
   for (size_t s = 0; s < r.spikes.size(); ++s) {
     std::vector<double> y;
     for (int t : r.spikes[s].taxel) y.push_back(t + (s == 0 ? 0.15 : -0.15));  // side by side
+    for (double t : r.spikes[s].t_ms) t_hi = std::max(t_hi, t);
     sets.push_back({{"label", r.spikes[s].label}, {"data", xy(r.spikes[s].t_ms, y)},
                     {"backgroundColor", kColours[s * 3 % 10]}, {"borderColor", kColours[s * 3 % 10]},
                     {"pointStyle", "line"}, {"rotation", 90}, {"pointRadius", 5},
                     {"borderWidth", 1.5}});
   }
-  nlohmann::json sc = axes("time (ms)", "taxel (row-major index)");
-  sc["y"]["min"] = -0.5;
-  sc["y"]["max"] = double(r.taxel_labels.size()) - 0.5;
+  // Time from 0 to the last frame; one row per taxel, ticks on the taxels.
+  // The bounds leave half a row for the markers; they are not a whole
+  // number of steps apart, or Chart.js would start its ticks at the bound
+  // (-0.5, 0.5, ...) instead of at the integers.
+  nlohmann::json sc = axes("time (ms)", "taxel (row-major index)", 0,
+                           r.frame_t_ms.empty() ? t_hi : r.frame_t_ms.back());
+  sc["y"]["min"] = -0.55;
+  sc["y"]["max"] = double(r.taxel_labels.size()) - 0.45;
+  sc["y"]["ticks"] = {{"stepSize", 1}, {"includeBounds", false}};
   page.chart({{"type", "scatter"}, {"data", {{"datasets", sets}}},
               {"options", {{"parsing", false}, {"scales", sc}}}},
              300);
@@ -108,8 +155,9 @@ void write_simulate_report(const SimulateReport& r, const std::string& path) {
   heatmap(page, r, "Golden model (double precision, ghost-corrected)", r.golden_kpa);
   heatmap(page, r, "Ground truth", r.truth_kpa);
   page.heading("Carrier amplitudes over time");
-  page.text("Solid: FPGA amplitude packets; dashed: golden model at the same samples.");
-  amplitude_chart(page, r);
+  page.text("One panel per carrier: the FPGA's amplitude packets (left axis) and the FPGA's "
+            "amplitude minus the golden model's at the same samples (right axis).");
+  amplitude_panels(page, r);
   page.heading("Spike raster");
   raster_chart(page, r);
   page.heading("Latency from touch onset to the first frame showing the taxel");
