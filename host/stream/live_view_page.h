@@ -108,6 +108,12 @@ const spikeChart = new Chart(document.getElementById('spikes'), {
     plugins: { title: { display: true, text: 'spike raster' } },
     scales: { x: { type: 'linear', title: { display: true, text: 'sample' } },
               y: { title: { display: true, text: 'neuron (taxel)' } } } } });
+// The x axis on the data's extent; Chart.js's round ticks inside it.
+function tight(chart, lo, hi) {
+  if (!(hi > lo)) return;
+  const x = chart.options.scales.x;
+  x.min = lo; x.max = hi; x.ticks = Object.assign(x.ticks || {}, { includeBounds: false });
+}
 let carriers = [];
 function drawAmps(a) {
   if (!a.length) return;
@@ -116,12 +122,14 @@ function drawAmps(a) {
   for (let i = 0; i < k; ++i)
     ampChart.data.datasets.push({ label: carriers[i] || ('carrier ' + i), borderColor: palette[i % palette.length],
       borderWidth: 1, data: a.map(f => ({ x: f.t, y: f.amp[i] })) });
+  tight(ampChart, a[0].t, a[a.length - 1].t);
   ampChart.update();
 }
 function drawSpikes(s) {
   for (let l = 0; l < 2; ++l)
     spikeChart.data.datasets[l].data =
         s.filter(e => (e.layer > 0 ? 1 : 0) === l).map(e => ({ x: e.t, y: e.neuron }));
+  if (s.length) tight(spikeChart, s[0].t, s[s.length - 1].t);
   spikeChart.update();
 }
 function drawLink(d) {
