@@ -57,7 +57,9 @@ int report(const ConfigArgs& a, const CommandSpec* spec, const CommandReply& r) 
 }
 
 // Through the stream that holds the port: its reply, or nothing when no
-// stream answers on the socket (not up yet, or the holder is no stream).
+// stream listens on the socket (not up yet, or the holder is no stream).
+// A request that went out without a reply is not sent again: the stream
+// may have applied it.
 std::optional<int> via_stream(const ConfigArgs& a, const CommandSpec* spec,
                               const PortPaths& port, const PortHolder& holder) {
   std::string line;
@@ -65,8 +67,12 @@ std::optional<int> via_stream(const ConfigArgs& a, const CommandSpec* spec,
     // The stream waits up to --timeout-ms for the verdict: allow for that.
     line = control_request(port.socket, request_json(a.name, a.args, a.timeout_ms),
                            std::chrono::milliseconds(a.timeout_ms + 5000));
-  } catch (const LinkError&) {
+  } catch (const ControlUnreachable&) {
     return std::nullopt;
+  } catch (const LinkError& e) {
+    std::cerr << "eskin config: error: " << e.what() << " (sent through eskin stream, pid "
+              << holder.pid << "; the command may have been applied: see its verdicts)\n";
+    return eskin::exit_code(eskin::Exit::no_verdict);
   }
   std::cerr << "eskin config: sent through eskin stream (pid " << holder.pid << "), which holds "
             << port.port << "\n";

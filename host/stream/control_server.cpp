@@ -308,7 +308,7 @@ std::string control_request(const std::string& socket_path, const std::string& r
   if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
     const std::string why = std::strerror(errno);
     ::close(fd);
-    throw LinkError(socket_path + ": cannot connect: " + why);
+    throw ControlUnreachable(socket_path + ": cannot connect: " + why);
   }
   const std::string line = request + "\n";
   size_t off = 0;

@@ -87,9 +87,17 @@ class ControlServer {
   std::thread thread_;
 };
 
+// Nothing listens on the control socket (the connect failed): the request
+// did not reach a stream, so it may be sent again or elsewhere.
+class ControlUnreachable : public LinkError {
+ public:
+  using LinkError::LinkError;
+};
+
 // The client end (`eskin config`): sends one request to the stream serving
-// socket_path and returns its reply line. Throws LinkError when nothing
-// listens there (connect fails) or no reply comes within `timeout`.
+// socket_path and returns its reply line. Throws ControlUnreachable when
+// nothing listens there, LinkError when the request went out but no reply
+// came within `timeout` (the command may have been applied: do not resend).
 std::string control_request(const std::string& socket_path, const std::string& request_json,
                             std::chrono::milliseconds timeout);
 

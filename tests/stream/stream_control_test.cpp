@@ -9,9 +9,12 @@
 #include <hdf5.h>
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/un.h>
 
 #include <atomic>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -360,6 +363,50 @@ TEST(StreamControl, ConfigWithoutAStreamOwnsThePortItself) {
   EXPECT_NE(r.out.find("set-mask (type 0x84, seq 1): accepted"), std::string::npos) << r.out;
   EXPECT_EQ(r.err.find("sent through"), std::string::npos) << r.err;
   EXPECT_GE(board.commands_heard(), 2u) << "REQUEST_STATUS, then the command";
+}
+
+// A stream that takes the request and closes without a reply (it died
+// while applying it): config says so and exits 4, and sends the request
+// once. Sent again, a command the stream did apply would be applied twice
+// (the old config resent it until --timeout-ms ran out). The "stream" here
+// is this test: it holds the port's lock as a stream that serves commands
+// and listens on the port's socket.
+TEST(StreamControl, ARequestWithoutAReplyIsNotSentAgain) {
+  TestDirs d;
+  PtyPair pty;
+  const auto paths = eskin::stream::port_paths(pty.slave_path());
+  eskin::stream::PortLock lock;
+  ASSERT_TRUE(lock.try_acquire(paths, "eskin stream", true, nullptr));
+  const int ls = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_un a{};
+  a.sun_family = AF_UNIX;
+  ASSERT_LT(paths.socket.size(), sizeof a.sun_path);
+  std::memcpy(a.sun_path, paths.socket.c_str(), paths.socket.size() + 1);
+  ASSERT_EQ(::bind(ls, reinterpret_cast<sockaddr*>(&a), sizeof a), 0) << paths.socket;
+  ASSERT_EQ(::listen(ls, 8), 0);
+  std::atomic<bool> stop{false};
+  std::atomic<int> requests{0};
+  std::thread silent([&] {
+    while (!stop) {
+      pollfd p{ls, POLLIN, 0};
+      if (::poll(&p, 1, 20) <= 0) continue;
+      const int fd = ::accept(ls, nullptr, nullptr);
+      if (fd < 0) continue;
+      std::string line;
+      char buf[512];
+      for (ssize_t n; line.find('\n') == std::string::npos && (n = ::read(fd, buf, sizeof buf)) > 0;)
+        line.append(buf, size_t(n));
+      if (!line.empty()) ++requests;
+      ::close(fd);  // no reply
+    }
+  });
+  const CliRun r = run(d.dir, "cfg", {"config", "--port", pty.slave_path(), "--timeout-ms", "1000", "status"});
+  stop = true;
+  silent.join();
+  ::close(ls);
+  EXPECT_EQ(r.rc, 4) << r.out << r.err;
+  EXPECT_NE(r.err.find("may have been applied"), std::string::npos) << r.err;
+  EXPECT_EQ(requests, 1) << "the request was sent again";
 }
 
 // The runtime directory is private, the socket too, and it goes when the
