@@ -84,5 +84,99 @@ module packet_arbiter #(
       if (last) busy <= 1'b0;
     end
   end
+`ifdef FORMAL
+  // Properties (tests/formal/packet_arbiter.sby, docs/formal.md).
+  // Assumed, of each source only: whole packets (type, t, len, len
+  // payload bytes) and valid/ready (valid and data held until taken);
+  // the first clock resets. m_ready is free.
+  reg f_past = 1'b0;
+  always @(posedge clk) f_past <= 1'b1;
+  always @(*) if (!f_past) assume (rst);
+
+  // Each source's own position in its packet, counted here from its
+  // handshakes alone: header byte 0..6, then 7 with f_left payload bytes
+  // to go. A source at 0 is between packets.
+  localparam [4:0] F_NS = NS;
+  wire [GW-1:0] f_grant = pick;
+  wire f_grant_now = !busy && pick_any && !rst;
+  genvar fi;
+  generate
+    for (fi = 0; fi < NS; fi = fi + 1) begin : g_formal_src
+      reg [2:0]  f_hidx;
+      reg [7:0]  f_lo;
+      reg [15:0] f_left;
+      reg [3:0]  f_wait;  // packets granted to others while this one waits
+      wire take = s_valid[fi] && s_ready[fi];
+      wire src_last = (f_hidx == 3'd6 && {s_data[fi*8 +: 8], f_lo} == 16'd0) ||
+                      (f_hidx == 3'd7 && f_left == 16'd1);
+      // Waiting: its next packet's first byte is offered and not yet granted.
+      wire waiting = s_valid[fi] && f_hidx == 3'd0 && !(busy && g == GW'(fi));
+      always @(posedge clk)
+        if (f_past && !$past(rst) && $past(s_valid[fi] && !s_ready[fi]))
+          assume (s_valid[fi] && s_data[fi*8 +: 8] == $past(s_data[fi*8 +: 8]));
+      always @(posedge clk)
+        if (rst) begin
+          f_hidx <= 3'd0;
+          f_left <= 16'd0;
+          f_lo <= 8'd0;
+          f_wait <= 4'd0;
+        end else begin
+          if (take) begin
+            if (f_hidx == 3'd5) f_lo <= s_data[fi*8 +: 8];
+            if (f_hidx == 3'd6) f_left <= {s_data[fi*8 +: 8], f_lo};
+            if (f_hidx == 3'd7) f_left <= f_left - 16'd1;
+            f_hidx <= src_last ? 3'd0 : (f_hidx == 3'd7 ? 3'd7 : f_hidx + 3'd1);
+          end
+          if (f_grant_now && f_grant == GW'(fi)) f_wait <= 4'd0;
+          else if (f_grant_now && waiting) f_wait <= f_wait + 4'd1;
+          else if (!waiting) f_wait <= 4'd0;
+        end
+      // Round-robin distance from the last grant to this source (1..NS).
+      localparam [4:0] F_I = fi;
+      wire [4:0] f_g = {{(5 - GW){1'b0}}, g};
+      wire [4:0] f_w = {1'b0, f_wait};
+      wire [4:0] dist = (F_I > f_g) ? F_I - f_g : F_I + F_NS - f_g;
+      always @(*)
+        if (f_past && !rst) begin
+          // One packet at a time: a source is mid-packet only while it
+          // holds the grant, and then exactly where the arbiter counts.
+          if (!(busy && g == GW'(fi))) assert (f_hidx == 3'd0);
+          else begin
+            assert (f_hidx == hidx);
+            if (hidx == 3'd6) assert (f_lo == len_lo);
+            if (hidx == 3'd7) assert (f_left == left && left != 16'd0);
+          end
+          // The waiting bound: at most NS - 1 packets of others.
+          assert (f_w <= F_NS - 5'd1);
+          if (waiting) assert (f_w + dist <= F_NS);
+          else assert (f_wait == 4'd0);
+        end
+      always @(posedge clk)
+        if (f_past && !rst) cover (waiting && f_w == F_NS - 5'd1);  // the bound is met
+    end
+  endgenerate
+
+  // The output is source g's stream, untouched: no byte of another source
+  // and nothing while no packet is granted.
+  always @(*)
+    if (f_past && !rst) begin
+      assert (32'(g) < NS);
+      assert (m_valid == (busy && s_valid[g]));
+      assert (m_data == s_data[g*8 +: 8]);
+      assert (s_ready == (busy ? ({{(NS - 1){1'b0}}, m_ready} << g) : {NS{1'b0}}));
+    end
+  // The grant moves only between packets.
+  always @(posedge clk)
+    if (f_past && !$past(rst) && !rst && $past(busy) && busy && $past(g) != g) assert (0);
+  always @(posedge clk)
+    if (f_past && !$past(rst) && !rst && $past(busy) && $past(!last || !fire)) assert (busy && g == $past(g));
+
+  always @(posedge clk)
+    if (f_past && !rst) begin
+      cover (fire && last && hidx == 3'd7);                 // a packet with a payload ends
+      cover (busy && !s_valid[g] && hidx == 3'd7);          // a source pauses mid-packet
+      cover (f_grant_now && pick != g);                     // the grant moves on
+    end
+`endif
 endmodule
 `default_nettype wire
