@@ -69,5 +69,57 @@ module uart_tx #(
       end
     end
   end
+`ifdef FORMAL
+  // Properties (tests/formal/uart.sby): for any input bytes and
+  // handshakes, the line is idle high, then per byte taken a start bit,
+  // the 8 bits LSB first and a stop bit, each exactly CPB clocks, from the
+  // clock after the handshake; the next byte is taken only in the stop
+  // bit's last clock or later. The first clock resets.
+  reg f_past = 1'b0;
+  always @(posedge clk) f_past <= 1'b1;
+  always @(*) if (!f_past) assume (rst);
+  always @(*) if (f_past) assume (!rst);
+
+  localparam [15:0] F_CPB = CPB;
+  reg f_on;
+  reg [3:0] f_bit;
+  reg [15:0] f_bt;
+  reg [7:0] f_byte;
+  wire f_last = f_on && f_bit == 4'd9 && f_bt == F_CPB - 16'd1;
+  always @(posedge clk)
+    if (rst) begin
+      f_on <= 1'b0;
+      f_bit <= 4'd0;
+      f_bt <= 16'd0;
+    end else if (s_valid && s_ready) begin
+      f_on <= 1'b1;
+      f_bit <= 4'd0;
+      f_bt <= 16'd0;
+      f_byte <= s_data;
+    end else if (f_on) begin
+      if (f_last) f_on <= 1'b0;
+      else if (f_bt == F_CPB - 16'd1) begin
+        f_bt <= 16'd0;
+        f_bit <= f_bit + 4'd1;
+      end else f_bt <= f_bt + 16'd1;
+    end
+  always @(*)
+    if (f_past) begin
+      assert (s_ready == (!f_on || f_last));
+      if (!f_on) assert (tx);
+      else if (f_bit == 4'd0) assert (!tx);
+      else if (f_bit <= 4'd8) assert (tx == f_byte[f_bit[2:0] - 3'd1]);
+      else assert (tx && f_bit == 4'd9);
+      // The state, for induction: the counters are the model's.
+      assert (busy == f_on);
+      if (f_on) assert (bitn == f_bit && {{(16 - CW){1'b0}}, cnt} == f_bt && f_bt < F_CPB &&
+                        shreg == (f_byte >> f_bit));
+    end
+  always @(posedge clk)
+    if (f_past) begin
+      cover (f_last && s_valid);           // back to back
+      cover (f_on && f_bit == 4'd8 && tx);  // a 1 in the last data bit
+    end
+`endif
 endmodule
 `default_nettype wire

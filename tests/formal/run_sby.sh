@@ -24,6 +24,8 @@ export YOWASP_CACHE_DIR=${YOWASP_CACHE_DIR:-$(dirname "$venv")/yowasp-cache}
 rm -rf "$work"
 mkdir -p "$work"
 cp "$rtl"/*.v "$rtl"/*.vh "$work"/
+# Wrappers that join modules for a proof (e.g. uart_loop.v) live beside the .sby.
+for w in "$(dirname "$sby")"/*.v; do [ -e "$w" ] && cp "$w" "$work"/; done
 cp "$sby" "$work/$module.sby"
 
 expect=PASS
