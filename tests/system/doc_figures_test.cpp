@@ -1,7 +1,7 @@
 // The figures the docs cite, from generated files only, and a check that
 // a doc's figure cannot differ from its file's.
 //
-// Five generated files hold every measured figure of docs/ and README.md:
+// Six generated files hold every measured figure of docs/ and README.md:
 //  - docs/figures.csv (name,value,unit,source): written by this test from
 //    the real models: the default scene's plan (common/eskin/dtmf_top_plan.h
 //    and its Verilog parameters, ucode/dtmf_engine_image.h), the frame
@@ -24,7 +24,9 @@
 //  - bench/baselines/tradeoff_synth.csv: `eskin bench tradeoff --quick
 //    --synth --write-synth-table` (Yosys);
 //  - docs/vboard_figures.csv: the default scene's `eskin simulate` figures
-//    (tests/vboard/simulate_test.cpp, DefaultSceneFiguresAreTheDocs).
+//    (tests/vboard/simulate_test.cpp, DefaultSceneFiguresAreTheDocs);
+//  - docs/formal.csv: the formal proofs' kinds, depths and times
+//    (scripts/formal_table.sh, tests/formal/formal_table_test.cpp).
 // A doc marks each figure it cites with its name:
 //    <!--fig:NAME-->10 077<!--/fig-->
 // NAME is a row of docs/figures.csv, latency/CONFIG/STAGE (a row of
@@ -32,7 +34,9 @@
 // clock, bench::latency_configs()) or scale/TARGET/RxC/SAMPLE_HZ/COLUMN (a row of the scale
 // table, SAMPLE_HZ as the CSV writes it) or tradeoff_synth/builds,
 // tradeoff_synth/COLUMN_min and _max (the stored synthesis table's rows and
-// a column's extremes) or vboard/NAME (a row of docs/vboard_figures.csv).
+// a column's extremes) or vboard/NAME (a row of docs/vboard_figures.csv)
+// or formal/MODULE/TASK/depth|seconds, formal/tasks, formal/seconds (rows
+// of docs/formal.csv and their count and sum).
 // The text between the markers is
 // the number (spaces and commas as thousands separators allowed); a file
 // value with more decimals is compared rounded to the doc's decimals. The
@@ -307,6 +311,23 @@ std::map<std::string, std::string> known_figures() {
   // tests/vboard/simulate_test.cpp, DefaultSceneFiguresAreTheDocs).
   for (const auto& r : read_csv(kSrc / "docs/vboard_figures.csv"))
     if (r.size() >= 2) m["vboard/" + r[0]] = r[1];
+  // formal/MODULE/TASK/depth and /seconds, formal/tasks, formal/seconds:
+  // the proofs' table (docs/formal.csv, scripts/formal_table.sh; checked
+  // against tests/formal/*.sby by tests/formal/formal_table_test.cpp).
+  {
+    double total = 0;
+    const auto frows = read_csv(kSrc / "docs/formal.csv");
+    for (const auto& r : frows) {
+      if (r.size() != 6) continue;
+      m["formal/" + r[0] + "/" + r[1] + "/depth"] = r[3];
+      m["formal/" + r[0] + "/" + r[1] + "/seconds"] = r[4];
+      total += std::stod(r[4]);
+    }
+    m["formal/tasks"] = std::to_string(frows.size());
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f", total);
+    m["formal/seconds"] = buf;
+  }
   // tradeoff_synth/builds, tradeoff_synth/COLUMN_min, _max: the stored
   // synthesis table of the trade study's quick builds
   // (bench/baselines/tradeoff_synth.csv, `eskin bench tradeoff --quick
