@@ -183,5 +183,183 @@ module cmd_decoder #(
       end
     end
   end
+`ifdef FORMAL
+  // Properties (tests/formal/cmd_decoder.sby, docs/formal.md). Inputs are
+  // free (s_valid, s_data, rx_error, pop, clear, rst) except that the first
+  // clock resets. A reference monitor decodes the same byte stream on its
+  // own (COBS, its own bit-serial CRC, length, type range, FIFO room) and
+  // the decoder's state, counters and commit pointer must agree with it;
+  // one byte of one frame (f_k: any FIFO offset within a frame, f_pick: any
+  // frame) is followed from the line to `head`.
+  reg f_past = 1'b0;
+  always @(posedge clk) f_past <= 1'b1;
+  always @(*) if (!f_past) assume (rst);
+
+  // CRC-16/CCITT-FALSE, one bit at a time (the LFSR form, not rtl/crc16's).
+  function automatic [15:0] f_crc16(input [15:0] c, input [7:0] d);
+    integer b;
+    reg [15:0] r;
+    begin
+      r = c;
+      for (b = 7; b >= 0; b = b - 1)
+        r = {r[14:0], 1'b0} ^ ((r[15] ^ d[b]) ? 16'h1021 : 16'h0000);
+      f_crc16 = r;
+    end
+  endfunction
+
+  // The reference's COBS decode: a code byte opens a block of code - 1 data
+  // bytes; the zero implied by a code below 0xFF is a raw byte only when
+  // another block follows in the frame.
+  reg        f_in, f_pend, f_err, f_ovf, f_follow, f_kst, f_cm;
+  reg [7:0]  f_rem, f_typ, f_kb;
+  reg [16:0] f_n;                 // raw bytes of the frame (saturating)
+  reg [15:0] f_crc, f_len;
+  reg [AW:0] f_wc, f_fs, f_ca;    // committed bytes, this frame's stored bytes, followed byte's place
+  reg [15:0] f_fe, f_ov, f_ce;    // the counters, counted apart
+  (* anyconst *) reg [16:0] f_k;  // followed byte: offset in its frame's FIFO bytes
+  (* anyseq *) reg f_pick;        // follow the frame starting now
+  wire f_byte = s_valid && s_data != 8'd0;
+  wire f_delim = s_valid && s_data == 8'd0;
+  wire f_code = f_byte && f_rem == 8'd0;
+  wire f_raw_en = f_byte && (f_rem != 8'd0 || f_pend);
+  wire [7:0] f_raw = (f_rem != 8'd0) ? s_data : 8'd0;
+  wire f_store = f_raw_en && (f_n < 17'd2 || f_n > 17'd5);  // type, seq, len, payload, crc
+  wire [16:0] f_off = (f_n < 17'd2) ? f_n : f_n - 17'd4;      // its FIFO offset in the frame
+  wire [AW:0] f_used = (f_wc - rp) + f_fs;
+  wire f_room = f_used != DEPTH[AW:0];
+  wire f_typ_in = f_typ >= TYPE_LO && f_typ <= TYPE_HI;
+  wire f_routed = (TYPE_IN != 0) ? f_typ_in : !f_typ_in;
+  wire [16:0] f_len10 = {1'b0, f_len} + 17'd10;
+  wire f_struct = !f_err && f_rem == 8'd0 && f_n >= 17'd10 && f_n == f_len10;
+  wire f_end = f_delim && f_in;
+  wire f_commit = f_end && f_struct && !f_ovf && f_crc == 16'd0 && f_routed;
+  wire [AW:0] f_flen = f_len[AW:0] + 3'd4;   // type, seq, len, payload
+  wire f_read = pop && avail;
+  // The bytes of this frame the FIFO should hold: type, seq, then all but t.
+  wire [16:0] f_stored = (f_n < 17'd2) ? f_n : (f_n < 17'd6) ? 17'd2 : f_n - 17'd4;
+
+  always @(posedge clk)
+    if (rst) begin
+      f_in <= 1'b0; f_pend <= 1'b0; f_err <= 1'b0; f_ovf <= 1'b0;
+      f_rem <= 8'd0; f_n <= 17'd0; f_crc <= 16'hFFFF;
+      f_wc <= 0; f_fs <= 0;
+      f_fe <= 16'd0; f_ov <= 16'd0; f_ce <= 16'd0;
+      f_follow <= 1'b0; f_kst <= 1'b0; f_cm <= 1'b0;
+    end else begin
+      // A UART error belongs to the frame in progress or the next one; one
+      // in the very clock of a delimiter is not seen (uart_rx never pulses
+      // an error in the clock it delivers a byte: the byte is dropped).
+      if (rx_error) f_err <= 1'b1;
+      if (f_read && rp == f_ca && f_cm) f_cm <= 1'b0;
+      if (f_delim) begin
+        f_in <= 1'b0; f_pend <= 1'b0; f_err <= 1'b0; f_ovf <= 1'b0;
+        f_rem <= 8'd0; f_n <= 17'd0; f_crc <= 16'hFFFF; f_fs <= 0;
+        f_follow <= 1'b0; f_kst <= 1'b0;
+        if (f_end) begin
+          if (f_commit) begin
+            f_wc <= f_wc + f_flen;
+            if (f_follow && f_k < {1'b0, f_len} + 17'd4) begin
+              f_cm <= 1'b1;
+              f_ca <= f_wc + f_k[AW:0];
+            end
+          end else if (!f_struct) f_fe <= (f_fe == 16'hFFFF) ? f_fe : f_fe + 16'd1;
+          else if (f_ovf) f_ov <= (f_ov == 16'hFFFF) ? f_ov : f_ov + 16'd1;
+          else if (f_crc != 16'd0) f_ce <= (f_ce == 16'hFFFF) ? f_ce : f_ce + 16'd1;
+        end
+      end else if (f_byte) begin
+        f_in <= 1'b1;
+        if (f_code) begin
+          f_rem <= s_data - 8'd1;
+          f_pend <= s_data != 8'hFF;
+        end else f_rem <= f_rem - 8'd1;
+        if (f_raw_en) begin
+          f_crc <= f_crc16(f_crc, f_raw);
+          if (f_n != 17'h1FFFF) f_n <= f_n + 17'd1;
+          if (f_n == 17'd0) begin
+            f_typ <= f_raw;
+            f_follow <= f_pick && !f_cm;
+          end
+          if (f_n == 17'd6) f_len[7:0] <= f_raw;
+          if (f_n == 17'd7) f_len[15:8] <= f_raw;
+          if (f_store) begin
+            // Room: the committed bytes not yet read plus this frame's.
+            if (f_ovf || !f_room) f_ovf <= 1'b1;
+            else begin
+              f_fs <= f_fs + 1'b1;
+              if ((f_n == 17'd0 ? f_pick && !f_cm : f_follow) && f_off == f_k) begin
+                f_kst <= 1'b1;
+                f_kb <= f_raw;
+              end
+            end
+          end
+        end
+      end
+      if (clear) begin
+        f_fe <= 16'd0; f_ov <= 16'd0; f_ce <= 16'd0;
+      end
+    end
+
+  always @(*)
+    if (f_past && !rst) begin
+      // The decoder's decisions are the reference's: what it committed
+      // (wc: exactly len + 4 bytes per accepted frame, nothing for a rejected
+      // one) and each rejection counted once, by its first reason.
+      assert (wc == f_wc);
+      assert (frame_errors == f_fe && overflows == f_ov && crc_errors == f_ce);
+      // The same frame state (needed for induction; also: after any
+      // delimiter everything is back to idle, since the reference is).
+      assert (in_frame == f_in && code_rem == f_rem && pend_zero == f_pend);
+      assert (bad == f_err && ovf == f_ovf && crc == f_crc && count == f_n);
+      assert (pos == ((f_n > 17'd15) ? 4'd15 : f_n[3:0]));
+      if (f_n >= 17'd1) assert (typ == f_typ);
+      if (f_n == 17'd7) assert (len10[7:0] == f_len[7:0]);
+      if (f_n >= 17'd8) assert (len10 == f_len10);
+      if (!f_in) assert (f_n == 17'd0 && !f_pend && f_rem == 8'd0 && !f_ovf);
+      // The FIFO: committed bytes, then this frame's, never over DEPTH.
+      assert (wp == f_wc + f_fs);
+      assert ((wc - rp) <= DEPTH[AW:0] && f_used <= DEPTH[AW:0]);
+      assert ({1'b0, f_wc - rp} + {1'b0, f_fs} <= {1'b0, DEPTH[AW:0]});  // without wrapping
+      // The followed byte: in the RAM from its write until it is read.
+      if (f_kst) assert (f_follow && f_k < {{(16 - AW){1'b0}}, f_fs} && mem[f_wc[AW-1:0] + f_k[AW-1:0]] == f_kb);
+      if (f_follow && !f_kst) assert (f_k >= {{(16 - AW){1'b0}}, f_fs} || f_ovf);
+      if (f_follow) assert (!f_cm);
+      if (f_cm) assert (((f_ca - rp) < (wc - rp)) && mem[f_ca[AW-1:0]] == f_kb);
+      if (avail) assert (head == mem[rp[AW-1:0]]);
+      // This frame's stored bytes: type, seq, then all but t (until full).
+      if (!f_ovf) assert ({{(16 - AW){1'b0}}, f_fs} == f_stored);
+      else assert ({{(16 - AW){1'b0}}, f_fs} < f_stored);
+      if (f_n == 17'd0) assert (!f_kst && !f_ovf && !f_follow);
+    end
+
+  // Delivered whole and once: a committed frame's byte f_k is the one its
+  // raw byte (type, seq, len LE, payload; never t or the CRC) carried, and
+  // `head` shows it when it is popped.
+  always @(posedge clk)
+    if (f_past && !rst) begin
+      if (f_commit && f_follow && f_k < {1'b0, f_len} + 17'd4) assert (f_kst);
+      if (f_cm && f_read && rp == f_ca) assert (head == f_kb);
+    end
+  always @(posedge clk)
+    if (f_past && !rst && $past(f_past && !rst && f_delim)) begin
+      // After any delimiter: idle, whatever came before.
+      assert (!in_frame && code_rem == 8'd0 && !pend_zero && !bad && !ovf);
+      assert (count == 17'd0 && pos == 4'd0 && crc == 16'hFFFF);
+    end
+  // Each decision is reachable.
+  reg f_rejected;  // a frame was rejected since reset
+  always @(posedge clk)
+    if (rst) f_rejected <= 1'b0;
+    else if (f_end && !f_commit) f_rejected <= 1'b1;
+  always @(posedge clk)
+    if (f_past && !rst) begin
+      cover (f_commit && f_len != 16'd0);                  // a command with a payload committed
+      cover (f_commit && f_rejected);                      // a good one after a rejected one
+      cover (f_end && !f_struct);                          // a frame error
+      cover (f_end && f_struct && f_ovf);                  // an overflow
+      cover (f_end && f_struct && !f_ovf && f_crc != 16'd0);  // a CRC error
+      cover (f_end && f_struct && !f_ovf && f_crc == 16'd0 && !f_routed);  // another top's
+      cover (f_cm && f_read && rp == f_ca);                // the followed byte popped
+    end
+`endif
 endmodule
 `default_nettype wire
