@@ -150,5 +150,92 @@ module adc_ad7476 #(
       end
     end
   end
+`ifdef FORMAL
+  // Properties (tests/formal/adc_ad7476.sby). Inputs free (en, sdata,
+  // m_ready, clear); the first clock resets. The monitor keeps the
+  // schedule of docs/protocol.md §1 with its own counters: conversions
+  // start (CS falls) only PERIOD clocks apart; then SCLK falls at
+  // E0 + (2k-1)H and rises at E0 + 2kH, k = 1..16, and CS rises with the
+  // 16th rise. The pins must follow it exactly, which makes t2 (CS to
+  // SCLK) H clocks, t5/t6 (SCLK low/high) H clocks each, 16 clocks per
+  // conversion, t1 (CS high) and tQUIET at least PERIOD - 32H and
+  // PERIOD - 31H clocks: the clock counts the elaboration check holds to
+  // the datasheet's nanoseconds. And the code delivered is the 12 bits
+  // SDATA showed on the edges of SCLK falls 5..16.
+  reg f_past = 1'b0;
+  always @(posedge clk) f_past <= 1'b1;
+  always @(*) if (!f_past) assume (rst);
+  always @(*) if (f_past) assume (!rst);
+
+  localparam [15:0] F_H = SCLK_DIV, F_PERIOD = PERIOD;
+  reg [15:0] f_pc;     // clocks into the sample period (conversions start at 0)
+  reg f_conv;          // CS should be low
+  reg [15:0] f_h;      // clocks into the SCLK half period
+  reg [5:0] f_half;    // half periods done
+  reg [15:0] f_sh;     // SDATA at each scheduled SCLK fall
+  reg [15:0] f_gap;    // clocks since CS rose (saturating)
+  wire f_fall = f_conv && f_h == F_H - 16'd1 && !f_half[0];
+  wire f_rise = f_conv && f_h == F_H - 16'd1 && f_half[0];
+  reg f_got16, f_full;  // the 16th fall was at the last edge; the output was full then
+  always @(posedge clk)
+    if (rst) begin
+      f_pc <= 16'd0;
+      f_conv <= 1'b0;
+      f_h <= 16'd0;
+      f_half <= 6'd0;
+      f_sh <= 16'd0;
+      f_gap <= 16'hFFFF;
+      f_got16 <= 1'b0;
+    end else begin
+      f_pc <= (f_pc == F_PERIOD - 16'd1) ? 16'd0 : f_pc + 16'd1;
+      f_got16 <= f_fall && f_half == 6'd30;
+      f_full <= m_valid && !m_ready;
+      if (!f_conv) begin
+        if (f_gap != 16'hFFFF) f_gap <= f_gap + 16'd1;
+        if (f_pc == 16'd0 && en) begin
+          f_conv <= 1'b1;
+          f_h <= 16'd0;
+          f_half <= 6'd0;
+        end
+      end else if (f_h != F_H - 16'd1) f_h <= f_h + 16'd1;
+      else begin
+        f_h <= 16'd0;
+        f_half <= f_half + 6'd1;
+        if (f_fall) f_sh <= {f_sh[14:0], sdata[0]};
+        if (f_rise && f_half == 6'd31) begin
+          f_conv <= 1'b0;
+          f_gap <= 16'd0;
+        end
+      end
+    end
+  always @(*)
+    if (f_past) begin
+      assert (cs_n == !f_conv);                           // CS: the schedule's
+      assert (sclk == (!f_conv || !f_half[0]));           // SCLK: idle high, H clocks per level
+      if (f_conv) assert (f_half <= 6'd31);               // 16 SCLK cycles per conversion
+      // t1 / tQUIET: CS high at least PERIOD - 32H clocks before it falls.
+      if (!cs_n && f_conv && f_half == 6'd0 && f_h == 16'd0 && f_gap != 16'hFFFF)
+        assert (f_gap + 16'd1 >= F_PERIOD - 16'd32 * F_H);
+      // The code: bits 5..16 of the last conversion, unless the token
+      // before it was still waiting (then overruns counts it).
+      if (f_got16 && !f_full) assert (m_valid && m_data[11:0] == f_sh[11:0]);
+      // The state, for induction: the counters are the monitor's.
+      assert ({{(16 - PW){1'b0}}, pcnt} == f_pc && f_pc < F_PERIOD);
+      assert (busy == f_conv);
+      if (f_conv) assert ({{(16 - HW){1'b0}}, hcnt} == f_h && f_h < F_H && {1'b0, half} == f_half);
+      assert (shreg[15:0] == f_sh);
+      if (f_conv) assert (f_pc == {10'd0, f_half} * F_H + f_h + 16'd1);
+      if (f_conv && f_gap != 16'hFFFF) assert (f_gap + 16'd1 >= F_PERIOD - 16'd32 * F_H);
+      if (!f_conv && f_gap < F_PERIOD)
+        assert (f_pc == ((16'd32 * F_H + 16'd1 + f_gap >= F_PERIOD) ? 16'd32 * F_H + 16'd1 + f_gap - F_PERIOD
+                                                                   : 16'd32 * F_H + 16'd1 + f_gap));
+    end
+  always @(posedge clk)
+    if (f_past) begin
+      cover (f_got16 && !f_full);                 // a code delivered
+      cover (f_got16 && f_full);                  // an overrun
+      cover (!cs_n && f_half == 6'd0 && f_gap != 16'hFFFF && f_gap != 16'd0);  // a second conversion
+    end
+`endif
 endmodule
 `default_nettype wire
