@@ -280,5 +280,77 @@ module i2c_master #(
       endcase
     end
   end
+`ifdef FORMAL
+  // Properties (tests/formal/i2c_master.sby). Inputs free: commands,
+  // rsp_ready and both line levels (any target, stretching, holding SCL
+  // or SDA low for ever); the first clock resets. The pins are pull-down
+  // enables only (scl_oe, sda_oe; rtl/i2c_pads.v makes them open drain):
+  // nothing here can drive a line high.
+  reg f_past = 1'b0;
+  always @(posedge clk) f_past <= 1'b1;
+  always @(*) if (!f_past) assume (rst);
+  always @(*) if (f_past) assume (!rst);
+
+  // How long each state may last: cnt counts its clocks and the state ends
+  // at its bound, so no state but IDLE and RESP (which wait for the user)
+  // can hold: a stuck line ends in ERR_TIMEOUT within TIMEOUT_CYC clocks.
+  localparam integer F_BUFW = (M_TIMEOUT > M_BUF) ? M_TIMEOUT : M_BUF;
+  always @(*)
+    if (f_past) begin
+      assert (state <= S_RESP);
+      if (state == S_STA_HOLD) assert (cnt <= C_HD_STA);
+      if (state == S_LOW) assert (cnt <= C_LOW);
+      if (state == S_WAIT_HIGH) assert (cnt <= C_TIMEOUT);
+      if (state == S_HIGH) assert (cnt <= C_HIGH);
+      if (state == S_SETUP) assert (op == OP_START ? cnt <= C_SU_STA : (op == OP_STOP && cnt <= C_SU_STO && sda_oe));
+      if (state == S_WAIT_HIGH && op == OP_STOP) assert (sda_oe);
+      if (state == S_LOW && op == OP_STOP && cnt > C_HOLD) assert (sda_oe);
+      if (state == S_BUF) assert (32'(cnt) <= F_BUFW && (sampled ? cnt <= C_BUF : 1'b1));
+      if (state == S_HIGH) assert (bitn <= 4'd8 && op != OP_START && op != OP_STOP);
+      if (state == S_LOW || state == S_WAIT_HIGH) assert (bitn <= 4'd8 || (bitn == 4'd9 && op == OP_STOP));
+      if (state == S_RESP) assert (rsp_valid);
+      if (state == S_IDLE) assert (!scl_oe || owned);
+      // SCL is only ours to hold while we own the bus.
+      if (scl_oe) assert (owned);
+      if (state == S_STA_HOLD) assert (sda_oe);
+      if (state == S_BUF) assert (op == OP_STOP && !sda_oe);
+      if (state == S_HIGH || state == S_WAIT_HIGH || state == S_SETUP || state == S_BUF) assert (!scl_oe);
+      if (state == S_LOW || state == S_BUF || state == S_WAIT_HIGH || state == S_HIGH || state == S_SETUP)
+        assert (owned);
+      assert (rsp_valid == (state == S_RESP));
+    end
+
+  // SDA (our pull-down) changes only while we hold SCL low before and after
+  // the change (never in the clock SCL is released), except for a
+  // START (SDA taken low with SCL released: then the START hold follows)
+  // and a STOP (SDA released with SCL released: then the bus-free wait),
+  // and the release of both lines when another device held SCL low too
+  // long (the timeout).
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(sda_oe) != sda_oe && !($past(scl_oe) && scl_oe)) begin
+      if (sda_oe) assert (state == S_STA_HOLD);
+      else assert (state == S_BUF || (state == S_RESP && rsp_err == ERR_TIMEOUT));
+    end
+  // A transaction ends in a STOP or a reported error: the bus is given up
+  // only with a response, OK only after the bus-free wait of a STOP.
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(owned) && !owned) begin
+      assert (state == S_RESP && rsp_valid && !scl_oe);
+      if (rsp_err == ERR_OK) assert ($past(state) == S_BUF && !sda_oe);
+    end
+  // A response is held until taken.
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(rsp_valid && !rsp_ready))
+      assert (rsp_valid && $stable(rsp_data) && $stable(rsp_err) && $stable(rsp_nack));
+
+  always @(posedge clk)
+    if (f_past) begin
+      cover (state == S_RESP && rsp_err == ERR_TIMEOUT && $past(state) == S_WAIT_HIGH);  // SCL stuck
+      cover (state == S_RESP && rsp_err == ERR_TIMEOUT && $past(state) == S_BUF);        // SDA stuck after STOP
+      cover ($past(owned) && !owned && rsp_err == ERR_OK);                              // a STOP
+      cover (rsp_valid && !rsp_ready && $past(rsp_valid && !rsp_ready));                  // a response waiting
+      cover (state == S_STA_HOLD && $past(state) == S_SETUP);                           // a repeated START
+    end
+`endif
 endmodule
 `default_nettype wire
