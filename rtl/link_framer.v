@@ -195,5 +195,159 @@ module link_framer (
       endcase
     end
   end
+`ifdef FORMAL
+  // Properties (tests/formal/link_framer.sby). Assumed, of the input only:
+  // whole packets (type, t, len, len payload bytes), each byte held until
+  // taken; m_ready free; the first clock resets. Proven for every clock:
+  // the raw frame handed to the COBS encoder is the protocol's (seq after
+  // the type, +1 per packet; the CRC by a bit-serial CRC-16/CCITT-FALSE of
+  // its own over type..payload, high byte first; the end of the packet
+  // right after it); the output is COBS-shaped (a code byte c, then c - 1
+  // non-zero bytes, no 0x00 but the delimiter), exactly one delimiter per
+  // packet, and held while not taken. Not proven here: that the encoder's
+  // data bytes are the raw bytes in order (a bounded check of that was
+  // beyond z3 at a frame's depth); the simulation tests check the framer's
+  // output byte for byte against host/link's encoder.
+  reg f_past = 1'b0;
+  always @(posedge clk) f_past <= 1'b1;
+  always @(*) if (!f_past) assume (rst);
+  always @(*) if (f_past) assume (!rst);
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(s_valid && !s_ready)) assume (s_valid && s_data == $past(s_data));
+
+  function automatic [15:0] f_crc16(input [15:0] c, input [7:0] d);
+    integer b;
+    reg [15:0] r;
+    begin
+      r = c;
+      for (b = 7; b >= 0; b = b - 1) r = {r[14:0], 1'b0} ^ ((r[15] ^ d[b]) ? 16'h1021 : 16'h0000);
+      f_crc16 = r;
+    end
+  endfunction
+
+  // The raw frame, item by item as the encoder takes it: r = 0 type, 1
+  // seq, 2..7 t and len, 8.. payload, then the CRC's two bytes and the end.
+  reg [16:0] f_r;
+  reg [15:0] f_len, f_crc;
+  reg [7:0] f_seq, f_lo;
+  wire [16:0] f_crc_at = 17'd8 + {1'b0, f_len};  // the CRC's high byte
+  always @(posedge clk)
+    if (rst) begin
+      f_r <= 17'd0;
+      f_crc <= 16'hFFFF;
+      f_seq <= 8'd0;
+    end else if (raw_take) begin
+      if (raw_eop) begin
+        f_r <= 17'd0;
+        f_crc <= 16'hFFFF;
+        f_seq <= f_seq + 8'd1;
+      end else begin
+        f_r <= f_r + 17'd1;
+        if (f_r == 17'd6) f_lo <= raw_byte;
+        if (f_r == 17'd7) f_len <= {raw_byte, f_lo};
+        if (f_r < 17'd8 || f_r < f_crc_at) f_crc <= f_crc16(f_crc, raw_byte);
+      end
+    end
+  always @(*)
+    if (f_past && raw_take) begin
+      if (f_r == 17'd1) assert (raw_byte == seq && seq == f_seq);
+      if (f_r >= 17'd8 && f_r == f_crc_at) assert (raw_byte == f_crc[15:8]);
+      if (f_r >= 17'd8 && f_r == f_crc_at + 17'd1) assert (raw_byte == f_crc[7:0]);
+      assert (raw_eop == (f_r >= 17'd8 && f_r == f_crc_at + 17'd2));
+      if (f_r != 17'd1 && (f_r < 17'd8 || f_r < f_crc_at)) assert (s_ready && raw_byte == s_data);
+    end
+  // The assembler's state is the raw position (for induction).
+  always @(*)
+    if (f_past) begin
+      assert (crc == f_crc && seq == f_seq);
+      assert (astate <= A_EOP);
+      if (astate == A_TYPE) assert (f_r == 17'd0);
+      if (astate == A_SEQ) assert (f_r == 17'd1);
+      if (astate == A_HDR) assert (hidx <= 3'd5 && f_r == 17'd2 + {14'd0, hidx} &&
+                                   (hidx == 3'd5 ? remaining[7:0] == f_lo : 1'b1));
+      if (astate == A_TYPE) assert (hidx == 3'd0);
+      if (astate == A_PAY) assert (hidx == 3'd0 && remaining != 16'd0 && remaining <= f_len &&
+                                   f_r == f_crc_at - {1'b0, remaining});
+      if (astate == A_CRC) assert (hidx <= 3'd1 && f_r == f_crc_at + {14'd0, hidx});
+      if (astate == A_EOP) assert (f_r == f_crc_at + 17'd2);
+    end
+
+  // The output, as the host's COBS decoder reads it.
+  reg f_incode;        // a code byte (or the delimiter) is due
+  reg [7:0] f_left;    // data bytes left in the block
+  reg [15:0] f_neop, f_ndel;  // ends of packets taken, delimiters sent
+  wire f_fire = m_valid && m_ready;
+  always @(posedge clk)
+    if (rst) begin
+      f_incode <= 1'b1;
+      f_left <= 8'd0;
+      f_neop <= 16'd0;
+      f_ndel <= 16'd0;
+    end else begin
+      if (raw_take && raw_eop) f_neop <= f_neop + 16'd1;
+      if (f_fire) begin
+        if (f_incode && m_data == 8'd0) f_ndel <= f_ndel + 16'd1;  // a 0x00 elsewhere is checked below
+        else if (f_incode) begin
+          f_left <= m_data - 8'd1;
+          f_incode <= m_data == 8'd1;
+        end else begin
+          f_left <= f_left - 8'd1;
+          f_incode <= f_left == 8'd1;
+        end
+      end
+    end
+  // Bytes in the buffer are never 0 (any address f_a of either bank).
+  (* anyconst *) reg [7:0] f_a;
+  wire [1:0] f_pend = {1'b0, full[0] && last[0]} + {1'b0, full[1] && last[1]};
+  always @(*)
+    if (f_past) begin
+      // No 0x00 inside a block: code bytes by their invariant, data bytes
+      // at any address f_a (so at every address).
+      if (f_fire && m_data == 8'd0 && (kind != K_DATA || ridx - 8'd1 == f_a)) assert (f_incode);
+      assert (m_valid == (rstate == R_OUT));
+      assert (rstate != 2'd3 && kind != 2'd3);
+      // One delimiter per packet: the ends taken, less the delimiters
+      // sent, are the closed blocks that end a packet.
+      assert (f_neop - f_ndel == {14'd0, f_pend});
+      // The code bytes: a bank's code counts its bytes (1..255); the
+      // decoder's count of data bytes left is the bank's.
+      if (full[0]) assert (code0 != 8'd0);
+      if (full[1]) assert (code1 != 8'd0);
+      assert (wcnt <= 8'd253 && (full[wbank] ? wcnt == 8'd0 : 1'b1));
+      if (f_a < wcnt && !full[wbank]) assert (mem[{wbank, f_a}] != 8'd0);
+      if (full[0] && {1'b0, f_a} + 9'd1 < {1'b0, code0}) assert (mem[{1'b0, f_a}] != 8'd0);
+      if (full[1] && {1'b0, f_a} + 9'd1 < {1'b0, code1}) assert (mem[{1'b1, f_a}] != 8'd0);
+      if (rstate == R_IDLE) assert (f_incode);
+      if (rstate != R_IDLE) assert (full[rbank]);
+      if (rstate == R_FETCH) assert (!f_incode && ridx < rcode - 8'd1 && f_left == rcode - 8'd1 - ridx);
+      if (rstate == R_FETCH && ridx == f_a) assert (rdata == mem[{rbank, ridx}] && rdata != 8'd0);
+      if (rstate == R_OUT && kind == K_CODE) assert (f_incode && m_data == rcode && ridx == 8'd0);
+      if (rstate == R_OUT && kind == K_DATA) assert (!f_incode && ridx != 8'd0 && ridx <= rcode - 8'd1 &&
+                                                     f_left == rcode - ridx);
+      if (rstate == R_OUT && kind == K_DATA && ridx - 8'd1 == f_a) assert (m_data != 8'd0);
+      if (rstate == R_OUT && kind == K_DELIM) assert (f_incode && m_data == 8'd0 && last[rbank]);
+    end
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(m_valid && !m_ready)) assert (m_valid && m_data == $past(m_data));
+
+`ifndef FORMAL_COVER_FRAME
+  always @(posedge clk)
+    if (f_past) begin
+      cover (raw_take && raw_eop && f_len != 16'd0);         // a packet with a payload taken whole
+      cover (f_fire && !f_incode);                          // a data byte out
+      cover (m_valid && !m_ready && !f_incode);             // a stall mid-block
+      cover (full == 2'b11);                                // both banks closed
+    end
+`endif
+`ifdef FORMAL_COVER_FRAME
+  // The cover_frame task only: a narrowed input (always valid, len 0,
+  // always ready) so that a whole frame ends within the solver's reach.
+  always @(*) begin
+    assume (s_valid && m_ready);
+    if (f_r == 17'd6 || f_r == 17'd7) assume (s_data == 8'd0);
+  end
+  always @(posedge clk) if (f_past) cover (f_fire && f_incode && m_data == 8'd0);  // a frame ends
+`endif
+`endif
 endmodule
 `default_nettype wire
