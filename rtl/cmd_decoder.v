@@ -195,17 +195,7 @@ module cmd_decoder #(
   always @(posedge clk) f_past <= 1'b1;
   always @(*) if (!f_past) assume (rst);
 
-  // CRC-16/CCITT-FALSE, one bit at a time (the LFSR form, not rtl/crc16's).
-  function automatic [15:0] f_crc16(input [15:0] c, input [7:0] d);
-    integer b;
-    reg [15:0] r;
-    begin
-      r = c;
-      for (b = 7; b >= 0; b = b - 1)
-        r = {r[14:0], 1'b0} ^ ((r[15] ^ d[b]) ? 16'h1021 : 16'h0000);
-      f_crc16 = r;
-    end
-  endfunction
+  `include "formal_crc16.vh"  // the reference CRC, bit by bit
 
   // The reference's COBS decode: a code byte opens a block of code - 1 data
   // bytes; the zero implied by a code below 0xFF is a raw byte only when

@@ -215,15 +215,7 @@ module link_framer (
   always @(posedge clk)
     if (f_past && !$past(rst) && $past(s_valid && !s_ready)) assume (s_valid && s_data == $past(s_data));
 
-  function automatic [15:0] f_crc16(input [15:0] c, input [7:0] d);
-    integer b;
-    reg [15:0] r;
-    begin
-      r = c;
-      for (b = 7; b >= 0; b = b - 1) r = {r[14:0], 1'b0} ^ ((r[15] ^ d[b]) ? 16'h1021 : 16'h0000);
-      f_crc16 = r;
-    end
-  endfunction
+  `include "formal_crc16.vh"  // the reference CRC, bit by bit
 
   // The raw frame, item by item as the encoder takes it: r = 0 type, 1
   // seq, 2..7 t and len, 8.. payload, then the CRC's two bytes and the end.

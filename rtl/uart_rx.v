@@ -121,7 +121,7 @@ module uart_rx #(
     end
   end
 `ifdef FORMAL
-  // Properties (tests/formal/uart.sby). The rx line is assumed to carry
+  // Properties (tests/formal/uart_rx.sby). The rx line is assumed to carry
   // what an 8N1 transmitter at the same bit period sends (the FPGA's own
   // uart_tx, or the host's bridge at the link's baud): frames of any byte,
   // back to back or after any idle time, a frame's stop bit possibly
