@@ -65,8 +65,8 @@ module adc_ad7476 #(
     if (NCH < 1 || SCLK_DIV < 1 || SAMPLE_HZ < 1 || CLK_HZ > 40_000_000 * SCLK_DIV ||
         CLK_HZ < 20_000 * SCLK_DIV ||  // f_SCLK >= 10 kHz
         SCLK_DIV * 100_000 < CLK_KHZ || QUIET * 1_000_000 < CLK_KHZ * 86 ||
-        ACQ * 1_000_000 < CLK_KHZ * 250 || T1 < 1 ||
-        T1 * 1_000_000 < CLK_KHZ * 10) begin : g_bad_params
+        ACQ * 1_000_000 < CLK_KHZ * 250 ||
+        T1 < 1 || T1 * 1_000_000 < CLK_KHZ * 10) begin : g_bad_params
       adc_ad7476_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -343,11 +343,52 @@ module adc_ad7476 #(
   integer h;
   always @(*)
     for (h = 0; h < NCH; h = h + 1) p_codes[12*h +: 12] = p_shn[16*h +: 12];
+  // For induction only: the pin monitor's counters against the schedule's
+  // (the schedule's position u = f_half H + f_h clocks after CS fell; a pin
+  // edge shows one clock after the schedule's counters took it).
+  wire [23:0] f_u = {18'd0, f_half} * {8'd0, F_H} + {8'd0, f_h};
+  wire f_e0 = f_conv && f_half == 6'd0 && f_h == 16'd0;  // CS just fell
+  always @(*)
+    if (f_past) begin
+      assert (p_cs == (f_e0 || (!f_conv && !e_csr)));
+      if (f_conv && !f_e0) assert (p_csf == f_u && p_nf + {4'd0, e_fall} == 5'((f_half + 6'd1) >> 1)
+                                   && p_nr + {4'd0, e_rise} == 5'(f_half >> 1));
+      if (!f_conv && p_csf < F_PER) assert (p_csf + 24'd1 == F_PER ? f_pc == 16'd0 : {8'd0, f_pc} == p_csf + 24'd1);
+      if (!f_conv && p_en) assert (p_csf < F_PER);
+      if (!f_conv) assert (p_nf == 5'd16 && p_nr + {4'd0, e_rise} == 5'd16 || p_nf == 5'd0 && p_nr == 5'd0 && f_gap == 16'hFFFF);
+      if (!f_conv && p_nf == 5'd0) assert (p_csf == F_SAT && p_csr == F_SAT && p_13 == F_SAT && p_16 == F_SAT);
+      if (e_csr) assert (p_csf == 24'd32 * {8'd0, F_H} && p_16 == {8'd0, F_H} && p_13 == 24'd7 * {8'd0, F_H});
+      if (!f_conv && p_nf == 5'd16 && !e_csr) begin
+        if (f_gap != 16'hFFFF) assert (p_csr == {8'd0, f_gap});
+        else assert (p_csr >= 24'd65535);
+        assert (p_16 == (p_csr > F_SAT - {8'd0, F_H} ? F_SAT : p_csr + {8'd0, F_H}));
+        assert (p_13 == (p_csr > F_SAT - 24'd7 * {8'd0, F_H} ? F_SAT : p_csr + 24'd7 * {8'd0, F_H}));
+        assert (p_csf == (p_csr > F_SAT - 24'd32 * {8'd0, F_H} ? F_SAT : p_csr + 24'd32 * {8'd0, F_H}));
+      end
+      if (f_conv && !f_e0) begin
+        assert (p_csr >= p_csf + F_T1);
+        if (f_half < 6'd25 || (f_half == 6'd25 && e_fall)) assert (p_13 >= p_csf + F_ACQ);
+        else assert (p_13 == p_csf - 24'd25 * {8'd0, F_H});
+        if (f_half < 6'd31 || (f_half == 6'd31 && e_fall)) assert (p_16 >= p_csf + F_QUIET);
+        else assert (p_16 == p_csf - 24'd31 * {8'd0, F_H});
+      end
+      if (f_conv && f_half[0] && !e_fall) assert (p_fall == {8'd0, f_h});
+      if (f_conv && !f_half[0] && f_half >= 6'd2) assert (p_fall == {8'd0, F_H + f_h});
+      if (f_conv && !f_half[0] && f_half >= 6'd2 && !e_rise) assert (p_rise == {8'd0, f_h});
+      if (f_conv && f_half[0] && f_half >= 6'd3) assert (p_rise == {8'd0, F_H + f_h});
+      if (f_conv && (f_half >= 6'd4 || (f_half == 6'd3 && !e_fall))) assert (p_hi == {8'd0, F_H});
+      assert (e_fall ? shreg == p_shn : shreg == p_sh);
+    end
   always @(posedge clk)
     if (f_past) begin
       cover (f_got16 && !f_full);                 // a code delivered
       cover (f_got16 && f_full);                  // an overrun
       cover (!cs_n && f_half == 6'd0 && f_gap != 16'hFFFF && f_gap != 16'd0);  // a second conversion
+      cover (e_csf && p_nf == 5'd16 && p_csf == F_PER);         // back to back: CS falls PERIOD on
+      cover (e_csf && p_nf == 5'd16 && p_csf > F_PER);          // en low for a while: later
+      cover (e_csr && p_nf == 5'd16);                           // 16 SCLK cycles, CS up
+      cover (e_fall && p_nf == 5'd15 && !p_full && m_data[11:0] == 12'hA5C);  // a code from SDATA
+      cover (e_fall && p_nf == 5'd15 && p_full);                // an overrun: the token kept
     end
 `endif
 endmodule
