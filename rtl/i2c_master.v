@@ -343,6 +343,74 @@ module i2c_master #(
     if (f_past && !$past(rst) && $past(rsp_valid && !rsp_ready))
       assert (rsp_valid && $stable(rsp_data) && $stable(rsp_err) && $stable(rsp_nack));
 
+  // The bus: each line reads as the wired AND of our pull-down and any
+  // target's (free, stretching included): a line we pull reads low.
+  always @(*) begin
+    if (scl_oe) assume (!scl_i);
+    if (sda_oe) assume (!sda_i);
+  end
+
+  // A START (SDA pulled with SCL released) is only the START command's;
+  // off the bus and idle (also after a timeout) both lines are released.
+  always @(*)
+    if (f_past) begin
+      if (state == S_STA_HOLD) assert (op == OP_START && !scl_oe);
+      if (!owned) assert (!scl_oe && (!sda_oe || state == S_STA_HOLD));
+      if ((state == S_IDLE || state == S_RESP) && owned) assert (scl_oe);
+      if (rsp_valid && rsp_err == ERR_TIMEOUT) assert (!owned && !scl_oe && !sda_oe);
+    end
+
+  // A stuck bus, measured at the pins by counters of this monitor's own:
+  // m_rel counts the clocks since we released SCL, m_low says SCL has read
+  // low at every one of them (someone holds it); m_srel / m_slow the same
+  // for SDA since our STOP released it (SCL released). Either run lasts at
+  // most TIMEOUT_CYC clocks with the bus ours: then ERR_TIMEOUT, both
+  // lines released, the bus given up.
+  localparam [15:0] F_TO = TIMEOUT_CYC;
+  reg m_scl = 1'b0, m_sda = 1'b0, m_low = 1'b0, m_slow = 1'b0, m_stop = 1'b0;
+  reg [15:0] m_rel = 16'd0, m_srel = 16'd0;
+  wire m_scl_rel = m_scl && !scl_oe && owned;
+  wire m_sda_stop = m_sda && !sda_oe && !m_scl && !scl_oe && owned;
+  wire [15:0] m_relc = m_scl_rel ? 16'd0 : m_rel, m_srelc = m_sda_stop ? 16'd0 : m_srel;
+  wire m_lowc = (m_scl_rel || m_low) && !scl_i && !scl_oe;
+  wire m_stopc = (m_sda_stop || m_stop) && !sda_oe && !scl_oe;
+  wire m_slowc = m_stopc && (m_sda_stop || m_slow) && !sda_i;
+  always @(posedge clk) begin
+    m_scl <= scl_oe;
+    m_sda <= sda_oe;
+    m_rel <= (m_relc == 16'hFFFF) ? m_relc : m_relc + 16'd1;
+    m_srel <= (m_srelc == 16'hFFFF) ? m_srelc : m_srelc + 16'd1;
+    m_low <= m_lowc && !rst;
+    m_stop <= m_stopc && !rst;
+    m_slow <= m_slowc && !rst;
+  end
+  always @(*)
+    if (f_past) begin
+      if (owned && m_lowc) assert (m_relc < F_TO);
+      if (owned && m_slowc) assert (m_srelc < F_TO);
+    end
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(owned) && !owned && ($past(m_lowc) || $past(m_slowc)))
+      assert (rsp_valid && rsp_err == ERR_TIMEOUT && !scl_oe && !sda_oe);
+  // After a timeout's response is taken the master is idle: it takes the
+  // next command.
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(rsp_valid && rsp_ready && rsp_err == ERR_TIMEOUT))
+      assert (cmd_ready && !owned && !scl_oe && !sda_oe);
+  // For induction: the monitor's runs against the state's counter.
+  always @(*)
+    if (f_past) begin
+      if ((state == S_LOW && cnt > C_HOLD) || state == S_WAIT_HIGH || state == S_HIGH)
+        assert (sda_oe == sda_pull);
+      if (state == S_LOW && cnt >= 2) assert (scl_sync == 2'b00);
+      if (state == S_WAIT_HIGH) assert (m_relc == 16'(cnt) && (!m_lowc || scl_sync == 2'b00));
+      if (state == S_HIGH || state == S_SETUP || state == S_BUF) assert (!m_lowc);
+      if (state == S_STA_HOLD && owned) assert (!m_lowc);
+      if (state == S_BUF && !sampled) assert (m_stopc && m_srelc == 16'(cnt) && (!m_slowc || sda_sync == 2'b00));
+      if (state == S_BUF && sampled) assert (!m_slowc);
+      if (m_stopc && owned) assert (state == S_BUF);
+    end
+
   always @(posedge clk)
     if (f_past) begin
       cover (state == S_RESP && rsp_err == ERR_TIMEOUT && $past(state) == S_WAIT_HIGH);  // SCL stuck
