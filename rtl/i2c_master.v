@@ -366,20 +366,21 @@ module i2c_master #(
   // for SDA since our STOP released it (SCL released). Either run lasts at
   // most TIMEOUT_CYC clocks with the bus ours: then ERR_TIMEOUT, both
   // lines released, the bus given up.
-  localparam [15:0] F_TO = TIMEOUT_CYC;
+  localparam integer MW = CW + 1;  // room for TIMEOUT_CYC and more
+  localparam [MW-1:0] F_TO = TIMEOUT_CYC[MW-1:0], F_MSAT = {MW{1'b1}};
   reg m_scl = 1'b0, m_sda = 1'b0, m_low = 1'b0, m_slow = 1'b0, m_stop = 1'b0;
-  reg [15:0] m_rel = 16'd0, m_srel = 16'd0;
+  reg [MW-1:0] m_rel = {MW{1'b0}}, m_srel = {MW{1'b0}};
   wire m_scl_rel = m_scl && !scl_oe && owned;
   wire m_sda_stop = m_sda && !sda_oe && !m_scl && !scl_oe && owned;
-  wire [15:0] m_relc = m_scl_rel ? 16'd0 : m_rel, m_srelc = m_sda_stop ? 16'd0 : m_srel;
+  wire [MW-1:0] m_relc = m_scl_rel ? {MW{1'b0}} : m_rel, m_srelc = m_sda_stop ? {MW{1'b0}} : m_srel;
   wire m_lowc = (m_scl_rel || m_low) && !scl_i && !scl_oe;
   wire m_stopc = (m_sda_stop || m_stop) && !sda_oe && !scl_oe;
   wire m_slowc = m_stopc && (m_sda_stop || m_slow) && !sda_i;
   always @(posedge clk) begin
     m_scl <= scl_oe;
     m_sda <= sda_oe;
-    m_rel <= (m_relc == 16'hFFFF) ? m_relc : m_relc + 16'd1;
-    m_srel <= (m_srelc == 16'hFFFF) ? m_srelc : m_srelc + 16'd1;
+    m_rel <= (m_relc == F_MSAT) ? m_relc : m_relc + 1'b1;
+    m_srel <= (m_srelc == F_MSAT) ? m_srelc : m_srelc + 1'b1;
     m_low <= m_lowc && !rst;
     m_stop <= m_stopc && !rst;
     m_slow <= m_slowc && !rst;
@@ -397,16 +398,17 @@ module i2c_master #(
   always @(posedge clk)
     if (f_past && !$past(rst) && $past(rsp_valid && rsp_ready && rsp_err == ERR_TIMEOUT))
       assert (cmd_ready && !owned && !scl_oe && !sda_oe);
-  // For induction: the monitor's runs against the state's counter.
+  // For induction: the monitor's runs against the state's counter; the
+  // data bit set from HOLD after SCL fell to the end of the bit.
   always @(*)
     if (f_past) begin
       if ((state == S_LOW && cnt > C_HOLD) || state == S_WAIT_HIGH || state == S_HIGH)
         assert (sda_oe == sda_pull);
       if (state == S_LOW && cnt >= 2) assert (scl_sync == 2'b00);
-      if (state == S_WAIT_HIGH) assert (m_relc == 16'(cnt) && (!m_lowc || scl_sync == 2'b00));
+      if (state == S_WAIT_HIGH) assert (m_relc == {1'b0, cnt} && (!m_lowc || scl_sync == 2'b00));
       if (state == S_HIGH || state == S_SETUP || state == S_BUF) assert (!m_lowc);
       if (state == S_STA_HOLD && owned) assert (!m_lowc);
-      if (state == S_BUF && !sampled) assert (m_stopc && m_srelc == 16'(cnt) && (!m_slowc || sda_sync == 2'b00));
+      if (state == S_BUF && !sampled) assert (m_stopc && m_srelc == {1'b0, cnt} && (!m_slowc || sda_sync == 2'b00));
       if (state == S_BUF && sampled) assert (!m_slowc);
       if (m_stopc && owned) assert (state == S_BUF);
     end
@@ -418,6 +420,11 @@ module i2c_master #(
       cover ($past(owned) && !owned && rsp_err == ERR_OK);                              // a STOP
       cover (rsp_valid && !rsp_ready && $past(rsp_valid && !rsp_ready));                  // a response waiting
       cover (state == S_STA_HOLD && $past(state) == S_SETUP);                           // a repeated START
+      cover (state == S_STA_HOLD && $past(state) == S_IDLE);                            // a START
+      cover (rsp_valid && rsp_err == ERR_BUSY);                                         // a busy bus refused
+      cover (owned && m_lowc && m_relc == F_TO - 1'b1);                                // SCL held low to the bound
+      cover (owned && m_slowc && m_srelc == F_TO - 1'b1);                              // SDA held low to the bound
+      cover ($past(rsp_valid && rsp_ready && rsp_err == ERR_TIMEOUT) && cmd_valid && cmd_ready);  // idle again
     end
 `endif
 endmodule
