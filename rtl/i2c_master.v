@@ -283,9 +283,10 @@ module i2c_master #(
 `ifdef FORMAL
   // Properties (tests/formal/i2c_master.sby). Inputs free: commands,
   // rsp_ready and both line levels (any target, stretching, holding SCL
-  // or SDA low for ever); the first clock resets. The pins are pull-down
-  // enables only (scl_oe, sda_oe; rtl/i2c_pads.v makes them open drain):
-  // nothing here can drive a line high.
+  // or SDA low for ever) but for the wired AND (a line we pull reads low,
+  // below); the first clock resets. The pins are pull-down enables only
+  // (scl_oe, sda_oe; rtl/i2c_pads.v makes them open drain): nothing here
+  // can drive a line high.
   reg f_past = 1'b0;
   always @(posedge clk) f_past <= 1'b1;
   always @(*) if (!f_past) assume (rst);
