@@ -316,8 +316,8 @@ module adc_ad7476 #(
         assert (p_13 >= F_ACQ);                         // tACQ
         assert (p_csf >= F_PER);                        // the sample period
       end
-      // en high at every edge since CS fell: the next CS fall is PERIOD on.
-      assert (!(p_en && cs_n && p_csf > F_PER));
+      // en high at every edge since CS fell: CS falls again PERIOD clocks on.
+      assert (!(p_en && cs_n && p_csf >= F_PER));
       if (e_fall) begin
         assert (!cs_n && p_nf <= 5'd15);
         if (p_nf == 5'd0) assert (p_csf >= F_T2);      // t2

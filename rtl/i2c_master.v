@@ -422,6 +422,7 @@ module i2c_master #(
       cover (rsp_valid && !rsp_ready && $past(rsp_valid && !rsp_ready));                  // a response waiting
       cover (state == S_STA_HOLD && $past(state) == S_SETUP);                           // a repeated START
       cover (state == S_STA_HOLD && $past(state) == S_IDLE);                            // a START
+      cover (state == S_HIGH && $past(state == S_WAIT_HIGH && cnt >= 4));              // a stretched SCL, then the bit
       cover (rsp_valid && rsp_err == ERR_BUSY);                                         // a busy bus refused
       cover (owned && m_lowc && m_relc == F_TO - 1'b1);                                // SCL held low to the bound
       cover (owned && m_slowc && m_srelc == F_TO - 1'b1);                              // SDA held low to the bound
