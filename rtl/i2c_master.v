@@ -386,8 +386,32 @@ module i2c_master #(
     m_stop <= m_stopc && !rst;
     m_slow <= m_slowc && !rst;
   end
+  // And no timeout before it: the clocks at the start of the run that read
+  // low (m_lead), at least TIMEOUT_CYC - 2 (the synchroniser's lag) when
+  // the timeout ends the bus.
+  reg [MW-1:0] m_lead = {MW{1'b0}}, m_slead = {MW{1'b0}};
+  wire [MW-1:0] m_leadc = m_lowc ? m_relc + 1'b1 : (m_scl_rel ? {MW{1'b0}} : m_lead);
+  wire [MW-1:0] m_sleadc = m_slowc ? m_srelc + 1'b1 : (m_sda_stop ? {MW{1'b0}} : m_slead);
+  always @(posedge clk) begin
+    m_lead <= m_leadc;
+    m_slead <= m_sleadc;
+  end
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(owned) && !owned && rsp_err == ERR_TIMEOUT) begin
+      if ($past(m_stopc)) assert ({1'b0, $past(m_sleadc)} + 2'd2 >= {1'b0, F_TO});
+      else assert (!$past(scl_oe) && {1'b0, $past(m_leadc)} + 2'd2 >= {1'b0, F_TO});
+    end
   always @(*)
     if (f_past) begin
+      // A run broken at the pins is still in the synchroniser.
+      if (state == S_WAIT_HIGH && !m_lowc)
+        assert ({1'b0, m_leadc} + 2'd2 == {2'b0, cnt} ? scl_sync[1] :
+                {1'b0, m_leadc} + 2'd1 == {2'b0, cnt} ? scl_sync[0] :
+                m_leadc == {1'b0, cnt} && scl_i);
+      if (state == S_BUF && !sampled && !m_slowc)
+        assert ({1'b0, m_sleadc} + 2'd2 == {2'b0, cnt} ? sda_sync[1] :
+                {1'b0, m_sleadc} + 2'd1 == {2'b0, cnt} ? sda_sync[0] :
+                m_sleadc == {1'b0, cnt} && sda_i);
       if (owned && m_lowc) assert (m_relc < F_TO);
       if (owned && m_slowc) assert (m_srelc < F_TO);
     end
