@@ -243,7 +243,9 @@ module adc_ad7476 #(
   // edges; each limit is the datasheet's time in clocks, rounded up from
   // CLK_HZ rounded up to kHz (so never shorter than the datasheet's):
   // t1 CS high >= 10 ns, t2 CS to SCLK >= 10 ns, tSCLK 50 ns .. 100 us
-  // (fSCLK 20 MHz .. 10 kHz; the slow limit rounded down), t5/t6 SCLK
+  // (fSCLK 20 MHz .. 10 kHz; the slow limit rounded down), SDATA sampled
+  // no sooner than t3 (22 ns) after CS fell and t4 (40 ns) after the
+  // SCLK fall that put the bit out, t5/t6 SCLK
   // low/high >= 0.4 tSCLK (of the period they are part of), tQUIET: 16th
   // SCLK fall + t8 (36 ns max) + 50 ns before CS falls, tACQ: 13th SCLK
   // fall >= 250 ns before CS falls; 16 SCLK cycles per CS low; CS falls
@@ -255,7 +257,7 @@ module adc_ad7476 #(
   localparam [23:0] F_SAT = 24'hFFFFFF;
   localparam [23:0] F_T1 = f_ns(10), F_T2 = f_ns(10), F_QUIET = f_ns(36 + 50),
                     F_ACQ = f_ns(250), F_TSCLK_MIN = f_ns(50), F_TSCLK_MAX = CLK_HZ / 10_000,
-                    F_PER = PERIOD;
+                    F_PER = PERIOD, F_T3 = f_ns(22), F_T4 = f_ns(40);
   reg p_cs, p_sclk;                  // the pins one clock ago
   reg [23:0] p_csf, p_csr, p_fall, p_rise, p_13, p_16, p_hi;
   reg [4:0] p_nf, p_nr;              // SCLK falls / rises since CS fell
@@ -320,8 +322,13 @@ module adc_ad7476 #(
       assert (!(p_en && cs_n && p_csf >= F_PER));
       if (e_fall) begin
         assert (!cs_n && p_nf <= 5'd15);
-        if (p_nf == 5'd0) assert (p_csf >= F_T2);      // t2
+        // The sampling instants (SDATA is registered on the clock edge that
+        // drives this fall): bit 1 was put out by CS falling at most t3
+        // (22 ns) before, every later bit by the previous fall at most t4
+        // (40 ns) before (pin delays aside: docs/protocol.md).
+        if (p_nf == 5'd0) assert (p_csf >= F_T2 && p_csf >= F_T3);  // t2, t3
         else begin
+          assert (p_fall >= F_T4);                       // t4
           assert (p_fall >= F_TSCLK_MIN && p_fall <= F_TSCLK_MAX);  // fSCLK
           assert (24'd10 * p_rise >= 24'd4 * p_fall);   // t6
         end
