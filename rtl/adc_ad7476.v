@@ -8,9 +8,10 @@
 //   Conversions start every PERIOD = round(CLK_HZ / SAMPLE_HZ) clocks while
 //   en is high (the actual rate is CLK_HZ / PERIOD).
 //   f_SCLK = CLK_HZ / (2 H). Datasheet limits the parameters must meet (the
-//   model sim/ad7476_model.h checks them): f_SCLK <= 20 MHz; t2 = H clocks
-//   >= 10 ns; tQUIET: (PERIOD - 31 H) clocks >= 36 ns (t8 max) + 50 ns;
-//   tACQ: (PERIOD - 28 H) clocks >= 250 ns. 12 MHz, H = 1 (6 MHz SCLK),
+//   model sim/ad7476_model.h checks them): 10 kHz <= f_SCLK <= 20 MHz;
+//   t2 = H clocks >= 10 ns; tQUIET: (PERIOD - 31 H) clocks >= 36 ns (t8
+//   max) + 50 ns; tACQ: (PERIOD - 28 H) clocks >= 250 ns; t1: (PERIOD -
+//   32 H) clocks >= 10 ns. 12 MHz, H = 1 (6 MHz SCLK),
 //   35 kSPS (PERIOD 343) and 40 MHz, H = 1 (20 MHz), 1 MSPS (PERIOD 40) both
 //   meet them.
 // Sampling choice: SDATA bit k is registered on the clock edge that drives
@@ -57,10 +58,15 @@ module adc_ad7476 #(
   localparam integer CLK_KHZ = CLK_HZ / 1000;
   localparam integer QUIET = PERIOD - 31 * SCLK_DIV > 2000 ? 2000 : PERIOD - 31 * SCLK_DIV;
   localparam integer ACQ = PERIOD - 28 * SCLK_DIV > 2000 ? 2000 : PERIOD - 28 * SCLK_DIV;
+  // t1 (CS high) = (PERIOD - 32 H) clocks >= 10 ns: with CS still low at the
+  // period's start the conversion would be skipped (half the rate).
+  localparam integer T1 = PERIOD - 32 * SCLK_DIV > 2000 ? 2000 : PERIOD - 32 * SCLK_DIV;
   generate
     if (NCH < 1 || SCLK_DIV < 1 || SAMPLE_HZ < 1 || CLK_HZ > 40_000_000 * SCLK_DIV ||
+        CLK_HZ < 20_000 * SCLK_DIV ||  // f_SCLK >= 10 kHz
         SCLK_DIV * 100_000 < CLK_KHZ || QUIET * 1_000_000 < CLK_KHZ * 86 ||
-        ACQ * 1_000_000 < CLK_KHZ * 250) begin : g_bad_params
+        ACQ * 1_000_000 < CLK_KHZ * 250 ||
+        T1 < 1 || T1 * 1_000_000 < CLK_KHZ * 10) begin : g_bad_params
       adc_ad7476_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -230,11 +236,166 @@ module adc_ad7476 #(
         assert (f_pc == ((16'd32 * F_H + 16'd1 + f_gap >= F_PERIOD) ? 16'd32 * F_H + 16'd1 + f_gap - F_PERIOD
                                                                    : 16'd32 * F_H + 16'd1 + f_gap));
     end
+
+  // The datasheet at the pins (AD7476A Table 4, docs/protocol.md §1), with
+  // counters of this monitor's own that see only cs_n, sclk, sdata, en and
+  // the output stream. Each time is a count of clocks between two pin
+  // edges; each limit is the datasheet's time in clocks, rounded up from
+  // CLK_HZ rounded up to kHz (so never shorter than the datasheet's):
+  // t1 CS high >= 10 ns, t2 CS to SCLK >= 10 ns, tSCLK 50 ns .. 100 us
+  // (fSCLK 20 MHz .. 10 kHz; the slow limit rounded down), SDATA sampled
+  // no sooner than t3 (22 ns) after CS fell and t4 (40 ns) after the
+  // SCLK fall that put the bit out, t5/t6 SCLK
+  // low/high >= 0.4 tSCLK (of the period they are part of), tQUIET: 16th
+  // SCLK fall + t8 (36 ns max) + 50 ns before CS falls, tACQ: 13th SCLK
+  // fall >= 250 ns before CS falls; 16 SCLK cycles per CS low; CS falls
+  // PERIOD clocks apart, and exactly PERIOD while en stays high.
+  localparam integer F_KHZ = (CLK_HZ + 999) / 1000;
+  function integer f_ns(input integer ns);
+    f_ns = (F_KHZ * ns + 999_999) / 1_000_000;
+  endfunction
+  localparam [23:0] F_SAT = 24'hFFFFFF;
+  localparam [23:0] F_T1 = f_ns(10), F_T2 = f_ns(10), F_QUIET = f_ns(36 + 50),
+                    F_ACQ = f_ns(250), F_TSCLK_MIN = f_ns(50), F_TSCLK_MAX = CLK_HZ / 10_000,
+                    F_PER = PERIOD, F_T3 = f_ns(22), F_T4 = f_ns(40);
+  reg p_cs, p_sclk;                  // the pins one clock ago
+  reg [23:0] p_csf, p_csr, p_fall, p_rise, p_13, p_16, p_hi;
+  reg [4:0] p_nf, p_nr;              // SCLK falls / rises since CS fell
+  reg p_en;                          // en high at every edge since CS fell
+  reg [NCH-1:0] p_sd;                // SDATA at the last edge
+  reg [16*NCH-1:0] p_sh;             // SDATA at the edges that drove SCLK falls
+  reg p_full;                        // the output held an untaken token
+  reg [12*NCH-1:0] p_md;             // m_data one clock ago
+  wire e_csf = p_cs && !cs_n, e_csr = !p_cs && cs_n;
+  wire e_fall = p_sclk && !sclk, e_rise = !p_sclk && sclk;
+  reg [16*NCH-1:0] p_shn;
+  integer g;
+  always @(*)
+    for (g = 0; g < NCH; g = g + 1) p_shn[16*g +: 16] = {p_sh[16*g +: 15], p_sd[g]};
+  function [23:0] f_inc(input [23:0] x);
+    f_inc = (x == F_SAT) ? F_SAT : x + 24'd1;
+  endfunction
+  always @(posedge clk)
+    if (rst) begin
+      p_cs <= 1'b1;
+      p_sclk <= 1'b1;
+      {p_csf, p_csr, p_fall, p_rise, p_13, p_16, p_hi} <= {7{F_SAT}};
+      p_nf <= 5'd0;
+      p_nr <= 5'd0;
+      p_en <= 1'b0;
+      p_sh <= {16*NCH{1'b0}};
+      p_full <= 1'b0;
+    end else begin
+      p_cs <= cs_n;
+      p_sclk <= sclk;
+      p_sd <= sdata;
+      p_full <= m_valid && !m_ready;
+      p_md <= m_data;
+      p_csf <= e_csf ? 24'd1 : f_inc(p_csf);
+      p_csr <= e_csr ? 24'd1 : f_inc(p_csr);
+      p_fall <= e_fall ? 24'd1 : f_inc(p_fall);
+      p_rise <= e_rise ? 24'd1 : f_inc(p_rise);
+      p_13 <= (e_fall && p_nf == 5'd12) ? 24'd1 : f_inc(p_13);
+      p_16 <= (e_fall && p_nf == 5'd15) ? 24'd1 : f_inc(p_16);
+      p_en <= (e_csf || p_en) && en;
+      if (e_csf) begin
+        p_nf <= 5'd0;
+        p_nr <= 5'd0;
+      end
+      if (e_fall) begin
+        p_nf <= p_nf + 5'd1;
+        p_hi <= p_rise;
+        p_sh <= p_shn;
+      end
+      if (e_rise) p_nr <= p_nr + 5'd1;
+    end
+  always @(*)
+    if (f_past) begin
+      if (cs_n) assert (sclk);                          // SCLK idles high with CS
+      if (e_csf) begin
+        assert (p_csr >= F_T1);                         // t1
+        assert (p_16 >= F_QUIET);                       // tQUIET (+ t8)
+        assert (p_13 >= F_ACQ);                         // tACQ
+        assert (p_csf >= F_PER);                        // the sample period
+      end
+      // en high at every edge since CS fell: CS falls again PERIOD clocks on.
+      assert (!(p_en && cs_n && p_csf >= F_PER));
+      if (e_fall) begin
+        assert (!cs_n && p_nf <= 5'd15);
+        // The sampling instants (SDATA is registered on the clock edge that
+        // drives this fall): bit 1 was put out by CS falling at most t3
+        // (22 ns) before, every later bit by the previous fall at most t4
+        // (40 ns) before (pin delays aside: docs/protocol.md).
+        if (p_nf == 5'd0) assert (p_csf >= F_T2 && p_csf >= F_T3);  // t2, t3
+        else begin
+          assert (p_fall >= F_T4);                       // t4
+          assert (p_fall >= F_TSCLK_MIN && p_fall <= F_TSCLK_MAX);  // fSCLK
+          assert (24'd10 * p_rise >= 24'd4 * p_fall);   // t6
+        end
+      end
+      if (e_rise) begin
+        assert (p_nf >= 5'd1 && p_nr <= 5'd15);
+        if (p_nf >= 5'd2) assert (24'd10 * p_fall >= 24'd4 * (p_fall + p_hi));  // t5
+        if (p_nr >= 5'd1) assert (p_rise >= F_TSCLK_MIN && p_rise <= F_TSCLK_MAX);
+      end
+      if (e_csr) assert (e_rise && p_nf == 5'd16 && p_nr == 5'd15);  // 16 SCLK cycles
+      // The code: the 16th fall delivers bits 5..16 (DB11 first) of every
+      // channel, or, with the last token still waiting, keeps it and counts.
+      if (e_fall && p_nf == 5'd15) begin
+        if (!p_full) assert (m_valid && m_data == p_codes);
+        else assert (m_valid && m_data == p_md);
+      end
+    end
+  reg [12*NCH-1:0] p_codes;
+  integer h;
+  always @(*)
+    for (h = 0; h < NCH; h = h + 1) p_codes[12*h +: 12] = p_shn[16*h +: 12];
+  // For induction only: the pin monitor's counters against the schedule's
+  // (the schedule's position u = f_half H + f_h clocks after CS fell; a pin
+  // edge shows one clock after the schedule's counters took it).
+  wire [23:0] f_u = {18'd0, f_half} * {8'd0, F_H} + {8'd0, f_h};
+  wire f_e0 = f_conv && f_half == 6'd0 && f_h == 16'd0;  // CS just fell
+  always @(*)
+    if (f_past) begin
+      assert (p_cs == (f_e0 || (!f_conv && !e_csr)));
+      if (f_conv && !f_e0) assert (p_csf == f_u && p_nf + {4'd0, e_fall} == 5'((f_half + 6'd1) >> 1)
+                                   && p_nr + {4'd0, e_rise} == 5'(f_half >> 1));
+      if (!f_conv && p_csf < F_PER) assert (p_csf + 24'd1 == F_PER ? f_pc == 16'd0 : {8'd0, f_pc} == p_csf + 24'd1);
+      if (!f_conv && p_en) assert (p_csf < F_PER);
+      if (!f_conv) assert (p_nf == 5'd16 && p_nr + {4'd0, e_rise} == 5'd16 || p_nf == 5'd0 && p_nr == 5'd0 && f_gap == 16'hFFFF);
+      if (!f_conv && p_nf == 5'd0) assert (p_csf == F_SAT && p_csr == F_SAT && p_13 == F_SAT && p_16 == F_SAT);
+      if (e_csr) assert (p_csf == 24'd32 * {8'd0, F_H} && p_16 == {8'd0, F_H} && p_13 == 24'd7 * {8'd0, F_H});
+      if (!f_conv && p_nf == 5'd16 && !e_csr) begin
+        if (f_gap != 16'hFFFF) assert (p_csr == {8'd0, f_gap});
+        else assert (p_csr >= 24'd65535);
+        assert (p_16 == (p_csr > F_SAT - {8'd0, F_H} ? F_SAT : p_csr + {8'd0, F_H}));
+        assert (p_13 == (p_csr > F_SAT - 24'd7 * {8'd0, F_H} ? F_SAT : p_csr + 24'd7 * {8'd0, F_H}));
+        assert (p_csf == (p_csr > F_SAT - 24'd32 * {8'd0, F_H} ? F_SAT : p_csr + 24'd32 * {8'd0, F_H}));
+      end
+      if (f_conv && !f_e0) begin
+        assert (p_csr >= p_csf + F_T1);
+        if (f_half < 6'd25 || (f_half == 6'd25 && e_fall)) assert (p_13 >= p_csf + F_ACQ);
+        else assert (p_13 == p_csf - 24'd25 * {8'd0, F_H});
+        if (f_half < 6'd31 || (f_half == 6'd31 && e_fall)) assert (p_16 >= p_csf + F_QUIET);
+        else assert (p_16 == p_csf - 24'd31 * {8'd0, F_H});
+      end
+      if (f_conv && f_half[0] && !e_fall) assert (p_fall == {8'd0, f_h});
+      if (f_conv && !f_half[0] && f_half >= 6'd2) assert (p_fall == {8'd0, F_H + f_h});
+      if (f_conv && !f_half[0] && f_half >= 6'd2 && !e_rise) assert (p_rise == {8'd0, f_h});
+      if (f_conv && f_half[0] && f_half >= 6'd3) assert (p_rise == {8'd0, F_H + f_h});
+      if (f_conv && (f_half >= 6'd4 || (f_half == 6'd3 && !e_fall))) assert (p_hi == {8'd0, F_H});
+      assert (e_fall ? shreg == p_shn : shreg == p_sh);
+    end
   always @(posedge clk)
     if (f_past) begin
       cover (f_got16 && !f_full);                 // a code delivered
       cover (f_got16 && f_full);                  // an overrun
       cover (!cs_n && f_half == 6'd0 && f_gap != 16'hFFFF && f_gap != 16'd0);  // a second conversion
+      cover (e_csf && p_nf == 5'd16 && p_csf == F_PER);         // back to back: CS falls PERIOD on
+      cover (e_csf && p_nf == 5'd16 && p_csf > F_PER);          // en low for a while: later
+      cover (e_csr && p_nf == 5'd16);                           // 16 SCLK cycles, CS up
+      cover (e_fall && p_nf == 5'd15 && !p_full && m_data[11:0] == 12'hA5C);  // a code from SDATA
+      cover (e_fall && p_nf == 5'd15 && p_full);                // an overrun: the token kept
     end
 `endif
 endmodule

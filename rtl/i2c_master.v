@@ -283,9 +283,10 @@ module i2c_master #(
 `ifdef FORMAL
   // Properties (tests/formal/i2c_master.sby). Inputs free: commands,
   // rsp_ready and both line levels (any target, stretching, holding SCL
-  // or SDA low for ever); the first clock resets. The pins are pull-down
-  // enables only (scl_oe, sda_oe; rtl/i2c_pads.v makes them open drain):
-  // nothing here can drive a line high.
+  // or SDA low for ever) but for the wired AND (a line we pull reads low,
+  // below); the first clock resets. The pins are pull-down enables only
+  // (scl_oe, sda_oe; rtl/i2c_pads.v makes them open drain): nothing here
+  // can drive a line high.
   reg f_past = 1'b0;
   always @(posedge clk) f_past <= 1'b1;
   always @(*) if (!f_past) assume (rst);
@@ -343,6 +344,100 @@ module i2c_master #(
     if (f_past && !$past(rst) && $past(rsp_valid && !rsp_ready))
       assert (rsp_valid && $stable(rsp_data) && $stable(rsp_err) && $stable(rsp_nack));
 
+  // The bus: each line reads as the wired AND of our pull-down and any
+  // target's (free, stretching included): a line we pull reads low.
+  always @(*) begin
+    if (scl_oe) assume (!scl_i);
+    if (sda_oe) assume (!sda_i);
+  end
+
+  // A START (SDA pulled with SCL released) is only the START command's;
+  // off the bus and idle (also after a timeout) both lines are released.
+  always @(*)
+    if (f_past) begin
+      if (state == S_STA_HOLD) assert (op == OP_START && !scl_oe);
+      if (!owned) assert (!scl_oe && (!sda_oe || state == S_STA_HOLD));
+      if ((state == S_IDLE || state == S_RESP) && owned) assert (scl_oe);
+      if (rsp_valid && rsp_err == ERR_TIMEOUT) assert (!owned && !scl_oe && !sda_oe);
+    end
+
+  // A stuck bus, measured at the pins by counters of this monitor's own:
+  // m_rel counts the clocks since we released SCL, m_low says SCL has read
+  // low at every one of them (someone holds it); m_srel / m_slow the same
+  // for SDA since our STOP released it (SCL released). Either run lasts at
+  // most TIMEOUT_CYC clocks with the bus ours: then ERR_TIMEOUT, both
+  // lines released, the bus given up.
+  localparam integer MW = CW + 1;  // room for TIMEOUT_CYC and more
+  localparam [MW-1:0] F_TO = TIMEOUT_CYC[MW-1:0], F_MSAT = {MW{1'b1}};
+  reg m_scl = 1'b0, m_sda = 1'b0, m_low = 1'b0, m_slow = 1'b0, m_stop = 1'b0;
+  reg [MW-1:0] m_rel = {MW{1'b0}}, m_srel = {MW{1'b0}};
+  wire m_scl_rel = m_scl && !scl_oe && owned;
+  wire m_sda_stop = m_sda && !sda_oe && !m_scl && !scl_oe && owned;
+  wire [MW-1:0] m_relc = m_scl_rel ? {MW{1'b0}} : m_rel, m_srelc = m_sda_stop ? {MW{1'b0}} : m_srel;
+  wire m_lowc = (m_scl_rel || m_low) && !scl_i && !scl_oe;
+  wire m_stopc = (m_sda_stop || m_stop) && !sda_oe && !scl_oe;
+  wire m_slowc = m_stopc && (m_sda_stop || m_slow) && !sda_i;
+  always @(posedge clk) begin
+    m_scl <= scl_oe;
+    m_sda <= sda_oe;
+    m_rel <= (m_relc == F_MSAT) ? m_relc : m_relc + 1'b1;
+    m_srel <= (m_srelc == F_MSAT) ? m_srelc : m_srelc + 1'b1;
+    m_low <= m_lowc && !rst;
+    m_stop <= m_stopc && !rst;
+    m_slow <= m_slowc && !rst;
+  end
+  // And no timeout before it: the clocks at the start of the run that read
+  // low (m_lead), at least TIMEOUT_CYC - 2 (the synchroniser's lag) when
+  // the timeout ends the bus.
+  reg [MW-1:0] m_lead = {MW{1'b0}}, m_slead = {MW{1'b0}};
+  wire [MW-1:0] m_leadc = m_lowc ? m_relc + 1'b1 : (m_scl_rel ? {MW{1'b0}} : m_lead);
+  wire [MW-1:0] m_sleadc = m_slowc ? m_srelc + 1'b1 : (m_sda_stop ? {MW{1'b0}} : m_slead);
+  always @(posedge clk) begin
+    m_lead <= m_leadc;
+    m_slead <= m_sleadc;
+  end
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(owned) && !owned && rsp_err == ERR_TIMEOUT) begin
+      if ($past(m_stopc)) assert ({1'b0, $past(m_sleadc)} + 2'd2 >= {1'b0, F_TO});
+      else assert (!$past(scl_oe) && {1'b0, $past(m_leadc)} + 2'd2 >= {1'b0, F_TO});
+    end
+  always @(*)
+    if (f_past) begin
+      // A run broken at the pins is still in the synchroniser.
+      if (state == S_WAIT_HIGH && !m_lowc)
+        assert ({1'b0, m_leadc} + 2'd2 == {2'b0, cnt} ? scl_sync[1] :
+                {1'b0, m_leadc} + 2'd1 == {2'b0, cnt} ? scl_sync[0] :
+                m_leadc == {1'b0, cnt} && scl_i);
+      if (state == S_BUF && !sampled && !m_slowc)
+        assert ({1'b0, m_sleadc} + 2'd2 == {2'b0, cnt} ? sda_sync[1] :
+                {1'b0, m_sleadc} + 2'd1 == {2'b0, cnt} ? sda_sync[0] :
+                m_sleadc == {1'b0, cnt} && sda_i);
+      if (owned && m_lowc) assert (m_relc < F_TO);
+      if (owned && m_slowc) assert (m_srelc < F_TO);
+    end
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(owned) && !owned && ($past(m_lowc) || $past(m_slowc)))
+      assert (rsp_valid && rsp_err == ERR_TIMEOUT && !scl_oe && !sda_oe);
+  // After a timeout's response is taken the master is idle: it takes the
+  // next command.
+  always @(posedge clk)
+    if (f_past && !$past(rst) && $past(rsp_valid && rsp_ready && rsp_err == ERR_TIMEOUT))
+      assert (cmd_ready && !owned && !scl_oe && !sda_oe);
+  // For induction: the monitor's runs against the state's counter; the
+  // data bit set from HOLD after SCL fell to the end of the bit.
+  always @(*)
+    if (f_past) begin
+      if ((state == S_LOW && cnt > C_HOLD) || state == S_WAIT_HIGH || state == S_HIGH)
+        assert (sda_oe == sda_pull);
+      if (state == S_LOW && cnt >= 2) assert (scl_sync == 2'b00);
+      if (state == S_WAIT_HIGH) assert (m_relc == {1'b0, cnt} && (!m_lowc || scl_sync == 2'b00));
+      if (state == S_HIGH || state == S_SETUP || state == S_BUF) assert (!m_lowc);
+      if (state == S_STA_HOLD && owned) assert (!m_lowc);
+      if (state == S_BUF && !sampled) assert (m_stopc && m_srelc == {1'b0, cnt} && (!m_slowc || sda_sync == 2'b00));
+      if (state == S_BUF && sampled) assert (!m_slowc);
+      if (m_stopc && owned) assert (state == S_BUF);
+    end
+
   always @(posedge clk)
     if (f_past) begin
       cover (state == S_RESP && rsp_err == ERR_TIMEOUT && $past(state) == S_WAIT_HIGH);  // SCL stuck
@@ -350,6 +445,12 @@ module i2c_master #(
       cover ($past(owned) && !owned && rsp_err == ERR_OK);                              // a STOP
       cover (rsp_valid && !rsp_ready && $past(rsp_valid && !rsp_ready));                  // a response waiting
       cover (state == S_STA_HOLD && $past(state) == S_SETUP);                           // a repeated START
+      cover (state == S_STA_HOLD && $past(state) == S_IDLE);                            // a START
+      cover (state == S_HIGH && $past(state == S_WAIT_HIGH && cnt >= 4));              // a stretched SCL, then the bit
+      cover (rsp_valid && rsp_err == ERR_BUSY);                                         // a busy bus refused
+      cover (owned && m_lowc && m_relc == F_TO - 1'b1);                                // SCL held low to the bound
+      cover (owned && m_slowc && m_srelc == F_TO - 1'b1);                              // SDA held low to the bound
+      cover ($past(rsp_valid && rsp_ready && rsp_err == ERR_TIMEOUT) && cmd_valid && cmd_ready);  // idle again
     end
 `endif
 endmodule

@@ -295,8 +295,9 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    every A = round(a / fs) clocks of a, SCLK = a / (2 H) with H = ceil(a /
 //    40 MHz) (dtmf_top's SCLK_DIV, so SCLK <= 20 MHz at any clock); the
 //    AD7476A needs (A - 28 H) clocks >= 250 ns of acquisition (tACQ) and
-//    (A - 31 H) clocks >= 86 ns of quiet time (t8 + tQUIET)
-//    (dtmf_top_adc_problem). On clk, the sample period P below is A. On
+//    (A - 31 H) clocks >= 86 ns of quiet time (t8 + tQUIET) and (A - 32 H)
+//    clocks >= 10 ns of CS high (t1) (dtmf_top_adc_problem, the same checks
+//    as adc_ad7476's elaboration). On clk, the sample period P below is A. On
 //    its own clock, samples reach clk's domain through stream_cdc's
 //    synchroniser, a sample every A / a seconds give or take a clock of
 //    clk either way (a synchroniser may resolve a clock late): P = floor(
@@ -371,13 +372,14 @@ inline std::string dtmf_top_adc_problem(double fs, long adc_hz) {
   const long h = (adc_hz + 39999999) / 40000000;
   const double ns = 1e9 / double(adc_hz);
   const double acq = double(period - 28 * h) * ns, quiet = double(period - 31 * h) * ns;
-  if (acq >= 250.0 && quiet >= 86.0) return "";
-  char s[240];
+  const double t1 = double(period - 32 * h) * ns;
+  if (acq >= 250.0 && quiet >= 86.0 && t1 >= 10.0) return "";
+  char s[280];
   std::snprintf(s, sizeof s,
                 "adc_ad7476: a sample period of %ld clocks leaves %.0f ns of acquisition "
-                "(>= 250 ns) and %.0f ns of quiet time (>= 86 ns) at SCLK_DIV %ld (%.6g MHz / "
-                "%.6g S/s)",
-                period, acq, quiet, h, double(adc_hz) / 1e6, fs);
+                "(>= 250 ns), %.0f ns of quiet time (>= 86 ns) and %.0f ns of CS high (>= 10 ns) "
+                "at SCLK_DIV %ld (%.6g MHz / %.6g S/s)",
+                period, acq, quiet, t1, h, double(adc_hz) / 1e6, fs);
   return s;
 }
 

@@ -42,3 +42,16 @@ TEST(DtmfTopPlan, EveryTaxelPacketOfALargeSkinFitsTheFifoWhole) {
 }
 
 }  // namespace
+
+TEST(DtmfTopPlan, TheAdcPlanRefusesAPeriodWithoutCsHighTime) {
+  // AD7476A t1 >= 10 ns (docs/protocol.md): CS must go high between
+  // conversions. At a 10 MHz ADC clock and 312.5 kS/s the period is 32
+  // clocks = 32 H: acquisition (4 clocks, 400 ns >= 250) and quiet time
+  // (1 clock, 100 ns >= 86) both pass, but no clock of CS high is left, so
+  // rtl/adc_ad7476.v refuses the set at elaboration (lint test
+  // lint.adc_ad7476_rejects_illegal_parameters_t1 is the same rule at 12 MHz).
+  const std::string bad = hls::dtmf_top_adc_problem(312500.0, 10000000);
+  EXPECT_NE(bad.find("0 ns of CS high (>= 10 ns)"), std::string::npos) << bad;
+  // One clock more (33, 303.03 kS/s) leaves 100 ns of CS high: accepted.
+  EXPECT_EQ(hls::dtmf_top_adc_problem(10000000.0 / 33, 10000000), "");
+}
