@@ -278,16 +278,16 @@ TEST(LineModel, BadOptionsNameTheOptionAndWhatItExpects) {
 
 const std::string kScene = ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml";
 
-struct Run {
+struct BoardResult {
   eskin::stream::BoardRun run;
   LineCounts injected;
   int exit = -1;
 };
 
 // The default scene on eskin-vboard, its pty read as eskin simulate reads it.
-Run run_board(const std::vector<std::string>& line_args,
+BoardResult run_board(const std::vector<std::string>& line_args,
               const std::vector<std::vector<uint8_t>>& commands = {}) {
-  Run r;
+  BoardResult r;
   eskin::vboard::VboardProcess board(ESKIN_VBOARD_BIN,
                                      eskin::stream::board_args(kScene, "", commands, line_args));
   r.run = eskin::stream::run_board(board, 3000000, commands, 1, [](const Packet&) { return -1L; });
@@ -343,14 +343,14 @@ Compare compare(const std::vector<Packet>& sent, const std::vector<Packet>& deli
 // fault-free (the FPGA's output does not depend on the host->FPGA line,
 // which is clean here; the board's tap on uart_txd must equal it too).
 TEST(LineBoard, ToHostFaultsNeverDeliverAWrongPacketAndAreCounted) {
-  const Run ref = run_board({});
+  const BoardResult ref = run_board({});
   ASSERT_EQ(ref.exit, 0);
   ASSERT_EQ(ref.run.link.crc_errors + ref.run.link.framing_errors + ref.run.link.lost_packets, 0u);
   ASSERT_GT(ref.run.rx.size(), 1000u);
   EXPECT_EQ(ref.injected.to_host.faults() + ref.injected.to_fpga.faults() + ref.injected.pulls, 0u);
 
   const fs::path tap = fs::path(testing::TempDir()) / "line_to_host_tap.bin";
-  const Run bad = run_board({"--ber", "1e-4", "--drop-rate", "1e-4", "--insert-rate", "1e-4",
+  const BoardResult bad = run_board({"--ber", "1e-4", "--drop-rate", "1e-4", "--insert-rate", "1e-4",
                              "--fault-direction", "to-host", "--fault-seed", "7", "--tap-to-host",
                              tap.string()});
   ASSERT_EQ(bad.exit, 0);
@@ -415,7 +415,7 @@ TEST(LineBoard, ToFpgaFaultsNeverApplyADamagedCommandNorOneTwice) {
     c.insert(c.end(), 64, 0);
     cmds.push_back(c);
   }
-  const Run bad = run_board({"--ber", "1e-3", "--drop-rate", "1e-3", "--insert-rate", "1e-3",
+  const BoardResult bad = run_board({"--ber", "1e-3", "--drop-rate", "1e-3", "--insert-rate", "1e-3",
                              "--fault-direction", "to-fpga", "--fault-seed", "11"},
                             cmds);
   ASSERT_EQ(bad.exit, 0);
@@ -465,7 +465,7 @@ TEST(LineBoard, ToFpgaFaultsNeverApplyADamagedCommandNorOneTwice) {
 // when it returns); the host counts every one lost.
 TEST(LineBoard, APulledCableLosesOnlyItsIntervalAndTheStreamResumes) {
   const fs::path tap = fs::path(testing::TempDir()) / "line_pull_tap.bin";
-  const Run bad = run_board({"--pull-cable", "200:20", "--tap-to-host", tap.string()});
+  const BoardResult bad = run_board({"--pull-cable", "200:20", "--tap-to-host", tap.string()});
   ASSERT_EQ(bad.exit, 0);
   EXPECT_EQ(bad.injected.pulls, 1u);
   EXPECT_GT(bad.injected.to_host.pulled_chars, 0u);
