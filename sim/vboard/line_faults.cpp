@@ -42,9 +42,13 @@ double rate(const std::string& opt, const std::string& v, const char* per) {
   return x;
 }
 
+// The shortest text that reads back as x.
 std::string fmt_double(double x) {
   char b[40];
-  std::snprintf(b, sizeof b, "%.17g", x);
+  for (int prec = 1; prec <= 17; ++prec) {
+    std::snprintf(b, sizeof b, "%.*g", prec, x);
+    if (std::strtod(b, nullptr) == x) break;
+  }
   return b;
 }
 

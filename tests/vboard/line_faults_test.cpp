@@ -270,7 +270,7 @@ TEST(LineModel, BadOptionsNameTheOptionAndWhatItExpects) {
   EXPECT_EQ(ok.to_host.ber, 0);
   // ... and back into the board's arguments unchanged.
   EXPECT_EQ(eskin::vboard::line_fault_args(ok),
-            (std::vector<std::string>{"--ber", "1.0000000000000001e-05", "--fault-direction",
+            (std::vector<std::string>{"--ber", "1e-05", "--fault-direction",
                                       "to-fpga", "--fault-seed", "1"}));
 }
 
