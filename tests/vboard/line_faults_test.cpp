@@ -570,3 +570,90 @@ TEST(LineCli, SimulateReportsTheLine) {
 }
 
 }  // namespace
+
+// ------------------------------------------------------------- the soak
+
+namespace soak {
+
+std::map<std::string, double> read_table(const fs::path& p) {
+  std::map<std::string, double> m;
+  std::ifstream in(p);
+  std::string line;
+  bool header = false;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      header = true;
+      continue;
+    }
+    const size_t a = line.find(',');
+    const size_t b = line.find(',', a + 1);
+    m[line.substr(0, a)] = std::stod(line.substr(a + 1, b - a - 1));
+  }
+  return m;
+}
+
+// What every soak table must hold: nothing delivered wrong, every lost
+// packet counted by the host, sent = delivered + lost, faults injected both
+// ways at the stated BER (Binomial over the wire bits, 10 a character, 5
+// standard deviations), losses and recoveries when there were faults, and
+// the board counting bad command frames.
+void check_table(const std::map<std::string, double>& t, double min_packets) {
+  const auto at = [&](const char* k) {
+    EXPECT_TRUE(t.count(k)) << k;
+    return t.count(k) ? t.at(k) : -1.0;
+  };
+  EXPECT_GE(at("packets_sent"), min_packets);
+  EXPECT_EQ(at("packets_delivered_wrong"), 0);
+  EXPECT_EQ(at("packets_counted_lost"), at("packets_lost"));
+  EXPECT_EQ(at("packets_delivered") + at("packets_lost"), at("packets_sent"));
+  EXPECT_GT(at("packets_lost"), 0);
+  EXPECT_GT(at("recoveries"), 0);
+  EXPECT_LE(at("recoveries"), at("packets_lost"));
+  const double p = at("ber");
+  for (const char* dir : {"to_host", "to_fpga"}) {
+    const double bits = 10 * at((std::string(dir) + "_chars").c_str());
+    const double flips = at((std::string(dir) + "_flips").c_str());
+    EXPECT_LE(std::fabs(flips - bits * p), 5 * std::sqrt(bits * p * (1 - p)) + 1) << dir;
+    EXPECT_GT(flips, 0) << dir;
+  }
+  // Each flip damages at most two packets (the file's header).
+  EXPECT_LE(at("packets_lost"), 2 * (at("to_host_flips")));
+  EXPECT_GE(at("commands_sent"), at("status_received"));
+  EXPECT_GT(at("board_cmd_errors"), 0);
+}
+
+}  // namespace soak
+
+// The soak's short form: 3.5 s of scenes/soak.yaml (> 2 10^4 packets) at
+// BER 1e-5 both ways, through the real eskin binary.
+TEST(LineSoak, ShortSoakDeliversNothingWrongAndCountsEveryLoss) {
+  std::ifstream in(ESKIN_SOURCE_DIR "/scenes/soak.yaml");
+  std::string text, line;
+  while (std::getline(in, line)) {
+    const size_t at = line.find("t_start_s: ");
+    if (at != std::string::npos && std::stod(line.substr(at + 11)) >= 3.0) continue;
+    if (line.rfind("duration_s:", 0) == 0) line = "duration_s: 3.5";
+    text += line + "\n";
+  }
+  const fs::path scene = fs::path(testing::TempDir()) / "soak_short.yaml";
+  std::ofstream(scene) << text;
+  const fs::path out = fs::path(testing::TempDir()) / "soak_short_out";
+  const fs::path csv = out / "soak.csv";
+  const fs::path log = fs::path(testing::TempDir()) / "soak_short.log";
+  fs::remove_all(out);
+  fs::create_directories(out);
+  ASSERT_EQ(exit_of({ESKIN_BIN, "bench", "soak", scene.string(), "--ber", "1e-5", "--fault-seed",
+                     "3", "--out", out.string(), "--csv", csv.string(), "--min-packets", "20000"},
+                    log),
+            0)
+      << slurp(log);
+  soak::check_table(soak::read_table(csv), 20000);
+  std::printf("%s", slurp(log).c_str());
+}
+
+// docs/soak.csv, which the docs cite, holds together as a soak table does,
+// over at least 10^6 packets.
+TEST(LineSoak, TheDocsTableHoldsTogether) {
+  soak::check_table(soak::read_table(ESKIN_SOURCE_DIR "/docs/soak.csv"), 1e6);
+}
