@@ -1,5 +1,6 @@
 #include "host/link/delivery_check.h"
 
+#include <algorithm>
 #include <cstdint>
 
 namespace eskin::link {
@@ -37,6 +38,13 @@ DeliveryCheck check_delivery(const std::vector<PacketKey>& sent,
     c.match.push_back(j);
     next = j + 1;
   }
+  size_t first = sent.size(), last = 0;
+  for (size_t j = 0; j < sent.size(); ++j)
+    if (got[j]) {
+      first = std::min(first, j);
+      last = j;
+    }
+  c.unseen = first == sent.size() ? sent.size() : first + (sent.size() - 1 - last);
   bool in_loss = false;
   for (size_t j = 0; j < sent.size(); ++j) {
     if (!got[j]) {

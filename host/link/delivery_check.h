@@ -33,6 +33,10 @@ struct DeliveryCheck {
                             // with its seq, type and t, or its payload differs
   uint64_t lost = 0;        // sent, never delivered
   uint64_t recoveries = 0;  // runs of lost packets after which a packet was delivered again
+  // Lost before the first or after the last packet delivered: no host can
+  // tell these from its seq numbers, so its count of lost packets (seq
+  // gaps) is lost - unseen (while no run of losses reaches 256).
+  uint64_t unseen = 0;
   std::vector<size_t> match;  // per delivered packet: its sent index (SIZE_MAX: wrong)
 };
 

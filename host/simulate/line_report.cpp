@@ -45,6 +45,7 @@ nlohmann::json to_json(const LineReport& r) {
           {"packets_intact", c.intact},
           {"packets_delivered_wrong", c.wrong},
           {"packets_lost", c.lost},
+          {"packets_lost_unseen", c.unseen},
           {"recoveries", c.recoveries},
           {"host_counted_lost", r.host.lost_packets},
           {"host_seq_gaps", r.host.seq_gaps},
@@ -67,6 +68,8 @@ std::vector<std::vector<std::string>> line_rows(const LineReport& r) {
       {"line: host counted lost packets / seq gaps / CRC errors / framing errors",
        fmt::format("{} / {} / {} / {}", r.host.lost_packets, r.host.seq_gaps, r.host.crc_errors,
                    r.host.framing_errors)},
+      {"line: lost before the first or after the last packet delivered (no host sees them)",
+       std::to_string(c.unseen)},
       {"line: injected FPGA->host: characters / bit flips (start, data, stop) / dropped / "
        "inserted / during a pull",
        fmt::format("{} / {} ({}, {}, {}) / {} / {} / {}", h.chars, h.flips(), h.start_flips,

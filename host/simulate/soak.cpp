@@ -95,6 +95,7 @@ std::string soak_csv(const SoakResult& r, const SoakOptions& o, const std::strin
   row("packets_delivered", double(c.delivered), "packets");
   row("packets_lost", double(c.lost), "packets");
   row("packets_counted_lost", double(r.line.host.lost_packets), "packets");
+  row("packets_lost_unseen", double(c.unseen), "packets");
   row("packets_delivered_wrong", double(c.wrong), "packets");
   row("recoveries", double(c.recoveries), "recoveries");
   row("host_error_frames",
