@@ -251,7 +251,10 @@ void LineFaults::tap_to(const std::string& path, double fpga_bit_ns) {
 
 void LineFaults::flush_tap() {
   if (!tap_ || tap_rx_.bytes.empty()) return;
-  if (std::fwrite(tap_rx_.bytes.data(), 1, tap_rx_.bytes.size(), tap_) != tap_rx_.bytes.size())
+  // Flushed each time: the host reads the file once the done line is out,
+  // before the board exits.
+  if (std::fwrite(tap_rx_.bytes.data(), 1, tap_rx_.bytes.size(), tap_) != tap_rx_.bytes.size() ||
+      std::fflush(tap_) != 0)
     throw std::runtime_error("--tap-to-host: write failed: " + std::string(std::strerror(errno)));
   tap_rx_.bytes.clear();
 }
