@@ -466,6 +466,49 @@ TEST(LineBoard, ToFpgaFaultsNeverApplyADamagedCommandNorOneTwice) {
               (unsigned long)last.cmd_frame_errors);
 }
 
+// The cable out while commands go to the FPGA (the same 200 rejected
+// SET_THRESHOLDs, one every 76 characters, 253 us, from 10 us): those on
+// the wire in the pull are never judged, the FPGA's command decoder takes
+// every one after it again, each once, and the frame the pull cut is
+// counted as a bad frame. Bound: the commands overlapping [10 ms, 15 ms)
+// (19 or 20 at 253 us each, less the idle ones' share) plus one each side
+// go unjudged. The replies on their way to the host during the pull are
+// lost too (the pull blocks both ways): the host counts them as lost.
+TEST(LineBoard, CommandsResumeAfterAPulledCable) {
+  eskin::link::LinkEncoder enc;
+  std::vector<std::vector<uint8_t>> cmds;
+  const int n = 200;
+  for (int i = 0; i < n; ++i) {
+    std::vector<uint8_t> c = enc.set_threshold(9, uint16_t(i));
+    c.insert(c.end(), 64, 0);
+    cmds.push_back(c);
+  }
+  const BoardResult bad = run_board({"--pull-cable", "10:5"}, cmds);
+  ASSERT_EQ(bad.exit, 0);
+  EXPECT_EQ(bad.injected.pulls, 1u);
+  EXPECT_GT(bad.injected.to_fpga.pulled_chars, 0u);
+  std::vector<int> seqs;
+  const Packet* last = nullptr;
+  for (const Packet& p : bad.run.rx)
+    if (p.type == eskin::link::kStatus) {
+      seqs.push_back(p.status.last_reject_seq);
+      last = &p;
+    }
+  ASSERT_NE(last, nullptr);
+  for (size_t i = 1; i < seqs.size(); ++i) EXPECT_GT(seqs[i], seqs[i - 1]);
+  const int judged = last->status.cmd_rejected;
+  EXPECT_GE(n - judged, 18);
+  EXPECT_LE(n - judged, 22);
+  EXPECT_GE(bad.run.link.lost_packets, uint64_t(judged) - seqs.size());
+  // Every command after the pull answered: the last ones are all there.
+  ASSERT_GE(seqs.size(), 100u);
+  for (int k = 0; k < 100; ++k) EXPECT_EQ(seqs[seqs.size() - 1 - size_t(k)], n - 1 - k);
+  // The one cut in the middle is counted (a frame error or a CRC error).
+  EXPECT_GE(last->status.cmd_crc_errors + last->status.cmd_frame_errors, 1);
+  std::printf("pull 10 ms + 5 ms: %d of %d commands judged, %zu replies delivered\n", judged, n,
+              seqs.size());
+}
+
 // The cable out for 20 ms at 200 ms, then back: nothing crosses meanwhile;
 // the stream resumes by itself. Bound: every packet whose frame was
 // computed (its t) more than 2 ms before the pull or after it ended is
