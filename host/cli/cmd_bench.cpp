@@ -4,7 +4,9 @@
 //   tradeoff    speed/accuracy/resources map (CSV + HTML with Pareto fronts)
 //   stability   10^9-sample exact-DFT run, naive/damped drift, neuron extremes
 //   scale       golden and engine from 3x3 to 256x256 skins
+//   soak        10^6 packets through the virtual board's faulty serial line
 #include <fmt/format.h>
+#include <fmt/os.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -25,6 +27,7 @@
 #include "eskin/exit_codes.h"
 #include "eskin/skin_config.h"
 #include "host/engine/engine_setup.h"
+#include "host/simulate/soak.h"
 #include "sim/scene.h"
 
 namespace eskin::cli {
@@ -167,6 +170,44 @@ int run_stability(const StabilityArgs& a) {
   return ok ? 0 : 1;
 }
 
+struct SoakArgs {
+  eskin::simulate::SoakOptions o;
+  eskin::vboard::LineFaultArgs line;
+  std::string csv;
+  uint64_t min_packets = 0;
+};
+
+// Exit 1 when a packet was delivered wrong, the host's count of lost
+// packets differs from the packets lost that a host can see (not before
+// its first or after its last packet), or fewer than --min-packets were
+// sent.
+int run_soak(SoakArgs a) {
+  if (a.line.ber.empty() && a.line.drop_rate.empty() && a.line.insert_rate.empty() &&
+      a.line.pulls.empty())
+    a.line.ber = "1e-5";
+  a.o.line = eskin::vboard::parse_line_faults(a.line);  // std::invalid_argument: exit 2
+  if (a.o.scene.empty()) a.o.scene = eskin::source_dir() + "/scenes/soak.yaml";
+  const eskin::simulate::SoakResult r = eskin::simulate::run_soak(a.o);
+  std::cout << eskin::simulate::soak_text(r);
+  const auto& c = r.line.check;
+  const bool ok =
+      c.wrong == 0 && r.line.host.lost_packets == c.lost - c.unseen && c.sent >= a.min_packets;
+  if (c.sent < a.min_packets)
+    std::cout << fmt::format("FAILED: {} packets sent, fewer than --min-packets {}\n", c.sent,
+                             a.min_packets);
+  if (!a.csv.empty()) {
+    std::string scene = a.o.scene;
+    const std::string src = eskin::source_dir() + "/";
+    if (scene.rfind(src, 0) == 0) scene = scene.substr(src.size());
+    std::string cmd = "eskin bench soak " + scene;
+    for (const std::string& w : eskin::vboard::line_fault_args(a.o.line)) cmd += " " + w;
+    cmd += fmt::format(" --status-requests {}", a.o.status_requests);
+    fmt::output_file(a.csv).print("{}", eskin::simulate::soak_csv(r, a.o, cmd));
+    std::cout << "table: " << a.csv << "\n";
+  }
+  return ok ? 0 : eskin::exit_code(eskin::Exit::failure);
+}
+
 std::function<int()> setup(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks: latency, throughput, tradeoff, stability, scale (docs/bench.md)");
   bench->require_subcommand(1);
@@ -224,7 +265,30 @@ std::function<int()> setup(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   tp->add_option("--threads", t->threads, "threads for the threaded engine row")
       ->check(CLI::Range(1, 256));
+  auto so = std::make_shared<SoakArgs>();
+  CLI::App* soak = bench->add_subcommand(
+      "soak", "a long scene through the virtual board's faulty serial line (default BER 1e-5 "
+              "both ways): packets sent, delivered, lost, delivered wrong, recoveries (exit 1 on "
+              "a packet delivered wrong)");
+  soak->add_option("scene", so->o.scene, "DTMF scene of the default build (default scenes/soak.yaml)")
+      ->check(CLI::ExistingFile);
+  soak->add_option("--ber", so->line.ber, "probability that a wire bit is flipped (default 1e-5)");
+  soak->add_option("--drop-rate", so->line.drop_rate, "probability that a character is lost");
+  soak->add_option("--insert-rate", so->line.insert_rate,
+                   "probability that a random character comes before one");
+  soak->add_option("--fault-direction", so->line.direction, "both (default), to-host, to-fpga");
+  soak->add_option("--pull-cable", so->line.pulls, "AT_MS:FOR_MS (repeatable)");
+  soak->add_option("--fault-seed", so->line.seed, "the seed of every fault (default 1)");
+  soak->add_option("--status-requests", so->o.status_requests,
+                   "REQUEST_STATUS commands sent per AMPLITUDES packet received")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 16));
+  soak->add_option("--out", so->o.out, "output directory (the FPGA's tapped bytes, soak.json)")
+      ->capture_default_str();
+  soak->add_option("--csv", so->csv, "write the table here (docs/soak.csv)");
+  soak->add_option("--min-packets", so->min_packets, "fail if the FPGA sent fewer packets");
   return [=]() -> int {
+    if (soak->parsed()) return run_soak(*so);
     if (lat->parsed()) return run_latency(*l);
     if (tp->parsed()) return run_throughput(*t);
     if (tr->parsed()) return run_tradeoff(*d);

@@ -14,6 +14,7 @@ namespace {
 
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<simulate::SimulateOptions>();
+  auto line = std::make_shared<vboard::LineFaultArgs>();
   CLI::App* sub = app.add_subcommand(
       "simulate", "Run a scene on the SystemC virtual board (Verilated FPGA, pty serial port), "
                   "compare with the golden model and write an HTML report");
@@ -22,7 +23,22 @@ std::function<int()> setup(CLI::App& app) {
       ->check(CLI::ExistingFile);
   sub->add_option("--out", a->out, "output directory (created)")->capture_default_str();
   sub->add_option("--trace", a->trace, "FST waveform of the FPGA (GTKWave; several times slower)");
-  return [a] { return simulate::run_simulate(*a); };
+  sub->add_option("--ber", line->ber,
+                  "line faults: probability that a wire bit (start, data, stop) is flipped");
+  sub->add_option("--drop-rate", line->drop_rate, "line faults: probability that a character is lost");
+  sub->add_option("--insert-rate", line->insert_rate,
+                  "line faults: probability that a random character comes before one");
+  sub->add_option("--fault-direction", line->direction,
+                  "line faults: which way --ber/--drop-rate/--insert-rate act: both (default), "
+                  "to-host, to-fpga");
+  sub->add_option("--pull-cable", line->pulls,
+                  "line faults: AT_MS:FOR_MS, the cable out for FOR_MS from AT_MS of simulated "
+                  "time (repeatable)");
+  sub->add_option("--fault-seed", line->seed, "line faults: the seed of every fault (default 1)");
+  return [a, line] {
+    a->line = vboard::parse_line_faults(*line);  // std::invalid_argument: exit 2
+    return simulate::run_simulate(*a);
+  };
 }
 
 ESKIN_COMMAND("simulate", setup);

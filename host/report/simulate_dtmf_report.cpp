@@ -396,10 +396,12 @@ nlohmann::json report_dtmf(const sim::Scene& scene, const std::string& scene_fil
   error_rows(d, fs_, s, rep);
   const DtmfRunFigures r = run_figures(run, s);
   run_rows(d, run, rx.size(), s, r, rep);
+  rep.run_rows.insert(rep.run_rows.end(), run.line_rows.begin(), run.line_rows.end());
   rep.summary = summary_text(d, total);
   const std::string html = (fs::path(out_dir) / "report.html").string();
   write_simulate_report(rep, html);
-  const nlohmann::json sum = summary(d, scene_file, rx.size(), fs_, s, r);
+  nlohmann::json sum = summary(d, scene_file, rx.size(), fs_, s, r);
+  if (!run.line.is_null()) sum["line"] = run.line;
   fmt::output_file((fs::path(out_dir) / "summary.json").string()).print("{}\n", sum.dump(2));
   print_summary(d, rx.size(), fs_, s, r, html);
   return sum;

@@ -1,6 +1,7 @@
 #include "host/simulate/simulate.h"
 
 #include <fmt/format.h>
+#include <fmt/os.h>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -19,6 +20,7 @@
 #include "host/report/simulate_hall_report.h"
 #include "host/report/simulate_mixed_report.h"
 #include "host/simulate/golden_run.h"
+#include "host/simulate/line_report.h"
 #include "host/stream/board_link.h"
 #include "sim/hall_world.h"
 #include "sim/scene.h"
@@ -61,6 +63,34 @@ vboard::FpgaBuild board_build(const sim::Scene& scene) {
 
 void note(const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); }
 
+// With line faults: the FPGA's bytes as sent, tapped at its pin by the board.
+std::string tap_file(const SimulateOptions& o) {
+  return (std::filesystem::path(o.out) / "fpga_sent.bin").string();
+}
+
+// The board's line options: the faults, and the tap that judges them.
+std::vector<std::string> line_args(const SimulateOptions& o) {
+  if (!o.line.any()) return {};
+  std::vector<std::string> a = vboard::line_fault_args(o.line);
+  a.insert(a.end(), {"--tap-to-host", tap_file(o)});
+  return a;
+}
+
+// With line faults: what the host delivered against what the FPGA sent,
+// into the run (the report's rows, summary.json), line.json and stdout.
+void judge_line(const SimulateOptions& o, stream::BoardRun& run) {
+  if (!o.line.any()) return;
+  std::vector<link::PacketKey> keys;
+  keys.reserve(run.rx.size());
+  for (const Packet& p : run.rx) keys.push_back(link::key_of(p));
+  const LineReport r = line_report(tap_file(o), keys, run.link, run.done);
+  run.line = to_json(r);
+  run.line_rows = line_rows(r);
+  fmt::output_file((std::filesystem::path(o.out) / "line.json").string())
+      .print("{}\n", run.line.dump(2));
+  fmt::print("{}", line_text(r));
+}
+
 // The skin's outputs (amplitudes, taxels, spikes as the scene asks) plus
 // the periodic status, whose counters go into the report.
 std::vector<uint8_t> output_mask_command(const sim::Scene& scene, link::LinkEncoder& enc) {
@@ -87,10 +117,11 @@ int run_simulate_hall(const sim::Scene& scene, const SimulateOptions& o) {
   const std::string exe = vboard::board_executable(build, note);
   std::filesystem::create_directories(o.out);
 
-  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, {setup.commands}));
-  const stream::BoardRun run = stream::run_board(
+  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, {setup.commands}, line_args(o)));
+  stream::BoardRun run = stream::run_board(
       board, int(build.baud), {setup.commands}, size_t(scene.duration_s * 1e6),
       [](const Packet& p) { return p.type == link::kHallSamples ? long(p.t) : -1L; });
+  judge_line(o, run);
   report::report_hall(scene, o.scene, build, setup, run, o.out);
   return board.wait() == 0 ? 0 : 1;
 }
@@ -108,13 +139,14 @@ int run_simulate_mixed(const sim::Scene& scene, const SimulateOptions& o) {
   link::LinkEncoder enc;
   const std::vector<std::vector<uint8_t>> commands = {output_mask_command(scene, enc),
                                                       setup.commands};
-  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, commands));
+  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, commands, line_args(o)));
   const size_t total = board.ready().at("scene_samples");
   report::GoldenRun gold;
-  const stream::BoardRun run = stream::run_board(
+  stream::BoardRun run = stream::run_board(
       board, int(dtmf.baud()), commands, total,
       [](const Packet& p) { return link::is_hall_packet(p.type) ? -1L : long(p.t); },
       [&] { gold = run_golden(scene, dtmf.plan.step); });
+  judge_line(o, run);
   report::report_mixed(scene, o.scene, build, dtmf, gold, setup, run, total, o.out);
   return board.wait() == 0 ? 0 : 1;
 }
@@ -130,13 +162,14 @@ int run_simulate_dtmf(const sim::Scene& scene, const SimulateOptions& o) {
 
   link::LinkEncoder enc;
   const std::vector<std::vector<uint8_t>> commands = {output_mask_command(scene, enc)};
-  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, commands));
+  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, commands, line_args(o)));
   const size_t total = board.ready().at("scene_samples");
   report::GoldenRun gold;
-  const stream::BoardRun run = stream::run_board(
+  stream::BoardRun run = stream::run_board(
       board, int(build.baud()), commands, total,
       [](const Packet& p) { return long(p.t); },
       [&] { gold = run_golden(scene, build.plan.step); });
+  judge_line(o, run);
   report::report_dtmf(scene, o.scene, build, gold, run, total, o.out);
   return board.wait() == 0 ? 0 : 1;
 }
@@ -163,6 +196,11 @@ void check_out_dir(const std::string& out) {
 
 int run_simulate(const SimulateOptions& o) {
   const sim::Scene scene = sim::load_scene(o.scene);  // a bad scene fails here, before anything runs
+  for (const vboard::CablePull& p : o.line.pulls)
+    if (p.at_ms >= scene.duration_s * 1e3)
+      throw std::invalid_argument(fmt::format(
+          "--pull-cable {}:{}: the scene ends at {} ms, so the cable would be pulled after it",
+          p.at_ms, p.for_ms, scene.duration_s * 1e3));
   check_out_dir(o.out);
   if (scene.has_hall && scene.has_skin) return run_simulate_mixed(scene, o);
   if (scene.has_hall) return run_simulate_hall(scene, o);

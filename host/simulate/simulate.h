@@ -8,12 +8,18 @@
 
 #include <string>
 
+#include "sim/vboard/line_faults.h"
+
 namespace eskin::simulate {
 
 struct SimulateOptions {
   std::string scene;             // scene file (YAML)
   std::string out = "eskin-out"; // output directory (created)
   std::string trace;             // FST waveform of the FPGA, if not empty
+  // Faults on the serial line (docs/vboard.md, "Line faults"); with any on,
+  // the run also checks what the host delivered against what the FPGA
+  // sent (line.json, and the report's table).
+  vboard::LineFaultOptions line;
 };
 
 // Loads the scene (a bad scene throws before anything runs), runs it on

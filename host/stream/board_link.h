@@ -25,9 +25,12 @@ namespace eskin::stream {
 // the size of the host's start-up `commands` (run_board sends them): the
 // board holds its time at 0 until all of them are in, so they act from the
 // first frame however late the host gets to send them on a busy machine.
+// `extra`: more of the board's options (its line faults).
 inline std::vector<std::string> board_args(const std::string& scene, const std::string& trace,
-                                           const std::vector<std::vector<uint8_t>>& commands) {
+                                           const std::vector<std::vector<uint8_t>>& commands,
+                                           const std::vector<std::string>& extra = {}) {
   std::vector<std::string> a{scene};
+  a.insert(a.end(), extra.begin(), extra.end());
   if (!trace.empty()) a.insert(a.end(), {"--trace", trace});
   size_t bytes = 0;
   for (const auto& c : commands) bytes += c.size();
@@ -68,6 +71,11 @@ struct BoardRun {
   bool timed = false;  // packet k ended with the k-th frame delimiter: no link error
   nlohmann::json done;
   link::DecoderStats link;
+  // With line faults: what the host delivered against what the FPGA sent
+  // (host/simulate/line_report.h), as summary.json's "line" and the
+  // report's rows {figure, value}; empty without.
+  nlohmann::json line;
+  std::vector<std::vector<std::string>> line_rows;
 };
 
 // After read_until_board_done: stops the port (the board exits once its

@@ -9,13 +9,16 @@
 // At equal rates every byte arrives intact; at different rates the bytes
 // come out wrong on both sides, as on real hardware (the board reports the
 // mismatch). Times are in ns; call sample_txd()/rxd_level() once per FPGA
-// clock with non-decreasing times.
+// clock with non-decreasing times. A line model (line_faults.h), when set,
+// drops and inserts characters where the bridge takes or gives them.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <vector>
+
+#include "sim/vboard/line_faults.h"
 
 namespace eskin::vboard {
 
@@ -44,9 +47,7 @@ class UsbSerial {
     } else {
       rx_busy_ = false;
       if (!level) ++framing_errors_;
-      to_host_.push_back(rx_byte_);
-      byte_times_.push_back(t);
-      ++bytes_to_host_;
+      deliver(rx_byte_, t);
       return;
     }
     ++rx_bit_;
@@ -57,10 +58,9 @@ class UsbSerial {
   bool rxd_level(double t) {
     if (!tx_busy_) {
       if (to_fpga_.empty() || bit_ns_ == 0 || t < tx_not_before_) return true;
-      tx_busy_ = true;
       tx_start_ = t;
-      tx_byte_ = to_fpga_.front();
-      to_fpga_.pop_front();
+      if (!take_for_fpga()) return true;
+      tx_busy_ = true;
     }
     const int bit = int((t - tx_start_) / bit_ns_);
     if (bit == 0) return false;                   // start bit
@@ -85,7 +85,41 @@ class UsbSerial {
   uint64_t bytes_to_fpga() const { return bytes_to_fpga_; }
   uint64_t framing_errors() const { return framing_errors_; }
 
+  void set_line(LineFaults* line) { line_ = line; }
+
  private:
+  void deliver(uint8_t b, double t) {
+    if (line_) {
+      const LineFaults::Fate f = line_->fate(LineDir::to_host);
+      if (f.inserted >= 0) {
+        to_host_.push_back(uint8_t(f.inserted));
+        byte_times_.push_back(t);
+        ++bytes_to_host_;
+      }
+      if (f.drop) return;
+    }
+    to_host_.push_back(b);
+    byte_times_.push_back(t);
+    ++bytes_to_host_;
+  }
+  // The next character for uart_rxd into tx_byte_ (false: none left, all
+  // dropped). An inserted one goes first; the host's byte stays queued.
+  bool take_for_fpga() {
+    while (!to_fpga_.empty()) {
+      const LineFaults::Fate f = line_ ? line_->fate(LineDir::to_fpga) : LineFaults::Fate{};
+      if (f.inserted >= 0) {
+        tx_byte_ = uint8_t(f.inserted);
+        if (f.drop) to_fpga_.pop_front();
+        return true;
+      }
+      tx_byte_ = to_fpga_.front();
+      to_fpga_.pop_front();
+      if (!f.drop) return true;
+    }
+    return false;
+  }
+
+  LineFaults* line_ = nullptr;
   double bit_ns_ = 0;
   // FPGA -> host receiver
   bool rx_busy_ = false;

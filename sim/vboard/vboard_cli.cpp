@@ -37,12 +37,28 @@ int vboard_cli_main(int argc, char** argv, const std::string& title, double defa
   app.add_option("--tail", a.tail_s, "seconds of idle input after the scene (last frames out)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--ber", a.line_args.ber,
+                 "line faults: probability that a wire bit (start, data, stop) is flipped");
+  app.add_option("--drop-rate", a.line_args.drop_rate,
+                 "line faults: probability that a character is lost");
+  app.add_option("--insert-rate", a.line_args.insert_rate,
+                 "line faults: probability that a random character comes before one");
+  app.add_option("--fault-direction", a.line_args.direction,
+                 "line faults: which way --ber/--drop-rate/--insert-rate act: both (default), "
+                 "to-host, to-fpga");
+  app.add_option("--pull-cable", a.line_args.pulls,
+                 "line faults: AT_MS:FOR_MS, the cable out for FOR_MS from AT_MS of simulated "
+                 "time (repeatable)");
+  app.add_option("--fault-seed", a.line_args.seed, "line faults: the seed of every fault (default 1)");
+  app.add_option("--tap-to-host", a.tap_to_host,
+                 "write the FPGA's bytes on uart_txd, before the line's faults, to this file");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
   try {
+    a.line = parse_line_faults(a.line_args);
     return run(a, json);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "eskin-vboard: error: %s\n", e.what());
@@ -55,6 +71,8 @@ void apply_start_options(const VboardArgs& a, BoardConfig& cfg) {
   cfg.reader_timeout_s = a.reader_timeout_s;
   cfg.hold_for_host_bytes = a.hold_for_host_bytes;
   cfg.trace = a.trace;
+  cfg.line = a.line;
+  cfg.tap_to_host = a.tap_to_host;
 }
 
 void print_ready(FILE* json, const PtyPort& pty, const std::string& key, double clk_hz, double baud,
@@ -85,7 +103,8 @@ void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra) {
                       {"baud_mismatches", s.baud_mismatches},
                       {"reader_closes", s.reader_closes},
                       {"bytes_dropped", s.bytes_dropped},
-                      {"frame_end_ns", s.frame_end_ns}};
+                      {"frame_end_ns", s.frame_end_ns},
+                      {"line_faults", to_json(s.line)}};
   j.update(extra);
   std::fprintf(json, "%s\n", j.dump().c_str());
   std::fflush(json);

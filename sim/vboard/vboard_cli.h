@@ -12,6 +12,7 @@
 
 #include "sim/hall_sensor_array.h"
 #include "sim/scene.h"
+#include "sim/vboard/line_faults.h"
 #include "sim/vboard/pty_port.h"
 #include "sim/vboard/virtual_board.h"
 
@@ -23,6 +24,9 @@ struct VboardArgs {
   double reader_timeout_s = 60;
   uint64_t hold_for_host_bytes = 0;  // start only once the host has sent this many bytes
   double tail_s = 0.002;  // idle time after the scene, to let the last frames out
+  LineFaultArgs line_args;  // --ber, --drop-rate, ... as given
+  LineFaultOptions line;    // ... parsed (docs/vboard.md, "Line faults")
+  std::string tap_to_host;  // the FPGA's bytes before the line's faults, to this file
 };
 
 // sc_main's body: stdout kept for the JSON lines (`json` in `run`),

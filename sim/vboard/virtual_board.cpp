@@ -39,7 +39,11 @@ VirtualBoard::VirtualBoard(sc_core::sc_module_name name, FpgaModel& fpga, PtyPor
       pty_(pty),
       cfg_(std::move(cfg)),
       adc_(cfg_.codes),
+      line_(cfg_.line),
       cycle_ns_(1e9 / cfg_.clk_hz) {
+  usb_.set_line(&line_);
+  line_.set_bit_ns(LineDir::to_host, 1e9 / cfg_.baud);
+  if (!cfg_.tap_to_host.empty()) line_.tap_to(cfg_.tap_to_host, 1e9 / cfg_.baud);
   SC_THREAD(fpga_thread);
   SC_THREAD(usb_thread);
 }
@@ -63,12 +67,12 @@ void VirtualBoard::run_cycles(uint64_t until) {
     const double t = double(cycle_ + 1) * cycle_ns_;
     if (adc) in_.adc_sdata = adc_.sdata(t);
     if (hall) hall->before(t, in_.scl_i, in_.sda_i, in_.drdy);
-    in_.uart_rxd = usb_.rxd_level(t);
+    in_.uart_rxd = line_.wire(LineDir::to_fpga, t, usb_.rxd_level(t));
     out_ = fpga_.cycle(in_, uint64_t(std::llround(t * 1000.0)));
     ++cycle_;
     if (adc) adc_.drive(t, out_.adc_cs_n, out_.adc_sclk);
     if (hall) hall->after(t, out_.scl_oe, out_.sda_oe);
-    usb_.sample_txd(t, out_.uart_txd);
+    usb_.sample_txd(t, line_.wire(LineDir::to_host, t, out_.uart_txd));
   }
 }
 
@@ -92,6 +96,7 @@ void VirtualBoard::follow_reader_baud() {
   if (b == stats_.reader_baud) return;
   stats_.reader_baud = b;
   usb_.set_baud(b);
+  if (b > 0) line_.set_bit_ns(LineDir::to_fpga, 1e9 / b);
   if (b > 0 && b != cfg_.baud) {
     ++stats_.baud_mismatches;
     std::fprintf(stderr,
@@ -137,6 +142,7 @@ void VirtualBoard::move_bytes() {
   sent_to_host_ = 0;
   uint8_t buf[256];
   while (size_t n = pty_.read(buf, sizeof buf)) usb_.queue_to_fpga(buf, n);
+  line_.flush_tap();
 }
 
 // Time still at 0: the host's first bytes are queued for the FPGA's RXD as
@@ -213,6 +219,7 @@ void VirtualBoard::usb_thread() {
   stats_.bytes_to_host = usb_.bytes_to_host();
   stats_.bytes_to_fpga = usb_.bytes_to_fpga();
   stats_.usb_framing_errors = usb_.framing_errors();
+  stats_.line = line_.counts();
   sc_core::sc_stop();
 }
 

@@ -30,6 +30,7 @@
 #include "sim/ad7476_model.h"
 #include "sim/hall_sensor_array.h"
 #include "sim/vboard/fpga_model.h"
+#include "sim/vboard/line_faults.h"
 #include "sim/vboard/pty_port.h"
 #include "sim/vboard/usb_serial.h"
 
@@ -49,6 +50,10 @@ struct BoardConfig {
   // commands, which then act from the first cycle however busy the machine
   // is; 0: start at once)
   uint64_t hold_for_host_bytes = 0;
+  // The line between the UART pins and the bridge (line_faults.h), and a
+  // file for the FPGA's bytes as sent, before the line's faults ("": none).
+  LineFaultOptions line;
+  std::string tap_to_host;
 };
 
 struct BoardStats {
@@ -67,6 +72,7 @@ struct BoardStats {
   uint64_t bytes_dropped = 0;           // bytes for the host while nobody was reading
   std::vector<double> frame_end_ns;     // time each 0x00 frame delimiter reached the host
   std::string error;                    // why the run stopped early (empty: it did not)
+  LineCounts line;                      // the faults the line injected
 };
 
 SC_MODULE(VirtualBoard) {
@@ -90,6 +96,7 @@ SC_MODULE(VirtualBoard) {
   PtyPort& pty_;
   BoardConfig cfg_;
   sim::Ad7476Model adc_;
+  LineFaults line_;
   UsbSerial usb_;
   FpgaInputs in_;
   FpgaOutputs out_;

@@ -1,7 +1,7 @@
 // The figures the docs cite, from generated files only, and a check that
 // a doc's figure cannot differ from its file's.
 //
-// Six generated files hold every measured figure of docs/ and README.md:
+// Seven generated files hold every measured figure of docs/ and README.md:
 //  - docs/figures.csv (name,value,unit,source): written by this test from
 //    the real models: the default scene's plan (common/eskin/dtmf_top_plan.h
 //    and its Verilog parameters, ucode/dtmf_engine_image.h), the frame
@@ -26,7 +26,9 @@
 //  - docs/vboard_figures.csv: the default scene's `eskin simulate` figures
 //    (tests/vboard/simulate_test.cpp, DefaultSceneFiguresAreTheDocs);
 //  - docs/formal.csv: the formal proofs' kinds, depths and times
-//    (scripts/formal_table.sh, tests/formal/formal_table_test.cpp).
+//    (scripts/formal_table.sh, tests/formal/formal_table_test.cpp);
+//  - docs/soak.csv: the line soak (`eskin bench soak --csv docs/soak.csv`,
+//    tests/vboard/line_faults_test.cpp).
 // A doc marks each figure it cites with its name:
 //    <!--fig:NAME-->10 077<!--/fig-->
 // NAME is a row of docs/figures.csv, latency/CONFIG/STAGE (a row of
@@ -36,7 +38,8 @@
 // tradeoff_synth/COLUMN_min and _max (the stored synthesis table's rows and
 // a column's extremes) or vboard/NAME (a row of docs/vboard_figures.csv)
 // or formal/MODULE/TASK/depth|seconds, formal/tasks, formal/seconds (rows
-// of docs/formal.csv and their count and sum).
+// of docs/formal.csv and their count and sum) or soak/NAME (a row of
+// docs/soak.csv).
 // The text between the markers is
 // the number (spaces and commas as thousands separators allowed); a file
 // value with more decimals is compared rounded to the doc's decimals. The
@@ -311,6 +314,11 @@ std::map<std::string, std::string> known_figures() {
   // tests/vboard/simulate_test.cpp, DefaultSceneFiguresAreTheDocs).
   for (const auto& r : read_csv(kSrc / "docs/vboard_figures.csv"))
     if (r.size() >= 2) m["vboard/" + r[0]] = r[1];
+  // soak/NAME: the line soak's table (docs/soak.csv, written by `eskin
+  // bench soak --csv`; checked by tests/vboard/line_faults_test.cpp,
+  // LineSoak.TheDocsTableHoldsTogether).
+  for (const auto& r : read_csv(kSrc / "docs/soak.csv"))
+    if (r.size() >= 2) m["soak/" + r[0]] = r[1];
   // formal/MODULE/TASK/depth and /seconds, formal/tasks, formal/seconds:
   // the proofs' table (docs/formal.csv, scripts/formal_table.sh; checked
   // against tests/formal/*.sby by tests/formal/formal_table_test.cpp).
