@@ -127,12 +127,12 @@ double WorldModel::clean_voltage(size_t n) const {
   double v = skin.adc.offset_v;
   const double dn = double(n);
   for (int i = 0; i < skin.rows; ++i)
-    if (row_used_[size_t(i)] && row_g_[size_t(i)] > 0)
+    if (row_used_[size_t(i)] && row_g_[size_t(i)] > 0 && !is_off(i, n))
       v += a * row_g_[size_t(i)] *
            std::sin(kTwoPi * freq_[size_t(i)] * dn / skin.adc.rate_hz + phase_[size_t(i)]);
   for (int j = 0; j < skin.cols; ++j) {
     size_t k = size_t(skin.rows + j);
-    if (col_used_[size_t(j)] && col_g_[size_t(j)] > 0)
+    if (col_used_[size_t(j)] && col_g_[size_t(j)] > 0 && !is_off(skin.rows + j, n))
       v += a * col_g_[size_t(j)] * std::sin(kTwoPi * freq_[k] * dn / skin.adc.rate_hz + phase_[k]);
   }
   return v;

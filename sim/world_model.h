@@ -49,6 +49,9 @@ class WorldModel {
   double start_phase(int k) const { return phase_[size_t(k)]; }
   // Analog input (V) at sample n before noise and quantisation.
   double clean_voltage(size_t n) const;
+  // Carrier k (rows, then columns) absent from samples [from, to): its
+  // oscillator or drive line failed (the virtual board's carrier-off).
+  void carrier_off(int k, size_t from, size_t to) { off_.push_back({k, from, to}); }
 
  private:
   // One touched taxel and the stimuli that can reach it (with their weights:
@@ -68,6 +71,13 @@ class WorldModel {
   std::mt19937_64 noise_rng_;
   std::normal_distribution<double> noise_;
   mutable std::vector<double> row_g_, col_g_;
+  struct Off { int k; size_t from, to; };
+  std::vector<Off> off_;
+  bool is_off(int k, size_t n) const {
+    for (const Off& o : off_)
+      if (o.k == k && n >= o.from && n < o.to) return true;
+    return false;
+  }
 };
 
 }  // namespace eskin::sim

@@ -35,8 +35,14 @@ std::function<int()> setup(CLI::App& app) {
                   "line faults: AT_MS:FOR_MS, the cable out for FOR_MS from AT_MS of simulated "
                   "time (repeatable)");
   sub->add_option("--fault-seed", line->seed, "line faults: the seed of every fault (default 1)");
-  return [a, line] {
+  auto faults = std::make_shared<std::vector<std::string>>();
+  sub->add_option("--fault", *faults,
+                  "board fault KIND@AT_MS[:FOR_MS]: reset, reset-in-frame, reset-in-command, "
+                  "adc-stuck-low, adc-stuck-high, carrier-off=K, sda-low=B (repeatable; "
+                  "docs/vboard.md, \"Board faults\")");
+  return [a, line, faults] {
     a->line = vboard::parse_line_faults(*line);  // std::invalid_argument: exit 2
+    a->faults = vboard::parse_board_faults(*faults);
     return simulate::run_simulate(*a);
   };
 }

@@ -138,7 +138,9 @@ bool parse_payload(Packet& p, std::string* why) {
 LinkDecoder::LinkDecoder(size_t max_payload)
     // COBS adds one code byte per 254 bytes plus one.
     : max_encoded_(kHeaderBytes + max_payload + kCrcBytes +
-                   (kHeaderBytes + max_payload + kCrcBytes) / 254 + 2) {}
+                   (kHeaderBytes + max_payload + kCrcBytes) / 254 + 2) {
+  last_t_.fill(-1);
+}
 
 void LinkDecoder::feed(const uint8_t* data, size_t n) {
   stats_.bytes += n;
@@ -179,7 +181,7 @@ void LinkDecoder::end_of_frame() {
   p.seq = raw[1];
   p.t = le32(&raw[2]);
   p.payload.assign(raw.begin() + kHeaderBytes, raw.begin() + kHeaderBytes + len);
-  check_sequence(p.seq);  // a valid frame advances the sequence even if unparsable
+  check_sequence(p.seq, p.type, p.t);  // a valid frame advances the sequence even if unparsable
   if (!parse_payload(p)) {
     ++stats_.payload_errors;
     return;
@@ -191,7 +193,19 @@ void LinkDecoder::end_of_frame() {
     queue_.push_back(std::move(p));
 }
 
-void LinkDecoder::check_sequence(uint8_t seq) {
+void LinkDecoder::check_sequence(uint8_t seq, uint8_t type, uint32_t t) {
+  // Behind by less than half the 32-bit range: a restart, not a wrap of t.
+  const int64_t last = last_t_[type];
+  if (last >= 0 && t < uint32_t(last) && uint32_t(last) - t < 0x80000000u) {
+    ++stats_.restarts;
+    last_t_.fill(-1);
+    if (seq) {
+      ++stats_.seq_gaps;
+      stats_.lost_packets += seq;
+    }
+    have_seq_ = false;
+  }
+  last_t_[type] = t;
   if (have_seq_) {
     const uint8_t gap = uint8_t(seq - last_seq_ - 1);
     if (gap) {

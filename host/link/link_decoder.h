@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <array>
 #include <deque>
 #include <functional>
 #include <string>
@@ -127,6 +128,10 @@ struct DecoderStats {
   uint64_t payload_errors = 0;  // CRC ok but payload malformed for its type
   uint64_t seq_gaps = 0;        // times the sequence number skipped
   uint64_t lost_packets = 0;    // sum of the skipped sequence numbers
+  // The board restarted (a reset): a packet's t fell behind the last of its
+  // type. Its seq then counts from 0 again: lost_packets adds the packets
+  // since the restart that did not arrive, not the old numbering's gap.
+  uint64_t restarts = 0;
 };
 
 // Parses `p.payload` into the per-type fields. Returns false (with a reason
@@ -147,13 +152,14 @@ class LinkDecoder {
 
  private:
   void end_of_frame();
-  void check_sequence(uint8_t seq);
+  void check_sequence(uint8_t seq, uint8_t type, uint32_t t);
 
   size_t max_encoded_;
   std::vector<uint8_t> frame_;   // COBS bytes since the last delimiter
   bool overflow_ = false;        // frame_ exceeded max_encoded_
   bool have_seq_ = false;
   uint8_t last_seq_ = 0;
+  std::array<int64_t, 256> last_t_;  // per packet type, -1: none yet
   std::deque<Packet> queue_;
   std::function<void(const Packet&)> callback_;
   DecoderStats stats_;

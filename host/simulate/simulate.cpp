@@ -68,10 +68,13 @@ std::string tap_file(const SimulateOptions& o) {
   return (std::filesystem::path(o.out) / "fpga_sent.bin").string();
 }
 
-// The board's line options: the faults, and the tap that judges them.
+// The board's fault options: the line's, the tap that judges them, and
+// the board's own.
 std::vector<std::string> line_args(const SimulateOptions& o) {
-  if (!o.line.any()) return {};
-  std::vector<std::string> a = vboard::line_fault_args(o.line);
+  std::vector<std::string> a = vboard::board_fault_args(o.faults);
+  if (!o.line.any()) return a;
+  const std::vector<std::string> l = vboard::line_fault_args(o.line);
+  a.insert(a.end(), l.begin(), l.end());
   a.insert(a.end(), {"--tap-to-host", tap_file(o)});
   return a;
 }
@@ -201,6 +204,10 @@ int run_simulate(const SimulateOptions& o) {
       throw std::invalid_argument(fmt::format(
           "--pull-cable {}:{}: the scene ends at {} ms, so the cable would be pulled after it",
           p.at_ms, p.for_ms, scene.duration_s * 1e3));
+  for (const vboard::BoardFault& f : o.faults)
+    if (f.at_ms >= scene.duration_s * 1e3)
+      throw std::invalid_argument(fmt::format("--fault {}: the scene ends at {} ms, before it",
+                                              vboard::board_fault_text(f), scene.duration_s * 1e3));
   check_out_dir(o.out);
   if (scene.has_hall && scene.has_skin) return run_simulate_mixed(scene, o);
   if (scene.has_hall) return run_simulate_hall(scene, o);

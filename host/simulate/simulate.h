@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "sim/vboard/board_faults.h"
 #include "sim/vboard/line_faults.h"
 
 namespace eskin::simulate {
@@ -20,6 +21,9 @@ struct SimulateOptions {
   // the run also checks what the host delivered against what the FPGA
   // sent (line.json, and the report's table).
   vboard::LineFaultOptions line;
+  // Faults of the board itself (docs/vboard.md, "Board faults"), passed to
+  // the board, which times them (its done line's "board_faults").
+  std::vector<vboard::BoardFault> faults;
 };
 
 // Loads the scene (a bad scene throws before anything runs), runs it on

@@ -21,6 +21,7 @@ void add(link::DecoderStats& a, const link::DecoderStats& b) {
   a.payload_errors += b.payload_errors;
   a.seq_gaps += b.seq_gaps;
   a.lost_packets += b.lost_packets;
+  a.restarts += b.restarts;
 }
 
 // A UNIX98 pty slave (char major 136-143, Documentation/admin-guide/
@@ -427,7 +428,7 @@ std::string stats_json(const StreamStats& s) {
                   kv("framing_errors", s.link.framing_errors) + "," +
                   kv("payload_errors", s.link.payload_errors) + "," +
                   kv("seq_gaps", s.link.seq_gaps) + "," + kv("lost_packets", s.link.lost_packets) +
-                  "," + kv("sync_bytes", s.sync_bytes) + "," + kv("connects", s.connects) + "," +
+                  "," + kv("restarts", s.link.restarts) + "," + kv("sync_bytes", s.sync_bytes) + "," + kv("connects", s.connects) + "," +
                   kv("disconnects", s.disconnects) + "," + kv("queue_dropped", s.queue_dropped) +
                   "}";
   return j;

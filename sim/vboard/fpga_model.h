@@ -12,6 +12,7 @@
 namespace eskin::vboard {
 
 struct FpgaInputs {
+  bool reset = false;    // the board's reset button held (rst_n low)
   bool adc_sdata = false;
   bool uart_rxd = true;  // idle high
   uint64_t scl_i = 0, sda_i = 0;  // I2C line levels, bit b: bus b

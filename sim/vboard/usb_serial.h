@@ -84,6 +84,8 @@ class UsbSerial {
   uint64_t bytes_to_host() const { return bytes_to_host_; }
   uint64_t bytes_to_fpga() const { return bytes_to_fpga_; }
   uint64_t framing_errors() const { return framing_errors_; }
+  // The byte on uart_rxd now (-1: the line idles).
+  int byte_to_fpga_in_flight() const { return tx_busy_ ? int(tx_byte_) : -1; }
 
   void set_line(LineFaults* line) { line_ = line; }
 

@@ -50,6 +50,10 @@ int vboard_cli_main(int argc, char** argv, const std::string& title, double defa
                  "line faults: AT_MS:FOR_MS, the cable out for FOR_MS from AT_MS of simulated "
                  "time (repeatable)");
   app.add_option("--fault-seed", a.line_args.seed, "line faults: the seed of every fault (default 1)");
+  app.add_option("--fault", a.fault_args,
+                 "board fault KIND@AT_MS[:FOR_MS]: reset, reset-in-frame, reset-in-command, "
+                 "adc-stuck-low, adc-stuck-high, carrier-off=K, sda-low=B (repeatable; "
+                 "docs/vboard.md, \"Board faults\")");
   app.add_option("--tap-to-host", a.tap_to_host,
                  "write the FPGA's bytes on uart_txd, before the line's faults, to this file");
   try {
@@ -59,6 +63,7 @@ int vboard_cli_main(int argc, char** argv, const std::string& title, double defa
   }
   try {
     a.line = parse_line_faults(a.line_args);
+    a.faults = parse_board_faults(a.fault_args);
     return run(a, json);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "eskin-vboard: error: %s\n", e.what());
@@ -66,7 +71,21 @@ int vboard_cli_main(int argc, char** argv, const std::string& title, double defa
   }
 }
 
-void apply_start_options(const VboardArgs& a, BoardConfig& cfg) {
+void apply_start_options(const VboardArgs& a, BoardConfig& cfg, int carriers, int buses) {
+  for (const BoardFault& f : a.faults) {
+    const std::string v = "--fault '" + board_fault_text(f) + "': ";
+    if (f.on_adc() && carriers == 0)
+      throw std::invalid_argument(v + "this board has no ADC (a Hall board)");
+    if (f.kind == BoardFaultKind::carrier_off && f.index >= carriers)
+      throw std::invalid_argument(v + "the skin has " + std::to_string(carriers) +
+                                  " carriers (rows, then columns: 0.." +
+                                  std::to_string(carriers - 1) + ")");
+    if (f.kind == BoardFaultKind::sda_low && f.index >= buses)
+      throw std::invalid_argument(v + (buses == 0 ? std::string("this board has no I2C bus")
+                                                  : "the board has I2C buses 0.." +
+                                                        std::to_string(buses - 1)));
+  }
+  cfg.faults = a.faults;
   cfg.wait_for_reader = !a.no_wait;
   cfg.reader_timeout_s = a.reader_timeout_s;
   cfg.hold_for_host_bytes = a.hold_for_host_bytes;
@@ -104,7 +123,8 @@ void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra) {
                       {"reader_closes", s.reader_closes},
                       {"bytes_dropped", s.bytes_dropped},
                       {"frame_end_ns", s.frame_end_ns},
-                      {"line_faults", to_json(s.line)}};
+                      {"line_faults", to_json(s.line)},
+                      {"board_faults", to_json(s.faults)}};
   j.update(extra);
   std::fprintf(json, "%s\n", j.dump().c_str());
   std::fflush(json);
@@ -149,7 +169,19 @@ void require_build(const std::string& scene_file, const std::string& kind,
 
 size_t load_skin_samples(BoardConfig& cfg, const sim::Scene& scene, int adc_shift, double tail_s) {
   sim::WorldModel world(scene);
+  const double fs = scene.skin.adc.rate_hz;
+  cfg.sample_hz = fs;
+  const auto first = [&](double ms) { return size_t(std::llround(ms * 1e-3 * fs)); };
+  for (const BoardFault& f : cfg.faults)
+    if (f.kind == BoardFaultKind::carrier_off)
+      world.carrier_off(f.index, first(f.at_ms), first(f.at_ms + f.for_ms));
   for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << adc_shift));
+  for (const BoardFault& f : cfg.faults) {
+    if (f.kind != BoardFaultKind::adc_stuck_low && f.kind != BoardFaultKind::adc_stuck_high) continue;
+    const uint16_t rail = f.kind == BoardFaultKind::adc_stuck_low ? 0 : 0x0FFF;
+    for (size_t n = first(f.at_ms); n < std::min(first(f.at_ms + f.for_ms), cfg.codes.size()); ++n)
+      cfg.codes[n] = rail;
+  }
   const size_t tail = size_t(std::ceil(tail_s * scene.skin.adc.rate_hz));
   cfg.codes.resize(cfg.codes.size() + tail, uint16_t(1u << 11));
   cfg.samples = cfg.codes.size();

@@ -7,11 +7,13 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "sim/hall_sensor_array.h"
 #include "sim/scene.h"
+#include "sim/vboard/board_faults.h"
 #include "sim/vboard/line_faults.h"
 #include "sim/vboard/pty_port.h"
 #include "sim/vboard/virtual_board.h"
@@ -27,6 +29,8 @@ struct VboardArgs {
   LineFaultArgs line_args;  // --ber, --drop-rate, ... as given
   LineFaultOptions line;    // ... parsed (docs/vboard.md, "Line faults")
   std::string tap_to_host;  // the FPGA's bytes before the line's faults, to this file
+  std::vector<std::string> fault_args;  // --fault values as given
+  std::vector<BoardFault> faults;       // ... parsed (docs/vboard.md, "Board faults")
 };
 
 // sc_main's body: stdout kept for the JSON lines (`json` in `run`),
@@ -35,8 +39,11 @@ struct VboardArgs {
 int vboard_cli_main(int argc, char** argv, const std::string& title, double default_tail_s,
                     const std::function<int(const VboardArgs&, FILE* json)>& run);
 
-// The start and the trace options into the board's configuration.
-void apply_start_options(const VboardArgs& a, BoardConfig& cfg);
+// The start, trace and fault options into the board's configuration;
+// throws std::invalid_argument for a board fault this board cannot have
+// (`carriers`: the skin's rows + columns, 0 without a skin; `buses`: its
+// I2C buses, 0 without Hall sensors).
+void apply_start_options(const VboardArgs& a, BoardConfig& cfg, int carriers, int buses);
 
 // Throws, naming both, when the scene needs another build (`kind`: "FPGA",
 // "Hall", "mixed") than this board's: boards are made per build by
@@ -46,7 +53,9 @@ void require_build(const std::string& scene_file, const std::string& kind,
 
 // The ADC side: the skin's samples as 12-bit codes (scene codes << shift),
 // then `tail_s` of mid-scale so the last frames get out; the run ends once
-// the ADC has taken them. Returns the scene's own sample count.
+// the ADC has taken them; cfg.faults' ADC faults applied (carrier-off in
+// the world, a stuck ADC on the codes). Returns the scene's own sample
+// count.
 size_t load_skin_samples(BoardConfig& cfg, const sim::Scene& scene, int adc_shift, double tail_s);
 
 // Per Hall sensor slot, the times (ns) each conversion the FPGA read

@@ -67,7 +67,7 @@ class VerilatedHallFpga final : public eskin::vboard::VerilatedTop<Vhall_top> {
   }
 
   eskin::vboard::FpgaOutputs cycle(const eskin::vboard::FpgaInputs& in, uint64_t t_ps) override {
-    rst_.write(cycles_ < 2);  // hall_top's synchronous reset, two clocks at power-up
+    rst_.write(cycles_ < 2 || in.reset);  // hall_top's synchronous reset, two clocks at power-up
     rxd_.write(in.uart_rxd);
     scl_i_.write(BusBits(in.scl_i));
     sda_i_.write(BusBits(in.sda_i));
@@ -105,7 +105,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   cfg.baud = double(build.baud);
   cfg.hall = &sensors;
   cfg.cycles = uint64_t(std::llround((scene.duration_s + a.tail_s) * cfg.clk_hz));
-  eskin::vboard::apply_start_options(a, cfg);
+  eskin::vboard::apply_start_options(a, cfg, 0, int(sensors.bus_count()));
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);

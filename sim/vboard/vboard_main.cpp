@@ -66,6 +66,7 @@ class VerilatedFpga final : public eskin::vboard::VerilatedTop<Vdtmf_top> {
   }
 
   eskin::vboard::FpgaOutputs cycle(const eskin::vboard::FpgaInputs& in, uint64_t t_ps) override {
+    rst_n_.write(!in.reset);
     sdata_.write(in.adc_sdata);
     rxd_.write(in.uart_rxd);
     clock(t_ps);
@@ -89,8 +90,8 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   eskin::vboard::BoardConfig cfg;
   cfg.clk_hz = params.clk_hz();
   cfg.baud = params.baud();
+  eskin::vboard::apply_start_options(a, cfg, scene.skin.rows + scene.skin.cols, 0);
   const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, params.adc_shift(), a.tail_s);
-  eskin::vboard::apply_start_options(a, cfg);
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);

@@ -71,6 +71,7 @@ class VerilatedMixedFpga final : public eskin::vboard::VerilatedTop<Vmixed_top> 
   }
 
   eskin::vboard::FpgaOutputs cycle(const eskin::vboard::FpgaInputs& in, uint64_t t_ps) override {
+    rst_n_.write(!in.reset);
     sdata_.write(in.adc_sdata);
     rxd_.write(in.uart_rxd);
     scl_i_.write(BusBits(in.scl_i));
@@ -102,11 +103,12 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   eskin::vboard::BoardConfig cfg;
   cfg.clk_hz = dtmf.clk_hz();
   cfg.baud = dtmf.baud();
-  const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, dtmf.adc_shift(), a.tail_s);
   const eskin::sim::HallWorld hall_world(scene.hall);
   eskin::sim::HallSensorArray sensors(hall_world, scene.hall.config, build.hall.spec);
   cfg.hall = &sensors;
-  eskin::vboard::apply_start_options(a, cfg);
+  eskin::vboard::apply_start_options(a, cfg, scene.skin.rows + scene.skin.cols,
+                                     int(sensors.bus_count()));
+  const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, dtmf.adc_shift(), a.tail_s);
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);

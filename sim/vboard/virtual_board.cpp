@@ -3,6 +3,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -44,6 +45,11 @@ VirtualBoard::VirtualBoard(sc_core::sc_module_name name, FpgaModel& fpga, PtyPor
   usb_.set_line(&line_);
   line_.set_bit_ns(LineDir::to_host, 1e9 / cfg_.baud);
   if (!cfg_.tap_to_host.empty()) line_.tap_to(cfg_.tap_to_host, 1e9 / cfg_.baud);
+  pin_rx_.set_bit_ns(1e9 / cfg_.baud);
+  for (const BoardFault& f : cfg_.faults) {
+    stats_.faults.push_back({f});
+    watch_pin_ |= f.kind == BoardFaultKind::reset_in_frame;
+  }
   SC_THREAD(fpga_thread);
   SC_THREAD(usb_thread);
 }
@@ -67,12 +73,65 @@ void VirtualBoard::run_cycles(uint64_t until) {
     const double t = double(cycle_ + 1) * cycle_ns_;
     if (adc) in_.adc_sdata = adc_.sdata(t);
     if (hall) hall->before(t, in_.scl_i, in_.sda_i, in_.drdy);
+    if (!stats_.faults.empty()) {
+      time_faults(t);
+      in_.reset = fault_reset_;
+      in_.sda_i &= ~fault_sda_low_;
+    }
     in_.uart_rxd = line_.wire(LineDir::to_fpga, t, usb_.rxd_level(t));
     out_ = fpga_.cycle(in_, uint64_t(std::llround(t * 1000.0)));
     ++cycle_;
     if (adc) adc_.drive(t, out_.adc_cs_n, out_.adc_sclk);
     if (hall) hall->after(t, out_.scl_oe, out_.sda_oe);
     usb_.sample_txd(t, line_.wire(LineDir::to_host, t, out_.uart_txd));
+  }
+}
+
+// Each board fault's start and end on this clock, and the inputs the
+// active ones hold. A fault that waits for its moment (a reset in a frame
+// or a command, SDA held low mid-transfer) begins at the first clock at or
+// after its time that finds it. The ADC's faults are in the codes already:
+// they are timed by the conversions that read their first sample and the
+// first one after.
+void VirtualBoard::time_faults(double t) {
+  if (watch_pin_) {
+    pin_rx_.sample(t, out_.uart_txd);
+    if (!pin_rx_.bytes.empty()) {
+      pin_in_frame_ = pin_rx_.bytes.back() != 0;
+      pin_rx_.bytes.clear();
+    }
+  }
+  fault_reset_ = false;
+  fault_sda_low_ = 0;
+  for (BoardFaultRecord& r : stats_.faults) {
+    const BoardFault& f = r.fault;
+    if (f.on_adc()) {
+      const double n0 = std::llround(f.at_ms * 1e-3 * cfg_.sample_hz);
+      const double n1 = std::llround((f.at_ms + f.for_ms) * 1e-3 * cfg_.sample_hz);
+      const double taken = double(adc_.samples_taken());
+      if (!r.begun && taken > n0) {
+        r.begun = true;
+        r.begin_ns = t;
+        r.end_ns = -1;  // not yet: the run may end first
+      }
+      if (r.begun && r.end_ns < 0 && taken > n1) r.end_ns = t;
+      continue;
+    }
+    if (!r.begun) {
+      if (t < f.at_ms * 1e6) continue;
+      const bool now =
+          f.kind == BoardFaultKind::reset_in_frame     ? pin_in_frame_
+          : f.kind == BoardFaultKind::reset_in_command ? usb_.byte_to_fpga_in_flight() > 0
+          : f.kind == BoardFaultKind::sda_low          ? ((out_.scl_oe >> f.index) & 1) != 0
+                                                       : true;
+      if (!now) continue;
+      r.begun = true;
+      r.begin_ns = t;
+      r.end_ns = t + f.for_ms * 1e6;
+    }
+    if (t >= r.end_ns) continue;
+    if (f.is_reset()) fault_reset_ = true;
+    if (f.kind == BoardFaultKind::sda_low) fault_sda_low_ |= uint64_t(1) << f.index;
   }
 }
 

@@ -29,6 +29,7 @@
 
 #include "sim/ad7476_model.h"
 #include "sim/hall_sensor_array.h"
+#include "sim/vboard/board_faults.h"
 #include "sim/vboard/fpga_model.h"
 #include "sim/vboard/line_faults.h"
 #include "sim/vboard/pty_port.h"
@@ -54,6 +55,10 @@ struct BoardConfig {
   // file for the FPGA's bytes as sent, before the line's faults ("": none).
   LineFaultOptions line;
   std::string tap_to_host;
+  // Faults of the board (board_faults.h): the ADC's are already in `codes`
+  // (load_skin_samples); the board injects the rest and times them all.
+  std::vector<BoardFault> faults;
+  double sample_hz = 0;  // the ADC's rate: an ADC fault's samples from its ms
 };
 
 struct BoardStats {
@@ -73,6 +78,7 @@ struct BoardStats {
   std::vector<double> frame_end_ns;     // time each 0x00 frame delimiter reached the host
   std::string error;                    // why the run stopped early (empty: it did not)
   LineCounts line;                      // the faults the line injected
+  std::vector<BoardFaultRecord> faults; // the board's faults, when each began and ended
 };
 
 SC_MODULE(VirtualBoard) {
@@ -86,6 +92,7 @@ SC_MODULE(VirtualBoard) {
   void fpga_thread();
   void usb_thread();
   void run_cycles(uint64_t until);
+  void time_faults(double t);
   bool running() const;  // the scene (plus its tail) is not over yet
   void move_bytes();
   void follow_reader_baud();
@@ -107,6 +114,12 @@ SC_MODULE(VirtualBoard) {
   size_t sent_to_host_ = 0;  // bytes of usb_.to_host() already in the pty
   bool reading_ = false;     // a reader had the pty open at the last visit
   BoardStats stats_;
+  // Board faults: the inputs they hold (reset, SDA pulled low per bus) and
+  // the FPGA's UART pin read back, for a reset in a frame.
+  bool fault_reset_ = false;
+  uint64_t fault_sda_low_ = 0;
+  UartTap pin_rx_;
+  bool pin_in_frame_ = false, watch_pin_ = false;
 };
 
 }  // namespace eskin::vboard

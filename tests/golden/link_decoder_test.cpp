@@ -267,6 +267,36 @@ TEST(LinkDecoder, SequenceGapsCounted) {
   EXPECT_EQ(dec.stats().frames_ok, 591u);
 }
 
+// A board reset mid-stream (as on the virtual board with --fault reset):
+// its seq and t start again from 0. Without restart detection the jump from
+// seq 100 to 2 would count as 157 lost packets; the packets the restarted
+// board numbered 0 and 1 are the only ones lost, and t falling behind the
+// last packet of its type is how the host tells. A t that wraps at 2^32
+// (behind by more than half the range) is no restart.
+TEST(LinkDecoder, ABoardRestartIsCountedAndItsLossesAreThePacketsSinceIt) {
+  LinkDecoder dec;
+  {
+    LinkEncoder before;
+    for (int i = 0; i <= 100; ++i) dec.feed(before.amplitudes(uint32_t(1000 + 35 * i), {}));
+  }
+  LinkEncoder after;  // the restarted board: seq 0 again
+  for (int i = 0; i < 10; ++i) {
+    const auto f = after.amplitudes(uint32_t(31 + 35 * i), {});
+    if (i >= 2) dec.feed(f);
+  }
+  EXPECT_EQ(dec.stats().restarts, 1u);
+  EXPECT_EQ(dec.stats().seq_gaps, 1u);
+  EXPECT_EQ(dec.stats().lost_packets, 2u);
+  EXPECT_EQ(dec.stats().frames_ok, 109u);
+
+  LinkDecoder wrap;
+  LinkEncoder enc;
+  wrap.feed(enc.amplitudes(0xFFFFFFF0u, {}));
+  wrap.feed(enc.amplitudes(0x00000013u, {}));  // t wrapped: 35 samples on
+  EXPECT_EQ(wrap.stats().restarts, 0u);
+  EXPECT_EQ(wrap.stats().lost_packets, 0u);
+}
+
 TEST(LinkDecoder, OversizedAndMalformedPayloads) {
   LinkEncoder enc;
   LinkDecoder dec(16);  // payloads above 16 bytes cannot be buffered
