@@ -204,6 +204,8 @@ int run_simulate(const SimulateOptions& o) {
       throw std::invalid_argument(fmt::format(
           "--pull-cable {}:{}: the scene ends at {} ms, so the cable would be pulled after it",
           p.at_ms, p.for_ms, scene.duration_s * 1e3));
+  vboard::check_board_faults(o.faults, scene.has_skin ? scene.skin.rows + scene.skin.cols : 0,
+                             scene.has_hall ? scene.hall.config.bus_count() : 0);
   for (const vboard::BoardFault& f : o.faults)
     if (f.at_ms >= scene.duration_s * 1e3)
       throw std::invalid_argument(fmt::format("--fault {}: the scene ends at {} ms, before it",

@@ -1,5 +1,7 @@
 #include "sim/vboard/board_faults.h"
 
+#include "eskin/number_text.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -41,15 +43,6 @@ double number(const std::string& v, const std::string& s, const char* what) {
   if (s.empty() || end == s.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
     throw bad(v, std::string(what) + " '" + s + "' is not a number");
   return x;
-}
-
-std::string fmt(double x) {  // the shortest text that reads back as x
-  char b[40];
-  for (int p = 1; p <= 17; ++p) {
-    std::snprintf(b, sizeof b, "%.*g", p, x);
-    if (std::strtod(b, nullptr) == x) break;
-  }
-  return b;
 }
 
 const Kind& kind_of(BoardFaultKind k) {
@@ -105,13 +98,29 @@ std::string board_fault_text(const BoardFault& f) {
   const Kind& k = kind_of(f.kind);
   std::string s = k.name;
   if (k.indexed) s += "=" + std::to_string(f.index);
-  return s + "@" + fmt(f.at_ms) + ":" + fmt(f.for_ms);
+  return s + "@" + shortest_text(f.at_ms) + ":" + shortest_text(f.for_ms);
 }
 
 std::vector<std::string> board_fault_args(const std::vector<BoardFault>& faults) {
   std::vector<std::string> a;
   for (const BoardFault& f : faults) a.insert(a.end(), {"--fault", board_fault_text(f)});
   return a;
+}
+
+void check_board_faults(const std::vector<BoardFault>& faults, int carriers, int buses) {
+  for (const BoardFault& f : faults) {
+    const std::string v = "--fault '" + board_fault_text(f) + "': ";
+    if (f.on_adc() && carriers == 0)
+      throw std::invalid_argument(v + "this board has no ADC (a Hall board)");
+    if (f.kind == BoardFaultKind::carrier_off && f.index >= carriers)
+      throw std::invalid_argument(v + "the skin has " + std::to_string(carriers) +
+                                  " carriers (rows, then columns: 0.." +
+                                  std::to_string(carriers - 1) + ")");
+    if (f.kind == BoardFaultKind::sda_low && f.index >= buses)
+      throw std::invalid_argument(v + (buses == 0 ? std::string("this board has no I2C bus")
+                                                  : "the sensors are on I2C buses 0.." +
+                                                        std::to_string(buses - 1)));
+  }
 }
 
 nlohmann::json to_json(const std::vector<BoardFaultRecord>& r) {

@@ -52,6 +52,10 @@ std::vector<BoardFault> parse_board_faults(const std::vector<std::string>& value
 // The same faults back as eskin-vboard arguments (--fault VALUE ...).
 std::vector<std::string> board_fault_args(const std::vector<BoardFault>& faults);
 std::string board_fault_text(const BoardFault& f);  // its --fault value
+// Throws std::invalid_argument, naming --fault, for a fault this board
+// cannot have: `carriers`, the skin's rows + columns (0: no skin, no
+// ADC); `buses`, the I2C buses with sensors on them (0: no Hall sensors).
+void check_board_faults(const std::vector<BoardFault>& faults, int carriers, int buses);
 
 // What happened to each fault in a run: when it began and ended on the
 // board's clock (ns; a fault waiting for its moment that never came has

@@ -1,5 +1,7 @@
 #include "sim/vboard/line_faults.h"
 
+#include "eskin/number_text.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -42,15 +44,6 @@ double rate(const std::string& opt, const std::string& v, const char* per) {
   return x;
 }
 
-// The shortest text that reads back as x.
-std::string fmt_double(double x) {
-  char b[40];
-  for (int prec = 1; prec <= 17; ++prec) {
-    std::snprintf(b, sizeof b, "%.*g", prec, x);
-    if (std::strtod(b, nullptr) == x) break;
-  }
-  return b;
-}
 
 }  // namespace
 
@@ -132,14 +125,14 @@ std::vector<std::string> line_fault_args(const LineFaultOptions& o) {
   if (on.any()) {
     if (!same && h.any() && f.any())
       throw std::logic_error("line_fault_args: different faults each way have no command line");
-    if (on.ber > 0) a.insert(a.end(), {"--ber", fmt_double(on.ber)});
-    if (on.drop_rate > 0) a.insert(a.end(), {"--drop-rate", fmt_double(on.drop_rate)});
-    if (on.insert_rate > 0) a.insert(a.end(), {"--insert-rate", fmt_double(on.insert_rate)});
+    if (on.ber > 0) a.insert(a.end(), {"--ber", shortest_text(on.ber)});
+    if (on.drop_rate > 0) a.insert(a.end(), {"--drop-rate", shortest_text(on.drop_rate)});
+    if (on.insert_rate > 0) a.insert(a.end(), {"--insert-rate", shortest_text(on.insert_rate)});
     if (!same) a.insert(a.end(), {"--fault-direction", h.any() ? "to-host" : "to-fpga"});
     a.insert(a.end(), {"--fault-seed", std::to_string(o.seed)});
   }
   for (const CablePull& p : o.pulls)
-    a.insert(a.end(), {"--pull-cable", fmt_double(p.at_ms) + ":" + fmt_double(p.for_ms)});
+    a.insert(a.end(), {"--pull-cable", shortest_text(p.at_ms) + ":" + shortest_text(p.for_ms)});
   return a;
 }
 

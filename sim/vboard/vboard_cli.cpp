@@ -72,19 +72,7 @@ int vboard_cli_main(int argc, char** argv, const std::string& title, double defa
 }
 
 void apply_start_options(const VboardArgs& a, BoardConfig& cfg, int carriers, int buses) {
-  for (const BoardFault& f : a.faults) {
-    const std::string v = "--fault '" + board_fault_text(f) + "': ";
-    if (f.on_adc() && carriers == 0)
-      throw std::invalid_argument(v + "this board has no ADC (a Hall board)");
-    if (f.kind == BoardFaultKind::carrier_off && f.index >= carriers)
-      throw std::invalid_argument(v + "the skin has " + std::to_string(carriers) +
-                                  " carriers (rows, then columns: 0.." +
-                                  std::to_string(carriers - 1) + ")");
-    if (f.kind == BoardFaultKind::sda_low && f.index >= buses)
-      throw std::invalid_argument(v + (buses == 0 ? std::string("this board has no I2C bus")
-                                                  : "the board has I2C buses 0.." +
-                                                        std::to_string(buses - 1)));
-  }
+  check_board_faults(a.faults, carriers, buses);
   cfg.faults = a.faults;
   cfg.wait_for_reader = !a.no_wait;
   cfg.reader_timeout_s = a.reader_timeout_s;

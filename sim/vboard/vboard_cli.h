@@ -41,8 +41,7 @@ int vboard_cli_main(int argc, char** argv, const std::string& title, double defa
 
 // The start, trace and fault options into the board's configuration;
 // throws std::invalid_argument for a board fault this board cannot have
-// (`carriers`: the skin's rows + columns, 0 without a skin; `buses`: its
-// I2C buses, 0 without Hall sensors).
+// (check_board_faults).
 void apply_start_options(const VboardArgs& a, BoardConfig& cfg, int carriers, int buses);
 
 // Throws, naming both, when the scene needs another build (`kind`: "FPGA",

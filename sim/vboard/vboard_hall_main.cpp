@@ -105,7 +105,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   cfg.baud = double(build.baud);
   cfg.hall = &sensors;
   cfg.cycles = uint64_t(std::llround((scene.duration_s + a.tail_s) * cfg.clk_hz));
-  eskin::vboard::apply_start_options(a, cfg, 0, int(sensors.bus_count()));
+  eskin::vboard::apply_start_options(a, cfg, 0, scene.hall.config.bus_count());
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);

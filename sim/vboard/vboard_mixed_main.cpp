@@ -107,7 +107,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   eskin::sim::HallSensorArray sensors(hall_world, scene.hall.config, build.hall.spec);
   cfg.hall = &sensors;
   eskin::vboard::apply_start_options(a, cfg, scene.skin.rows + scene.skin.cols,
-                                     int(sensors.bus_count()));
+                                     scene.hall.config.bus_count());
   const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, dtmf.adc_shift(), a.tail_s);
 
   eskin::vboard::PtyPort pty;

@@ -7,9 +7,13 @@
 // samples; sample n is at n / 35 kHz of scene time.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <fstream>
+#include <iterator>
 #include <functional>
 #include <map>
 #include <string>
@@ -18,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "eskin/process.h"
 #include "host/link/link_encoder.h"
 #include "host/stream/board_link.h"
 #include "sim/scene.h"
@@ -351,15 +356,24 @@ TEST(BoardFaults, ACommandFloodAtTheFullLineRateIsCountedAndTheStreamComesBack) 
 // ERR_TIMEOUT, proven in tests/formal/i2c_master.sby); the bus counters
 // must show it, the skin's frames must not notice, and the Hall sensors'
 // samples must carry data again within 10 ms of the release (the timeout,
-// the sequencer's recovery and a conversion, each a few ms at most).
+// the sequencer's recovery and a conversion, each a few ms at most). The
+// skin's frames must equal those of the same scene without the fault.
 TEST(BoardFaults, SdaHeldLowIsCountedAndTheHallSamplesComeBack) {
   const std::string scene_file = ESKIN_SOURCE_DIR "/scenes/mixed_neuroskin_split.yaml";
   const auto scene = eskin::sim::load_scene(scene_file);
   const auto build = eskin::vboard::mixed_build_for(scene, eskin::vboard::fpga_build_for(scene));
   const std::string exe = eskin::vboard::board_executable(
       build, [](const std::string& m) { std::printf("%s\n", m.c_str()); });
+  const FaultRun ref = run_board({}, {}, exe, scene_file);
   const FaultRun r = run_board({"--fault", "sda-low=0@100:5"}, {}, exe, scene_file);
   ASSERT_EQ(r.exit, 0);
+  const auto skin = [](const FaultRun& x) {
+    std::vector<std::pair<uint32_t, std::vector<uint16_t>>> v;
+    for (const Packet* p : x.of(eskin::link::kAmplitudes)) v.emplace_back(p->t, p->amplitudes);
+    return v;
+  };
+  EXPECT_EQ(skin(r), skin(ref)) << "the skin's frames changed with the Hall bus's fault";
+  EXPECT_GT(skin(r).size(), 400u);
   ASSERT_TRUE(r.faults[0].at("begun").get<bool>()) << r.faults.dump();
   const double end_ns = r.faults[0].at("end_ns");
   EXPECT_EQ(link_errors(r) + r.run.link.lost_packets, 0u);
@@ -384,6 +398,44 @@ TEST(BoardFaults, SdaHeldLowIsCountedAndTheHallSamplesComeBack) {
   }
   EXPECT_GT(flagged, 0u) << "no reading flagged BUS while SDA was held";
   EXPECT_GT(frames_after, 10u);
+}
+
+// ---------------------------------------------------------------- options
+
+int exit_of(const std::vector<std::string>& argv, const std::string& log) {
+  const int st = eskin::run_logged(argv, log);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+std::string slurp(const std::string& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A bad --fault ends eskin simulate and eskin-vboard with exit 2 before
+// anything runs, naming the option and what it expects.
+TEST(BoardFaultCli, BadFaultsExitTwoNamingTheOption) {
+  const std::string log = testing::TempDir() + "/board_fault_cli.log";
+  const std::string out = testing::TempDir() + "/board_fault_cli_out";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"reset", "--fault 'reset': no '@AT_MS'"},
+      {"melt@5", "unknown kind 'melt'"},
+      {"adc-stuck-low@5", "adc-stuck-low needs :FOR_MS"},
+      {"carrier-off@5:1", "carrier-off needs =N"},
+      {"reset=2@5", "reset takes no =N"},
+      {"reset@x", "AT_MS 'x' is not a number"},
+      {"adc-stuck-high@5:0", "FOR_MS must be above 0"},
+      {"carrier-off=6@5:1", "the skin has 6 carriers (rows, then columns: 0..5)"},
+      {"sda-low=0@5:1", "this board has no I2C bus"},
+      {"reset@900", "--fault reset@900:0.01: the scene ends at 600 ms"}};
+  for (const auto& [value, says] : cases) {
+    EXPECT_EQ(exit_of({ESKIN_BIN, "simulate", kScene, "--out", out, "--fault", value}, log), 2)
+        << value;
+    EXPECT_NE(slurp(log).find(says), std::string::npos) << slurp(log);
+    if (says.find("scene ends") != std::string::npos) continue;  // eskin simulate's check
+    EXPECT_EQ(exit_of({ESKIN_VBOARD_BIN, kScene, "--no-wait", "--fault", value}, log), 2) << value;
+    EXPECT_NE(slurp(log).find(says), std::string::npos) << slurp(log);
+  }
 }
 
 }  // namespace
