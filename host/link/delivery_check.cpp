@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "eskin/fnv1a.h"
+
 namespace eskin::link {
 
 PacketKey key_of(const Packet& p) {
@@ -11,9 +13,7 @@ PacketKey key_of(const Packet& p) {
   k.seq = p.seq;
   k.t = p.t;
   k.len = uint32_t(p.payload.size());
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (uint8_t b : p.payload) h = (h ^ b) * 0x100000001b3ull;
-  k.hash = h;
+  k.hash = fnv1a(p.payload.data(), p.payload.size());
   return k;
 }
 

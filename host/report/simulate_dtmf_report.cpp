@@ -402,6 +402,7 @@ nlohmann::json report_dtmf(const sim::Scene& scene, const std::string& scene_fil
   write_simulate_report(rep, html);
   nlohmann::json sum = summary(d, scene_file, rx.size(), fs_, s, r);
   if (!run.line.is_null()) sum["line"] = run.line;
+  if (!run.board_faults.is_null()) sum["board_faults"] = run.board_faults;
   fmt::output_file((fs::path(out_dir) / "summary.json").string()).print("{}\n", sum.dump(2));
   print_summary(d, rx.size(), fs_, s, r, html);
   return sum;

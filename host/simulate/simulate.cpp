@@ -94,6 +94,31 @@ void judge_line(const SimulateOptions& o, stream::BoardRun& run) {
   fmt::print("{}", line_text(r));
 }
 
+// With board faults: when each began and ended on the board's clock, and
+// what the host saw (restarts, error frames, lost packets), into the run
+// (the report's rows, summary.json) and stdout.
+void note_board_faults(const SimulateOptions& o, stream::BoardRun& run) {
+  if (o.faults.empty()) return;
+  run.board_faults = run.done.at("board_faults");
+  for (const auto& f : run.board_faults) {
+    const std::string name = "board fault " + f.at("fault").get<std::string>();
+    std::string v = "never began (its moment did not come)";
+    if (f.at("begun").get<bool>()) {
+      const double e = f.at("end_ns");
+      v = fmt::format("from {:.3f} ms to {}", f.at("begin_ns").get<double>() / 1e6,
+                      e < 0 ? std::string("the end of the run") : fmt::format("{:.3f} ms", e / 1e6));
+    }
+    run.line_rows.push_back({name, v});
+  }
+  run.line_rows.push_back(
+      {"host: board restarts / error frames / lost packets",
+       fmt::format("{} / {} / {}", run.link.restarts,
+                   run.link.crc_errors + run.link.framing_errors + run.link.payload_errors,
+                   run.link.lost_packets)});
+  for (size_t i = run.line_rows.size() - run.board_faults.size() - 1; i < run.line_rows.size(); ++i)
+    fmt::print("{}: {}\n", run.line_rows[i][0], run.line_rows[i][1]);
+}
+
 // The skin's outputs (amplitudes, taxels, spikes as the scene asks) plus
 // the periodic status, whose counters go into the report.
 std::vector<uint8_t> output_mask_command(const sim::Scene& scene, link::LinkEncoder& enc) {
@@ -125,6 +150,7 @@ int run_simulate_hall(const sim::Scene& scene, const SimulateOptions& o) {
       board, int(build.baud), {setup.commands}, size_t(scene.duration_s * 1e6),
       [](const Packet& p) { return p.type == link::kHallSamples ? long(p.t) : -1L; });
   judge_line(o, run);
+  note_board_faults(o, run);
   report::report_hall(scene, o.scene, build, setup, run, o.out);
   return board.wait() == 0 ? 0 : 1;
 }
@@ -150,6 +176,7 @@ int run_simulate_mixed(const sim::Scene& scene, const SimulateOptions& o) {
       [](const Packet& p) { return link::is_hall_packet(p.type) ? -1L : long(p.t); },
       [&] { gold = run_golden(scene, dtmf.plan.step); });
   judge_line(o, run);
+  note_board_faults(o, run);
   report::report_mixed(scene, o.scene, build, dtmf, gold, setup, run, total, o.out);
   return board.wait() == 0 ? 0 : 1;
 }
@@ -173,6 +200,7 @@ int run_simulate_dtmf(const sim::Scene& scene, const SimulateOptions& o) {
       [](const Packet& p) { return long(p.t); },
       [&] { gold = run_golden(scene, build.plan.step); });
   judge_line(o, run);
+  note_board_faults(o, run);
   report::report_dtmf(scene, o.scene, build, gold, run, total, o.out);
   return board.wait() == 0 ? 0 : 1;
 }

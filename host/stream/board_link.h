@@ -76,6 +76,9 @@ struct BoardRun {
   // report's rows {figure, value}; empty without.
   nlohmann::json line;
   std::vector<std::vector<std::string>> line_rows;
+  // With board faults: the done line's board_faults (summary.json's
+  // "board_faults"; their rows join line_rows).
+  nlohmann::json board_faults;
 };
 
 // After read_until_board_done: stops the port (the board exits once its

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <functional>
@@ -436,6 +437,28 @@ TEST(BoardFaultCli, BadFaultsExitTwoNamingTheOption) {
     EXPECT_EQ(exit_of({ESKIN_VBOARD_BIN, kScene, "--no-wait", "--fault", value}, log), 2) << value;
     EXPECT_NE(slurp(log).find(says), std::string::npos) << slurp(log);
   }
+}
+
+// eskin simulate with a reset in a frame: the fault's times in
+// summary.json, and the report's rows say what the host saw (one restart,
+// one error frame, one lost packet, as the board test above shows).
+TEST(BoardFaultCli, SimulateReportsTheBoardsFaults) {
+  const std::string log = testing::TempDir() + "/board_fault_sim.log";
+  const std::string out = testing::TempDir() + "/board_fault_sim_out";
+  std::filesystem::remove_all(out);
+  ASSERT_EQ(exit_of({ESKIN_BIN, "simulate", kScene, "--out", out, "--fault", "reset-in-frame@100"},
+                    log),
+            0)
+      << slurp(log);
+  const nlohmann::json sum = nlohmann::json::parse(slurp(out + "/summary.json"));
+  ASSERT_EQ(sum.at("board_faults").size(), 1u);
+  EXPECT_EQ(sum["board_faults"][0].at("fault"), "reset-in-frame@100:0.01");
+  EXPECT_TRUE(sum["board_faults"][0].at("begun").get<bool>());
+  const std::string html = slurp(out + "/report.html");
+  EXPECT_NE(html.find("board fault reset-in-frame@100:0.01"), std::string::npos);
+  EXPECT_NE(slurp(log).find("host: board restarts / error frames / lost packets: 1 / 1 / 1"),
+            std::string::npos)
+      << slurp(log);
 }
 
 }  // namespace
