@@ -11,6 +11,7 @@
 
 #include "host/link/delivery_check.h"
 #include "host/link/link_encoder.h"
+#include "host/report/html_page.h"
 #include "host/stream/board_link.h"
 #include "sim/scene.h"
 #include "sim/vboard/fpga_params.h"
@@ -72,7 +73,35 @@ SoakResult run_soak(const SoakOptions& o) {
   r.cpu_s = run.done.at("cpu_s");
   fmt::output_file((std::filesystem::path(o.out) / "soak.json").string())
       .print("{}\n", to_json(r.line).dump(2));
+  write_soak_report(r, o, (std::filesystem::path(o.out) / "report.html").string());
   return r;
+}
+
+std::vector<std::vector<std::string>> soak_rows(const SoakResult& r) {
+  std::vector<std::vector<std::string>> rows = line_rows(r.line);
+  const link::StatusBlock& s = r.last_status;
+  rows.push_back({"host -> FPGA: REQUEST_STATUS sent / STATUS delivered",
+                  fmt::format("{} / {}", r.commands_sent, r.status_received)});
+  rows.push_back({"the board's last STATUS: commands accepted / CRC errors / frame errors / UART "
+                  "errors / dropped packets",
+                  fmt::format("{} / {} / {} / {} / {}", s.cmd_accepted, s.cmd_crc_errors,
+                              s.cmd_frame_errors, s.uart_rx_errors, s.dropped_frames)});
+  rows.push_back({"simulated s / wall s / simulated s per CPU s of the board",
+                  fmt::format("{:.3f} / {:.0f} / {:.2f}", r.sim_s, r.wall_s, r.sim_s / r.cpu_s)});
+  return rows;
+}
+
+void write_soak_report(const SoakResult& r, const SoakOptions& o, const std::string& path) {
+  report::Page page("eskin line soak: " + std::filesystem::path(o.scene).filename().string());
+  page.text(fmt::format(
+      "Scene {} on the virtual board, the serial line faulty both ways (BER {:g} to the host, "
+      "{:g} to the FPGA, seed {}), the host sending {} REQUEST_STATUS per AMPLITUDES packet. "
+      "Every packet the host delivered is judged against the FPGA's own bytes, tapped at its "
+      "uart_txd pin before the line (docs/vboard.md, \"Line faults\").",
+      o.scene, o.line.to_host.ber, o.line.to_fpga.ber, o.line.seed, o.status_requests));
+  page.heading("The soak");
+  page.table({"figure", "value"}, soak_rows(r));
+  page.write(path);
 }
 
 std::string soak_csv(const SoakResult& r, const SoakOptions& o, const std::string& command) {
@@ -113,14 +142,8 @@ std::string soak_csv(const SoakResult& r, const SoakOptions& o, const std::strin
 }
 
 std::string soak_text(const SoakResult& r) {
-  std::string s = line_text(r.line);
-  s += fmt::format(
-      "host -> FPGA: {} REQUEST_STATUS sent, {} STATUS delivered; the board's last STATUS: "
-      "{} accepted, {} CRC errors, {} frame errors, {} UART errors, {} dropped packets\n",
-      r.commands_sent, r.status_received, r.last_status.cmd_accepted, r.last_status.cmd_crc_errors,
-      r.last_status.cmd_frame_errors, r.last_status.uart_rx_errors, r.last_status.dropped_frames);
-  s += fmt::format("{:.1f} s simulated in {:.0f} s ({:.2f} simulated s per CPU s of the board)\n",
-                   r.sim_s, r.wall_s, r.sim_s / r.cpu_s);
+  std::string s;
+  for (const auto& row : soak_rows(r)) s += row[0] + ": " + row[1] + "\n";
   return s;
 }
 

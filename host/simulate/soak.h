@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "host/link/link_decoder.h"
 #include "host/simulate/line_report.h"
@@ -22,7 +23,7 @@ struct SoakOptions {
   std::string scene;               // a DTMF scene of the default FPGA build
   vboard::LineFaultOptions line;   // the faults
   int status_requests = 4;         // REQUEST_STATUS per AMPLITUDES packet received
-  std::string out = "eskin-soak";  // directory: the tap file, soak.json
+  std::string out = "eskin-soak";  // directory: the tap file, soak.json, report.html
 };
 
 struct SoakResult {
@@ -41,5 +42,9 @@ SoakResult run_soak(const SoakOptions& o);
 // cited by the docs as <!--fig:soak/NAME-->).
 std::string soak_csv(const SoakResult& r, const SoakOptions& o, const std::string& command);
 std::string soak_text(const SoakResult& r);
+// The table as {figure, value} rows, and the HTML report of them
+// (run_soak writes OUT/report.html).
+std::vector<std::vector<std::string>> soak_rows(const SoakResult& r);
+void write_soak_report(const SoakResult& r, const SoakOptions& o, const std::string& path);
 
 }  // namespace eskin::simulate

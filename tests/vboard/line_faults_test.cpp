@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "eskin/process.h"
@@ -701,6 +702,17 @@ TEST(LineSoak, ShortSoakDeliversNothingWrongAndCountsEveryLoss) {
             0)
       << slurp(log);
   soak::check_table(soak::read_table(csv), 20000);
+  // The same table in the soak's report (its packets row as the CSV has it).
+  const auto t = soak::read_table(csv);
+  const std::string html = slurp(out / "report.html");
+  EXPECT_NE(html.find("line: packets sent by the FPGA / delivered / lost / delivered wrong / "
+                      "recoveries"),
+            std::string::npos);
+  EXPECT_NE(html.find(fmt::format("{} / {} / {} / 0 / {}", t.at("packets_sent"),
+                                  t.at("packets_delivered"), t.at("packets_lost"),
+                                  t.at("recoveries"))),
+            std::string::npos)
+      << html;
   std::printf("%s", slurp(log).c_str());
 }
 
