@@ -31,8 +31,12 @@
 #include "sim/vboard/mixed_build.h"
 #include "sim/vboard/vboard_build.h"
 #include "sim/vboard/vboard_process.h"
+#include "fault_harness.h"
 
 namespace {
+
+using fault_harness::exit_of;
+using fault_harness::slurp;
 
 using eskin::link::Packet;
 
@@ -152,14 +156,8 @@ TEST(BoardFaults, AResetInAFrameCostsThatFrameAndTheBoardResumesWithinAWindow) {
 // every command after it is judged; the restarted command decoder counts
 // the cut command's tail as one damaged frame; the host sees one restart.
 TEST(BoardFaults, AResetInACommandNeverAppliesItAndEveryLaterCommandIsJudgedOnce) {
-  eskin::link::LinkEncoder enc;
-  std::vector<std::vector<uint8_t>> cmds;
   const int n = 200;
-  for (int i = 0; i < n; ++i) {
-    std::vector<uint8_t> c = enc.set_threshold(9, uint16_t(i));
-    c.insert(c.end(), 64, 0);
-    cmds.push_back(c);
-  }
+  const std::vector<std::vector<uint8_t>> cmds = fault_harness::rejected_commands(n);
   const FaultRun r = run_board({"--fault", "reset-in-command@5"}, cmds);
   ASSERT_EQ(r.exit, 0);
   ASSERT_TRUE(r.faults[0].at("begun").get<bool>()) << r.faults.dump();
@@ -402,16 +400,6 @@ TEST(BoardFaults, SdaHeldLowIsCountedAndTheHallSamplesComeBack) {
 }
 
 // ---------------------------------------------------------------- options
-
-int exit_of(const std::vector<std::string>& argv, const std::string& log) {
-  const int st = eskin::run_logged(argv, log);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-std::string slurp(const std::string& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // A bad --fault ends eskin simulate and eskin-vboard with exit 2 before
 // anything runs, naming the option and what it expects.

@@ -40,8 +40,12 @@
 #include "sim/vboard/line_faults.h"
 #include "sim/vboard/usb_serial.h"
 #include "sim/vboard/vboard_process.h"
+#include "fault_harness.h"
 
 namespace {
+
+using fault_harness::exit_of;
+using fault_harness::slurp;
 
 namespace fs = std::filesystem;
 using eskin::link::Packet;
@@ -416,14 +420,8 @@ TEST(LineBoard, ToHostFaultsNeverDeliverAWrongPacketAndAreCounted) {
 //  * each injected fault spoils at most two frames (a command, or a junk
 //    frame from a spoiled idle byte): crc + frame errors <= 2 x faults.
 TEST(LineBoard, ToFpgaFaultsNeverApplyADamagedCommandNorOneTwice) {
-  eskin::link::LinkEncoder enc;
-  std::vector<std::vector<uint8_t>> cmds;
   const int n = 200;
-  for (int i = 0; i < n; ++i) {
-    std::vector<uint8_t> c = enc.set_threshold(9, uint16_t(i));
-    c.insert(c.end(), 64, 0);
-    cmds.push_back(c);
-  }
+  const std::vector<std::vector<uint8_t>> cmds = fault_harness::rejected_commands(n);
   const BoardResult bad = run_board({"--ber", "1e-3", "--drop-rate", "1e-3", "--insert-rate", "1e-3",
                              "--fault-direction", "to-fpga", "--fault-seed", "11"},
                             cmds);
@@ -476,14 +474,8 @@ TEST(LineBoard, ToFpgaFaultsNeverApplyADamagedCommandNorOneTwice) {
 // go unjudged. The replies on their way to the host during the pull are
 // lost too (the pull blocks both ways): the host counts them as lost.
 TEST(LineBoard, CommandsResumeAfterAPulledCable) {
-  eskin::link::LinkEncoder enc;
-  std::vector<std::vector<uint8_t>> cmds;
   const int n = 200;
-  for (int i = 0; i < n; ++i) {
-    std::vector<uint8_t> c = enc.set_threshold(9, uint16_t(i));
-    c.insert(c.end(), 64, 0);
-    cmds.push_back(c);
-  }
+  const std::vector<std::vector<uint8_t>> cmds = fault_harness::rejected_commands(n);
   const BoardResult bad = run_board({"--pull-cable", "10:5"}, cmds);
   ASSERT_EQ(bad.exit, 0);
   EXPECT_EQ(bad.injected.pulls, 1u);
@@ -555,16 +547,6 @@ TEST(LineBoard, APulledCableLosesOnlyItsIntervalAndTheStreamResumes) {
 }
 
 // ------------------------------------------------------------ the binaries
-
-int exit_of(const std::vector<std::string>& argv, const fs::path& log) {
-  const int st = eskin::run_logged(argv, log.string());
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 TEST(LineCli, BadFaultOptionsExitTwoNamingTheOption) {
   const fs::path log = fs::path(testing::TempDir()) / "line_cli.log";
