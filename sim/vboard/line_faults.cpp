@@ -243,7 +243,7 @@ void LineFaults::tap_to(const std::string& path, double fpga_bit_ns) {
   tap_ = std::fopen(path.c_str(), "wb");
   if (!tap_)
     throw std::runtime_error("--tap-to-host: cannot write '" + path + "': " + std::strerror(errno));
-  tap_rx_.set_bit_ns(fpga_bit_ns);
+  tap_rx_.rx.set_bit_ns(fpga_bit_ns);
 }
 
 void LineFaults::flush_tap() {

@@ -27,6 +27,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sim/vboard/uart_rx_model.h"
+
 namespace eskin::vboard {
 
 enum class LineDir { to_host = 0, to_fpga = 1 };
@@ -73,41 +75,13 @@ struct DirectionCounts {
   uint64_t faults() const { return flips() + dropped + inserted; }
 };
 
-// An 8N1 receiver sampling in the middle of each bit (the tap's): the
-// bytes it read, framing not checked.
-class UartTap {
- public:
-  void set_bit_ns(double b) { bit_ns_ = b; }
+// An 8N1 receiver on the FPGA's uart_txd pin: the bytes it read.
+struct UartTap {
   void sample(double t, bool level) {
-    if (!busy_) {
-      if (level || bit_ns_ == 0) return;
-      busy_ = true;
-      start_ = t;
-      bit_ = 0;
-      byte_ = 0;
-      next_ = t + 0.5 * bit_ns_;
-      return;
-    }
-    if (t < next_) return;
-    if (bit_ == 0) {
-      if (level) busy_ = false;
-    } else if (bit_ <= 8) {
-      byte_ |= uint8_t(int(level) << (bit_ - 1));
-    } else {
-      busy_ = false;
-      bytes.push_back(byte_);
-      return;
-    }
-    ++bit_;
-    next_ = start_ + (bit_ + 0.5) * bit_ns_;
+    if (const int b = rx.sample(t, level); b >= 0) bytes.push_back(uint8_t(b));
   }
+  UartRxModel rx;
   std::vector<uint8_t> bytes;
-
- private:
-  double bit_ns_ = 0, start_ = 0, next_ = 0;
-  bool busy_ = false;
-  int bit_ = 0;
-  uint8_t byte_ = 0;
 };
 
 struct LineCounts {

@@ -19,39 +19,22 @@
 #include <vector>
 
 #include "sim/vboard/line_faults.h"
+#include "sim/vboard/uart_rx_model.h"
 
 namespace eskin::vboard {
 
 class UsbSerial {
  public:
   // Rate the host configured; takes effect at the next start bit.
-  void set_baud(double baud) { bit_ns_ = baud > 0 ? 1e9 / baud : 0; }
+  void set_baud(double baud) {
+    bit_ns_ = baud > 0 ? 1e9 / baud : 0;
+    rx_.set_bit_ns(bit_ns_);
+  }
   bool configured() const { return bit_ns_ > 0; }
 
   // uart_txd level after the FPGA's clock edge at time t.
   void sample_txd(double t, bool level) {
-    if (!rx_busy_) {
-      if (level || bit_ns_ == 0) return;  // idle, or nobody listening
-      rx_busy_ = true;
-      rx_start_ = t;
-      rx_bit_ = 0;
-      rx_byte_ = 0;
-      rx_next_ = t + 0.5 * bit_ns_;
-      return;
-    }
-    if (t < rx_next_) return;
-    if (rx_bit_ == 0) {
-      if (level) rx_busy_ = false;  // a glitch, not a start bit
-    } else if (rx_bit_ <= 8) {
-      rx_byte_ |= uint8_t(int(level) << (rx_bit_ - 1));
-    } else {
-      rx_busy_ = false;
-      if (!level) ++framing_errors_;
-      deliver(rx_byte_, t);
-      return;
-    }
-    ++rx_bit_;
-    rx_next_ = rx_start_ + (rx_bit_ + 0.5) * bit_ns_;
+    if (const int b = rx_.sample(t, level); b >= 0) deliver(uint8_t(b), t);
   }
 
   // Level the bridge drives on uart_rxd at time t.
@@ -83,7 +66,7 @@ class UsbSerial {
 
   uint64_t bytes_to_host() const { return bytes_to_host_; }
   uint64_t bytes_to_fpga() const { return bytes_to_fpga_; }
-  uint64_t framing_errors() const { return framing_errors_; }
+  uint64_t framing_errors() const { return rx_.framing_errors(); }
   // The byte on uart_rxd now (-1: the line idles).
   int byte_to_fpga_in_flight() const { return tx_busy_ ? int(tx_byte_) : -1; }
 
@@ -123,11 +106,7 @@ class UsbSerial {
 
   LineFaults* line_ = nullptr;
   double bit_ns_ = 0;
-  // FPGA -> host receiver
-  bool rx_busy_ = false;
-  int rx_bit_ = 0;
-  uint8_t rx_byte_ = 0;
-  double rx_start_ = 0, rx_next_ = 0;
+  UartRxModel rx_;  // FPGA -> host
   std::vector<uint8_t> to_host_;
   std::vector<double> byte_times_;
   // host -> FPGA transmitter
@@ -135,7 +114,7 @@ class UsbSerial {
   bool tx_busy_ = false;
   uint8_t tx_byte_ = 0;
   double tx_start_ = 0, tx_not_before_ = 0;
-  uint64_t bytes_to_host_ = 0, bytes_to_fpga_ = 0, framing_errors_ = 0;
+  uint64_t bytes_to_host_ = 0, bytes_to_fpga_ = 0;
 };
 
 }  // namespace eskin::vboard

@@ -95,11 +95,7 @@ void VirtualBoard::run_cycles(uint64_t until) {
 // first one after.
 void VirtualBoard::time_faults(double t) {
   if (watch_pin_) {
-    pin_rx_.sample(t, out_.uart_txd);
-    if (!pin_rx_.bytes.empty()) {
-      pin_in_frame_ = pin_rx_.bytes.back() != 0;
-      pin_rx_.bytes.clear();
-    }
+    if (const int b = pin_rx_.sample(t, out_.uart_txd); b >= 0) pin_in_frame_ = b != 0;
   }
   fault_reset_ = false;
   fault_sda_low_ = 0;

@@ -118,7 +118,7 @@ SC_MODULE(VirtualBoard) {
   // the FPGA's UART pin read back, for a reset in a frame.
   bool fault_reset_ = false;
   uint64_t fault_sda_low_ = 0;
-  UartTap pin_rx_;
+  UartRxModel pin_rx_;
   bool pin_in_frame_ = false, watch_pin_ = false;
 };
 
