@@ -20,6 +20,8 @@
 // The two differ by the FPGA's start-up, well under a millisecond.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -44,6 +46,9 @@ struct BoardFault {
   int index = -1;  // carrier-off: the carrier; sda-low: the bus
   bool is_reset() const { return kind <= BoardFaultKind::reset_in_command; }
   bool on_adc() const { return kind >= BoardFaultKind::adc_stuck_low && kind <= BoardFaultKind::carrier_off; }
+  // An ADC fault's samples [first, end) at the ADC's rate fs.
+  size_t first_sample(double fs) const { return size_t(std::llround(at_ms * 1e-3 * fs)); }
+  size_t end_sample(double fs) const { return size_t(std::llround((at_ms + for_ms) * 1e-3 * fs)); }
 };
 
 // Throws std::invalid_argument naming --fault, the value and what it

@@ -159,15 +159,14 @@ size_t load_skin_samples(BoardConfig& cfg, const sim::Scene& scene, int adc_shif
   sim::WorldModel world(scene);
   const double fs = scene.skin.adc.rate_hz;
   cfg.sample_hz = fs;
-  const auto first = [&](double ms) { return size_t(std::llround(ms * 1e-3 * fs)); };
   for (const BoardFault& f : cfg.faults)
     if (f.kind == BoardFaultKind::carrier_off)
-      world.carrier_off(f.index, first(f.at_ms), first(f.at_ms + f.for_ms));
+      world.carrier_off(f.index, f.first_sample(fs), f.end_sample(fs));
   for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << adc_shift));
   for (const BoardFault& f : cfg.faults) {
     if (f.kind != BoardFaultKind::adc_stuck_low && f.kind != BoardFaultKind::adc_stuck_high) continue;
     const uint16_t rail = f.kind == BoardFaultKind::adc_stuck_low ? 0 : 0x0FFF;
-    for (size_t n = first(f.at_ms); n < std::min(first(f.at_ms + f.for_ms), cfg.codes.size()); ++n)
+    for (size_t n = f.first_sample(fs); n < std::min(f.end_sample(fs), cfg.codes.size()); ++n)
       cfg.codes[n] = rail;
   }
   const size_t tail = size_t(std::ceil(tail_s * scene.skin.adc.rate_hz));

@@ -3,7 +3,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -102,15 +101,13 @@ void VirtualBoard::time_faults(double t) {
   for (BoardFaultRecord& r : stats_.faults) {
     const BoardFault& f = r.fault;
     if (f.on_adc()) {
-      const double n0 = std::llround(f.at_ms * 1e-3 * cfg_.sample_hz);
-      const double n1 = std::llround((f.at_ms + f.for_ms) * 1e-3 * cfg_.sample_hz);
-      const double taken = double(adc_.samples_taken());
-      if (!r.begun && taken > n0) {
+      const size_t taken = adc_.samples_taken();
+      if (!r.begun && taken > f.first_sample(cfg_.sample_hz)) {
         r.begun = true;
         r.begin_ns = t;
         r.end_ns = -1;  // not yet: the run may end first
       }
-      if (r.begun && r.end_ns < 0 && taken > n1) r.end_ns = t;
+      if (r.begun && r.end_ns < 0 && taken > f.end_sample(cfg_.sample_hz)) r.end_ns = t;
       continue;
     }
     if (!r.begun) {
