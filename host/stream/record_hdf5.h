@@ -62,6 +62,7 @@ class Hdf5Recorder : public Recorder {
   int64_t file_ = -1;
   std::map<std::string, Table> tables_;
   void append_commands();
+  void set_evictions(bool on);  // the metadata cache's, inside flush() only
   int64_t commands_group_ = -1;
   std::vector<int64_t> command_sets_;  // hid_t per command_columns() entry
   uint64_t commands_on_disk_ = 0;
