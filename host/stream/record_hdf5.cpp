@@ -36,7 +36,13 @@ hid_t create_set(hid_t group, const char* name, size_t width) {
   const hid_t space = H5Screate_simple(rank, dims, maxdims);
   const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   H5Pset_chunk(dcpl, rank, chunk);
-  const hid_t set = H5Dcreate2(group, name, H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  // Rows are only appended: the cache needs the last, partly written chunk
+  // and the next, not HDF5's default 1 MiB per dataset, which a rare table
+  // (STATUS: one row per thousand frames) would take hours to fill.
+  const hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
+  H5Pset_chunk_cache(dapl, 11, 2 * chunk[0] * (width ? width : 1) * sizeof(int64_t), 1.0);
+  const hid_t set = H5Dcreate2(group, name, H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, dapl);
+  H5Pclose(dapl);
   H5Pclose(dcpl);
   H5Sclose(space);
   return set;
