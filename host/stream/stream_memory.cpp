@@ -280,6 +280,7 @@ MemoryResult measure_stream_memory(const MemoryOptions& o) {
   // byte was read, so its count is every packet it took, not a cap on it.
   r.argv = {o.eskin_bin, "stream", "--port", pty.slave(), "--baud", std::to_string(o.baud), "-q"};
   const fs::path h5 = dir / "stream.h5";
+  r.hdf5 = o.hdf5;
   if (o.hdf5) {
     r.argv.push_back("--hdf5");
     r.argv.push_back(h5.string());
@@ -375,7 +376,7 @@ std::string memory_text(const MemoryResult& r) {
   }
   s << "eskin stream: exit " << r.exit_code << ", " << r.packets_counted << " packets counted, "
     << r.lost_packets << " lost, " << r.corrupt_frames << " corrupt frames";
-  if (r.hdf5_bytes) s << "; HDF5 recording " << r.hdf5_bytes << " bytes";
+  if (r.hdf5) s << "; HDF5 recording " << r.hdf5_bytes << " bytes";
   std::snprintf(line, sizeof line, "; %.1f s wall, %.0f packets/s\n", r.wall_s,
                 r.wall_s > 0 ? double(r.packets_written) / r.wall_s : 0.0);
   s << line;
@@ -388,7 +389,7 @@ std::string memory_csv(const MemoryResult& r, const std::string& command) {
   std::ostringstream s;
   s << "# The streaming path's memory (docs/bench.md, \"Memory under a long stream\"), written by\n"
        "# `eskin bench memory --csv` (host/stream/stream_memory.h); cited as <!--fig:"
-    << (r.hdf5_bytes ? "stream_memory_hdf5" : "stream_memory")
+    << (r.hdf5 ? "stream_memory_hdf5" : "stream_memory")
     << "/NAME-->.\n# VmRSS of `eskin stream` every " << r.sample_every
     << " packets written into its pty (rss_kib_at_N).\nname,value,unit,source\n";
   const auto row = [&](const std::string& name, const std::string& v, const char* unit) {
@@ -413,7 +414,7 @@ std::string memory_csv(const MemoryResult& r, const std::string& command) {
     row("rss_growth_kib", std::to_string(r.growth_kib()), "KiB");
     row("hwm_kib", std::to_string(r.last().hwm_kib), "KiB");
   }
-  if (r.hdf5_bytes) row("hdf5_bytes", std::to_string(r.hdf5_bytes), "bytes");
+  if (r.hdf5) row("hdf5_bytes", std::to_string(r.hdf5_bytes), "bytes");
   row("wall_s", num(r.wall_s, 1), "s");
   row("packets_per_s", num(r.wall_s > 0 ? double(r.packets_written) / r.wall_s : 0, 0),
       "packets/s");

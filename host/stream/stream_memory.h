@@ -41,6 +41,7 @@ struct MemorySample {
 
 struct MemoryResult {
   std::vector<std::string> argv;      // the `eskin stream` command run
+  bool hdf5 = false;                  // it recorded --hdf5
   uint64_t packets_written = 0;
   uint64_t wire_bytes = 0;
   std::vector<MemorySample> samples;  // at 0, every sample_every, and at the end
