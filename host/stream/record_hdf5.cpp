@@ -109,8 +109,8 @@ Hdf5Recorder::Hdf5Recorder(const std::string& path,
   H5Pget_mdc_config(fapl, &mdc);
   // Nothing leaves the metadata cache except in flush() (see header).
   mdc.evictions_enabled = false;
-  // What flush() lets it keep: the chunk indexes' B-tree nodes take about
-  // ten times their on-disk size (the size the cache counts) in memory, so
+  // What flush() lets it keep: the chunk indexes' B-tree nodes take several
+  // times their on-disk size (the size the cache counts) in memory, so
   // 256 KiB holds a few MiB; the appends touch only each index's last nodes.
   mdc.set_initial_size = true;
   mdc.initial_size = 256 * 1024;

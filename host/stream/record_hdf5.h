@@ -16,7 +16,9 @@
 // happens anyway), which also flushes the file. The metadata cache never
 // evicts between flushes, so the file on disk changes only inside flush():
 // a run killed at any other moment leaves a file that opens and holds every
-// row up to the last flush.
+// row up to the last flush. Memory stays flat however long the run: the
+// metadata cache evicts down to 256 KiB inside flush(), and each dataset's
+// chunk cache holds two chunks (docs/bench.md, "Memory under a long stream").
 #pragma once
 
 #include <cstdint>
