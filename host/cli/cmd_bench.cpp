@@ -5,6 +5,7 @@
 //   stability   10^9-sample exact-DFT run, naive/damped drift, neuron extremes
 //   scale       golden and engine from 3x3 to 256x256 skins
 //   soak        10^6 packets through the virtual board's faulty serial line
+//   memory      eskin stream's RSS over 10^7 packets from a pty
 #include <fmt/format.h>
 #include <fmt/os.h>
 
@@ -28,6 +29,7 @@
 #include "eskin/skin_config.h"
 #include "host/engine/engine_setup.h"
 #include "host/simulate/soak.h"
+#include "host/stream/stream_memory.h"
 #include "sim/scene.h"
 
 namespace eskin::cli {
@@ -177,6 +179,35 @@ struct SoakArgs {
   uint64_t min_packets = 0;
 };
 
+struct MemoryArgs {
+  eskin::stream::MemoryOptions o;
+  std::string csv;
+  int64_t max_growth_kib = -1;  // < 0: no bound
+};
+
+// Exit 1 when eskin stream failed, a packet was not counted or was lost,
+// or RSS grew by more than --max-growth-kib after warm-up.
+int run_memory(MemoryArgs a) {
+  a.o.eskin_bin = std::filesystem::read_symlink("/proc/self/exe").string();
+  const eskin::stream::MemoryResult r = eskin::stream::measure_stream_memory(a.o);
+  std::cout << eskin::stream::memory_text(r);
+  bool ok = r.delivered_all();
+  if (!ok) std::cout << "FAILED: eskin stream did not take every packet once (stderr below)\n"
+                     << r.child_stderr;
+  if (ok && a.max_growth_kib >= 0 && r.growth_kib() > a.max_growth_kib) {
+    std::cout << fmt::format("FAILED: RSS grew {} KiB, more than --max-growth-kib {}\n",
+                             r.growth_kib(), a.max_growth_kib);
+    ok = false;
+  }
+  if (!a.csv.empty()) {
+    std::string cmd = fmt::format("eskin bench memory --packets {}", a.o.packets);
+    if (a.o.hdf5) cmd += " --hdf5";
+    fmt::output_file(a.csv).print("{}", eskin::stream::memory_csv(r, cmd));
+    std::cout << "table: " << a.csv << "\n";
+  }
+  return ok ? 0 : eskin::exit_code(eskin::Exit::failure);
+}
+
 // Exit 1 when a packet was delivered wrong, the host's count of lost
 // packets differs from the packets lost that a host can see (not before
 // its first or after its last packet), or fewer than --min-packets were
@@ -287,8 +318,19 @@ std::function<int()> setup(CLI::App& app) {
       ->capture_default_str();
   soak->add_option("--csv", so->csv, "write the table here (docs/soak.csv)");
   soak->add_option("--min-packets", so->min_packets, "fail if the FPGA sent fewer packets");
+  auto mem = std::make_shared<MemoryArgs>();
+  CLI::App* memory = bench->add_subcommand(
+      "memory", "eskin stream's memory (VmRSS) while N packets go through a pty");
+  memory->add_option("--packets", mem->o.packets, "packets to stream")->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  memory->add_flag("--hdf5", mem->o.hdf5, "record --hdf5 while streaming (a temporary file)");
+  memory->add_option("--csv", mem->csv, "write the table here (docs/stream_memory.csv)");
+  memory->add_option("--max-growth-kib", mem->max_growth_kib,
+                     "fail if RSS grows by more than K KiB from the first sample to the end")
+      ->check(CLI::NonNegativeNumber);
   return [=]() -> int {
     if (soak->parsed()) return run_soak(*so);
+    if (memory->parsed()) return run_memory(*mem);
     if (lat->parsed()) return run_latency(*l);
     if (tp->parsed()) return run_throughput(*t);
     if (tr->parsed()) return run_tradeoff(*d);

@@ -36,7 +36,13 @@ hid_t create_set(hid_t group, const char* name, size_t width) {
   const hid_t space = H5Screate_simple(rank, dims, maxdims);
   const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   H5Pset_chunk(dcpl, rank, chunk);
-  const hid_t set = H5Dcreate2(group, name, H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  // Rows are only appended: the cache needs the last, partly written chunk
+  // and the next, not HDF5's default 1 MiB per dataset, which a rare table
+  // (STATUS: one row per thousand frames) would take hours to fill.
+  const hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
+  H5Pset_chunk_cache(dapl, 11, 2 * chunk[0] * (width ? width : 1) * sizeof(int64_t), 1.0);
+  const hid_t set = H5Dcreate2(group, name, H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, dapl);
+  H5Pclose(dapl);
   H5Pclose(dcpl);
   H5Sclose(space);
   return set;
@@ -101,8 +107,14 @@ Hdf5Recorder::Hdf5Recorder(const std::string& path,
   H5AC_cache_config_t mdc;
   mdc.version = H5AC__CURR_CACHE_CONFIG_VERSION;
   H5Pget_mdc_config(fapl, &mdc);
-  // Nothing leaves the metadata cache except in H5Fflush (see header).
+  // Nothing leaves the metadata cache except in flush() (see header).
   mdc.evictions_enabled = false;
+  // What flush() lets it keep: the chunk indexes' B-tree nodes take several
+  // times their on-disk size (the size the cache counts) in memory, so
+  // 256 KiB holds a few MiB; the appends touch only each index's last nodes.
+  mdc.set_initial_size = true;
+  mdc.initial_size = 256 * 1024;
+  mdc.min_size = 64 * 1024;
   mdc.incr_mode = H5C_incr__off;
   mdc.flash_incr_mode = H5C_flash_incr__off;
   mdc.decr_mode = H5C_decr__off;
@@ -226,10 +238,24 @@ void Hdf5Recorder::append_commands() {
 
 void Hdf5Recorder::flush() {
   if (file_ < 0) return;
+  // The metadata cache may evict (and so write) only in here, where the
+  // file changes anyway: without evictions it would keep every chunk index
+  // node the recording ever touched, growing with the file.
+  set_evictions(true);
   for (auto& [name, t] : tables_) append(name, t);
   append_commands();
   pending_ = 0;
-  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw h5_error(path_, "flush failed");
+  const bool flushed = H5Fflush(file_, H5F_SCOPE_GLOBAL) >= 0;
+  set_evictions(false);
+  if (!flushed) throw h5_error(path_, "flush failed");
+}
+
+void Hdf5Recorder::set_evictions(bool on) {
+  H5AC_cache_config_t mdc;
+  mdc.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  if (H5Fget_mdc_config(file_, &mdc) < 0) return;
+  mdc.evictions_enabled = on;
+  H5Fset_mdc_config(file_, &mdc);
 }
 
 }  // namespace eskin::stream

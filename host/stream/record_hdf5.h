@@ -16,7 +16,9 @@
 // happens anyway), which also flushes the file. The metadata cache never
 // evicts between flushes, so the file on disk changes only inside flush():
 // a run killed at any other moment leaves a file that opens and holds every
-// row up to the last flush.
+// row up to the last flush. Memory stays flat however long the run: the
+// metadata cache evicts down to 256 KiB inside flush(), and each dataset's
+// chunk cache holds two chunks (docs/bench.md, "Memory under a long stream").
 #pragma once
 
 #include <cstdint>
@@ -62,6 +64,7 @@ class Hdf5Recorder : public Recorder {
   int64_t file_ = -1;
   std::map<std::string, Table> tables_;
   void append_commands();
+  void set_evictions(bool on);  // the metadata cache's, inside flush() only
   int64_t commands_group_ = -1;
   std::vector<int64_t> command_sets_;  // hid_t per command_columns() entry
   uint64_t commands_on_disk_ = 0;

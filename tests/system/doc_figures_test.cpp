@@ -28,7 +28,10 @@
 //  - docs/formal.csv: the formal proofs' kinds, depths and times
 //    (scripts/formal_table.sh, tests/formal/formal_table_test.cpp);
 //  - docs/soak.csv: the line soak (`eskin bench soak --csv docs/soak.csv`,
-//    tests/vboard/line_faults_test.cpp).
+//    tests/vboard/line_faults_test.cpp);
+//  - docs/stream_memory.csv, docs/stream_memory_hdf5.csv: eskin stream's
+//    memory over 10^7 packets (`eskin bench memory --csv`,
+//    tests/stream/stream_memory_test.cpp at 10^6).
 // A doc marks each figure it cites with its name:
 //    <!--fig:NAME-->10 077<!--/fig-->
 // NAME is a row of docs/figures.csv, latency/CONFIG/STAGE (a row of
@@ -39,7 +42,8 @@
 // a column's extremes) or vboard/NAME (a row of docs/vboard_figures.csv)
 // or formal/MODULE/TASK/depth|seconds, formal/tasks, formal/seconds (rows
 // of docs/formal.csv and their count and sum) or soak/NAME (a row of
-// docs/soak.csv).
+// docs/soak.csv) or stream_memory/NAME, stream_memory_hdf5/NAME (rows of
+// docs/stream_memory.csv, docs/stream_memory_hdf5.csv).
 // The text between the markers is
 // the number (spaces and commas as thousands separators allowed); a file
 // value with more decimals is compared rounded to the doc's decimals. The
@@ -289,6 +293,15 @@ void write_figures(const std::vector<Figure>& figs) {
   for (const auto& g : figs) f << g.name << ',' << g.value << ',' << g.unit << ",\"" << g.source << "\"\n";
 }
 
+// PREFIX/NAME for each `name,value,...` row of a docs table (relative to
+// the source tree).
+void add_named_rows(std::map<std::string, std::string>& m, const std::string& prefix,
+                    const std::string& file) {
+  EXPECT_TRUE(fs::exists(kSrc / file)) << file << ": missing";
+  for (const auto& r : read_csv(kSrc / file))
+    if (r.size() >= 2) m[prefix + "/" + r[0]] = r[1];
+}
+
 // Every figure a doc may cite, by name.
 std::map<std::string, std::string> known_figures() {
   std::map<std::string, std::string> m;
@@ -312,13 +325,17 @@ std::map<std::string, std::string> known_figures() {
   // vboard/NAME: the default scene on the virtual board, as `eskin
   // simulate` prints it (docs/vboard_figures.csv, written and checked by
   // tests/vboard/simulate_test.cpp, DefaultSceneFiguresAreTheDocs).
-  for (const auto& r : read_csv(kSrc / "docs/vboard_figures.csv"))
-    if (r.size() >= 2) m["vboard/" + r[0]] = r[1];
+  add_named_rows(m, "vboard", "docs/vboard_figures.csv");
   // soak/NAME: the line soak's table (docs/soak.csv, written by `eskin
   // bench soak --csv`; checked by tests/vboard/line_faults_test.cpp,
   // LineSoak.TheDocsTableHoldsTogether).
-  for (const auto& r : read_csv(kSrc / "docs/soak.csv"))
-    if (r.size() >= 2) m["soak/" + r[0]] = r[1];
+  add_named_rows(m, "soak", "docs/soak.csv");
+  // stream_memory/NAME, stream_memory_hdf5/NAME: eskin stream's memory over
+  // a long stream, without and with an HDF5 recording (`eskin bench memory
+  // --csv`, host/stream/stream_memory.h; tests/stream/stream_memory_test.cpp
+  // runs the same measurement at 10^6 packets).
+  add_named_rows(m, "stream_memory", "docs/stream_memory.csv");
+  add_named_rows(m, "stream_memory_hdf5", "docs/stream_memory_hdf5.csv");
   // formal/MODULE/TASK/depth and /seconds, formal/tasks, formal/seconds:
   // the proofs' table (docs/formal.csv, scripts/formal_table.sh; checked
   // against tests/formal/*.sby by tests/formal/formal_table_test.cpp).
