@@ -194,9 +194,16 @@ void LinkDecoder::end_of_frame() {
 }
 
 void LinkDecoder::check_sequence(uint8_t seq, uint8_t type, uint32_t t) {
-  // Behind by less than half the 32-bit range: a restart, not a wrap of t.
+  // A restarted board numbers its packets and its time from 0 again: t
+  // behind the last packet of its type (by less than half the 32-bit range:
+  // not a wrap of t) with the numbering broken. A t behind with the seq
+  // going on is no restart (t is the sender's business then); a restart
+  // whose first delivered packet happens to continue the old numbering
+  // (1 in 256) counts as none and loses nothing, which is what the seq
+  // says.
   const int64_t last = last_t_[type];
-  if (last >= 0 && t < uint32_t(last) && uint32_t(last) - t < 0x80000000u) {
+  if (have_seq_ && seq != uint8_t(last_seq_ + 1) && last >= 0 && t < uint32_t(last) &&
+      uint32_t(last) - t < 0x80000000u) {
     ++stats_.restarts;
     last_t_.fill(-1);
     if (seq) {

@@ -129,8 +129,9 @@ struct DecoderStats {
   uint64_t seq_gaps = 0;        // times the sequence number skipped
   uint64_t lost_packets = 0;    // sum of the skipped sequence numbers
   // The board restarted (a reset): a packet's t fell behind the last of its
-  // type. Its seq then counts from 0 again: lost_packets adds the packets
-  // since the restart that did not arrive, not the old numbering's gap.
+  // type and its seq broke the numbering. Its seq then counts from 0 again:
+  // lost_packets adds the packets since the restart that did not arrive,
+  // not the old numbering's gap.
   uint64_t restarts = 0;
 };
 

@@ -271,8 +271,9 @@ TEST(LinkDecoder, SequenceGapsCounted) {
 // its seq and t start again from 0. Without restart detection the jump from
 // seq 100 to 2 would count as 157 lost packets; the packets the restarted
 // board numbered 0 and 1 are the only ones lost, and t falling behind the
-// last packet of its type is how the host tells. A t that wraps at 2^32
-// (behind by more than half the range) is no restart.
+// last packet of its type, with the numbering broken, is how the host
+// tells. A t that wraps at 2^32 (behind by more than half the range) is no
+// restart, nor a t behind with the numbering going on.
 TEST(LinkDecoder, ABoardRestartIsCountedAndItsLossesAreThePacketsSinceIt) {
   LinkDecoder dec;
   {
@@ -295,6 +296,14 @@ TEST(LinkDecoder, ABoardRestartIsCountedAndItsLossesAreThePacketsSinceIt) {
   wrap.feed(enc.amplitudes(0x00000013u, {}));  // t wrapped: 35 samples on
   EXPECT_EQ(wrap.stats().restarts, 0u);
   EXPECT_EQ(wrap.stats().lost_packets, 0u);
+
+  // t behind with the numbering going on: no restart (the sender chose t).
+  LinkDecoder same;
+  LinkEncoder one;
+  same.feed(one.amplitudes(5000, {}));
+  same.feed(one.amplitudes(10, {}));
+  EXPECT_EQ(same.stats().restarts, 0u);
+  EXPECT_EQ(same.stats().seq_gaps, 0u);
 }
 
 TEST(LinkDecoder, OversizedAndMalformedPayloads) {
