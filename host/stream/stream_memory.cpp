@@ -141,9 +141,9 @@ bool read_rss(pid_t pid, MemorySample& s) {
   return rss && hwm;
 }
 
-// The packets of a DTMF board's default build, one after the other: each
-// frame's AMPLITUDES, TAXELS dense and SPIKES, and a STATUS after every
-// 1000th frame.
+// The packets of a DTMF board, one after the other (sizes: stream_memory.h):
+// each frame's AMPLITUDES, TAXELS dense and SPIKES, and a STATUS after
+// every 1000th frame.
 class BoardMix {
  public:
   void append(std::vector<uint8_t>& out) {

@@ -7,10 +7,12 @@
 // does not. `eskin bench memory` (docs/bench.md) and
 // tests/stream/stream_memory_test.cpp run it.
 //
-// The mix, per frame of the default DTMF build (docs/protocol.md §6):
-// AMPLITUDES (16 carriers), TAXELS dense 4x4 and SPIKES (1..3 events),
-// and a STATUS every 1000 frames, with the encoder's sequence numbers
-// (host/link/link_encoder.h). The stream is ended by closing the master
+// The mix, per frame, the packet types a DTMF board sends
+// (docs/protocol.md §6) at a small skin's sizes: AMPLITUDES (16 values),
+// TAXELS dense 4x4 and SPIKES (1..3 events), and a STATUS every 1000
+// frames, with the encoder's sequence numbers (host/link/link_encoder.h).
+// What the measurement needs is the packet count and every type's path
+// through the stream and the recorder, not one build's exact sizes. The stream is ended by closing the master
 // (a pty that hangs up ends `eskin stream`) once the child has read every
 // byte, so its final count must be exactly N.
 #pragma once
