@@ -240,7 +240,9 @@ int run_soak(SoakArgs a) {
 }
 
 std::function<int()> setup(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: latency, throughput, tradeoff, stability, scale (docs/bench.md)");
+  CLI::App* bench = app.add_subcommand(
+      "bench",
+      "Benchmarks: latency, throughput, tradeoff, stability, scale, soak, memory (docs/bench.md)");
   bench->require_subcommand(1);
   auto l = std::make_shared<LatencyArgs>();
   CLI::App* lat = bench->add_subcommand(
@@ -314,7 +316,8 @@ std::function<int()> setup(CLI::App& app) {
                    "REQUEST_STATUS commands sent per AMPLITUDES packet received")
       ->capture_default_str()
       ->check(CLI::Range(0, 16));
-  soak->add_option("--out", so->o.out, "output directory (the FPGA's tapped bytes, soak.json)")
+  soak->add_option("--out", so->o.out,
+                   "output directory (the FPGA's tapped bytes, soak.json, report.html)")
       ->capture_default_str();
   soak->add_option("--csv", so->csv, "write the table here (docs/soak.csv)");
   soak->add_option("--min-packets", so->min_packets, "fail if the FPGA sent fewer packets");
