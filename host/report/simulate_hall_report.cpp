@@ -537,6 +537,7 @@ void run_table(Page& page, const vboard::HallBuild& build, const hall::HallFpgaS
                           fmt::format("{} / {} / {} / {} / {}", st.nacks, st.status_errors,
                                       st.reply_errors, st.recoveries, st.bus_errors)});
     }
+  run_rows.insert(run_rows.end(), run.line_rows.begin(), run.line_rows.end());  // faults
   page.table({"figure", "value"}, run_rows);
 }
 
@@ -651,7 +652,9 @@ nlohmann::json report_hall(const sim::Scene& scene, const std::string& scene_fil
   score_frames(c, hr, out_dir, s);
   const HallRunFigures r = run_figures(run, s.latencies);
   const std::string html = write_page(c, scene_file, build, run, hr, s, r, out_dir);
-  const nlohmann::json sum = summary(c, scene_file, build, run, hr, s, r);
+  nlohmann::json sum = summary(c, scene_file, build, run, hr, s, r);
+  if (!run.line.is_null()) sum["line"] = run.line;
+  if (!run.board_faults.is_null()) sum["board_faults"] = run.board_faults;
   fmt::output_file((fs::path(out_dir) / "summary.json").string()).print("{}\n", sum.dump(2));
   print_summary(c, build, run, hr, s, r, html);
   return sum;

@@ -40,8 +40,8 @@ void mixed_page(const sim::Scene& scene, const std::string& scene_file,
       "tops' packets share one link, numbered by one seq counter. The skin's report is "
       "skin/report.html, the Hall sensors' hall/report.html. Scene file: {}.",
       build.key, dtmf.clk_hz() / 1e6, scene_file));
-  page.table({"figure", "value"},
-             {{"packets: DTMF / Hall", fmt::format("{} / {}", m.packets - m.hall, m.hall)},
+  std::vector<std::vector<std::string>> rows{
+              {"packets: DTMF / Hall", fmt::format("{} / {}", m.packets - m.hall, m.hall)},
               {"link: bytes / CRC errors / framing errors / lost packets",
                fmt::format("{} / {} / {} / {}", ls.bytes, ls.crc_errors, ls.framing_errors,
                            ls.lost_packets)},
@@ -56,7 +56,9 @@ void mixed_page(const sim::Scene& scene, const std::string& scene_file,
                fmt::format("{:.1f}", hall.at("latency_median_us").get<double>())},
               {"I2C timing violations / ADC timing violations",
                fmt::format("{} / {}", run.done.at("i2c_violations").get<uint64_t>(),
-                           run.done.at("adc_violations").get<uint64_t>())}});
+                           run.done.at("adc_violations").get<uint64_t>())}};
+  rows.insert(rows.end(), run.line_rows.begin(), run.line_rows.end());  // faults
+  page.table({"figure", "value"}, rows);
   page.write(path);
 }
 
@@ -77,13 +79,15 @@ nlohmann::json report_mixed(const sim::Scene& scene, const std::string& scene_fi
 
   const MixedLink m = mixed_link(run);
   const link::DecoderStats& ls = run.link;
-  const nlohmann::json sum = {
+  nlohmann::json sum = {
       {"scene", scene_file}, {"top", "mixed_top"}, {"fpga_build", build.key},
       {"fpga_clk_hz", dtmf.clk_hz()}, {"fpga_engine_shifter", fpga::shifter_name(engine_of(dtmf))},
       {"fpga_neurons", fpga::neurons_name(engine_of(dtmf))}, {"packets", m.packets},
       {"dtmf_packets", m.packets - m.hall}, {"hall_packets", m.hall},
       {"link_errors", m.link_errors}, {"lost_packets", ls.lost_packets},
       {"skin", skin}, {"hall", hall}};
+  if (!run.line.is_null()) sum["line"] = run.line;
+  if (!run.board_faults.is_null()) sum["board_faults"] = run.board_faults;
   fmt::output_file((out / "summary.json").string()).print("{}\n", sum.dump(2));
   mixed_page(scene, scene_file, build, dtmf, run, m, skin, hall, (out / "report.html").string());
   fmt::print("mixed board {}: {} DTMF and {} Hall packets on one link, {} link errors, {} lost; "

@@ -463,4 +463,25 @@ TEST(BoardFaultCli, SimulateReportsTheBoardsFaults) {
       << slurp(log);
 }
 
+// The same on a mixed scene (its own report and summary, and the Hall
+// part's): SDA held low, timed, in every report.
+TEST(BoardFaultCli, SimulateReportsTheBoardsFaultsOnAMixedScene) {
+  const std::string log = testing::TempDir() + "/board_fault_mixed.log";
+  const std::string out = testing::TempDir() + "/board_fault_mixed_out";
+  std::filesystem::remove_all(out);
+  ASSERT_EQ(exit_of({ESKIN_BIN, "simulate", ESKIN_SOURCE_DIR "/scenes/mixed_neuroskin_split.yaml",
+                     "--out", out, "--fault", "sda-low=0@100:5"},
+                    log),
+            0)
+      << slurp(log);
+  for (const std::string dir : {"", "/hall"}) {
+    const nlohmann::json sum = nlohmann::json::parse(slurp(out + dir + "/summary.json"));
+    ASSERT_EQ(sum.at("board_faults").size(), 1u) << dir;
+    EXPECT_TRUE(sum["board_faults"][0].at("begun").get<bool>()) << dir;
+    EXPECT_NE(slurp(out + dir + "/report.html").find("board fault sda-low=0@100:5"),
+              std::string::npos)
+        << dir;
+  }
+}
+
 }  // namespace
