@@ -145,7 +145,8 @@ int run_simulate_hall(const sim::Scene& scene, const SimulateOptions& o) {
   const std::string exe = vboard::board_executable(build, note);
   std::filesystem::create_directories(o.out);
 
-  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, {setup.commands}, line_args(o)));
+  vboard::VboardProcess board(exe,
+                              stream::board_args(o.scene, o.trace, {setup.commands}, line_args(o)));
   stream::BoardRun run = stream::run_board(
       board, int(build.baud), {setup.commands}, size_t(scene.duration_s * 1e6),
       [](const Packet& p) { return p.type == link::kHallSamples ? long(p.t) : -1L; });

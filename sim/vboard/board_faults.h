@@ -45,7 +45,9 @@ struct BoardFault {
   double at_ms = 0, for_ms = 0;
   int index = -1;  // carrier-off: the carrier; sda-low: the bus
   bool is_reset() const { return kind <= BoardFaultKind::reset_in_command; }
-  bool on_adc() const { return kind >= BoardFaultKind::adc_stuck_low && kind <= BoardFaultKind::carrier_off; }
+  bool on_adc() const {
+    return kind >= BoardFaultKind::adc_stuck_low && kind <= BoardFaultKind::carrier_off;
+  }
   // An ADC fault's samples [first, end) at the ADC's rate fs.
   size_t first_sample(double fs) const { return size_t(std::llround(at_ms * 1e-3 * fs)); }
   size_t end_sample(double fs) const { return size_t(std::llround((at_ms + for_ms) * 1e-3 * fs)); }

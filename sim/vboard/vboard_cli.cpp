@@ -164,7 +164,8 @@ size_t load_skin_samples(BoardConfig& cfg, const sim::Scene& scene, int adc_shif
       world.carrier_off(f.index, f.first_sample(fs), f.end_sample(fs));
   for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << adc_shift));
   for (const BoardFault& f : cfg.faults) {
-    if (f.kind != BoardFaultKind::adc_stuck_low && f.kind != BoardFaultKind::adc_stuck_high) continue;
+    if (f.kind != BoardFaultKind::adc_stuck_low && f.kind != BoardFaultKind::adc_stuck_high)
+      continue;
     const uint16_t rail = f.kind == BoardFaultKind::adc_stuck_low ? 0 : 0x0FFF;
     for (size_t n = f.first_sample(fs); n < std::min(f.end_sample(fs), cfg.codes.size()); ++n)
       cfg.codes[n] = rail;

@@ -119,9 +119,11 @@ TEST(BoardFaults, AResetInAFrameCostsThatFrameAndTheBoardResumesWithinAWindow) {
   EXPECT_LT(r.faults[0].at("begin_ns").get<double>(), 101e6) << "frames go out every ms";
 
   size_t k = 0;  // delivered before the restart, equal to the reference's
-  while (k < r.run.rx.size() && k < ref.run.rx.size() && r.run.rx[k].t >= (k ? r.run.rx[k - 1].t : 0) &&
+  while (k < r.run.rx.size() && k < ref.run.rx.size() &&
+         r.run.rx[k].t >= (k ? r.run.rx[k - 1].t : 0) &&
          r.run.rx[k].payload == ref.run.rx[k].payload && r.run.rx[k].seq == ref.run.rx[k].seq)
     ++k;
+  ASSERT_GT(k, 0u) << "the first packet already differs from the fault-free run";
   ASSERT_LT(k, r.run.rx.size());
   EXPECT_LT(r.run.rx[k].t, r.run.rx[k - 1].t) << "the first difference is the restart";
   EXPECT_GT(r.run.rx[k - 1].t, 3400u);  // 100 ms = sample 3500: nothing lost before
@@ -252,7 +254,8 @@ Window compare(const FaultRun& ref, const FaultRun& r,
 // one window after it.
 TEST(BoardFaults, AnAdcStuckAtARailIsForgottenExactlyOneWindowAfterIt) {
   const FaultRun ref = run_board({});
-  const FaultRun r = run_board({"--fault", "adc-stuck-high@100:20", "--fault", "adc-stuck-low@200:20"});
+  const FaultRun r =
+      run_board({"--fault", "adc-stuck-high@100:20", "--fault", "adc-stuck-low@200:20"});
   ASSERT_EQ(r.exit, 0);
   EXPECT_EQ(link_errors(r) + r.run.link.lost_packets, 0u);
   for (const auto& f : r.faults) ASSERT_TRUE(f.at("begun").get<bool>()) << r.faults.dump();
