@@ -1,6 +1,7 @@
 #include "eskin/process.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -9,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <thread>
 
 extern char** environ;
 
@@ -81,6 +83,50 @@ std::string printable_command(const std::vector<std::string>& argv) {
     line += "'";
   }
   return line;
+}
+
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& out,
+                           const std::string& err) {
+  if (argv.empty()) {
+    start_error_ = EINVAL;
+    return;
+  }
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = -1;
+  start_error_ = posix_spawn(&pid, args[0], &fa, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (start_error_ == 0) pid_ = pid;
+}
+
+ChildProcess::~ChildProcess() {
+  if (started() && status_ < 0) {
+    ::kill(pid_, SIGKILL);
+    wait_exit(std::chrono::seconds(10));
+  }
+}
+
+void ChildProcess::signal(int sig) {
+  if (started() && status_ < 0) ::kill(pid_, sig);
+}
+
+int ChildProcess::poll_exit() {
+  int st = 0;
+  if (started() && status_ < 0 && ::waitpid(pid_, &st, WNOHANG) == pid_)
+    status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+  return status_;
+}
+
+int ChildProcess::wait_exit(std::chrono::milliseconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (poll_exit() < 0 && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  return status_;
 }
 
 }  // namespace eskin

@@ -2,6 +2,7 @@
 // argument reaches it as it is, whatever quotes or spaces it holds.
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,32 @@ int run_logged(const std::vector<std::string>& argv, const std::string& log,
                LogMode mode = LogMode::Truncate);
 int run_logged(const std::vector<std::string>& argv, const std::string& log, LogMode mode,
                const RunContext& ctx);
+
+// A program run from an argument vector beside the caller, its stdout and
+// stderr into files: started at construction, polled or waited for, and
+// killed (SIGKILL) when destroyed while still running.
+class ChildProcess {
+ public:
+  ChildProcess(const std::vector<std::string>& argv, const std::string& out,
+               const std::string& err);
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  bool started() const { return pid_ > 0; }
+  int start_error() const { return start_error_; }  // posix_spawn's error when not started
+  int pid() const { return pid_; }
+  void signal(int sig);
+  // Exit code (128 + signal when killed) once it has ended, else -1.
+  int poll_exit();
+  // poll_exit() until it ends or `timeout` passes (then -1).
+  int wait_exit(std::chrono::milliseconds timeout);
+
+ private:
+  int pid_ = -1;
+  int start_error_ = 0;
+  int status_ = -1;
+};
 
 // The path of `tool` found on PATH ("" if none is executable there).
 std::string find_on_path(const std::string& tool);

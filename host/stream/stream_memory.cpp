@@ -3,10 +3,8 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <stdlib.h>
 #include <sys/ioctl.h>
-#include <sys/wait.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -21,9 +19,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "eskin/process.h"
 #include "host/link/link_encoder.h"
-
-extern char** environ;
 
 namespace eskin::stream {
 namespace {
@@ -81,53 +78,6 @@ class Pty {
  private:
   int master_ = -1;
   std::string slave_;
-};
-
-// A child process whose stdout and stderr go to files; killed if still
-// running when destroyed.
-class Child {
- public:
-  Child(const std::vector<std::string>& argv, const fs::path& out, const fs::path& err) {
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    const int e = posix_spawn(&pid_, args[0], &fa, nullptr, args.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    if (e != 0) throw std::runtime_error(argv[0] + ": cannot start: " + std::strerror(e));
-  }
-  ~Child() {
-    if (status_ < 0) {
-      ::kill(pid_, SIGKILL);
-      wait(std::chrono::seconds(10));
-    }
-  }
-  Child(const Child&) = delete;
-  Child& operator=(const Child&) = delete;
-  pid_t pid() const { return pid_; }
-  // Exit code (128 + signal if killed) once it has ended, else -1.
-  int poll_exit() {
-    int st = 0;
-    if (status_ < 0 && ::waitpid(pid_, &st, WNOHANG) == pid_)
-      status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-    return status_;
-  }
-  int wait(std::chrono::milliseconds timeout) {
-    const auto end = clock_type::now() + timeout;
-    while (poll_exit() < 0 && clock_type::now() < end)
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    return status_;
-  }
-  void kill() {
-    if (status_ < 0) ::kill(pid_, SIGKILL);
-  }
-
- private:
-  pid_t pid_ = -1;
-  int status_ = -1;
 };
 
 // VmRSS and VmHWM of `pid` in KiB (false when it is gone).
@@ -188,7 +138,7 @@ class BoardMix {
 // Writes all of `buf` into the non-blocking master, polling while the pty
 // is full. False (with *why) when the child ended or nothing moved for
 // stall_s.
-bool write_all(Pty& pty, Child& child, const std::vector<uint8_t>& buf, double stall_s,
+bool write_all(Pty& pty, ChildProcess& child, const std::vector<uint8_t>& buf, double stall_s,
                std::string* why) {
   size_t off = 0;
   auto last_progress = clock_type::now();
@@ -285,7 +235,9 @@ MemoryResult measure_stream_memory(const MemoryOptions& o) {
     r.argv.push_back("--hdf5");
     r.argv.push_back(h5.string());
   }
-  Child child(r.argv, dir / "stdout.txt", dir / "stderr.txt");
+  ChildProcess child(r.argv, (dir / "stdout.txt").string(), (dir / "stderr.txt").string());
+  if (!child.started())
+    throw std::runtime_error(r.argv[0] + ": cannot start: " + std::strerror(child.start_error()));
 
   // Bytes written before the stream has the port open and set up could be
   // flushed by its set-up: wait for "link open".
@@ -294,8 +246,8 @@ MemoryResult measure_stream_memory(const MemoryOptions& o) {
     if (child.poll_exit() >= 0 || clock_type::now() > open_by) {
       r.error = child.poll_exit() >= 0 ? "eskin stream ended before the link opened"
                                        : "eskin stream did not open the link within 20 s";
-      child.kill();
-      r.exit_code = child.wait(std::chrono::seconds(10));
+      child.signal(SIGKILL);
+      r.exit_code = child.wait_exit(std::chrono::seconds(10));
       r.child_stderr = slurp(dir / "stderr.txt");
       return r;
     }
@@ -340,12 +292,12 @@ MemoryResult measure_stream_memory(const MemoryOptions& o) {
   if (r.error.empty() && !sample(r.packets_written))
     r.error = "eskin stream ended before the last sample";
   pty.close_master();
-  r.exit_code = child.wait(std::chrono::duration_cast<std::chrono::milliseconds>(
+  r.exit_code = child.wait_exit(std::chrono::duration_cast<std::chrono::milliseconds>(
       std::chrono::duration<double>(o.stall_s)));
   if (r.exit_code < 0) {
     if (r.error.empty()) r.error = "eskin stream did not end after the pty hung up";
-    child.kill();
-    r.exit_code = child.wait(std::chrono::seconds(10));
+    child.signal(SIGKILL);
+    r.exit_code = child.wait_exit(std::chrono::seconds(10));
   }
   r.wall_s = std::chrono::duration<double>(clock_type::now() - t0).count();
   r.child_stderr = slurp(dir / "stderr.txt");

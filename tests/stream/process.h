@@ -2,11 +2,7 @@
 // captured to files, waited for or killed by pid.
 #pragma once
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <fstream>
@@ -15,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-extern char** environ;
+#include "eskin/process.h"
 
 namespace eskin::testing {
 
@@ -26,42 +22,11 @@ inline std::string slurp(const std::string& path) {
   return s.str();
 }
 
-class Process {
+// eskin::ChildProcess (common/eskin/process.h) with its output read back.
+class Process : public eskin::ChildProcess {
  public:
   Process(const std::vector<std::string>& argv, const std::string& out, const std::string& err)
-      : out_(out), err_(err) {
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    if (posix_spawn(&pid_, args[0], &fa, nullptr, args.data(), environ) != 0) pid_ = -1;
-    posix_spawn_file_actions_destroy(&fa);
-  }
-  ~Process() {
-    if (pid_ > 0 && !done_) {
-      ::kill(pid_, SIGKILL);
-      wait_exit(std::chrono::seconds(5));
-    }
-  }
-  bool started() const { return pid_ > 0; }
-  pid_t pid() const { return pid_; }
-  void signal(int sig) { ::kill(pid_, sig); }
-  // Exit code, 128 + signal when killed, -1 on timeout.
-  int wait_exit(std::chrono::milliseconds timeout) {
-    const auto end = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < end) {
-      int st = 0;
-      if (::waitpid(pid_, &st, WNOHANG) == pid_) {
-        done_ = true;
-        return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return -1;
-  }
+      : ChildProcess(argv, out, err), out_(out), err_(err) {}
   std::string out() const { return slurp(out_); }
   std::string err() const { return slurp(err_); }
   // Waits until `pred(text)` holds for stdout (or stderr).
@@ -76,8 +41,6 @@ class Process {
   }
 
  private:
-  pid_t pid_ = -1;
-  bool done_ = false;
   std::string out_, err_;
 };
 
