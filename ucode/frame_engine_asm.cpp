@@ -1,9 +1,13 @@
 // frame_engine_asm: the two-pass assembler (see the header).
 #include "ucode/frame_engine_asm.h"
 
+#include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
+#include <utility>
 
 #include "ucode/frame_engine.h"
 
@@ -33,61 +37,175 @@ bool reserved(const std::string& s) {
   return xreg_index(s) >= 0 || s == "a" || s == "A" || s == "p" || s == "P";
 }
 
+// Characters of a symbol after its first: a local label's scope is joined
+// to its name by '@' ("main@loop"), which no source text can spell.
+bool is_sym_char(char c) { return is_ident_char(c) || c == '@'; }
+
+// The mnemonics, which no macro may take.
+bool is_mnemonic(const std::string& s) {
+  for (const char* n : kDataNames)
+    if (n && s == n) return true;
+  for (const char* n : kCtlNames)
+    if (s == n) return true;
+  for (const char* n : {"j", "nop", "ldi", "addi", "lpac", "apac", "spac", "lta", "shlm", "shrm", "rndm"})
+    if (s == n) return true;
+  return false;
+}
+
+// The first white-space separated word of s, and the rest trimmed.
+std::pair<std::string, std::string> first_word(const std::string& s) {
+  size_t n = 0;
+  while (n < s.size() && !std::isspace(static_cast<unsigned char>(s[n]))) ++n;
+  return {s.substr(0, n), trim(s.substr(n))};
+}
+
+struct Macro {
+  std::string name, file;  // where it is defined
+  int line = 0;            // of its .macro
+  std::vector<std::string> params;
+  std::vector<std::pair<int, std::string>> body;  // (line, text)
+};
+
 // The assembler's state for one source.
 class Assembler {
  public:
   Assembler(const std::string& file, const Options& opt) : file_(file), opt_(opt) {
     for (const auto& [name, value] : opt.symbols) {
-      if (!is_symbol_name(name)) fail_at(0, "predefined symbol '" + name + "': not a valid name");
+      if (!is_symbol_name(name))
+        throw AsmError(file_ + ":0: predefined symbol '" + name + "': not a valid name");
       symbols_[name] = value;
     }
   }
 
   Program run(const std::string& source) {
-    std::vector<std::string> lines;
-    {
-      std::istringstream in(source);
-      std::string l;
-      while (std::getline(in, l)) lines.push_back(l);
-    }
+    const std::vector<std::string> lines = split_lines(source);
     for (int pass = 1; pass <= 2; ++pass) {
       pass_ = pass;
       addr_ = 0;
       conds_.clear();
-      for (size_t i = 0; i < lines.size(); ++i) {
-        line_ = int(i) + 1;
-        text_ = lines[i];
-        statement(lines[i]);
-      }
-      if (!conds_.empty()) fail_at(conds_.back().line, ".if: no .endif before the end of the file");
+      macros_.clear();
+      recording_.reset();
+      expansions_ = 0;
+      scope_.clear();
+      Frame top;
+      top.path = std::filesystem::path(file_).lexically_normal().generic_string();
+      top.name = file_;
+      stack_.assign(1, top);
+      read_lines(lines);
     }
     prog_.symbols = symbols_;
     return prog_;
   }
 
  private:
-  // ---- errors ---------------------------------------------------------------
-  [[noreturn]] void fail_at(int line, const std::string& msg) const {
-    throw AsmError(file_ + ":" + std::to_string(line) + ": " + msg);
+  // One source being read: the top file, an included file or one macro's
+  // expansion.
+  struct Frame {
+    std::string path;      // a file's normalised path (cycles, relative includes)
+    int line = 0;          // the line being assembled, 1-based
+    const Macro* macro = nullptr;  // an expansion: its macro (the lines are in macro->file)
+    std::string scope;     // an expansion: the scope of its @labels
+    size_t conds = 0;      // open .if blocks when it began
+    std::string name;      // a file: its name as given (errors, listing)
+    std::vector<std::string> args;  // an expansion: its arguments
+  };
+  // A place in the source, as errors print it: "FILE:LINE" and, inside a
+  // macro's expansion or an included file, where that came from.
+  struct Where {
+    std::string at, context;
+  };
+
+  static std::vector<std::string> split_lines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    std::string l;
+    while (std::getline(in, l)) lines.push_back(l);
+    return lines;
   }
-  [[noreturn]] void fail(const std::string& msg) const { fail_at(line_, msg); }
+
+  const std::string& frame_file(const Frame& f) const { return f.macro ? f.macro->file : f.name; }
+
+  Where where() const {
+    Where w;
+    w.at = frame_file(stack_.back()) + ":" + std::to_string(stack_.back().line);
+    for (size_t i = stack_.size() - 1; i > 0; --i) {
+      const Frame& parent = stack_[i - 1];
+      w.context += w.context.empty() ? " (" : ", ";
+      w.context += stack_[i].macro ? "in macro " + stack_[i].macro->name + " expanded at "
+                                   : std::string("included from ");
+      w.context += frame_file(parent) + ":" + std::to_string(parent.line);
+    }
+    if (!w.context.empty()) w.context += ")";
+    return w;
+  }
+
+  // The lines of the innermost frame, one statement each; then the checks
+  // that nothing it opened is left open.
+  void read_lines(const std::vector<std::string>& lines) {
+    for (size_t i = 0; i < lines.size(); ++i) {
+      stack_.back().line = int(i) + 1;
+      text_ = lines[i];
+      statement(lines[i]);
+    }
+    close_frame("the end of the file");
+  }
+
+  void close_frame(const std::string& end) {
+    if (recording_ && recording_frame_ == stack_.size())
+      fail_where(recording_where_, ".macro " + recording_->name + ": no .endm before " + end);
+    if (conds_.size() > stack_.back().conds)
+      fail_where(conds_.back().where, ".if: no .endif before " + end);
+  }
+
+  // ---- errors ---------------------------------------------------------------
+  [[noreturn]] void fail_where(const Where& w, const std::string& msg) const {
+    throw AsmError(w.at + ": " + msg + w.context);
+  }
+  [[noreturn]] void fail(const std::string& msg) const { fail_where(where(), msg); }
 
   static bool is_symbol_name(const std::string& s) {
     if (s.empty() || !is_ident_start(s[0])) return false;
     for (char c : s)
-      if (!is_ident_char(c)) return false;
+      if (!is_sym_char(c)) return false;
     return !reserved(s);
+  }
+
+  // ---- local labels -----------------------------------------------------------
+  // "@name" -> "SCOPE@name": SCOPE is the expansion's own in a macro's
+  // lines, else the last global label. A macro's arguments are scoped where
+  // it is invoked (this runs on the invocation line first), so `@done`
+  // passed in stays the caller's.
+  std::string scope_locals(const std::string& s) const {
+    std::string out;
+    for (size_t i = 0; i < s.size();) {
+      if (s[i] != '@' || (i > 0 && is_sym_char(s[i - 1]))) {
+        out += s[i++];
+        continue;
+      }
+      size_t e = i + 1;
+      while (e < s.size() && is_ident_char(s[e])) ++e;
+      const std::string name = s.substr(i, e - i);
+      if (name.size() < 2 || !is_ident_start(name[1]))
+        fail("local label: expected a name after '@' (a letter or '_' first), got '" +
+             s.substr(i, std::min<size_t>(e + 1, s.size()) - i) + "'");
+      const std::string& scope = stack_.back().macro ? stack_.back().scope : scope_;
+      if (scope.empty()) fail("local label '" + name + "': no global label above it to scope it");
+      out += scope + name;
+      i = e;
+    }
+    return out;
   }
 
   // ---- one line -----------------------------------------------------------------
   void statement(const std::string& raw) {
-    std::string s = raw.substr(0, raw.find(';'));
-    s = trim(s);
+    std::string s = trim(raw.substr(0, raw.find(';')));
+    if (recording_) return record(s);
     if (conditional(s)) return;
+    s = scope_locals(s);
     // Labels.
     for (;;) {
       size_t n = 0;
-      while (n < s.size() && is_ident_char(s[n])) ++n;
+      while (n < s.size() && is_sym_char(s[n])) ++n;
       if (n == 0 || n >= s.size() || s[n] != ':' || !is_ident_start(s[0])) break;
       define_label(s.substr(0, n));
       s = trim(s.substr(n + 1));
@@ -96,24 +214,195 @@ class Assembler {
       list_line();
       return;
     }
-    size_t n = 0;
-    while (n < s.size() && !std::isspace(static_cast<unsigned char>(s[n]))) ++n;
-    const std::string op = s.substr(0, n);
-    const std::string rest = trim(s.substr(n));
+    const auto [op, rest] = first_word(s);
     if (op == ".equ") return equ(rest);
     if (op == ".org") return org(rest);
     if (op == ".word") return word_directive(rest);
+    if (op == ".macro") return begin_macro(rest);
+    if (op == ".endm") fail(".endm: no .macro before it");
+    if (op == ".include") return include(rest);
     if (!op.empty() && op[0] == '.')
-      fail("directive: expected .equ, .org, .word, .if, .else or .endif, got " + op);
+      fail("directive: expected .equ, .org, .word, .if, .else, .endif, .macro, .endm or .include, got " + op);
+    const auto m = macros_.find(op);
+    if (m != macros_.end()) return expand(m->second, rest);
     emit(instruction(op, rest));
+  }
+
+  // ---- macros -----------------------------------------------------------------
+  // .macro NAME p1, p2 ... .endm: the lines between are kept, not assembled,
+  // until `NAME a1, a2` assembles them with `\p1` replaced by a1's text.
+  // Defined in the order of the source, like .equ: a macro is used below
+  // its definition.
+  void begin_macro(const std::string& rest) {
+    const auto [name, params_text] = first_word(rest);
+    if (name.empty()) fail(".macro: expected a name");
+    if (!is_symbol_name(name) || name.find('@') != std::string::npos)
+      fail(".macro: expected a name (a letter or '_', then letters, digits, '_'), got '" + name + "'");
+    if (is_mnemonic(name)) fail(".macro " + name + ": the name of an instruction");
+    const auto old = macros_.find(name);
+    if (old != macros_.end())
+      fail(".macro " + name + ": already defined at " + old->second.file + ":" +
+           std::to_string(old->second.line));
+    auto m = std::make_unique<Macro>();
+    m->name = name;
+    m->file = frame_file(stack_.back());
+    m->line = stack_.back().line;
+    if (!params_text.empty()) {
+      for (const std::string& p : split_commas(params_text)) {
+        if (!is_symbol_name(p) || p.find('@') != std::string::npos)
+          fail(".macro " + name + ": expected a parameter name, got '" + p + "'");
+        for (const auto& q : m->params)
+          if (q == p) fail(".macro " + name + ": parameter '" + p + "' twice");
+        m->params.push_back(p);
+      }
+    }
+    recording_ = std::move(m);
+    recording_frame_ = stack_.size();
+    recording_where_ = where();
+    list_line();
+  }
+
+  // A line of the macro being defined: kept as it is, or its .endm.
+  void record(const std::string& code) {
+    const auto [op, rest] = first_word(code);
+    if (op == ".macro")
+      fail(".macro: inside the definition of " + recording_->name + " (line " +
+           std::to_string(recording_->line) + "); expected its .endm first");
+    if (op == ".endm") {
+      if (!rest.empty()) fail(".endm: expected nothing after it, got '" + rest + "'");
+      const std::string name = recording_->name;
+      macros_.emplace(name, std::move(*recording_));
+      recording_.reset();
+    } else {
+      recording_->body.emplace_back(stack_.back().line, text_);
+    }
+    list_line();
+  }
+
+  void expand(const Macro& m, const std::string& rest) {
+    std::vector<std::string> args;
+    if (!rest.empty()) args = split_commas(rest);
+    if (args.size() != m.params.size()) {
+      std::string names;
+      for (const auto& p : m.params) names += (names.empty() ? "" : ", ") + p;
+      fail(m.name + ": expected " + std::to_string(m.params.size()) + " argument" +
+           (m.params.size() == 1 ? "" : "s") + (names.empty() ? "" : " (" + names + ")") + ", got " +
+           std::to_string(args.size()));
+    }
+    for (const auto& a : args)
+      if (a.empty()) fail(m.name + ": expected an argument between the commas");
+    for (const Frame& f : stack_) {
+      if (f.macro && f.macro->name == m.name) {
+        std::string chain;
+        for (const Frame& g : stack_)
+          if (g.macro) chain += g.macro->name + " -> ";
+        fail(m.name + ": a macro cannot expand itself (" + chain + m.name + ")");
+      }
+    }
+    list_line();
+    Frame f;
+    f.macro = &m;
+    f.scope = m.name + "@" + std::to_string(++expansions_);
+    f.conds = conds_.size();
+    f.args = args;
+    stack_.push_back(std::move(f));
+    for (const auto& [line, text] : m.body) {
+      stack_.back().line = line;
+      const std::string code = substitute(text);
+      text_ = code;
+      statement(code);
+    }
+    close_frame("the end of macro " + m.name);
+    stack_.pop_back();
+  }
+
+  // A macro line with its parameters replaced (in the code, not the comment).
+  std::string substitute(const std::string& text) const {
+    const Frame& f = stack_.back();
+    const size_t semi = text.find(';');
+    const std::string code = text.substr(0, semi);
+    std::string out;
+    for (size_t i = 0; i < code.size();) {
+      if (code[i] != '\\') {
+        out += code[i++];
+        continue;
+      }
+      size_t e = i + 1;
+      while (e < code.size() && is_ident_char(code[e])) ++e;
+      const std::string name = code.substr(i + 1, e - i - 1);
+      size_t k = 0;
+      while (k < f.macro->params.size() && f.macro->params[k] != name) ++k;
+      if (k == f.macro->params.size()) {
+        std::string names;
+        for (const auto& p : f.macro->params) names += (names.empty() ? "" : " ") + ("\\" + p);
+        fail(f.macro->name + ": '\\" + name + "' is not a parameter" +
+             (names.empty() ? " (it has none)" : " (expected one of " + names + ")"));
+      }
+      out += f.args[k];
+      i = e;
+    }
+    return semi == std::string::npos ? out : out + text.substr(semi);
+  }
+
+  // ---- .include "FILE" ----------------------------------------------------------
+  void include(const std::string& rest) {
+    if (rest.size() < 2 || rest.front() != '"' || rest.back() != '"' ||
+        rest.find('"', 1) != rest.size() - 1)
+      fail(".include: expected \"FILE\", got '" + rest + "'");
+    const std::string name = rest.substr(1, rest.size() - 2);
+    if (name.empty()) fail(".include: expected a file name between the quotes");
+    const Frame* file_frame = nullptr;  // the including file
+    for (const Frame& f : stack_)
+      if (!f.macro) file_frame = &f;
+    namespace fs = std::filesystem;
+    const fs::path base = fs::path(file_frame->path).parent_path();
+    const std::string path = (fs::path(name).is_absolute() ? fs::path(name) : base / name)
+                                 .lexically_normal().generic_string();
+    std::string chain;
+    bool cycle = false;
+    for (const Frame& f : stack_) {
+      if (f.macro) continue;
+      if (f.path == path) cycle = true;
+      if (cycle) chain += f.path + " -> ";
+    }
+    if (cycle) fail(".include: an include cycle (" + chain + path + ")");
+    auto cached = files_.find(path);
+    if (cached == files_.end()) {
+      std::string text;
+      bool ok = false;
+      if (opt_.read_include) {
+        ok = opt_.read_include(path, text);
+      } else {
+        std::ifstream in(path, std::ios::binary);
+        if (in) {
+          std::stringstream ss;
+          ss << in.rdbuf();
+          text = ss.str();
+          ok = bool(in) || in.eof();
+        }
+      }
+      if (!ok) fail(".include: cannot read \"" + path + "\"");
+      cached = files_.emplace(path, split_lines(text)).first;
+    }
+    list_line();
+    Frame f;
+    f.path = path;
+    f.name = path;
+    f.conds = conds_.size();
+    stack_.push_back(std::move(f));
+    read_lines(cached->second);
+    stack_.pop_back();
   }
 
   // ---- conditional assembly: .if EXPR / .else / .endif, nested ------------------
   // EXPR sees only the symbols defined above it (as .equ does), so both
   // passes take the same branches. Lines in a branch not taken are neither
-  // assembled nor listed: their labels do not exist.
+  // assembled nor listed: their labels do not exist. A block opened in an
+  // included file or a macro closes there.
   struct Cond {
-    int line;        // of the .if
+    Where where;     // of the .if
+    std::string file;
+    int line;
     bool outer;      // every enclosing branch is taken
     bool taken;      // this branch is taken
     bool seen_else;
@@ -122,9 +411,7 @@ class Assembler {
 
   // True when s is a conditional directive or a line inside a branch not taken.
   bool conditional(const std::string& s) {
-    size_t n = 0;
-    while (n < s.size() && !std::isspace(static_cast<unsigned char>(s[n]))) ++n;
-    const std::string op = s.substr(0, n), rest = trim(s.substr(n));
+    const auto [op, rest] = first_word(s);
     if (op == ".if") {
       bool taken = false;
       if (active()) {
@@ -133,17 +420,19 @@ class Assembler {
         if (rest.empty()) fail(".if: expected an expression");
         taken = eval(rest, ".if") != 0;
       }
-      conds_.push_back({line_, active(), taken, false});
+      conds_.push_back({where(), frame_file(stack_.back()), stack_.back().line, active(), taken, false});
       return true;
     }
     if (op == ".else" || op == ".endif") {
-      if (conds_.empty()) fail(op + ": no .if before it");
+      if (conds_.size() <= stack_.back().conds) fail(op + ": no .if before it");
       if (!rest.empty()) fail(op + ": expected nothing after it, got '" + rest + "'");
       if (op == ".endif") {
         conds_.pop_back();
       } else {
-        if (conds_.back().seen_else) fail(".else: a second .else for the .if of line " +
-                                          std::to_string(conds_.back().line));
+        const Cond& c = conds_.back();
+        if (c.seen_else)
+          fail(".else: a second .else for the .if of " +
+               (c.file == frame_file(stack_.back()) ? "line " + std::to_string(c.line) : c.where.at));
         conds_.back().seen_else = true;
         conds_.back().taken = !conds_.back().taken;
       }
@@ -158,6 +447,7 @@ class Assembler {
       if (symbols_.count(name)) fail("label '" + name + "': already defined");
       symbols_[name] = addr_;
     }
+    if (name.find('@') == std::string::npos) scope_ = name;
   }
 
   void equ(const std::string& rest) {
@@ -224,19 +514,36 @@ class Assembler {
     if (pass_ == 2) {
       if (prog_.words.size() <= addr_) {
         prog_.words.resize(addr_ + 1, 0);
-        written_.resize(addr_ + 1, 0);
+        written_.resize(addr_ + 1, {"", 0});
       }
-      if (written_[addr_])
-        fail("address " + std::to_string(addr_) + " already holds the word of line " +
-             std::to_string(written_[addr_]));
-      written_[addr_] = line_;
+      const std::string& file = frame_file(stack_.back());
+      const int line = stack_.back().line;
+      if (written_[addr_].second)
+        fail("address " + std::to_string(addr_) + " already holds the word of " +
+             (written_[addr_].first == file ? "line " : written_[addr_].first + ":") +
+             std::to_string(written_[addr_].second));
+      written_[addr_] = {file, line};
       prog_.words[addr_] = word;
-      prog_.listing.push_back({line_, true, addr_, word, continuation ? "" : text_});
+      list(true, word, continuation ? "" : text_);
     }
     ++addr_;
   }
   void list_line() {
-    if (pass_ == 2) prog_.listing.push_back({line_, false, addr_, 0, text_});
+    if (pass_ == 2) list(false, 0, text_);
+  }
+  void list(bool has_word, uint32_t word, const std::string& text) {
+    ListingLine l;
+    l.line = stack_.back().line;
+    l.has_word = has_word;
+    l.addr = addr_;
+    l.word = word;
+    l.text = text;
+    l.file = frame_file(stack_.back());
+    for (size_t i = stack_.size() - 1; i > 0 && stack_[i].macro; --i) {
+      if (l.depth++ == 0)
+        l.expanded_at = frame_file(stack_[i - 1]) + ":" + std::to_string(stack_[i - 1].line);
+    }
+    prog_.listing.push_back(std::move(l));
   }
 
   // ---- expressions ------------------------------------------------------------
@@ -329,7 +636,7 @@ class Assembler {
     if (std::isdigit(static_cast<unsigned char>(c))) return parse_number();
     if (is_ident_start(c)) {
       size_t e = pos_;
-      while (e < expr_.size() && is_ident_char(expr_[e])) ++e;
+      while (e < expr_.size() && is_sym_char(expr_[e])) ++e;
       const std::string name = expr_.substr(pos_, e - pos_);
       pos_ = e;
       if (reserved(name)) fail(what_ + ": '" + name + "' is a register, expected a value");
@@ -416,9 +723,9 @@ class Assembler {
     size_t i = 0;
     bool found = false;
     while (i < inner.size()) {
-      if (is_ident_start(inner[i]) && (i == 0 || !is_ident_char(inner[i - 1]))) {
+      if (is_ident_start(inner[i]) && (i == 0 || !is_sym_char(inner[i - 1]))) {
         size_t e = i;
-        while (e < inner.size() && is_ident_char(inner[e])) ++e;
+        while (e < inner.size() && is_sym_char(inner[e])) ++e;
         const int xi = xreg_index(inner.substr(i, e - i));
         if (xi >= 0) {
           if (found) fail(op + ": address: expected at most one index register");
@@ -572,14 +879,22 @@ class Assembler {
   Options opt_;
   std::map<std::string, int64_t> symbols_;
   Program prog_;
-  std::vector<int> written_;  // source line of each written address (0: free)
-  int pass_ = 1, line_ = 0;
-  std::string text_;
+  std::vector<std::pair<std::string, int>> written_;  // file, line of each written address (0: free)
+  int pass_ = 1;
+  std::string text_;  // the line being assembled, as the listing shows it
   uint32_t addr_ = 0;
   std::string expr_, what_;
   size_t pos_ = 0;
   bool strict_ = false;  // pass 1 tolerates labels not yet seen (only pass 2 encodes)
   std::vector<Cond> conds_;  // the open .if blocks, innermost last
+  std::vector<Frame> stack_;  // the top file, then each .include and expansion inside it
+  std::map<std::string, Macro> macros_;
+  std::unique_ptr<Macro> recording_;  // the macro being defined (between .macro and .endm)
+  size_t recording_frame_ = 0;        // stack_.size() at its .macro
+  Where recording_where_;
+  int expansions_ = 0;                // numbers each expansion's scope
+  std::string scope_;                 // the last global label: scope of @labels outside macros
+  std::map<std::string, std::vector<std::string>> files_;  // included files, read once
 };
 
 }  // namespace

@@ -5,7 +5,10 @@
 //
 // Source: one statement per line, `;` starts a comment.
 //   label:                     (may precede a statement on the same line)
+//   @local:                    (scoped to the last global label, or to one macro expansion)
 //   .equ NAME, expr            .org expr (IMEM address)   .word expr[, expr...]
+//   .if expr / .else / .endif  .include "FILE" (relative to the including file)
+//   .macro NAME p1, p2 ... .endm, invoked as `NAME arg1, arg2`; `\p1` in the body
 //   ld.h [V + x1]   add k[C]   ld io[PORT]   lt.h15 a   add p   ld 5   shl 12
 //   st [V + x2]     out io[PORT]   j.lt label   djnz x2, loop   call f   ret
 //   wait 0x1   sqrt   sqrtr   ldx x1, 3   addx x1, -1   tax x3   txa x3   nop
@@ -16,9 +19,12 @@
 // address), unary - ~, binary * + - << >> & |, parentheses (C precedence).
 // Every error names FILE:LINE and what was expected, e.g.
 //   "dtmf.fe:42: field: expected one of .w .wu .l .lu .h .l15 .h15 .b, got .x"
+// and, in a macro's expansion, the line that expanded it:
+//   "m.fe:3: j: target: undefined symbol 'q' (in macro EV expanded at m.fe:9)"
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -46,27 +52,42 @@ class AsmError : public std::runtime_error {
 struct Options {
   std::map<std::string, int64_t> symbols;  // predefined, e.g. the top's IO ports
   uint32_t imem_words = 4096;              // 2^IW: addresses and jump targets must fit
+  // Reads the file an `.include "NAME"` names: `path` is NAME joined to the
+  // including file's directory (lexically normalised). Returns false when
+  // there is no such file. Unset: read from the file system. A program built
+  // into a binary sets it, so that it assembles without its files on disk.
+  std::function<bool(const std::string& path, std::string& text)> read_include;
 };
 
 struct ListingLine {
-  int line = 0;           // source line (1-based)
+  int line = 0;           // line (1-based) in `file`
   bool has_word = false;  // the line emitted `word` at `addr`
   uint32_t addr = 0;
   uint32_t word = 0;
-  std::string text;       // the source line
+  std::string text;       // the source line (a macro's: with its arguments in place)
+  std::string file;       // the file the line is in (an included file's, a macro's definition's)
+  int depth = 0;          // > 0: a line of a macro's expansion, nested this deep
+  std::string expanded_at;  // depth > 0: "FILE:LINE" of the invocation it came from
 };
 
 struct Program {
   std::vector<uint32_t> words;  // IMEM image, address 0 .. highest address written
   std::map<std::string, int64_t> symbols;  // labels, .equ and predefined symbols
-  std::vector<ListingLine> listing;  // one entry per source line (and per extra .word)
+  // One entry per source line (and per extra .word), in assembly order: a
+  // macro's invocation, then its expansion's lines; an .include, then the
+  // included file's lines.
+  std::vector<ListingLine> listing;
 };
 
+// `file` names the source in errors and is where its .include names are
+// resolved from.
 Program assemble(const std::string& source, const std::string& file, const Options& opt = {});
 // Reads `path` and assembles it (AsmError if it cannot be read).
 Program assemble_file(const std::string& path, const Options& opt = {});
 
 // Listing: address, word, line number and source per line, then the symbols.
+// A line of a macro's expansion shows its line in the macro with a `+` per
+// level of expansion; a line of an included file shows FILE:LINE.
 std::string listing_text(const Program& prog);
 // $readmemh image: one 8-digit hex word per line from address 0.
 std::string readmemh_text(const std::vector<uint32_t>& words);
