@@ -94,6 +94,7 @@ class Assembler {
       read_lines(lines);
     }
     prog_.symbols = symbols_;
+    prog_.file = file_;
     return prog_;
   }
 
@@ -186,8 +187,7 @@ class Assembler {
       while (e < s.size() && is_ident_char(s[e])) ++e;
       const std::string name = s.substr(i, e - i);
       if (name.size() < 2 || !is_ident_start(name[1]))
-        fail("local label: expected a name after '@' (a letter or '_' first), got '" +
-             s.substr(i, std::min<size_t>(e + 1, s.size()) - i) + "'");
+        fail("local label: expected a name after '@' (a letter or '_' first), got '" + name + "'");
       const std::string& scope = stack_.back().macro ? stack_.back().scope : scope_;
       if (scope.empty()) fail("local label '" + name + "': no global label above it to scope it");
       out += scope + name;
@@ -201,15 +201,15 @@ class Assembler {
     std::string s = trim(raw.substr(0, raw.find(';')));
     if (recording_) return record(s);
     if (conditional(s)) return;
-    s = scope_locals(s);
-    // Labels.
+    // Labels, each scoped before the next: in "g: j @x" @x is g's.
     for (;;) {
       size_t n = 0;
       while (n < s.size() && is_sym_char(s[n])) ++n;
-      if (n == 0 || n >= s.size() || s[n] != ':' || !is_ident_start(s[0])) break;
-      define_label(s.substr(0, n));
+      if (n == 0 || n >= s.size() || s[n] != ':' || !(is_ident_start(s[0]) || s[0] == '@')) break;
+      define_label(scope_locals(s.substr(0, n)));
       s = trim(s.substr(n + 1));
     }
+    s = scope_locals(s);
     if (s.empty()) {
       list_line();
       return;
@@ -289,8 +289,8 @@ class Assembler {
            (m.params.size() == 1 ? "" : "s") + (names.empty() ? "" : " (" + names + ")") + ", got " +
            std::to_string(args.size()));
     }
-    for (const auto& a : args)
-      if (a.empty()) fail(m.name + ": expected an argument between the commas");
+    for (size_t i = 0; i < args.size(); ++i)
+      if (args[i].empty()) fail(m.name + ": argument " + std::to_string(i + 1) + " is empty");
     for (const Frame& f : stack_) {
       if (f.macro && f.macro->name == m.name) {
         std::string chain;

@@ -71,6 +71,7 @@ struct ListingLine {
 };
 
 struct Program {
+  std::string file;             // the top source's name, as assemble() was given it
   std::vector<uint32_t> words;  // IMEM image, address 0 .. highest address written
   std::map<std::string, int64_t> symbols;  // labels, .equ and predefined symbols
   // One entry per source line (and per extra .word), in assembly order: a

@@ -24,9 +24,15 @@ std::string listing_text(const Program& prog) {
   std::string out;
   char b[64];
   for (const auto& l : prog.listing) {
-    if (l.has_word) std::snprintf(b, sizeof b, "%04x  %08x  %5d  ", l.addr, l.word, l.line);
-    else std::snprintf(b, sizeof b, "%4s  %8s  %5d  ", "", "", l.line);
-    out += b + l.text + "\n";
+    // The line column: N, FILE:N for an included file's line, N+ (a `+` a
+    // level) for a line of a macro's expansion.
+    std::string at = std::to_string(l.line);
+    if (!l.file.empty() && l.file != prog.file) at = l.file + ":" + at;
+    at += std::string(size_t(l.depth), '+');
+    if (l.has_word) std::snprintf(b, sizeof b, "%04x  %08x  ", l.addr, l.word);
+    else std::snprintf(b, sizeof b, "%4s  %8s  ", "", "");
+    out += b + (at.size() < 5 ? std::string(5 - at.size(), ' ') : std::string()) + at + "  " +
+           l.text + "\n";
   }
   out += "\nsymbols:\n";
   for (const auto& [name, value] : prog.symbols) {
