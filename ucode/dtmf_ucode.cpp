@@ -23,6 +23,10 @@ fe_asm::Program assemble_for(const EngineImage& image) {
   fe_asm::Options o;
   for (const auto& [name, value] : image.symbols) o.symbols[name] = value;
   o.imem_words = kDtmfImemWords;
+  // The program is built into the binary, which may run far from a source
+  // tree: an .include must not read whatever file is at that path. Embed
+  // an included file beside kDtmfChainFe and answer it here.
+  o.read_include = [](const std::string&, std::string&) { return false; };
   return fe_asm::assemble(dtmf_ucode_source(), "rtl/ucode/dtmf_chain.fe", o);
 }
 }  // namespace
