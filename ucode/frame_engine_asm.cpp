@@ -299,6 +299,7 @@ class Assembler {
         fail(m.name + ": a macro cannot expand itself (" + chain + m.name + ")");
       }
     }
+    nest_check();
     list_line();
     Frame f;
     f.macro = &m;
@@ -314,6 +315,14 @@ class Assembler {
     }
     close_frame("the end of macro " + m.name);
     stack_.pop_back();
+  }
+
+  // Expansions and includes inside each other: a bound, against a cycle
+  // the checks above cannot see (one file under two names).
+  static constexpr size_t kMaxNesting = 64;
+  void nest_check() const {
+    if (stack_.size() > kMaxNesting)
+      fail("macros and .include nested more than " + std::to_string(kMaxNesting) + " deep");
   }
 
   // A macro line with its parameters replaced (in the code, not the comment).
@@ -366,6 +375,7 @@ class Assembler {
       if (cycle) chain += f.path + " -> ";
     }
     if (cycle) fail(".include: an include cycle (" + chain + path + ")");
+    nest_check();
     auto cached = files_.find(path);
     if (cached == files_.end()) {
       std::string text;

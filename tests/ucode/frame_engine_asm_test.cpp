@@ -250,6 +250,17 @@ TEST(FrameEngineAsmMacro, ErrorsNameTheLineAndTheExpansion) {
   EXPECT_EQ(error_of(".macro MA\nMB\n.endm\n.macro MB\nMA\n.endm\nnop\nMA\n"),
             "t.fe:5: MA: a macro cannot expand itself (MA -> MB -> MA) "
             "(in macro MB expanded at t.fe:2, in macro MA expanded at t.fe:8)");
+  // Nesting is bounded (a cycle the name checks cannot see: one file under two names).
+  std::string deep;
+  for (int i = 0; i < 70; ++i)  // M_i's .macro at line 3 i + 1, its body (M_i+1) at 3 i + 2
+    deep += ".macro M" + std::to_string(i) + "\nM" + std::to_string(i + 1) + "\n.endm\n";
+  deep += ".macro M70\nnop\n.endm\nM0\n";
+  const std::string too_deep = error_of(deep);  // M63's line invoking M64, 64 macros open
+  EXPECT_EQ(too_deep.rfind("t.fe:191: macros and .include nested more than 64 deep (in macro M63 expanded at "
+                           "t.fe:188, in macro M62 ", 0), 0u) << too_deep;
+  deep.resize(deep.find(".macro M63\n"));
+  deep += ".macro M63\nnop\n.endm\nM0\n";
+  EXPECT_EQ(fa::assemble(deep, "t.fe").words, (std::vector<uint32_t>{kNop}));  // 64 macros open: not too deep
   // A .if block closes where it opened.
   EXPECT_EQ(error_of(".macro M\n.if 1\n.endm\nM\n"),
             "t.fe:2: .if: no .endif before the end of macro M (in macro M expanded at t.fe:4)");
