@@ -309,7 +309,8 @@ TEST(FrameEngineAsmInclude, ErrorsNameTheFileAndTheLine) {
     fa::assemble_file(outer);
     ADD_FAILURE() << "no error";
   } catch (const fa::AsmError& e) {
-    EXPECT_EQ(std::string(e.what()), d + "/bad.fe:3: unknown instruction 'frob' (included from " + outer + ":2)");
+    EXPECT_EQ(std::string(e.what()),
+              d + "/bad.fe:3: unknown instruction 'frob' (included from " + outer + ":2)");
   }
   const std::string open_if = t.write("open_if.fe", ".if 1\n");
   const std::string inc_if = t.write("inc_if.fe", ".include \"open_if.fe\"\n.endif\n");
