@@ -92,6 +92,35 @@ TEST(Ucode, RunStopsAtAWaitUnlessItsEventsAreRaised) {
       << r.out;
 }
 
+// `.include` reads from disk, relative to the including file (not the
+// working directory): a macro from lib/, expanded in the program.
+TEST(Ucode, AsmReadsIncludedFilesBesideTheSource) {
+  const fs::path d = dir() / "inc";
+  fs::create_directories(d / "lib");
+  write(d / "lib" / "sum.fe",
+        "        .macro SUM3 u, v, w\n"
+        "        ld    \\u\n"
+        "        add   \\v\n"
+        "        add   \\w\n"
+        "        .endm\n");
+  write(d / "prog.fe",
+        "        .include \"lib/sum.fe\"\n"
+        "        SUM3  1, 2, 3\n"
+        "halt:   j     halt\n");
+  Result r = sh("ucode asm " + (d / "prog.fe").string() + " -o " + (d / "prog.hex").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  // ld 1 | add 2 | add 3 | j 3
+  EXPECT_EQ(read(d / "prog.hex"), "40000001\n44000002\n44000003\nc0000003\n");
+  write(d / "bad.fe", "        nop\n        .include \"lib/none.fe\"\n");
+  r = sh("ucode asm " + (d / "bad.fe").string() + " -o " + (d / "bad.hex").string());
+  EXPECT_EQ(r.status, 2) << r.out;  // usage: the input is wrong
+  EXPECT_NE(r.out.find((d / "bad.fe").string() + ":2: .include: cannot read \"" + (d / "lib/none.fe").string() +
+                       "\""),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(d / "bad.hex"));
+}
+
 TEST(Ucode, BadInputFailsNamingFileLineAndWhatWasExpected) {
   const fs::path d = dir();
   write(d / "bad.fe", "        nop\n        ld.x [1]\n");
