@@ -428,7 +428,7 @@ class Assembler {
         strict_ = true;
         struct Relax { bool& f; ~Relax() { f = false; } } relax{strict_};
         if (rest.empty()) fail(".if: expected an expression");
-        taken = eval(rest, ".if") != 0;
+        taken = eval(scope_locals(rest), ".if") != 0;
       }
       conds_.push_back({where(), frame_file(stack_.back()), stack_.back().line, active(), taken, false});
       return true;

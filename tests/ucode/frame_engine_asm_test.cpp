@@ -121,6 +121,12 @@ TEST(FrameEngineAsmMacro, LocalLabelsAreScopedToTheLastGlobalLabel) {
   EXPECT_EQ(p.symbols.at("f@lp"), 1);
   EXPECT_EQ(p.symbols.at("g@lp"), 4);
   EXPECT_EQ(p.symbols.at("g@out"), 9);
+  // .if and .equ see them too.
+  EXPECT_EQ(fa::assemble("g:  nop\n@x: nop\n    .equ @y, @x + 1\n    .if @y - 2\n    ld 9\n"
+                         "    .else\n    ld 7\n    .endif\n",
+                         "t.fe")
+                .words,
+            (std::vector<uint32_t>{kNop, kNop, imm(kLd, 7)}));
 }
 
 TEST(FrameEngineAsmMacro, ConditionalsInsideAMacroSeeItsArguments) {
