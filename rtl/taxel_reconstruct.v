@@ -44,7 +44,8 @@
 // that took the last magnitude (15 root stages, the line multiply, its
 // write, the phase change and 5 output stages), given sites_done by then;
 // then one taxel a clock, rows x cols clocks. in_ready rises again on the
-// clock after the last taxel's handshake. Output back-pressure: en_o =
+// clock after the last taxel's handshake: a frame every K + rows cols + 22
+// clocks (4246 for 64 x 64). Output back-pressure: en_o =
 // !out_valid || out_ready moves the whole output pipeline (as in
 // rtl/carrier_magnitude.v).
 module taxel_reconstruct #(

@@ -6,16 +6,16 @@ eskin_verilate(${exe} Vtaxel_reconstruct_x64 ${CMAKE_SOURCE_DIR}/rtl/taxel_recon
 # ECP5 synthesis (Yosys synth_ecp5, figures in build/synth/NAME/stat.txt) at
 # both sizes: one 15 x 30 multiplier (2 MULT18X18D) for every taxel and line
 # product, nothing else on a DSP.
-foreach(set "taxel_reconstruct_ecp5|-"
-            "taxel_reconstruct_x64_ecp5|--param;R_MAX=64;--param;C_MAX=64")
-  string(REPLACE "|" ";" parts "${set}")
-  list(GET parts 0 name)
-  list(SUBLIST parts 1 -1 params)
-  list(REMOVE_ITEM params "-")
-  add_test(NAME synth.${name}
-    COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ecp5.sh taxel_reconstruct ${params}
-      --out ${CMAKE_BINARY_DIR}/synth/${name})
-  set_tests_properties(synth.${name} PROPERTIES LABELS synth TIMEOUT 900
+foreach(tr_set "taxel_reconstruct_ecp5|-"
+               "taxel_reconstruct_x64_ecp5|--param;R_MAX=64;--param;C_MAX=64")
+  string(REPLACE "|" ";" tr_parts "${tr_set}")
+  list(GET tr_parts 0 tr_name)
+  list(SUBLIST tr_parts 1 -1 tr_params)
+  list(REMOVE_ITEM tr_params "-")
+  add_test(NAME synth.${tr_name}
+    COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ecp5.sh taxel_reconstruct ${tr_params}
+      --out ${CMAKE_BINARY_DIR}/synth/${tr_name})
+  set_tests_properties(synth.${tr_name} PROPERTIES LABELS synth TIMEOUT 900
     PASS_REGULAR_EXPRESSION "taxel_reconstruct: yosys LUT4 [0-9]+, FF [0-9]+, MULT18X18D 2,")
 endforeach()
 # The 64 x 64 block placed and routed for the ECP5-85F at 50 MHz: must fit

@@ -16,7 +16,7 @@
 // Timing (no gaps, no back-pressure): the K magnitudes on K consecutive
 // clocks, the first taxel 23 clocks after the last magnitude, then one
 // taxel a clock, and the next frame's first magnitude on the clock after
-// the last taxel: a frame every K + rows cols + 23 clocks.
+// the last taxel: a frame every K + rows cols + 22 clocks.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -91,7 +91,7 @@ std::vector<std::vector<uint16_t>> magnitudes(int K, int frames, std::mt19937_64
   std::vector<int> level(size_t(K), 2000);
   std::vector<std::vector<uint16_t>> out;
   for (int f = 0; f < frames; ++f) {
-    std::vector<uint16_t> m(size_t(K));
+    std::vector<uint16_t> m(static_cast<size_t>(K));
     const int kind = int(rng() % 20);
     for (int k = 0; k < K; ++k) {
       int& l = level[size_t(k)];
@@ -204,7 +204,7 @@ std::vector<Frame> plain_frames(const std::vector<std::pair<int, int>>& sizes, i
 }
 
 template <class V, int R_MAX, int C_MAX>
-struct Run {
+struct TaxelRun {
   ClockedDut<V> d;
   std::vector<TaxelOut> outs;
   std::vector<uint64_t> in_cycles, out_cycles, sites_cycles;
@@ -305,28 +305,28 @@ struct Run {
 
 TEST(TaxelReconstructRtl, BitExact3x3GhostUnderBackPressure) {
   const auto frames = ghost_frames<3, 3>(3, 3, 400, 31);
-  auto r = std::make_unique<Run<Vtaxel_reconstruct, 3, 3>>();
+  auto r = std::make_unique<TaxelRun<Vtaxel_reconstruct, 3, 3>>();
   r->stream(frames, 0.6, 0.5, 0.55, 32);
   r->expect_bit_exact(frames);
 }
 
 TEST(TaxelReconstructRtl, BitExact3x3NoGhostSmallerSkins) {
   const auto frames = plain_frames<3, 3>({{3, 3}, {2, 3}, {1, 1}, {3, 1}, {1, 2}}, 400, 33);
-  auto r = std::make_unique<Run<Vtaxel_reconstruct, 3, 3>>();
+  auto r = std::make_unique<TaxelRun<Vtaxel_reconstruct, 3, 3>>();
   r->stream(frames, 0.7, 0.8, 0.5, 34);
   r->expect_bit_exact(frames);
 }
 
 TEST(TaxelReconstructRtl, BitExact64x64GhostUnderBackPressure) {
-  const auto frames = ghost_frames<64, 64>(64, 64, 8, 35);
-  auto r = std::make_unique<Run<Vtaxel_reconstruct_x64, 64, 64>>();
+  const auto frames = ghost_frames<64, 64>(64, 64, 24, 35);
+  auto r = std::make_unique<TaxelRun<Vtaxel_reconstruct_x64, 64, 64>>();
   r->stream(frames, 0.5, 0.9, 0.6, 36);
   r->expect_bit_exact(frames);
 }
 
 TEST(TaxelReconstructRtl, BitExact64x64NoGhostSmallerSkins) {
-  const auto frames = plain_frames<64, 64>({{64, 64}, {17, 40}, {1, 64}, {64, 1}}, 8, 37);
-  auto r = std::make_unique<Run<Vtaxel_reconstruct_x64, 64, 64>>();
+  const auto frames = plain_frames<64, 64>({{64, 64}, {17, 40}, {1, 64}, {64, 1}}, 16, 37);
+  auto r = std::make_unique<TaxelRun<Vtaxel_reconstruct_x64, 64, 64>>();
   r->stream(frames, 0.9, 1.0, 0.3, 38);
   r->expect_bit_exact(frames);
 }
@@ -336,7 +336,7 @@ TEST(TaxelReconstructRtl, BitExact64x64NoGhostSmallerSkins) {
 template <class V, int R_MAX, int C_MAX>
 void one_a_clock(int rows, int cols) {
   const auto frames = plain_frames<R_MAX, C_MAX>({{rows, cols}}, 4, 41, true, true);
-  auto r = std::make_unique<Run<V, R_MAX, C_MAX>>();
+  auto r = std::make_unique<TaxelRun<V, R_MAX, C_MAX>>();
   r->stream(frames, 1.0, 1.0, 1.0, 42, true);
   r->expect_bit_exact(frames);
   const size_t K = size_t(rows + cols), T = size_t(rows * cols);
@@ -349,7 +349,7 @@ void one_a_clock(int rows, int cols) {
     EXPECT_EQ(last_out, first_out + T - 1) << "frame " << f << ": taxels not one a clock";
     if (f + 1 < frames.size()) {
       EXPECT_EQ(r->in_cycles[(f + 1) * K], last_out + 1) << "frame " << f;
-      EXPECT_EQ(r->in_cycles[(f + 1) * K] - first_in, K + T + 23) << "frame period";
+      EXPECT_EQ(r->in_cycles[(f + 1) * K] - first_in, K + T + 22) << "frame period";
     }
   }
 }
