@@ -40,12 +40,13 @@
 // frame's first magnitude to its last taxel's handshake.
 //
 // Timing (no stalls): magnitudes are taken one a clock while in_ready
-// (phase 1); the first taxel's out_valid rises 23 clocks after the clock
-// that took the last magnitude (15 root stages, the line multiply, its
-// write, the phase change and 5 output stages), given sites_done by then;
-// then one taxel a clock, rows x cols clocks. in_ready rises again on the
-// clock after the last taxel's handshake: a frame every K + rows cols + 22
-// clocks (4246 for 64 x 64). Output back-pressure: en_o =
+// (phase 1); the first taxel's out_valid rises 25 clocks after the clock
+// that took the last magnitude (15 root stages; the line product's
+// operands, multiply and write; the phase change; 6 output stages), or 7
+// clocks after sites_done if that comes later; then one taxel a clock,
+// rows x cols clocks. in_ready rises again on the clock after the last
+// taxel's handshake: a frame every K + rows cols + 24 clocks (4248 for
+// 64 x 64). Output back-pressure: en_o =
 // !out_valid || out_ready moves the whole output pipeline (as in
 // rtl/carrier_magnitude.v).
 module taxel_reconstruct #(
@@ -123,21 +124,37 @@ module taxel_reconstruct #(
   wire [14:0] mul_a = taxels ? rr_q : cfg_recip[14:0];
   wire [29:0] mul_b = taxels ? cq_q : {15'd0, r_root};
   wire mul_en = taxels ? en_o : 1'b1;
+  // Operands registered first: the column RAM's read (a block RAM's
+  // clock-to-out) and the DSP then each have a clock of their own.
+  reg [14:0] ma_q;
+  reg [29:0] mb_q;
   reg [44:0] m_q;
-  reg lv_q;            // m_q is a column product to store
-  reg [CA-1:0] lcol_q;
+  reg la_q, lv_q;      // ma/mb, m_q: a column product to store
+  reg [CA-1:0] lcola_q, lcol_q;
   always @(posedge clk) begin
-    if (mul_en) m_q <= mul_a * mul_b;
+    if (mul_en) begin
+      ma_q <= mul_a;
+      mb_q <= mul_b;
+      m_q <= ma_q * mb_q;
+    end
     if (r_row) row_mem[r_k[RA-1:0]] <= r_root;
-    lcol_q <= r_kc[CA-1:0];
+    lcola_q <= r_kc[CA-1:0];
+    lcol_q <= lcola_q;
     if (lv_q) col_mem[lcol_q] <= m_q[29:0];
     if (mask_we) mask_mem[mask_addr] <= mask_din;
-    if (rst) lv_q <= 1'b0;
-    else lv_q <= r_col && !taxels;
+    if (rst) begin
+      la_q <= 1'b0;
+      lv_q <= 1'b0;
+    end else begin
+      la_q <= r_col && !taxels;
+      lv_q <= la_q;
+    end
   end
 
-  // ---- Phase 2: taxels. Stage 1 reads the RAMs, 2 multiplies, 3 adds the
-  // rounding constant, 4 shifts and saturates, 5 is the output.
+  // ---- Phase 2: taxels. Stage 1 reads the RAMs, 2 registers the
+  // multiplier's operands, 3 multiplies, 4 adds the rounding constant, 5
+  // shifts and saturates, 6 is the output (stages 2 and 3 are ma_q/mb_q and
+  // m_q above; a, 2 .. 4 below are their companions).
   reg [RA-1:0] ti;
   reg [CA-1:0] tj;
   reg [MA-1:0] row_base;   // i * C_MAX
@@ -145,10 +162,10 @@ module taxel_reconstruct #(
   wire [7:0] rows_m1 = cfg_rows - 8'd1, cols_m1 = cfg_cols - 8'd1;
   wire t_lastcol = {{(8-CA){1'b0}}, tj} == cols_m1;
   wire t_lastrow = {{(8-RA){1'b0}}, ti} == rows_m1;
-  reg v1, v2, v3, v4;
-  reg [RA-1:0] i1, i2, i3, i4;
-  reg [CA-1:0] j1, j2, j3, j4;
-  reg l1, l2, l3, l4, mk1, mk2, mk3, mk4;
+  reg v1, va, v2, v3, v4;
+  reg [RA-1:0] i1, ia, i2, i3, i4;
+  reg [CA-1:0] j1, ja, j2, j3, j4;
+  reg l1, la, l2, l3, l4, mk1, mka, mk2, mk3, mk4;
   reg [31:0] s3;       // (product + 2^(s-1)) >> 14
   reg [15:0] g4;
   // The rounding constant 2^(s-1), s = recip_shift + 14: at most 2^44.
@@ -169,7 +186,8 @@ module taxel_reconstruct #(
       i1 <= ti;
       j1 <= tj;
       l1 <= t_lastrow && t_lastcol;
-      i2 <= i1; j2 <= j1; l2 <= l1; mk2 <= mk1;
+      ia <= i1; ja <= j1; la <= l1; mka <= mk1;
+      i2 <= ia; j2 <= ja; l2 <= la; mk2 <= mka;
       s3 <= sum[45:14];
       i3 <= i2; j3 <= j2; l3 <= l2; mk3 <= mk2;
       g4 <= gsat;
@@ -181,11 +199,11 @@ module taxel_reconstruct #(
       out_last <= l4;
     end
     if (rst) begin
-      v1 <= 1'b0; v2 <= 1'b0; v3 <= 1'b0; v4 <= 1'b0;
+      v1 <= 1'b0; va <= 1'b0; v2 <= 1'b0; v3 <= 1'b0; v4 <= 1'b0;
       out_valid <= 1'b0;
     end else if (en_o) begin
       v1 <= taxels && issuing;
-      v2 <= v1; v3 <= v2; v4 <= v3;
+      va <= v1; v2 <= va; v3 <= v2; v4 <= v3;
       out_valid <= v4;
     end
   end
@@ -206,7 +224,7 @@ module taxel_reconstruct #(
           if (in_hs && in_last) state <= S_DRAIN;
         S_DRAIN:
           // The last root and column product are stored.
-          if (!r_busy && !lv_q && (sites_in || sites_done)) begin
+          if (!r_busy && !la_q && !lv_q && (sites_in || sites_done)) begin
             state <= S_TAXELS;
             issuing <= 1'b1;
             ti <= {RA{1'b0}};

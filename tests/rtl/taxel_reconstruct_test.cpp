@@ -14,9 +14,9 @@
 // and 65535 magnitude units, and the extremes (32767, 0: saturation;
 // 1, 31: everything rounds to 0).
 // Timing (no gaps, no back-pressure): the K magnitudes on K consecutive
-// clocks, the first taxel 23 clocks after the last magnitude, then one
+// clocks, the first taxel 25 clocks after the last magnitude, then one
 // taxel a clock, and the next frame's first magnitude on the clock after
-// the last taxel: a frame every K + rows cols + 22 clocks.
+// the last taxel: a frame every K + rows cols + 24 clocks.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -349,22 +349,22 @@ void one_a_clock(int rows, int cols) {
     const uint64_t first_in = r->in_cycles[f * K], last_in = r->in_cycles[f * K + K - 1];
     EXPECT_EQ(last_in, first_in + K - 1) << "frame " << f << ": magnitudes not one a clock";
     const uint64_t first_out = r->out_cycles[f * T], last_out = r->out_cycles[f * T + T - 1];
-    EXPECT_EQ(first_out, last_in + 23) << "frame " << f;
+    EXPECT_EQ(first_out, last_in + 25) << "frame " << f;
     EXPECT_EQ(last_out, first_out + T - 1) << "frame " << f << ": taxels not one a clock";
     if (f + 1 < frames.size()) {
       EXPECT_EQ(r->in_cycles[(f + 1) * K], last_out + 1) << "frame " << f;
-      EXPECT_EQ(r->in_cycles[(f + 1) * K] - first_in, K + T + 22) << "frame period";
+      EXPECT_EQ(r->in_cycles[(f + 1) * K] - first_in, K + T + 24) << "frame period";
     }
   }
 }
 
-TEST(TaxelReconstructRtl, OneTaxelAClockLatency23) {
+TEST(TaxelReconstructRtl, OneTaxelAClockLatency25) {
   one_a_clock<Vtaxel_reconstruct, 3, 3>(3, 3);
   one_a_clock<Vtaxel_reconstruct_x64, 64, 64>(64, 64);
 }
 
 // The taxel phase waits for sites_done: with the roots stored and the mask
-// written, nothing comes out until the pulse; the first taxel 6 clocks
+// written, nothing comes out until the pulse; the first taxel 7 clocks
 // after it.
 TEST(TaxelReconstructRtl, TaxelsWaitForSitesDone) {
   ClockedDut<Vtaxel_reconstruct> d;
@@ -389,7 +389,7 @@ TEST(TaxelReconstructRtl, TaxelsWaitForSitesDone) {
   m.sites_done = 1;
   d.tick();
   m.sites_done = 0;
-  for (int c = 1; c < 6; ++c) {
+  for (int c = 1; c < 7; ++c) {
     m.eval();
     ASSERT_FALSE(m.out_valid) << c;
     d.tick();
