@@ -19,8 +19,9 @@
 // are in (sites_done, below), the taxels out row-major, one a clock:
 // {i, j, g, site, last}, last on (rows-1, cols-1). g = root_i c_j rounded:
 // the product root_i root_j recip is associative and exact, so one 15 x 30
-// multiply per taxel gives the kernel's value (2 MULT18X18D on the ECP5).
-// The same multiplier makes the line products of phase 1.
+// multiply per taxel gives the kernel's value (2 MULT18X18D on the ECP5;
+// none for a taxel off the mask when ghost is on: its operands are not
+// loaded). The same multiplier makes the line products of phase 1.
 //
 // Active-site mask: one bit per taxel in the mask RAM (R_MAX * C_MAX bits,
 // address i * C_MAX + j), written through mask_we/mask_addr/mask_din by its
@@ -120,6 +121,7 @@ module taxel_reconstruct #(
   // root_i x c_j (taxels).
   reg [14:0] rr_q;     // phase 2: root_i
   reg [29:0] cq_q;     // phase 2: c_j
+  reg mk1;             // phase 2: the mask bit of the taxel in rr_q, cq_q
   wire taxels = (state == S_TAXELS);
   wire [14:0] mul_a = taxels ? rr_q : cfg_recip[14:0];
   wire [29:0] mul_b = taxels ? cq_q : {15'd0, r_root};
@@ -132,11 +134,13 @@ module taxel_reconstruct #(
   reg la_q, lv_q;      // ma/mb, m_q: a column product to store
   reg [CA-1:0] lcola_q, lcol_q;
   always @(posedge clk) begin
-    if (mul_en) begin
+    // No product off the mask (ghost on): the operands hold, the DSP does
+    // not toggle; that taxel's g is never used (out_g 0, out_site 0).
+    if (mul_en && (!taxels || !cfg_ghost || mk1)) begin
       ma_q <= mul_a;
       mb_q <= mul_b;
-      m_q <= ma_q * mb_q;
     end
+    if (mul_en) m_q <= ma_q * mb_q;
     if (r_row) row_mem[r_k[RA-1:0]] <= r_root;
     lcola_q <= r_kc[CA-1:0];
     lcol_q <= lcola_q;
@@ -165,7 +169,7 @@ module taxel_reconstruct #(
   reg v1, va, v2, v3, v4;
   reg [RA-1:0] i1, ia, i2, i3, i4;
   reg [CA-1:0] j1, ja, j2, j3, j4;
-  reg l1, la, l2, l3, l4, mk1, mka, mk2, mk3, mk4;
+  reg l1, la, l2, l3, l4, mka, mk2, mk3, mk4;
   reg [31:0] s3;       // (product + 2^(s-1)) >> 14
   reg [15:0] g4;
   // The rounding constant 2^(s-1), s = recip_shift + 14: at most 2^44.
