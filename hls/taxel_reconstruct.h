@@ -3,7 +3,8 @@
 // (i, j) = amp(row i) * amp(col j); its geometric mean is the taxel's
 // conductance fraction when only that taxel of its row and column is
 // pressed). Bit-exact spec of the `taxel_reconstruct` routine of the frame
-// engine (rtl/ucode/dtmf_chain.fe).
+// engine (rtl/ucode/dtmf_chain.fe) and, in its streaming form
+// (TaxelReconstructStream, below), of the block rtl/taxel_reconstruct.v.
 //
 // Number formats
 //   mag_k   unsigned 16 bits (carrier_magnitude units), k = 0..K-1, rows
