@@ -11,7 +11,9 @@
 //
 // A frame: (1) the K = rows + cols magnitudes {k, mag, last} in, rows
 // first, one a clock (in_k is the line, the kernel's mag[k]; a k >= rows +
-// cols is dropped; last on the frame's final magnitude). Each goes through
+// cols is dropped; last on the frame's final magnitude; every line comes
+// every frame: a missing one keeps its stored value, a column's with the
+// recip it was stored with, where the kernel would rescale it). Each goes through
 // the pipelined root (isqrt_pipe, 15 stages); a row's root is kept in the
 // row RAM (R_MAX x 15 bits), a column's root is multiplied by recip once
 // (c_j = root_j recip < 2^30, exact) and kept in the column RAM
@@ -19,12 +21,13 @@
 // are in (sites_done, below), the taxels out row-major, one a clock:
 // {i, j, g, site, last}, last on (rows-1, cols-1). g = root_i c_j rounded:
 // the product root_i root_j recip is associative and exact, so one 15 x 30
-// multiply per taxel gives the kernel's value (2 MULT18X18D on the ECP5;
-// none for a taxel off the mask when ghost is on: its operands are not
-// loaded). The same multiplier makes the line products of phase 1.
+// multiply per taxel gives the kernel's value (one 15 x 30 multiplier: 2
+// MULT18X18D on the ECP5). Off the mask with ghost on there is no product:
+// the multiplier's operands are not loaded. The same multiplier makes the
+// line products of phase 1.
 //
 // Active-site mask: one bit per taxel in the mask RAM (R_MAX * C_MAX bits,
-// address i * C_MAX + j), written through mask_we/mask_addr/mask_din by its
+// address i * C_MAX + j; a DP16KD at 64 x 64), written through mask_we/mask_addr/mask_din by its
 // owner (the control plane or a ghost-filter block): the sites after the
 // ghost filter's frame() step for this frame, before its release step. The
 // block does the release step itself, per taxel (site = mask && g >=
@@ -47,9 +50,8 @@
 // clocks after sites_done if that comes later; then one taxel a clock,
 // rows x cols clocks. in_ready rises again on the clock after the last
 // taxel's handshake: a frame every K + rows cols + 24 clocks (4248 for
-// 64 x 64). Output back-pressure: en_o =
-// !out_valid || out_ready moves the whole output pipeline (as in
-// rtl/carrier_magnitude.v).
+// 64 x 64). Output back-pressure: en_o = !out_valid || out_ready moves the
+// whole output pipeline (as in rtl/carrier_magnitude.v).
 module taxel_reconstruct #(
     parameter integer R_MAX = 3,
     parameter integer C_MAX = 3,
