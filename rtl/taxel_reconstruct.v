@@ -13,8 +13,8 @@
 // first, one a clock (in_k is the line, the kernel's mag[k]; a k >= rows +
 // cols is dropped; last on the frame's final magnitude; every line comes
 // every frame: a missing one keeps its stored value, a column's with the
-// recip it was stored with, where the kernel would rescale it). Each goes through
-// the pipelined root (isqrt_pipe, 15 stages); a row's root is kept in the
+// recip it was stored with, where the kernel would rescale it). Each goes
+// through the pipelined root (isqrt_pipe, 15 stages); a row's root is kept in the
 // row RAM (R_MAX x 15 bits), a column's root is multiplied by recip once
 // (c_j = root_j recip < 2^30, exact) and kept in the column RAM
 // (C_MAX x 30 bits). (2) Once the last root is stored and the frame's sites
