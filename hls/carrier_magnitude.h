@@ -1,6 +1,7 @@
 // carrier_magnitude: complex window sum {k, re, im} -> magnitude {k, mag}.
 // Bit-exact executable spec of the `carrier_magnitude` routine of the frame
-// engine (rtl/ucode/dtmf_chain.fe) in rtl/dtmf_top.v.
+// engine (rtl/ucode/dtmf_chain.fe) in rtl/dtmf_top.v, and of the streaming
+// block rtl/carrier_magnitude.v (one carrier a clock, push() per token).
 //
 // Number formats
 //   in.re, in.im : signed ACC_W-bit integers (two's complement, ACC_W <= 32),

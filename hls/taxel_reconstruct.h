@@ -3,7 +3,8 @@
 // (i, j) = amp(row i) * amp(col j); its geometric mean is the taxel's
 // conductance fraction when only that taxel of its row and column is
 // pressed). Bit-exact spec of the `taxel_reconstruct` routine of the frame
-// engine (rtl/ucode/dtmf_chain.fe).
+// engine (rtl/ucode/dtmf_chain.fe) and, in its streaming form
+// (TaxelReconstructStream, below), of the block rtl/taxel_reconstruct.v.
 //
 // Number formats
 //   mag_k   unsigned 16 bits (carrier_magnitude units), k = 0..K-1, rows
@@ -86,6 +87,60 @@ class TaxelReconstruct {
  private:
   Config cfg_{};
   uint16_t root_[R_MAX + C_MAX] = {};
+};
+
+
+// Streaming form, element by element (the spec of rtl/taxel_reconstruct.v's
+// streams): a frame's magnitudes {k, mag, last} in, one at a time (k is the
+// line, rows first; a k >= rows + cols is dropped), then its taxels out
+// row-major, one per call, with the ghost filter's active-site mask applied
+// as DtmfChain applies it (hls/dtmf_chain.h): `mask` is the site bit after
+// GhostFilter::frame, `site` the bit after GhostFilter::release (kept while
+// g >= release), and g is 0 off a site when `ghost`.
+struct TaxelMagIn {
+  uint8_t k = 0;
+  uint16_t mag = 0;
+  bool last = false;
+};
+
+struct TaxelOut {
+  uint8_t i = 0, j = 0;
+  uint16_t g = 0;     // UQ1.15
+  bool site = false;  // mask && g >= release
+  bool last = false;  // (rows - 1, cols - 1)
+};
+
+template <int R_MAX, int C_MAX>
+class TaxelReconstructStream {
+ public:
+  using Config = TaxelReconstructConfig;
+  bool configure(const Config& c, const char** bad_field = nullptr) { return core_.configure(c, bad_field); }
+  const Config& config() const { return core_.config(); }
+
+  // One magnitude; true when it closes the frame (its line roots are then
+  // this frame's).
+  bool push(const TaxelMagIn& in) {
+    const Config& c = core_.config();
+    if (in.k < c.rows + c.cols) mag_[in.k] = in.mag;
+    if (in.last) core_.lines(mag_);
+    return in.last;
+  }
+  // Taxel n (row-major, 0 .. rows cols - 1) of the frame closed last.
+  TaxelOut taxel(int n, bool mask, bool ghost, uint16_t release) const {
+    const Config& c = core_.config();
+    TaxelOut o;
+    o.i = uint8_t(n / c.cols);
+    o.j = uint8_t(n % c.cols);
+    const uint16_t g = core_.value(o.i, o.j);
+    o.site = mask && g >= release;
+    o.g = (!ghost || o.site) ? g : 0;
+    o.last = n == c.rows * c.cols - 1;
+    return o;
+  }
+
+ private:
+  TaxelReconstruct<R_MAX, C_MAX> core_;
+  uint16_t mag_[R_MAX + C_MAX] = {};
 };
 
 }  // namespace eskin::hls

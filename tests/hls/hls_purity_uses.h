@@ -34,6 +34,7 @@ template uint32_t eskin::hls::isqrt<16>(uint32_t);
 #if __has_include("hls/taxel_reconstruct.h")
 #include "hls/taxel_reconstruct.h"
 template class eskin::hls::TaxelReconstruct<3, 3>;
+template class eskin::hls::TaxelReconstructStream<3, 3>;
 #endif
 
 #if __has_include("hls/izhikevich_layer.h")
