@@ -156,7 +156,7 @@ module synapse_weights #(
   // flags[k] = s(i + di, j + dj) at k = (di+1) * 3 + (dj+1).
   reg        v1, v2, last1, last2;
   reg [8:0]  flags;
-  reg signed [17:0] rsum [0:2];
+  reg signed [17:0] rsum0, rsum1, rsum2;  // row di = -1, 0, +1
   // Each weight sign-extended to a row sum's width, or 0 where no spike.
   wire signed [17:0] term [0:8];
   genvar k;
@@ -165,9 +165,8 @@ module synapse_weights #(
       assign term[k] = flags[k] ? {{2{w[16 * k + 15]}}, w[16 * k +: 16]} : 18'sd0;
     end
   endgenerate
-  wire signed [19:0] total = {{2{rsum[0][17]}}, rsum[0]} + {{2{rsum[1][17]}}, rsum[1]} +
-                             {{2{rsum[2][17]}}, rsum[2]};
-  integer r;
+  wire signed [19:0] total = {{2{rsum0[17]}}, rsum0} + {{2{rsum1[17]}}, rsum1} +
+                             {{2{rsum2[17]}}, rsum2};
   always @(posedge clk) begin
     if (rst) begin
       v1 <= 1'b0;
@@ -183,7 +182,9 @@ module synapse_weights #(
     if (en) begin
       flags <= {c_r[0], c_m[0], c_l[0], c_r[1], c_m[1], c_l[1], c_r[2], c_m[2], c_l[2]};
       last1 <= row_last && col_last;
-      for (r = 0; r < 3; r = r + 1) rsum[r] <= term[3 * r] + term[3 * r + 1] + term[3 * r + 2];
+      rsum0 <= term[0] + term[1] + term[2];
+      rsum1 <= term[3] + term[4] + term[5];
+      rsum2 <= term[6] + term[7] + term[8];
       last2 <= last1;
       out_x <= total;
       out_last <= last2;
