@@ -24,11 +24,15 @@
 //
 // Rate: one byte a clock on out_* from a packet's first byte to its last
 // while out_ready is high; a taxel a clock in while no dense packet is
-// written (two clocks a taxel while one is). The header is taken in the
-// clock after the last byte left out_data (idle); the dense packet's first
-// byte follows it by one clock, the sparse packet's by one after the last
-// taxel's last byte (the room check). out_data is stable while out_valid &&
-// !out_ready.
+// written (two clocks a taxel while one is). Timing with every stream
+// ready, in handshake edges (tests/rtl/taxel_packetizer_test.cpp checks
+// it): the dense packet's first byte 2 edges after its frame's header,
+// taxel k 10 + 2k after it; the sparse packet's first byte 2 edges after
+// the dense packet's last (3 after the last taxel without one: the room
+// check takes a clock); the next header 1 edge after the last byte (2
+// after the last taxel of a frame with no packet). A frame with both
+// packets thus holds the output for 7 + len_dense + 7 + len_sparse + 3
+// clocks. out_data is stable while out_valid && !out_ready.
 module taxel_packetizer #(
     parameter integer R = 3,   // rows, 1 .. 255 (a u8 in the packets)
     parameter integer C = 3    // columns, 1 .. 255; R C <= 16383 (sparse len u16)
