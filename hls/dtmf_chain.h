@@ -115,6 +115,7 @@ class DtmfChain {
   using Demix = CarrierDemix<K, N, S::ACC_W, S::DEMIX_W>;
   using Magnitude = CarrierMagnitude<S::DEMIX_W, 16, S::MAG_SHIFT>;
   using Taxels = TaxelPacketizer<R, C>;
+  static_assert(kSpikesPacketType == kDtmfSpikes, "one SPIKES type");
 
   struct Packet {
     uint8_t type = 0;
@@ -236,14 +237,7 @@ class DtmfChain {
     if (tax_sel)
       n += Taxels::frame(g_, t, cfg_.mask & kMaskTaxels, cfg_.mask & kMaskSparse, cfg_.sparse_min,
                          out + n);
-    if (win_end && record) {
-      uint32_t tw = 0;
-      const int ne = enc_.close(tw);
-      if (ne > 0) {
-        Packet& p = begin(out[n++], kDtmfSpikes, tw);
-        for (int b = 0; b < ne * kSpikeEventBytes; ++b) p.payload[p.len++] = enc_.events()[b];
-      }
-    }
+    if (win_end && record && enc_.close_packet(out[n])) ++n;
     return n;
   }
   static Packet& begin(Packet& p, uint8_t type, uint32_t t) {
