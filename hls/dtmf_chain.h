@@ -26,6 +26,7 @@
 //   0x02 TAXELS_DENSE   f % decim_tax == 0, mask bit 1: rows, cols, T x u16 g
 //   0x03 TAXELS_SPARSE  f % decim_tax == 0, mask bit 4: {row, col, g u16}
 //                       for every taxel with g >= max(1, sparse_min)
+//                       (both: taxel_packetizer)
 //   0x04 SPIKES         when a spike window (the decim_tax frames ending at
 //                       f % decim_tax == decim_tax - 1) closes with events,
 //                       mask bit 2: t = the window's first frame
@@ -48,17 +49,12 @@
 #include "hls/sdft_bank.h"
 #include "hls/spike_encoder.h"
 #include "hls/synapse_weights.h"
+#include "hls/taxel_packetizer.h"
 #include "hls/taxel_reconstruct.h"
 
 namespace eskin::hls {
 
-enum DtmfPacketType : uint8_t {
-  kDtmfAmplitudes = 0x01,
-  kDtmfTaxelsDense = 0x02,
-  kDtmfTaxelsSparse = 0x03,
-  kDtmfSpikes = 0x04,
-  kDtmfStatus = 0x05,
-};
+// The packet types (DtmfPacketType) are hls/taxel_packetizer.h's.
 
 // Output enable mask bits (SET_OUTPUT_MASK writes them).
 enum DtmfMaskBit : uint8_t {
@@ -118,6 +114,8 @@ class DtmfChain {
   using Bank = SdftBank<K + 1, N, S::XW, 16, 10, S::ACC_W>;
   using Demix = CarrierDemix<K, N, S::ACC_W, S::DEMIX_W>;
   using Magnitude = CarrierMagnitude<S::DEMIX_W, 16, S::MAG_SHIFT>;
+  using Taxels = TaxelPacketizer<R, C>;
+  static_assert(kSpikesPacketType == kDtmfSpikes, "one SPIKES type");
 
   struct Packet {
     uint8_t type = 0;
@@ -236,30 +234,10 @@ class DtmfChain {
       Packet& p = begin(out[n++], kDtmfAmplitudes, t);
       for (int k = 0; k < K; ++k) put16(p, mag_[k]);
     }
-    if (tax_sel && (cfg_.mask & kMaskTaxels)) {
-      Packet& p = begin(out[n++], kDtmfTaxelsDense, t);
-      p.payload[p.len++] = uint8_t(R);
-      p.payload[p.len++] = uint8_t(C);
-      for (int i = 0; i < T; ++i) put16(p, g_[i]);
-    }
-    if (tax_sel && (cfg_.mask & kMaskSparse)) {
-      Packet& p = begin(out[n++], kDtmfTaxelsSparse, t);
-      const uint16_t lo = cfg_.sparse_min > 1 ? cfg_.sparse_min : 1;
-      for (int i = 0; i < T; ++i) {
-        if (g_[i] < lo) continue;
-        p.payload[p.len++] = uint8_t(i / C);
-        p.payload[p.len++] = uint8_t(i % C);
-        put16(p, g_[i]);
-      }
-    }
-    if (win_end && record) {
-      uint32_t tw = 0;
-      const int ne = enc_.close(tw);
-      if (ne > 0) {
-        Packet& p = begin(out[n++], kDtmfSpikes, tw);
-        for (int b = 0; b < ne * kSpikeEventBytes; ++b) p.payload[p.len++] = enc_.events()[b];
-      }
-    }
+    if (tax_sel)
+      n += Taxels::frame(g_, t, cfg_.mask & kMaskTaxels, cfg_.mask & kMaskSparse, cfg_.sparse_min,
+                         out + n);
+    if (win_end && record && enc_.close_packet(out[n])) ++n;
     return n;
   }
   static Packet& begin(Packet& p, uint8_t type, uint32_t t) {

@@ -17,6 +17,7 @@
 namespace eskin::hls {
 
 constexpr int kSpikeEventBytes = 5;
+constexpr uint8_t kSpikesPacketType = 0x04;  // SPIKES (docs/protocol.md section 4)
 
 template <int MAX>
 class SpikeEncoder {
@@ -51,6 +52,21 @@ class SpikeEncoder {
     open_ = false;
     t_window = t0_;
     return n_;
+  }
+  // Closes the window into its SPIKES packet (any type with type, t, len
+  // and payload[] of MAX x 5 bytes): t = the window's first frame, the
+  // events as payload. No events: no packet (false). rtl/spike_encoder.v
+  // writes the same packet into the output FIFO.
+  template <class Packet>
+  bool close_packet(Packet& p) {
+    uint32_t tw = 0;
+    const int ne = close(tw);
+    if (ne == 0) return false;
+    p.type = kSpikesPacketType;
+    p.t = tw;
+    p.len = uint16_t(ne * kSpikeEventBytes);
+    for (int b = 0; b < p.len; ++b) p.payload[b] = ev_[b];
+    return true;
   }
   const uint8_t* events() const { return ev_; }
   uint32_t dropped() const { return dropped_; }

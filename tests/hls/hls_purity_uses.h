@@ -101,3 +101,19 @@ template class eskin::hls::ForceCurve<9, 13, 3>;
 #include "hls/hall_decouple.h"
 template class eskin::hls::HallDecouple<0>;
 #endif
+
+#if __has_include("hls/taxel_packetizer.h")
+#include "hls/taxel_packetizer.h"
+namespace eskin::hls::purity {
+struct TaxelPacket3x3 {
+  uint8_t type;
+  uint32_t t;
+  uint16_t len;
+  uint8_t payload[36];
+};
+}  // namespace eskin::hls::purity
+template struct eskin::hls::TaxelPacketizer<3, 3>;
+template int eskin::hls::TaxelPacketizer<3, 3>::frame(const uint16_t*, uint32_t, bool, bool,
+                                                      uint16_t,
+                                                      eskin::hls::purity::TaxelPacket3x3*);
+#endif

@@ -65,3 +65,28 @@ TEST(SpikeEncoderHls, OverflowingAWindowDropsAndCounts) {
 }
 
 }  // namespace
+
+// close_packet: the SPIKES packet as docs/protocol.md lays it out (bytes
+// written by hand): t = the window's first frame, 5 bytes an event; an
+// empty window makes none.
+TEST(SpikeEncoderHls, ClosePacketIsTheProtocolsSpikesPacket) {
+  struct Packet {
+    uint8_t type = 0;
+    uint32_t t = 0;
+    uint16_t len = 0;
+    uint8_t payload[4 * eskin::hls::kSpikeEventBytes] = {};
+  } p;
+  eskin::hls::SpikeEncoder<4> enc;
+  enc.frame(0x0001FFF0u);
+  enc.spike(0, 0x0102);
+  enc.frame(0x00020005u);  // dt = 0x15 (the window stays open)
+  enc.spike(1, 7);
+  ASSERT_TRUE(enc.close_packet(p));
+  EXPECT_EQ(p.type, 0x04);
+  EXPECT_EQ(p.t, 0x0001FFF0u);
+  ASSERT_EQ(p.len, 10);
+  const uint8_t want[10] = {0, 0, 0, 0x02, 0x01, 0x15, 0, 1, 7, 0};
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(p.payload[i], want[i]) << "byte " << i;
+  enc.frame(9);
+  EXPECT_FALSE(enc.close_packet(p));
+}
