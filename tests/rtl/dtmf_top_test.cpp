@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "Vdtmf_top.h"
 #include "Vdtmf_top___024root.h"
 #include "Vdtmf_top_s10.h"
@@ -40,7 +42,9 @@
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
 #include "eskin/dtmf_top_plan.h"
+#include "ucode/dtmf_io_map.h"
 #include "ucode/dtmf_ucode.h"
+#include "ucode/frame_engine_asm.h"
 #include "host/fpga/board.h"
 #include "host/fpga/engine_load.h"
 #include "host/fpga/flow.h"
@@ -652,6 +656,152 @@ TEST(DtmfTop, ScaleTable20x20AtOneMegasampleOnTheEcp5Core) {
 TEST(DtmfTop, ScaleTable32x32AtOneMegasampleWithTheAdcOnItsOwnClock) {
   scale_run_at_one_megasample<Vdtmf_top_s32m, eskin::hls::DtmfChainSizes<32, 32, 256>>(kS32M, 72,
                                                                                         44, 49);
+}
+
+
+
+// ---------------------------------------------------------------------------
+// The microcode's timing contracts as simulation assertions (--assert, as
+// every build of the top): a microcode that breaks one stops the top with
+// the assertion's message. Each contract is broken by a few instructions
+// loaded over the build's microcode (IMEM, before the first clock) and the
+// run must die naming it; the same instructions with the contract kept
+// run on. The C++ port models (ucode/engine_ports.h, dtmf_top_bus.h) check
+// the same rules in the microcode tests.
+
+eskin::hls::fe_asm::Program assemble_io(const std::string& src) {
+  eskin::hls::fe_asm::Options opt;
+  for (const auto& e : eskin::hls::kDtmfIoPorts) opt.symbols[e.symbol] = e.value;
+  for (const auto& e : eskin::hls::kDtmfEvents) opt.symbols[e.symbol] = e.value;
+  opt.imem_words = 2048;  // IW 11, every build's
+  return eskin::hls::fe_asm::assemble(src + "halt:   j halt\n", "contract.fe", opt);
+}
+
+// The build's top with `src` in IMEM from address 0, run `clocks` clocks.
+template <class M>
+void run_program(const Build& k, const std::vector<uint32_t>& words, int cpb, uint64_t clocks) {
+  Board<M> b(std::vector<uint16_t>(4096, 2048), double(k.clk_hz), cpb, double(k.adc_clk_hz));
+  auto& imem = b.root().dtmf_top__DOT__u_eng__DOT__imem;
+  for (size_t i = 0; i < words.size(); ++i) imem[i] = words[i];
+  b.run_cycles(clocks);
+}
+
+// `bad` must stop the top with a message matching `message`; `good` must not.
+template <class M>
+void expect_contract(const Build& k, const std::string& bad, const std::string& good,
+                     const std::string& message) {
+  const BuildSetup s = prepare(k);  // the build's files exist (its $readmemh)
+  const auto b = assemble_io(bad).words, g = assemble_io(good).words;
+  run_program<M>(k, g, s.cpb, 400);  // dies here if `good` breaks a contract
+  ::testing::FLAGS_gtest_death_test_style = "threadsafe";
+  EXPECT_DEATH(
+      {
+        dup2(2, 1);  // Verilator prints the assertion on stdout
+        run_program<M>(k, b, s.cpb, 400);
+      },
+      message);
+}
+
+TEST(DtmfTopContracts, NoFifoWriteInTheClockAfterAWordWrite) {
+  expect_contract<Vdtmf_top>(kDefault,
+                             "        ld 0x4142\n        out io[IO_OUT_WORD]\n"
+                             "        out io[IO_OUT_BYTE]\n",
+                             "        ld 0x4142\n        out io[IO_OUT_WORD]\n        nop\n"
+                             "        out io[IO_OUT_BYTE]\n",
+                             "dtmf_top: the microcode wrote the output FIFO in the clock after an "
+                             "IO_OUT_WORD write");
+}
+
+TEST(DtmfTopContracts, NoDftCarrierBeyondTheBuilds) {
+  // The default build has KS = 7 channels: carriers 0..6.
+  expect_contract<Vdtmf_top>(kDefault,
+                             "        ld 7\n        out io[IO_SDFT_K]\n        ld 100\n"
+                             "        out io[IO_SDFT_INC]\n",
+                             "        ld 6\n        out io[IO_SDFT_K]\n        ld 100\n"
+                             "        out io[IO_SDFT_INC]\n",
+                             "dtmf_top: the microcode wrote DFT carrier 7; the build has 7");
+}
+
+TEST(DtmfTopContracts, NoNeuronUnitStartWhileItRuns) {
+  expect_contract<Vdtmf_top_s10unit>(
+      kS10Unit, "        out io[IO_IZ_GO]\n        out io[IO_IZ_GO]\n",
+      "        out io[IO_IZ_GO]\n        wait EV_IZ_DONE\n        out io[IO_IZ_GO]\n",
+      "dtmf_top: the microcode started the neuron unit while it ran");
+}
+
+TEST(DtmfTopContracts, NoNeuronUnitConstantWhileItRuns) {
+  expect_contract<Vdtmf_top_s10unit>(
+      kS10Unit, "        out io[IO_IZ_GO]\n        out io[IO_IZ_CFG + 2]\n",
+      "        out io[IO_IZ_GO]\n        wait EV_IZ_DONE\n        out io[IO_IZ_CFG + 2]\n",
+      "izhikevich_layer: constant word 2 written while an update runs");
+}
+
+TEST(DtmfTopContracts, NoLevelStartOfAChangeInputLayer) {
+  expect_contract<Vdtmf_top_s10unit>(
+      kS10Unit, "        ld 1\n        out io[IO_IZ_CFG + 16]\n        out io[IO_IZ_UGO]\n",
+      "        ld 0\n        out io[IO_IZ_CFG + 16]\n        out io[IO_IZ_UGO]\n",
+      "dtmf_top: the microcode started the neuron unit by its U write with input_change set");
+}
+
+// The lanes (s16m: 5 lanes, 16 columns): six starts 2 clocks apart reach
+// lane 0 again 10 clocks after its start (it takes one after 14); 4 apart,
+// after 20.
+TEST(DtmfTopContracts, NoLaneStartWhileThatLaneRuns) {
+  expect_contract<Vdtmf_top_s16m>(
+      kS16M, "        ldx x1, 6\nl:      out io[IO_IZ_XGO]\n        djnz x1, l\n",
+      "        ldx x1, 6\nl:      out io[IO_IZ_XGO]\n        nop\n        nop\n        djnz x1, l\n",
+      "izhikevich_lanes: neuron 5 started on lane 0 while that lane runs");
+}
+
+TEST(DtmfTopContracts, NoLaneWritesWhileTheLanesRun) {
+  const std::string wait = "        out io[IO_IZ_XGO]\n        wait EV_IZ_DONE\n";
+  // A constant word: the lanes' assertion, or the running lane's own.
+  expect_contract<Vdtmf_top_s16m>(kS16M,
+                                  "        out io[IO_IZ_XGO]\n        out io[IO_IZ_CFG + 2]\n",
+                                  wait + "        out io[IO_IZ_CFG + 2]\n",
+                                  "constant word 2 written while");
+  expect_contract<Vdtmf_top_s16m>(kS16M, "        out io[IO_IZ_XGO]\n        out io[IO_IZ_N]\n",
+                                  wait + "        out io[IO_IZ_N]\n",
+                                  "izhikevich_lanes: the next neuron set while the lanes run");
+  expect_contract<Vdtmf_top_s16m>(kS16M, "        out io[IO_IZ_XGO]\n        out io[IO_IZ_SU]\n",
+                                  wait + "        out io[IO_IZ_SU]\n",
+                                  "izhikevich_lanes: neuron 1 initialised while the lanes run");
+}
+
+TEST(DtmfTopContracts, LaneEventsOnlyOnceWrittenBackAndOnlyThoseThereAre) {
+  expect_contract<Vdtmf_top_s16m>(
+      kS16M, "        out io[IO_IZ_XGO]\n        ld io[IO_IZ_EVN]\n",
+      "        out io[IO_IZ_XGO]\n        wait EV_IZ_DONE\n        ld io[IO_IZ_EVN]\n",
+      "dtmf_top: the microcode read the spike events \\(address 020f\\) while the neuron lanes ran");
+  // No neuron has spiked: there is no event 0.
+  expect_contract<Vdtmf_top_s16m>(kS16M, "        ld io[IO_IZ_EV]\n", "        ld io[IO_IZ_EVN]\n",
+                                  "dtmf_top: the microcode read spike event 0 of 0");
+}
+
+// Neuron 0 is written back 15 clocks after its start; its flag is read at
+// 0x1000 + 16 (with the rows above and below) in every clock from the
+// start on, so one read shares that clock. Neuron 40's flag column (56)
+// holds none of neuron 0's copies (0, 16, 32).
+TEST(DtmfTopContracts, NoLaneFlagReadInItsWriteClock) {
+  std::string bad = "        out io[IO_IZ_XGO]\n", good = bad;
+  for (int i = 0; i < 24; ++i) {
+    bad += "        ld io[IO_IZ_FLAG + 16]\n";
+    good += "        ld io[IO_IZ_FLAG + 56]\n";
+  }
+  expect_contract<Vdtmf_top_s16m>(kS16M, bad, good,
+                                  "dtmf_top: the microcode read neuron 0's spike flag in the clock "
+                                  "that writes it");
+}
+
+// The return stack's overflow (rtl/frame_engine.v) stops the top too.
+TEST(DtmfTopContracts, NoThirdNestedCall) {
+  expect_contract<Vdtmf_top>(kDefault,
+                             "        call one\n        j halt\none:    call two\ntwo:    call three\n"
+                             "three:  j three\n",
+                             "        call one\n        j halt\none:    call two\n        ret\n"
+                             "two:    ret\n",
+                             "frame_engine: return stack overflow: the call at PC 3 is a third "
+                             "nested call");
 }
 
 }  // namespace
