@@ -109,6 +109,10 @@ module dtmf_top #(
         (ENGINE_FAST_SHIFT != 0 && ENGINE_FAST_SHIFT != 1) ||
         SDFT_LANES < 1 || SDFT_LANES > 16 || SDFT_LANES > KS ||
         (NEURON_UNIT != 0 && NEURON_UNIT != 1) || ADC_CLK_HZ < 0 ||
+        NEURON_BITS < 1 || NEURON_BITS > 30 ||
+        // the lanes' flag address io_raddr[NEURON_BITS:0] must stay below
+        // its select bit (IO_IZ_FLAG: bit 12), the events' below bit 13
+        (NEURON_LANES != 0 && NEURON_BITS > 11) ||
         (NEURON_LANES != 0 && (NEURON_UNIT != 1 || NEURON_LANES < 2 || NEURON_LANES > 8))) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
