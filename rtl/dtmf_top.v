@@ -215,6 +215,7 @@ module dtmf_top #(
       // count) and while rst is high, through two adc_clk flip-flops.
       wire a_rst;
       power_on_reset u_adc_por (.clk(adc_clk), .rst_n(!rst), .rst(a_rst));
+      wire p_adc_rst /* verilator public_flat_rd */ = a_rst;  // probe (tests)
       (* ASYNC_REG = "TRUE" *) reg [1:0] a_en_q;
       (* ASYNC_REG = "TRUE" *) reg [2:0] a_clear_q;
       always @(posedge adc_clk) begin
@@ -506,5 +507,6 @@ module dtmf_top #(
   wire [15:0] p_out_overflows /* verilator public_flat_rd */ = out_overflows;
   wire p_fr_fire /* verilator public_flat_rd */ = link_fire;
   wire [7:0] p_seq /* verilator public_flat_rd */ = link_seq;
+  wire p_rst /* verilator public_flat_rd */ = rst;
 endmodule
 `default_nettype wire

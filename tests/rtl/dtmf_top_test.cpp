@@ -661,6 +661,89 @@ TEST(DtmfTop, ScaleTable32x32AtOneMegasampleWithTheAdcOnItsOwnClock) {
 
 
 // ---------------------------------------------------------------------------
+// Reset: rst_n low for one clock (a glitch the synchroniser catches once)
+// while the engine works on a frame. The top's reset lasts 16 clocks
+// (rtl/power_on_reset.v stretches it: the frame engine needs at least two,
+// and the ADC's clock domain must see it), and the top restarts as from
+// power-on: the packets that leave after the reset equal the chain's from
+// a fresh start on the samples converted after it (t from 0 again).
+// `adc_reset`: whether the ADC's own reset is high now (a build with
+// ADC_CLK_HZ; else null).
+template <class M, class S>
+void reset_in_a_frame(const Build& k, BuildSetup s, int frames_after,
+                      std::initializer_list<uint8_t> types,
+                      const std::function<bool(Board<M>&)>& adc_reset = {}) {
+  Board<M> b(s.codes12, double(k.clk_hz), s.cpb, double(k.adc_clk_hz));
+  while (b.frames_done < 3) b.tick();
+  while (!b.root().dtmf_top__DOT__p_frame_fire) b.tick();
+  b.run_cycles(40);  // the engine is on this frame (it takes thousands of clocks)
+  ASSERT_TRUE(b.root().dtmf_top__DOT__p_frame_fire) << "the frame was done within 40 clocks";
+  const size_t frames_before = b.received().size();
+  ASSERT_GT(frames_before, 0u);
+  b.set_rst_n(false);
+  b.tick();
+  b.set_rst_n(true);
+  const uint64_t pulse = b.cycle();
+  int rst_clocks = 0;
+  bool adc_reset_seen = false;
+  for (int i = 0; i < 200; ++i) {
+    b.tick();
+    rst_clocks += b.root().dtmf_top__DOT__p_rst;
+    if (adc_reset) adc_reset_seen = adc_reset_seen || adc_reset(b);
+  }
+  EXPECT_EQ(rst_clocks, 16) << "clocks of reset after a one-clock rst_n pulse";
+  if (adc_reset) EXPECT_TRUE(adc_reset_seen) << "the ADC's clock domain was not reset";
+  // The ADC starts when the rebooted engine's carrier table is written.
+  const size_t loads = b.carrier_loads.size();
+  while (b.carrier_loads.size() == loads && b.cycle() < pulse + 2000000) b.tick();
+  ASSERT_EQ(b.carrier_loads.size(), loads + 1) << "the engine did not boot again";
+  const size_t j0 = b.adc().samples_taken();
+  const size_t n = size_t(s.plan.N + (frames_after + 2) * s.plan.step);
+  ASSERT_LE(j0 + n, s.codes12.size());
+  while (b.adc().samples_taken() < j0 + n) b.tick();
+  BuildSetup fresh = s;
+  fresh.codes12.assign(s.codes12.begin() + long(j0), s.codes12.end());
+  const auto want = run_chain<S>(fresh, n);
+  std::vector<Received> after;
+  for (const auto& r : b.received())
+    if (r.start_cycle > pulse) after.push_back(r);
+  ASSERT_FALSE(after.empty()) << "no packet after the reset";
+  EXPECT_EQ(after.front().p.seq, 0) << "the link framer restarted";
+  const uint32_t limit = uint32_t(s.plan.N + frames_after * s.plan.step);
+  expect_same_packets(want, after, types, limit);
+  std::printf("%s: reset after %zu packets, %d clocks; %zu packets after it, the first t %u\n",
+              k.name.c_str(), frames_before, rst_clocks, after.size(), after.front().p.t);
+}
+
+TEST(DtmfTop, AOneClockResetPulseInAFrameRestartsTheTopAsFromPowerOn) {
+  const BuildSetup s = prepare(kDefault);
+  const int frames = std::max(30, 8 * int(s.plan.decim_tax));
+  reset_in_a_frame<Vdtmf_top, eskin::hls::DtmfChainSizes<3, 3, 32>>(
+      kDefault, s, frames,
+      {eskin::link::kAmplitudes, eskin::link::kTaxelsDense, eskin::link::kSpikes});
+}
+
+// The same with both clocks running (the 32x32 build: the ADC on its own
+// 40 MHz clock, the core at 50 MHz): rst, one 20 ns clock at 50 MHz
+// before the stretch, reaches the ADC's domain (rtl/stream_cdc.v's reset
+// contract: both sides reset, no sample in flight across it), whose reset
+// the test sees; the amplitudes of every frame after the reset equal the
+// chain's from a fresh start.
+TEST(DtmfTop, AResetInAFrameWithBothClocksRunningRestartsBothDomains) {
+  BuildSetup s = prepare(kS32M);
+  const auto& sp = s.plan.spec;
+  const double full = sp.full_carrier_lsb * std::ldexp(1.0, 12 - sp.adc_bits);
+  std::vector<double> f(s.scene.skin.row_freq_hz);
+  f.insert(f.end(), s.scene.skin.col_freq_hz.begin(), s.scene.skin.col_freq_hz.end());
+  s.codes12 = dtmf_stimulus::random_carrier_codes(f, sp.sample_hz, full, 20 * s.plan.step,
+                                                  3 * s.plan.step, 7);
+  reset_in_a_frame<Vdtmf_top_s32m, eskin::hls::DtmfChainSizes<32, 32, 256>>(
+      kS32M, s, 7, {eskin::link::kAmplitudes}, [](Board<Vdtmf_top_s32m>& b) {
+        return b.root().dtmf_top__DOT__g_adc_clock__DOT__p_adc_rst != 0;
+      });
+}
+
+// ---------------------------------------------------------------------------
 // The microcode's timing contracts as simulation assertions (--assert, as
 // every build of the top): a microcode that breaks one stops the top with
 // the assertion's message. Each contract is broken by a few instructions
