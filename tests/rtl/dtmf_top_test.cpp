@@ -804,7 +804,6 @@ void expect_contract(const Build& k, const std::string& bad, const std::string& 
   const BuildSetup s = prepare(k);  // the build's files exist (its $readmemh)
   const auto b = assemble_io(bad).words, g = assemble_io(good).words;
   run_program<M>(k, g, s.cpb, 400);  // dies here if `good` breaks a contract
-  ::testing::FLAGS_gtest_death_test_style = "threadsafe";
   EXPECT_DEATH(
       {
         dup2(2, 1);  // Verilator prints the assertion on stdout
