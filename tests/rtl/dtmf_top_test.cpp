@@ -720,9 +720,9 @@ void reset_in_a_frame(const Build& k, BuildSetup s, int frames_after, int drain_
   // it decodes is the second.
   const auto first = std::find(want.begin(), want.end(),
                                Key{after.front().p.type, after.front().p.t, after.front().p.payload});
-  ASSERT_NE(first, want.end()) << "the first packet after the reset is none of the chain's: "
-                               << str(Key{after.front().p.type, after.front().p.t,
-                                          after.front().p.payload});
+  ASSERT_NE(first, want.end()) << "the first packet after the reset (type "
+                               << int(after.front().p.type) << ", t " << after.front().p.t
+                               << ") is none of the chain's";
   const long lost = first - want.begin();
   EXPECT_LE(lost, 1) << "packets lost after the reset";
   EXPECT_EQ(after.front().p.seq, lost) << "the link framer restarted";
