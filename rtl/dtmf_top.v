@@ -109,6 +109,10 @@ module dtmf_top #(
         (ENGINE_FAST_SHIFT != 0 && ENGINE_FAST_SHIFT != 1) ||
         SDFT_LANES < 1 || SDFT_LANES > 16 || SDFT_LANES > KS ||
         (NEURON_UNIT != 0 && NEURON_UNIT != 1) || ADC_CLK_HZ < 0 ||
+        NEURON_BITS < 1 || NEURON_BITS > 30 ||
+        // the lanes' flag address io_raddr[NEURON_BITS:0] must stay below
+        // its select bit (IO_IZ_FLAG: bit 12), the events' below bit 13
+        (NEURON_LANES != 0 && NEURON_BITS > 11) ||
         (NEURON_LANES != 0 && (NEURON_UNIT != 1 || NEURON_LANES < 2 || NEURON_LANES > 8))) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
@@ -211,6 +215,7 @@ module dtmf_top #(
       // count) and while rst is high, through two adc_clk flip-flops.
       wire a_rst;
       power_on_reset u_adc_por (.clk(adc_clk), .rst_n(!rst), .rst(a_rst));
+      wire p_adc_rst /* verilator public_flat_rd */ = a_rst;  // probe (tests)
       (* ASYNC_REG = "TRUE" *) reg [1:0] a_en_q;
       (* ASYNC_REG = "TRUE" *) reg [2:0] a_clear_q;
       always @(posedge adc_clk) begin
@@ -296,6 +301,22 @@ module dtmf_top #(
     word_held <= !rst && wr_word;
     if (wr_word) word_hi <= io_wdata[15:8];
   end
+`ifndef SYNTHESIS
+  // The microcode's contracts with the top's ports, checked in simulation
+  // (Verilator --assert, every build of a top) as the C++ port models
+  // (ucode/engine_ports.h, ucode/dtmf_top_bus.h) check them in the
+  // microcode tests: the word's second byte has the FIFO's write port to
+  // itself; a DFT carrier exists.
+  always @(posedge clk)
+    if (!rst) begin
+      if (word_held)
+        assert (!wr_out && !wr_word)
+        else $error("dtmf_top: the microcode wrote the output FIFO in the clock after an IO_OUT_WORD write, which writes that word's second byte");
+      if (wr_sdinc)
+        assert ({24'd0, cfg_k} < KS)
+        else $error("dtmf_top: the microcode wrote DFT carrier %0d; the build has %0d", cfg_k, KS);
+    end
+`endif
   wire       fifo_in_valid = wr_out || wr_word || word_held;
   wire [7:0] fifo_in_data = word_held ? word_hi : io_wdata[7:0];
   byte_fifo #(.DEPTH(OUT_DEPTH)) u_out (
@@ -355,6 +376,29 @@ module dtmf_top #(
       assign iz_v = 32'd0;
       assign iz_u = 32'd0;
       wire unused_lanes = ^{wr_iz_x, wr_iz_go, wr_iz_ugo, wr_iz_v, wr_iz_u};
+`ifndef SYNTHESIS
+      // Reads of the lanes (hls::IzhikevichLanesPort's checks): the events
+      // only once every update is written back, and only those there are;
+      // no spike flag in the clock that writes it (the block RAM's read
+      // during write is undefined). A flag read at f covers neurons f,
+      // f - COLS and f - 2 COLS: the three copies' write addresses.
+      wire rd_ev = io_re && io_raddr[15:12] == IO_IZ_EV[15:12];
+      wire rd_evn = io_re && io_raddr == IO_IZ_EVN;
+      wire rd_flag = io_re && io_raddr[15:12] == IO_IZ_FLAG[15:12];
+      wire [NEURON_BITS:0] fa = io_raddr[NEURON_BITS:0];
+      always @(posedge clk)
+        if (!rst) begin
+          if (rd_ev || rd_evn)
+            assert (iz_done)
+            else $error("dtmf_top: the microcode read the spike events (address %h) while the neuron lanes ran", io_raddr);
+          if (rd_ev && iz_done)
+            assert ({8'd0, io_raddr[11:0]} < {{(19 - NEURON_BITS){1'b0}}, lane_ev_count})
+            else $error("dtmf_top: the microcode read spike event %0d of %0d", io_raddr[11:0], lane_ev_count);
+          if (rd_flag && u_lanes.st_we)
+            assert (fa != u_lanes.fl_a0 && fa != u_lanes.fl_a1 && fa != u_lanes.fl_a2)
+            else $error("dtmf_top: the microcode read neuron %0d's spike flag in the clock that writes it", u_lanes.wb_n);
+        end
+`endif
     end else if (NEURON_UNIT != 0) begin : g_neuron_unit
       reg [31:0] op_x, op_v, op_u;
       reg        ugo_q;  // a U write of the clock before: start
@@ -371,6 +415,20 @@ module dtmf_top #(
           .in_x(op_x), .in_x_prev(io_wdata), .in_v(op_v), .in_u(op_u),
           .out_valid(iz_done), .out_spike(iz_spike), .out_v(iz_v), .out_u(iz_u));
       wire unused_neuron = in_ready_unused;
+`ifndef SYNTHESIS
+      // The unit ignores a start while busy, and the U write's start has no
+      // x_prev (hls::IzhikevichUnitPort's checks); its constant words are
+      // checked by izhikevich_layer itself.
+      always @(posedge clk)
+        if (!rst) begin
+          if (wr_iz_go || ugo_q)
+            assert (in_ready_unused)
+            else $error("dtmf_top: the microcode started the neuron unit while it ran (the unit ignores that start)");
+          if (wr_iz_ugo)
+            assert (!u_neuron.c_ic)
+            else $error("dtmf_top: the microcode started the neuron unit by its U write with input_change set: that start has no x_prev");
+        end
+`endif
     end else begin : g_no_neuron_unit
       assign iz_done = 1'b0;
       assign iz_spike = 1'b0;
@@ -449,5 +507,6 @@ module dtmf_top #(
   wire [15:0] p_out_overflows /* verilator public_flat_rd */ = out_overflows;
   wire p_fr_fire /* verilator public_flat_rd */ = link_fire;
   wire [7:0] p_seq /* verilator public_flat_rd */ = link_seq;
+  wire p_rst /* verilator public_flat_rd */ = rst;
 endmodule
 `default_nettype wire

@@ -352,6 +352,33 @@ module frame_engine #(
       if (call_op) stk1 <= stk0;
     end
   end
+`ifndef SYNTHESIS
+  // Return stack overflow (simulation only: no logic on the chip): a call
+  // made while both entries hold live return addresses loses the older
+  // one. stk_depth counts the live entries (a ret at 0 leaves it 0),
+  // stk_overflows the calls that overflowed since reset, as the model's
+  // stack_overflows() does (tests/rtl/frame_engine_test.cpp compares them
+  // in every random program, whose calls overflow at will: those tests
+  // switch assertions off). With assertions on (Verilator --assert, every
+  // build of a top) the first overflow stops the simulation.
+  reg [1:0]  stk_depth;
+  reg [31:0] stk_overflows;
+  always @(posedge clk) begin
+    if (rst) begin
+      stk_depth <= 2'd0;
+      stk_overflows <= 32'd0;
+    end else if (a_go && call_op) begin
+      if (stk_depth == 2'd2) stk_overflows <= stk_overflows + 32'd1;
+      else stk_depth <= stk_depth + 2'd1;
+    end else if (a_go && ret_op && stk_depth != 2'd0) begin
+      stk_depth <= stk_depth - 2'd1;
+    end
+  end
+  always @(posedge clk)
+    if (!rst && a_go && call_op)
+      assert (stk_depth != 2'd2)
+      else $error("frame_engine: return stack overflow: the call at PC %0d is a third nested call (two entries; docs/frame_engine.md)", pc);
+`endif
 
   // ---- end of the current B clock ---------------------------------------------
   wire last_step = cnt == 6'd1;

@@ -137,6 +137,14 @@ module izhikevich_lanes #(
           xp <= c_ic ? s_x : st_q[31:0];
         end
       end
+`ifndef SYNTHESIS
+      // A start to a busy lane is ignored; no microcode may rely on that
+      // (hls::IzhikevichLanesPort throws on it in the C++ models).
+      always @(posedge clk)
+        if (!rst && go)
+          assert (ready)
+          else $error("izhikevich_lanes: neuron %0d started on lane %0d while that lane runs (a lane takes a start 14 clocks after its last)", s_n, k);
+`endif
       assign offer[k] = pend && valid;
       assign pending[k] = pend;
       assign offers[k*WBW +: WBW] = offer[k] ? {spike, n, v, u, xp} : {WBW{1'b0}};
@@ -196,5 +204,19 @@ module izhikevich_lanes #(
     end
 
   assign idle = !s_valid && pending == {LANES{1'b0}};
+`ifndef SYNTHESIS
+  // Writes allowed only while idle (above; hls::IzhikevichLanesPort's
+  // busy_check in the C++ models): the constants, the next neuron's index
+  // and an initialisation.
+  always @(posedge clk)
+    if (!rst) begin
+      if (cfg_we)
+        assert (idle) else $error("izhikevich_lanes: constant word %0d written while the lanes run", cfg_addr);
+      if (idx_we)
+        assert (idle) else $error("izhikevich_lanes: the next neuron set while the lanes run");
+      if (su_we)
+        assert (idle) else $error("izhikevich_lanes: neuron %0d initialised while the lanes run", idx);
+    end
+`endif
 endmodule
 `default_nettype wire

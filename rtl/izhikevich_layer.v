@@ -134,6 +134,17 @@ module izhikevich_layer (
   reg [3:0] step;
   wire      go = in_valid && !busy;
   assign in_ready = !busy;
+`ifndef SYNTHESIS
+  // The configuration contract (header): no constant word in the clock of
+  // the handshake or while an update runs, except in its last clock
+  // (step 12: the word lands at edge E+13, where the results are taken).
+  // hls::IzhikevichUnitPort and IzhikevichLanesPort check the same in the
+  // C++ models; this is the check of every Verilated top (--assert).
+  always @(posedge clk)
+    if (!rst && cfg_we)
+      assert (!go && !(busy && step != 4'd12))
+      else $error("izhikevich_layer: constant word %0d written while an update runs (the unit reads its constants during the update)", cfg_addr);
+`endif
 
   // The constants are read where they are used, from the configuration
   // words themselves (no copy: they must not change during an update, see

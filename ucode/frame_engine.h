@@ -159,6 +159,10 @@ class FrameEngine {
     a_ = 0; p_ = 0; t_ = 0; pc_ = 0; clocks_ = 0;
     for (auto& x : x_) x = 0;
     for (auto& s : stack_) s = 0;
+    depth_ = 0;
+    overflows_ = 0;
+    overflow_pc_ = 0;
+    overflow_clock_ = 0;
     waiting_ = false;
     overlap_ok_ = prev_st_ = prev_out_ = prev_writes_a_ = false;
     last_ = FrameEngineRetired{};
@@ -171,6 +175,15 @@ class FrameEngine {
   uint16_t x(int i) const { return i >= 1 && i <= 3 ? x_[i] : 0; }
   uint32_t pc() const { return pc_; }  // next instruction (during a wait: the one after it)
   uint32_t stack(int i) const { return stack_[i & 1]; }  // 0: top
+  // Return stack overflows: calls made while both entries held a live
+  // return address (the older one fell off; docs/frame_engine.md, "Return
+  // stack"), counted since reset as rtl/frame_engine.v counts them, and the
+  // first one's address and cycle-A clock. Execution goes on as the RTL's
+  // does; the microcode tests fail on any.
+  uint32_t stack_depth() const { return depth_; }
+  uint64_t stack_overflows() const { return overflows_; }
+  uint32_t stack_overflow_pc() const { return overflow_pc_; }
+  uint64_t stack_overflow_clock() const { return overflow_clock_; }
   uint64_t clocks() const { return clocks_; }
   bool in_wait() const { return waiting_; }
   const FrameEngineRetired& last() const { return last_; }
@@ -258,6 +271,8 @@ class FrameEngine {
       wait_clocks(io, limit);
       return uint32_t(clocks_ - start);
     } else if (cls == fe::kCtl) {
+      if (fn == fe::kCall && depth_ == 2 && overflows_++ == 0)
+        overflow_pc_ = last_.pc, overflow_clock_ = c0;
       clk = control(fn, xi, fe::field_of(w), addr, pc1);
     } else {
       const uint16_t ea = uint16_t(addr + xreg(xi));
@@ -372,11 +387,13 @@ class FrameEngine {
         return 2;
       }
       case fe::kCall:  // push; the older entry of two falls off
+        if (depth_ < 2) ++depth_;
         stack_[1] = stack_[0];
         stack_[0] = pc1;
         pc_ = target;
         return 2;
       case fe::kRet:  // pop; the bottom entry stays
+        if (depth_ > 0) --depth_;
         pc_ = stack_[0];
         stack_[0] = stack_[1];
         return 2;
@@ -415,6 +432,10 @@ class FrameEngine {
   int16_t t_ = 0;
   uint16_t x_[4] = {};
   uint32_t stack_[2] = {};  // return stack, [0] on top
+  uint32_t depth_ = 0;      // its live entries (0..2)
+  uint64_t overflows_ = 0;
+  uint32_t overflow_pc_ = 0;
+  uint64_t overflow_clock_ = 0;
   uint32_t pc_ = 0;
   uint64_t clocks_ = 0;
   bool waiting_ = false;

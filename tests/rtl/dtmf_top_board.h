@@ -106,6 +106,8 @@ class Board {
   }
   bool sending() const { return tx_pos_ < tx_bits_.size() * size_t(cpb_); }
 
+  // The reset button: rst_n as the next ticks sample it.
+  void set_rst_n(bool level) { m_->rst_n = level; }
   auto& root() { return *m_->rootp; }
   const eskin::sim::Ad7476Model& adc() const { return adc_; }
   uint64_t cycle() const { return cycle_; }

@@ -47,37 +47,41 @@ set(dtmf_default ${ESKIN_DTMF_TOP_PARAMS})  # top-level CMakeLists.txt
 set(dtmf_s10 -GCLK_HZ=96000000 -GSAMPLE_HZ=70000 -GBAUD=3000000 -GKS=20 -GN=64 -GACC_W=19
   -GSTEP=70 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=8 -GOUT_DEPTH=2048 -GENGINE_FAST_SHIFT=0
   -GSDFT_LANES=3 -GNEURON_UNIT=0 -GADC_CLK_HZ=0)
-set(eskin_default_args ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucode.hex\"
+# Every build with its simulation assertions (--assert): the microcode's
+# timing contracts with the top's ports and the engine's return stack
+# (rtl/dtmf_top.v, frame_engine.v, izhikevich_layer.v, izhikevich_lanes.v)
+# stop any test of a top whose microcode breaks one.
+set(eskin_default_args --assert ${dtmf_default} -GUCODE_HEX=\"${dtmf_dir}/neuroskin2.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/neuroskin2.krom.hex\")
-eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10}
+eskin_verilate(${exe} Vdtmf_top_s10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10} --assert
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10.krom.hex\")
 dtmf_params_with(dtmf_s10fast dtmf_s10 CLK_HZ=48000000 ENGINE_FAST_SHIFT=1)
-eskin_verilate(${exe} Vdtmf_top_s10fast ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10fast}
+eskin_verilate(${exe} Vdtmf_top_s10fast ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10fast} --assert
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_fast.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10_fast.krom.hex\")
 dtmf_params_with(dtmf_s10unit dtmf_s10fast CLK_HZ=24000000 NEURON_UNIT=1)
-eskin_verilate(${exe} Vdtmf_top_s10unit ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10unit}
+eskin_verilate(${exe} Vdtmf_top_s10unit ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s10unit} --assert
   -GUCODE_HEX=\"${dtmf_dir}/staggered10x10_unit.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/staggered10x10_unit.krom.hex\")
 set(dtmf_s16m -GCLK_HZ=40000000 -GSAMPLE_HZ=1000000 -GBAUD=2000000 -GKS=32 -GN=128 -GACC_W=20
   -GSTEP=1000 -GIW=11 -GIMEM_WORDS=1280 -GDW=12 -GKW=9 -GOUT_DEPTH=2048 -GENGINE_FAST_SHIFT=1
   -GSDFT_LANES=6 -GNEURON_UNIT=1 -GNEURON_LANES=5 -GNEURON_BITS=9 -GCOLS=16 -GADC_CLK_HZ=0)
-eskin_verilate(${exe} Vdtmf_top_s16m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s16m}
+eskin_verilate(${exe} Vdtmf_top_s16m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s16m} --assert
   -GUCODE_HEX=\"${dtmf_dir}/scale_16x16_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_16x16_1msps.krom.hex\")
 dtmf_params_with(dtmf_s18m dtmf_s16m KS=36 NEURON_BITS=10 COLS=18)
-eskin_verilate(${exe} Vdtmf_top_s18m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s18m}
+eskin_verilate(${exe} Vdtmf_top_s18m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s18m} --assert
   -GUCODE_HEX=\"${dtmf_dir}/scale_18x18_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_18x18_1msps.krom.hex\")
 dtmf_params_with(dtmf_s20m dtmf_s16m KS=40 SDFT_LANES=7 COLS=20 NEURON_BITS=10)
-eskin_verilate(${exe} Vdtmf_top_s20m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s20m}
+eskin_verilate(${exe} Vdtmf_top_s20m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s20m} --assert
   -GUCODE_HEX=\"${dtmf_dir}/scale_20x20_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_20x20_1msps.krom.hex\")
 dtmf_params_with(dtmf_s32m dtmf_s20m
   KS=64 N=256 ACC_W=21 CLK_HZ=50000000 ADC_CLK_HZ=40000000 OUT_DEPTH=8192 SDFT_LANES=10
   NEURON_BITS=11 COLS=32)
-eskin_verilate(${exe} Vdtmf_top_s32m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s32m}
+eskin_verilate(${exe} Vdtmf_top_s32m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s32m} --assert
   -GUCODE_HEX=\"${dtmf_dir}/scale_32x32_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_32x32_1msps.krom.hex\")
 string(JOIN " " dtmf_default_str ${dtmf_default})

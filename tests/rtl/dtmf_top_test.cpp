@@ -11,6 +11,7 @@
 // c10 << 2 (the AD7476A's width, left aligned).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +21,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "Vdtmf_top.h"
 #include "Vdtmf_top___024root.h"
@@ -40,7 +43,9 @@
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
 #include "eskin/dtmf_top_plan.h"
+#include "ucode/dtmf_io_map.h"
 #include "ucode/dtmf_ucode.h"
+#include "ucode/frame_engine_asm.h"
 #include "host/fpga/board.h"
 #include "host/fpga/engine_load.h"
 #include "host/fpga/flow.h"
@@ -178,14 +183,15 @@ std::vector<Key> run_chain(const BuildSetup& s, size_t n, const Reload* reload =
 // Per type, the RTL's packets of frames before `limit` equal the chain's,
 // in order (the RTL ran on past `limit`, so all of them are out).
 void expect_same_packets(const std::vector<Key>& want, const std::vector<Received>& rx,
-                         std::initializer_list<uint8_t> types, uint32_t limit) {
+                         std::initializer_list<uint8_t> types, uint32_t limit,
+                         size_t at_least = 5) {
   for (uint8_t type : types) {
     std::vector<Key> w, g;
     for (const auto& k : want)
       if (k.type == type && k.t < limit) w.push_back(k);
     for (const auto& r : rx)
       if (r.p.type == type && r.p.t < limit) g.push_back({r.p.type, r.p.t, r.p.payload});
-    EXPECT_GE(w.size(), 5u) << "type " << int(type) << ": too few packets to compare";
+    EXPECT_GE(w.size(), at_least) << "type " << int(type) << ": too few packets to compare";
     ASSERT_EQ(g.size(), w.size()) << "type " << int(type);
     for (size_t i = 0; i < g.size(); ++i)
       ASSERT_EQ(g[i], w[i]) << "type " << int(type) << " packet " << i << "\n got  " << str(g[i])
@@ -652,6 +658,260 @@ TEST(DtmfTop, ScaleTable20x20AtOneMegasampleOnTheEcp5Core) {
 TEST(DtmfTop, ScaleTable32x32AtOneMegasampleWithTheAdcOnItsOwnClock) {
   scale_run_at_one_megasample<Vdtmf_top_s32m, eskin::hls::DtmfChainSizes<32, 32, 256>>(kS32M, 72,
                                                                                         44, 49);
+}
+
+
+
+// ---------------------------------------------------------------------------
+// Reset: rst_n low for one clock (a glitch the synchroniser catches once)
+// a third of a frame period into a frame. The top's reset lasts 16 clocks
+// (rtl/power_on_reset.v stretches it: the frame engine needs at least two,
+// and the ADC's clock domain must see it), and the top restarts as from
+// power-on: the packets that leave after the reset equal the chain's from
+// a fresh start on the samples converted after it (t from 0 again).
+// `adc_reset`: whether the ADC's own reset is high now (a build with
+// ADC_CLK_HZ; else null).
+template <class M, class S>
+void reset_in_a_frame(const Build& k, BuildSetup s, int frames_after, int drain_frames,
+                      std::initializer_list<uint8_t> types, size_t at_least,
+                      const std::function<bool(Board<M>&)>& adc_reset = {}) {
+  Board<M> b(s.codes12, double(k.clk_hz), s.cpb, double(k.adc_clk_hz));
+  while (b.frames_done < 3) b.tick();
+  while (!b.root().dtmf_top__DOT__p_frame_fire) b.tick();
+  // A third of the frame period after the frame came: the engine works on
+  // it, the link sends the frame before.
+  b.run_cycles(uint64_t(double(k.clk_hz) * s.plan.step / s.plan.spec.sample_hz / 3));
+  const size_t frames_before = b.received().size();
+  ASSERT_GT(frames_before, 0u);
+  b.set_rst_n(false);
+  b.tick();
+  b.set_rst_n(true);
+  const uint64_t pulse = b.cycle();
+  int rst_clocks = 0;
+  bool adc_reset_seen = false;
+  for (int i = 0; i < 200; ++i) {
+    b.tick();
+    rst_clocks += b.root().dtmf_top__DOT__p_rst;
+    if (adc_reset) adc_reset_seen = adc_reset_seen || adc_reset(b);
+  }
+  EXPECT_EQ(rst_clocks, 16) << "clocks of reset after a one-clock rst_n pulse";
+  if (adc_reset) {
+    EXPECT_TRUE(adc_reset_seen) << "the ADC's clock domain was not reset";
+  }
+  // The ADC starts when the rebooted engine's carrier table is written.
+  const size_t loads = b.carrier_loads.size();
+  while (b.carrier_loads.size() == loads && b.cycle() < pulse + 2000000) b.tick();
+  ASSERT_EQ(b.carrier_loads.size(), loads + 1) << "the engine did not boot again";
+  const size_t j0 = b.adc().samples_taken();
+  // The packets of the compared frames get out during drain_frames more.
+  const size_t n = size_t(s.plan.N + (frames_after + drain_frames) * s.plan.step);
+  ASSERT_LE(j0 + n, s.codes12.size());
+  while (b.adc().samples_taken() < j0 + n) b.tick();
+  BuildSetup fresh = s;
+  fresh.codes12.assign(s.codes12.begin() + long(j0), s.codes12.end());
+  const auto want = run_chain<S>(fresh, n);
+  std::vector<Received> after;
+  for (const auto& r : b.received())
+    if (r.start_cycle > pulse) after.push_back(r);
+  ASSERT_FALSE(after.empty()) << "no packet after the reset";
+  // The reset may cut a packet on the line: the host then takes the
+  // restarted top's first packet, which ends that frame, as one error
+  // frame with it (as the board fault tests have it), and the first packet
+  // it decodes is the second.
+  const auto first = std::find(want.begin(), want.end(),
+                               Key{after.front().p.type, after.front().p.t, after.front().p.payload});
+  ASSERT_NE(first, want.end()) << "the first packet after the reset (type "
+                               << int(after.front().p.type) << ", t " << after.front().p.t
+                               << ") is none of the chain's";
+  const long lost = first - want.begin();
+  EXPECT_LE(lost, 1) << "packets lost after the reset";
+  EXPECT_EQ(after.front().p.seq, lost) << "the link framer restarted";
+  EXPECT_EQ(b.link_stats().crc_errors + b.link_stats().framing_errors +
+                b.link_stats().payload_errors,
+            uint64_t(lost))
+      << "error frames: the cut one only";
+  const std::vector<Key> want_after(first, want.end());
+  const uint32_t limit = uint32_t(s.plan.N + frames_after * s.plan.step);
+  expect_same_packets(want_after, after, types, limit, at_least);
+  std::printf("%s: reset after %zu packets, %d clocks; %zu packets after it, the first t %u\n",
+              k.name.c_str(), frames_before, rst_clocks, after.size(), after.front().p.t);
+}
+
+TEST(DtmfTop, AOneClockResetPulseInAFrameRestartsTheTopAsFromPowerOn) {
+  const BuildSetup s = prepare(kDefault);
+  const int frames = std::max(30, 8 * int(s.plan.decim_tax));
+  reset_in_a_frame<Vdtmf_top, eskin::hls::DtmfChainSizes<3, 3, 32>>(
+      kDefault, s, frames, 2,
+      {eskin::link::kAmplitudes, eskin::link::kTaxelsDense, eskin::link::kSpikes}, 5);
+}
+
+// The same with both clocks running (the 32x32 build: the ADC on its own
+// 40 MHz clock, the core at 50 MHz): rst, one 20 ns clock at 50 MHz
+// before the stretch, reaches the ADC's domain (rtl/stream_cdc.v's reset
+// contract: both sides reset, no sample in flight across it), whose reset
+// the test sees; every packet after the reset equals the chain's from a
+// fresh start.
+TEST(DtmfTop, AResetInAFrameWithBothClocksRunningRestartsBothDomains) {
+  BuildSetup s = prepare(kS32M);
+  const auto& sp = s.plan.spec;
+  const double full = sp.full_carrier_lsb * std::ldexp(1.0, 12 - sp.adc_bits);
+  std::vector<double> f(s.scene.skin.row_freq_hz);
+  f.insert(f.end(), s.scene.skin.col_freq_hz.begin(), s.scene.skin.col_freq_hz.end());
+  s.codes12 = dtmf_stimulus::random_carrier_codes(f, sp.sample_hz, full, 50 * s.plan.step,
+                                                  3 * s.plan.step, 7);
+  // Its packets come every 17th frame (decim_tax: a 32x32 taxel packet
+  // holds the 2 Mbaud line for 10 ms): those of frames 0 and 17 after the
+  // reset, out within 22 frames more (less the one the cut may cost).
+  ASSERT_EQ(s.plan.decim_tax, 17);
+  reset_in_a_frame<Vdtmf_top_s32m, eskin::hls::DtmfChainSizes<32, 32, 256>>(
+      kS32M, s, 18, 22,
+      {eskin::link::kAmplitudes, eskin::link::kTaxelsDense, eskin::link::kSpikes}, 1,
+      [](Board<Vdtmf_top_s32m>& b) {
+        return b.root().dtmf_top__DOT__g_adc_clock__DOT__p_adc_rst != 0;
+      });
+}
+
+// ---------------------------------------------------------------------------
+// The microcode's timing contracts as simulation assertions (--assert, as
+// every build of the top): a microcode that breaks one stops the top with
+// the assertion's message. Each contract is broken by a few instructions
+// loaded over the build's microcode (IMEM, before the first clock) and the
+// run must die naming it; the same instructions with the contract kept
+// run on. The C++ port models (ucode/engine_ports.h, dtmf_top_bus.h) check
+// the same rules in the microcode tests.
+
+eskin::hls::fe_asm::Program assemble_io(const std::string& src) {
+  eskin::hls::fe_asm::Options opt;
+  for (const auto& e : eskin::hls::kDtmfIoPorts) opt.symbols[e.symbol] = e.value;
+  for (const auto& e : eskin::hls::kDtmfEvents) opt.symbols[e.symbol] = e.value;
+  opt.imem_words = 2048;  // IW 11, every build's
+  return eskin::hls::fe_asm::assemble(src + "halt:   j halt\n", "contract.fe", opt);
+}
+
+// The build's top with `src` in IMEM from address 0, run `clocks` clocks.
+template <class M>
+void run_program(const Build& k, const std::vector<uint32_t>& words, int cpb, uint64_t clocks) {
+  Board<M> b(std::vector<uint16_t>(4096, 2048), double(k.clk_hz), cpb, double(k.adc_clk_hz));
+  auto& imem = b.root().dtmf_top__DOT__u_eng__DOT__imem;
+  for (size_t i = 0; i < words.size(); ++i) imem[i] = words[i];
+  b.run_cycles(clocks);
+}
+
+// `bad` must stop the top with a message matching `message`; `good` must not.
+template <class M>
+void expect_contract(const Build& k, const std::string& bad, const std::string& good,
+                     const std::string& message) {
+  const BuildSetup s = prepare(k);  // the build's files exist (its $readmemh)
+  const auto b = assemble_io(bad).words, g = assemble_io(good).words;
+  run_program<M>(k, g, s.cpb, 400);  // dies here if `good` breaks a contract
+  EXPECT_DEATH(
+      {
+        dup2(2, 1);  // Verilator prints the assertion on stdout
+        run_program<M>(k, b, s.cpb, 400);
+      },
+      message);
+}
+
+TEST(DtmfTopContracts, NoFifoWriteInTheClockAfterAWordWrite) {
+  expect_contract<Vdtmf_top>(kDefault,
+                             "        ld 0x4142\n        out io[IO_OUT_WORD]\n"
+                             "        out io[IO_OUT_BYTE]\n",
+                             "        ld 0x4142\n        out io[IO_OUT_WORD]\n        nop\n"
+                             "        out io[IO_OUT_BYTE]\n",
+                             "dtmf_top: the microcode wrote the output FIFO in the clock after an "
+                             "IO_OUT_WORD write");
+}
+
+TEST(DtmfTopContracts, NoDftCarrierBeyondTheBuilds) {
+  // The default build has KS = 7 channels: carriers 0..6.
+  expect_contract<Vdtmf_top>(kDefault,
+                             "        ld 7\n        out io[IO_SDFT_K]\n        ld 100\n"
+                             "        out io[IO_SDFT_INC]\n",
+                             "        ld 6\n        out io[IO_SDFT_K]\n        ld 100\n"
+                             "        out io[IO_SDFT_INC]\n",
+                             "dtmf_top: the microcode wrote DFT carrier 7; the build has 7");
+}
+
+TEST(DtmfTopContracts, NoNeuronUnitStartWhileItRuns) {
+  expect_contract<Vdtmf_top_s10unit>(
+      kS10Unit, "        out io[IO_IZ_GO]\n        out io[IO_IZ_GO]\n",
+      "        out io[IO_IZ_GO]\n        wait EV_IZ_DONE\n        out io[IO_IZ_GO]\n",
+      "dtmf_top: the microcode started the neuron unit while it ran");
+}
+
+TEST(DtmfTopContracts, NoNeuronUnitConstantWhileItRuns) {
+  expect_contract<Vdtmf_top_s10unit>(
+      kS10Unit, "        out io[IO_IZ_GO]\n        out io[IO_IZ_CFG + 2]\n",
+      "        out io[IO_IZ_GO]\n        wait EV_IZ_DONE\n        out io[IO_IZ_CFG + 2]\n",
+      "izhikevich_layer: constant word 2 written while an update runs");
+}
+
+TEST(DtmfTopContracts, NoLevelStartOfAChangeInputLayer) {
+  expect_contract<Vdtmf_top_s10unit>(
+      kS10Unit, "        ld 1\n        out io[IO_IZ_CFG + 16]\n        out io[IO_IZ_UGO]\n",
+      "        ld 0\n        out io[IO_IZ_CFG + 16]\n        out io[IO_IZ_UGO]\n",
+      "dtmf_top: the microcode started the neuron unit by its U write with input_change set");
+}
+
+// The lanes (s16m: 5 lanes, 16 columns): six starts 2 clocks apart reach
+// lane 0 again 10 clocks after its start (it takes one after 14); 4 apart,
+// after 20.
+TEST(DtmfTopContracts, NoLaneStartWhileThatLaneRuns) {
+  expect_contract<Vdtmf_top_s16m>(
+      kS16M, "        ldx x1, 6\nl:      out io[IO_IZ_XGO]\n        djnz x1, l\n",
+      "        ldx x1, 6\nl:      out io[IO_IZ_XGO]\n        nop\n        nop\n        djnz x1, l\n",
+      "izhikevich_lanes: neuron 5 started on lane 0 while that lane runs");
+}
+
+TEST(DtmfTopContracts, NoLaneWritesWhileTheLanesRun) {
+  const std::string wait = "        out io[IO_IZ_XGO]\n        wait EV_IZ_DONE\n";
+  // A constant word: the lanes' assertion, or the running lane's own.
+  expect_contract<Vdtmf_top_s16m>(kS16M,
+                                  "        out io[IO_IZ_XGO]\n        out io[IO_IZ_CFG + 2]\n",
+                                  wait + "        out io[IO_IZ_CFG + 2]\n",
+                                  "constant word 2 written while");
+  expect_contract<Vdtmf_top_s16m>(kS16M, "        out io[IO_IZ_XGO]\n        out io[IO_IZ_N]\n",
+                                  wait + "        out io[IO_IZ_N]\n",
+                                  "izhikevich_lanes: the next neuron set while the lanes run");
+  expect_contract<Vdtmf_top_s16m>(kS16M, "        out io[IO_IZ_XGO]\n        out io[IO_IZ_SU]\n",
+                                  wait + "        out io[IO_IZ_SU]\n",
+                                  "izhikevich_lanes: neuron 1 initialised while the lanes run");
+}
+
+TEST(DtmfTopContracts, LaneEventsOnlyOnceWrittenBackAndOnlyThoseThereAre) {
+  expect_contract<Vdtmf_top_s16m>(
+      kS16M, "        out io[IO_IZ_XGO]\n        ld io[IO_IZ_EVN]\n",
+      "        out io[IO_IZ_XGO]\n        wait EV_IZ_DONE\n        ld io[IO_IZ_EVN]\n",
+      "dtmf_top: the microcode read the spike events \\(address 020f\\) while the neuron lanes ran");
+  // No neuron has spiked: there is no event 0.
+  expect_contract<Vdtmf_top_s16m>(kS16M, "        ld io[IO_IZ_EV]\n", "        ld io[IO_IZ_EVN]\n",
+                                  "dtmf_top: the microcode read spike event 0 of 0");
+}
+
+// Neuron 0 is written back 15 clocks after its start; its flag is read at
+// 0x1000 + 16 (with the rows above and below) in every clock from the
+// start on, so one read shares that clock. Neuron 40's flag column (56)
+// holds none of neuron 0's copies (0, 16, 32).
+TEST(DtmfTopContracts, NoLaneFlagReadInItsWriteClock) {
+  std::string bad = "        out io[IO_IZ_XGO]\n", good = bad;
+  for (int i = 0; i < 24; ++i) {
+    bad += "        ld io[IO_IZ_FLAG + 16]\n";
+    good += "        ld io[IO_IZ_FLAG + 56]\n";
+  }
+  expect_contract<Vdtmf_top_s16m>(kS16M, bad, good,
+                                  "dtmf_top: the microcode read neuron 0's spike flag in the clock "
+                                  "that writes it");
+}
+
+// The return stack's overflow (rtl/frame_engine.v) stops the top too.
+TEST(DtmfTopContracts, NoThirdNestedCall) {
+  expect_contract<Vdtmf_top>(kDefault,
+                             "        call one\n        j halt\none:    call two\ntwo:    call three\n"
+                             "three:  j three\n",
+                             "        call one\n        j halt\none:    call two\n        ret\n"
+                             "two:    ret\n",
+                             "frame_engine: return stack overflow: the call at PC 3 is a third "
+                             "nested call");
 }
 
 }  // namespace

@@ -47,7 +47,8 @@ module frame_engine_tb #(
     output wire [15:0] x2,
     output wire [15:0] x3,
     output wire [IW-1:0] stk0,
-    output wire [IW-1:0] stk1
+    output wire [IW-1:0] stk1,
+    output wire [31:0] stk_overflows   // calls that overflowed the return stack since reset
 );
   frame_engine #(.IW(IW), .DW(DW), .KW(KW), .UCODE_HEX(UCODE_HEX), .KROM_INIT(KROM_INIT),
                  .FAST_SHIFT(FAST_SHIFT)) u (
@@ -78,6 +79,7 @@ module frame_engine_tb #(
   assign x1 = u.x1;
   assign x2 = u.x2;
   assign x3 = u.x3;
+  assign stk_overflows = u.stk_overflows;
   assign stk0 = u.stk0;
   assign stk1 = u.stk1;
 endmodule

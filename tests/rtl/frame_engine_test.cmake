@@ -11,11 +11,14 @@ add_custom_target(frame_engine_selftest_hex DEPENDS ${fe_selftest_hex})
 add_dependencies(${exe} frame_engine_selftest_hex)
 target_compile_definitions(${exe} PRIVATE FRAME_ENGINE_SELFTEST_HEX="${fe_selftest_hex}")
 target_link_libraries(${exe} PRIVATE eskin_ucode)
+# Every build with its simulation assertions (the return stack's; the
+# random programs switch them off and compare the overflow count instead).
+set(eskin_default_args --assert)
 set(fe_dw14_params -GIW=10 -GDW=14 -GKW=8 -GKROM_INIT=8192'h0 "-GUCODE_HEX=\"${fe_selftest_hex}\"")
 verilate(${exe} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v
   TOP_MODULE frame_engine_tb PREFIX Vframe_engine_tb_dw14
   VERILATOR_ARGS -y ${CMAKE_SOURCE_DIR}/rtl -Wno-fatal --x-assign unique --x-initial unique -O3
-    ${fe_dw14_params})
+    --assert ${fe_dw14_params})
 
 # Third set: the barrel shifter (FAST_SHIFT 1; IW 10 for the directed
 # shift program, DW 8, KW 4 with the bench's KROM_INIT).
@@ -23,7 +26,7 @@ set(fe_fast_params -GIW=10 -GFAST_SHIFT=1)
 verilate(${exe} SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v
   TOP_MODULE frame_engine_tb PREFIX Vframe_engine_tb_fast
   VERILATOR_ARGS -y ${CMAKE_SOURCE_DIR}/rtl -Wall --x-assign unique --x-initial unique -O3
-    ${fe_fast_params})
+    --assert ${fe_fast_params})
 add_test(NAME lint.frame_engine_tb_fast
   COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module frame_engine_tb
     ${fe_fast_params} ${CMAKE_CURRENT_SOURCE_DIR}/frame_engine_tb.v)

@@ -32,6 +32,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "Vframe_engine_tb.h"
 #include "Vframe_engine_tb_dw14.h"
 #include "Vframe_engine_tb_fast.h"
@@ -173,7 +175,7 @@ class Lockstep {
       }
       const bool retire = m.retire, a_go = m.a_go;
       dut_.tick();
-      if (a_go) a_done_.push_back({clock_, m.pc, m.x1, m.x2, m.x3, m.stk0, m.stk1});
+      if (a_go) a_done_.push_back({clock_, m.pc, m.x1, m.x2, m.x3, m.stk0, m.stk1, m.stk_overflows});
       ++clock_;
       ++n;
       if (retire) break;
@@ -201,6 +203,7 @@ class Lockstep {
       EXPECT_EQ(a.x3, model_->x(3)) << at;
       EXPECT_EQ(a.stk0, model_->stack(0)) << at;
       EXPECT_EQ(a.stk1, model_->stack(1)) << at;
+      EXPECT_EQ(a.stk_overflows, model_->stack_overflows()) << at;
     }
     EXPECT_EQ(stored, last.stored) << at;
     if (stored && last.stored) {
@@ -243,6 +246,7 @@ class Lockstep {
     uint32_t pc;
     uint16_t x1, x2, x3;
     uint32_t stk0, stk1;
+    uint64_t stk_overflows;  // the RTL's count of return stack overflows
   };
   std::deque<ADone> a_done_;
   bool read_pending_ = false;
@@ -268,9 +272,19 @@ std::vector<uint32_t> random_words(uint32_t n, std::mt19937_64& rng) {
 
 // Coverage: every one of the 64 class/function codes must have run at least
 // 200 times (about 1/64 of the instructions are each code's; loops skew it).
+// Random programs nest calls at will, so their return stack overflows:
+// the RTL's assertion (built with --assert) is off for them, and its
+// overflow count must equal the model's after every cycle A instead.
+struct AssertionsOff {
+  AssertionsOff() { Verilated::assertOn(false); }
+  ~AssertionsOff() { Verilated::assertOn(true); }
+};
+
 template <class V, class CFG>
 void random_lockstep(uint64_t seed, int programs, int instructions) {
+  const AssertionsOff off;
   std::mt19937_64 rng(seed);
+  uint64_t overflows = 0;
   std::vector<uint64_t> by_code(64, 0);
   for (int k = 0; k < programs; ++k) {
     Lockstep<V, CFG> ls(seed + uint64_t(k));
@@ -280,6 +294,7 @@ void random_lockstep(uint64_t seed, int programs, int instructions) {
     ls.reset();
     ls.run(instructions, by_code);
     if (::testing::Test::HasFailure()) return;
+    overflows += ls.model().stack_overflows();
     ls.expect_same_dmem();
   }
   uint64_t least = ~uint64_t(0);
@@ -287,8 +302,11 @@ void random_lockstep(uint64_t seed, int programs, int instructions) {
     EXPECT_GE(by_code[c], 200u) << "class " << (c >> 4) << " fn " << (c & 15) << " ran too rarely";
     least = std::min(least, by_code[c]);
   }
-  std::printf("%d programs x %d instructions; every class/function code ran >= %llu times\n", programs,
-              instructions, static_cast<unsigned long long>(least));
+  // The overflow count was compared at all: the programs did overflow.
+  EXPECT_GT(overflows, 0u);
+  std::printf("%d programs x %d instructions; every class/function code ran >= %llu times; "
+              "%llu return stack overflows\n", programs, instructions,
+              static_cast<unsigned long long>(least), static_cast<unsigned long long>(overflows));
 }
 
 fa::Program assemble(const std::string& src) {
@@ -389,6 +407,68 @@ TEST(FrameEngineRtl, SelfTestFromUcodeHex) {
   EXPECT_EQ(ls.run_until(halt, 5000), halt) << "the self-test did not reach halt (fail is at "
                                             << prog.symbols.at("fail") << ")";
   ls.expect_same_dmem();
+}
+
+// Return stack overflow: three nested calls. The model counts it (with
+// the call's address and clock) and the RTL's count matches; with
+// assertions on (as every top is built) the RTL stops at that call with the
+// assertion's message. Two nested calls, and calls after returns, trip
+// neither.
+const char* const kThreeDeep =
+    "        call  one\n"
+    "halt:   j     halt\n"
+    "one:    call  two\n"
+    "        ret\n"
+    "two:    call  three\n"
+    "        ret\n"
+    "three:  j     three\n";
+const char* const kTwoDeep =
+    "        ldx   x1, 20\n"
+    "top:    call  one\n"
+    "        djnz  x1, top\n"
+    "halt:   j     halt\n"
+    "one:    call  two\n"
+    "        ret\n"
+    "two:    ret\n";
+
+TEST(FrameEngineRtl, ThirdNestedCallIsAReturnStackOverflow) {
+  const auto p = assemble(kThreeDeep);
+  const uint32_t c = uint32_t(p.symbols.at("three")), b = uint32_t(p.symbols.at("two"));
+  {
+    const AssertionsOff off;
+    Lockstep<Vframe_engine_tb, SetEbr> ls(5);
+    ls.load_program(p.words);
+    ls.clear_dmem();
+    ls.reset();
+    EXPECT_EQ(ls.run_until(c, 100), c);
+    EXPECT_EQ(ls.model().stack_overflows(), 1u);
+    EXPECT_EQ(ls.rtl().stk_overflows, 1u);
+    EXPECT_EQ(ls.model().stack_overflow_pc(), b);  // `call c`, at b
+  }
+  ::testing::FLAGS_gtest_death_test_style = "threadsafe";
+  const auto run = [&] {
+    dup2(2, 1);  // Verilator prints the assertion on stdout
+    Lockstep<Vframe_engine_tb, SetEbr> ls(5);
+    ls.load_program(p.words);
+    ls.clear_dmem();
+    ls.reset();
+    ls.run_until(c, 100);
+  };
+  EXPECT_DEATH(run(),
+      "frame_engine: return stack overflow: the call at PC " + std::to_string(b) +
+          " is a third nested call");
+}
+
+TEST(FrameEngineRtl, TwoNestedCallsAreNoOverflow) {
+  const auto p = assemble(kTwoDeep);
+  Lockstep<Vframe_engine_tb, SetEbr> ls(6);  // assertions on
+  ls.load_program(p.words);
+  ls.clear_dmem();
+  ls.reset();
+  const uint32_t halt = uint32_t(p.symbols.at("halt"));
+  EXPECT_EQ(ls.run_until(halt, 500), halt);
+  EXPECT_EQ(ls.model().stack_overflows(), 0u);
+  EXPECT_EQ(ls.rtl().stk_overflows, 0u);
 }
 
 TEST(FrameEngineRtl, RandomProgramsEbrDmem) {

@@ -23,6 +23,8 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 #include "Vizhikevich_layer.h"
 #include "clocked_dut.h"
 #include "ucode/dtmf_engine_image.h"
@@ -452,6 +454,34 @@ TEST(IzhikevichLayerRtl, ModelRefusesConstantsAndStartsWhileBusy) {
   EXPECT_NO_THROW(p.write(eskin::hls::kIoIzCfg + 16, 1, 200));
   EXPECT_THROW(p.write(eskin::hls::kIoIzUGo, 0, 300), std::logic_error);
   EXPECT_NO_THROW(p.write(eskin::hls::kIoIzGo, 0, 300));
+}
+
+// The RTL's side of the same contract (this build has --assert, as every
+// top's): a constant word written during an update before its last clock,
+// or in the handshake's clock, stops the simulation with the assertion's
+// message. A write in the last clock is allowed: the test above writes
+// there, with the assertion on, in every one of its updates.
+TEST(IzhikevichLayerRtl, AssertionStopsConstantsWrittenWhileBusy) {
+  ::testing::FLAGS_gtest_death_test_style = "threadsafe";
+  const auto write_at = [](int at) {
+    dup2(2, 1);  // Verilator prints the assertion on stdout
+    Unit u;
+    u.update(Operands{}, [&](int k) {
+      u.m.cfg_we = k == at;
+      u.m.cfg_addr = 2;
+      u.m.cfg_data = 5;
+    });
+  };
+  EXPECT_DEATH(write_at(1), "izhikevich_layer: constant word 2 written while an update runs");
+  EXPECT_DEATH(write_at(kLatency - 1), "izhikevich_layer: constant word 2 written while an update runs");
+  const auto write_in_handshake = [] {
+    dup2(2, 1);
+    Unit u;
+    u.m.in_valid = 1;
+    u.m.cfg_we = 1, u.m.cfg_addr = 3, u.m.cfg_data = 5;
+    u.tick();
+  };
+  EXPECT_DEATH(write_in_handshake(), "izhikevich_layer: constant word 3 written while an update runs");
 }
 
 // (6) Bound: the reset state exactly: out_valid 1, in_ready 1, outputs 0;

@@ -10,6 +10,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,7 @@ class TopModel {
     };
     // Boot until the first carrier table reaches the DFT (the ADC starts then).
     eng_->run(io_, 2000000, [this](const auto&) { return io_.adc_on; });
+    check_stack();
   }
 
   // One ADC sample (12-bit code); the engine runs one sample period.
@@ -82,6 +84,7 @@ class TopModel {
     }
     if (!profile_) {
       eng_->run(io_, uint64_t(period_));
+      check_stack();
       return;
     }
     const uint64_t end = eng_->clocks() + uint64_t(period_);
@@ -91,6 +94,7 @@ class TopModel {
       const uint32_t clk = eng_->step(io_, end);
       (*profile_)[waiting ? ~0u : pc] += clk;
     }
+    check_stack();
   }
   // Clocks spent per instruction address (~0u: waiting), from now on.
   void profile(std::map<uint32_t, uint64_t>* p) { profile_ = p; }
@@ -123,6 +127,19 @@ class TopModel {
   eskin::hls::FrameEngine<EngineCfg>& engine() { return *eng_; }
 
  private:
+  // The microcode must never overflow the engine's two-entry return stack
+  // (rtl/frame_engine.v asserts the same in every Verilated top): like the
+  // port models' contracts, a violation throws, so every test that runs
+  // the microcode here fails on it.
+  void check_stack() const {
+    if (eng_->stack_overflows() != 0)
+      throw std::logic_error("the microcode overflowed the frame engine's return stack: the call at "
+                             "PC " + std::to_string(eng_->stack_overflow_pc()) + " in clock " +
+                             std::to_string(eng_->stack_overflow_clock()) +
+                             " is a third nested call (" +
+                             std::to_string(eng_->stack_overflows()) + " overflows)");
+  }
+
   // hls/dtmf_chain.h's frame rule (rtl/frame_capture.v).
   bool capture_frame() {
     if (refill_) filled_ = 0, refill_ = false;

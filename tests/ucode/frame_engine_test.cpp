@@ -372,6 +372,38 @@ TEST(FrameEngineModel, CallRetTwoDeepStack) {
   // returns go 30 -> 21 -> 11, then 11 again and again (the bottom entry
   // stays when popped).
   EXPECT_EQ(pcs, (std::vector<uint32_t>{10, 20, 30, 21, 11, 11, 11}));
+  // ... which the model records: one overflow, the call at 20 (cycle A in
+  // clock 2: the calls overlap), as rtl/frame_engine.v counts it.
+  EXPECT_EQ(e->stack_overflows(), 1u);
+  EXPECT_EQ(e->stack_overflow_pc(), 20u);
+  EXPECT_EQ(e->stack_overflow_clock(), 2u);
+  e->reset();
+  EXPECT_EQ(e->stack_overflows(), 0u);
+  EXPECT_EQ(e->stack_depth(), 0u);
+}
+
+// Only a call with both entries live overflows: two deep, twice, after a
+// return with none live (which leaves none live, not fewer).
+TEST(FrameEngineModel, CallsTwoDeepAfterAnEmptyReturnDoNotOverflow) {
+  // 5: ret (to 0, none live)   0: call 10  1: call 10  2: j 2
+  // 10: call 20  11: ret   20: ret
+  std::vector<uint32_t> prog(32, fe::ctl(fe::kNopCtl, 0, 0, 0));
+  prog[0] = prog[1] = fe::ctl(fe::kCall, 0, 0, 10);
+  prog[2] = fe::ctl(fe::kJ, 0, 0, 2);
+  prog[5] = prog[11] = prog[20] = fe::ctl(fe::kRet, 0, 0, 0);
+  prog[10] = fe::ctl(fe::kCall, 0, 0, 20);
+  auto e = with(prog);
+  e->set_pc(5);
+  TableIo io;
+  std::vector<uint32_t> pcs, depths;
+  for (int i = 0; i < 9; ++i) {
+    e->step(io);
+    pcs.push_back(e->pc());
+    depths.push_back(e->stack_depth());
+  }
+  EXPECT_EQ(pcs, (std::vector<uint32_t>{0, 10, 20, 11, 1, 10, 20, 11, 2}));
+  EXPECT_EQ(depths, (std::vector<uint32_t>{0, 1, 2, 1, 0, 1, 2, 1, 0}));
+  EXPECT_EQ(e->stack_overflows(), 0u);
 }
 
 TEST(FrameEngineModel, WaitCountsClocksUntilTheMaskedEvent) {
