@@ -60,6 +60,7 @@ class Assembler {
         statement(lines[i]);
       }
       if (!conds_.empty()) fail_at(conds_.back().line, ".if: no .endif before the end of the file");
+      if (bound_line_) fail_at(bound_line_, ".bound: expected an instruction after it");
     }
     prog_.symbols = symbols_;
     return prog_;
@@ -103,9 +104,27 @@ class Assembler {
     if (op == ".equ") return equ(rest);
     if (op == ".org") return org(rest);
     if (op == ".word") return word_directive(rest);
+    if (op == ".bound") return bound(rest);
     if (!op.empty() && op[0] == '.')
-      fail("directive: expected .equ, .org, .word, .if, .else or .endif, got " + op);
+      fail("directive: expected .equ, .org, .word, .bound, .if, .else or .endif, got " + op);
+    const uint32_t at = addr_;
     emit(instruction(op, rest));
+    if (bound_line_ && pass_ == 2) prog_.bounds[at] = bound_;
+    bound_line_ = 0;
+  }
+
+  // `.bound EXPR`: a bound of the next instruction (seeing only the symbols
+  // defined above it, as .equ).
+  void bound(const std::string& rest) {
+    if (bound_line_) fail(".bound: the .bound of line " + std::to_string(bound_line_) +
+                          " has no instruction yet");
+    strict_ = true;
+    struct Relax { bool& f; ~Relax() { f = false; } } relax{strict_};
+    if (rest.empty()) fail(".bound: expected an expression");
+    bound_ = eval(rest, ".bound");
+    if (bound_ < 0) fail(".bound: expected a count >= 0, got " + std::to_string(bound_));
+    bound_line_ = line_;
+    list_line();
   }
 
   // ---- conditional assembly: .if EXPR / .else / .endif, nested ------------------
@@ -579,6 +598,8 @@ class Assembler {
   std::string expr_, what_;
   size_t pos_ = 0;
   bool strict_ = false;  // pass 1 tolerates labels not yet seen (only pass 2 encodes)
+  int bound_line_ = 0;   // a .bound waiting for its instruction (its line)
+  int64_t bound_ = 0;
   std::vector<Cond> conds_;  // the open .if blocks, innermost last
 };
 

@@ -6,6 +6,7 @@
 // Source: one statement per line, `;` starts a comment.
 //   label:                     (may precede a statement on the same line)
 //   .equ NAME, expr            .org expr (IMEM address)   .word expr[, expr...]
+//   .bound expr                (for the next instruction: Program::bounds)
 //   ld.h [V + x1]   add k[C]   ld io[PORT]   lt.h15 a   add p   ld 5   shl 12
 //   st [V + x2]     out io[PORT]   j.lt label   djnz x2, loop   call f   ret
 //   wait 0x1   sqrt   sqrtr   ldx x1, 3   addx x1, -1   tax x3   txa x3   nop
@@ -60,6 +61,10 @@ struct Program {
   std::vector<uint32_t> words;  // IMEM image, address 0 .. highest address written
   std::map<std::string, int64_t> symbols;  // labels, .equ and predefined symbols
   std::vector<ListingLine> listing;  // one entry per source line (and per extra .word)
+  // `.bound EXPR` before an instruction: the most times that backward
+  // branch is taken per entry of its loop, or the largest count of that
+  // shift by a memory / P operand (ucode/frame_bound.h), by its address.
+  std::map<uint32_t, int64_t> bounds;
 };
 
 Program assemble(const std::string& source, const std::string& file, const Options& opt = {});
