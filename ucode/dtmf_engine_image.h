@@ -221,6 +221,10 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // Layer 0's spike flags for synapse_weights: S0 in DMEM (SZ, zeros, the
   // row above it; S1 below), or the lanes' columns of three at FLAGS + n.
   if (p.spec.neuron_lanes) sym("FLAGS", kIoIzFlag + C);
+  // The most clocks IO_SDFT_BUSY reads 1 after a carrier write: the DFT
+  // takes it once the sample it is on is done (a frame's sample, the
+  // longest: dtmf_top_sdft_clocks), and the port is registered (+ 2).
+  sym("SDFT_BUSY", dtmf_top_sdft_clocks(ks, p.spec.sdft_lanes) + 2);
   sym("CF", 14), sym("TW", 10), sym("QUART", kQ);
   sym("SHL_Q", p.mag_shift == 0 ? 2 : 0), sym("SHR_Q", p.mag_shift == 0 ? 0 : 2 * p.mag_shift - 2);
   sym("GRND", p.taxel.recip_shift + 14);

@@ -113,16 +113,18 @@ class Assembler {
     bound_line_ = 0;
   }
 
-  // `.bound EXPR`: a bound of the next instruction (seeing only the symbols
-  // defined above it, as .equ).
+  // `.bound COUNT[, LOOP]`: a bound of the next instruction (seeing only the
+  // symbols defined above it, as .equ).
   void bound(const std::string& rest) {
     if (bound_line_) fail(".bound: the .bound of line " + std::to_string(bound_line_) +
                           " has no instruction yet");
     strict_ = true;
     struct Relax { bool& f; ~Relax() { f = false; } } relax{strict_};
-    if (rest.empty()) fail(".bound: expected an expression");
-    bound_ = eval(rest, ".bound");
-    if (bound_ < 0) fail(".bound: expected a count >= 0, got " + std::to_string(bound_));
+    const std::vector<std::string> items = split_commas(rest);
+    if (rest.empty() || items.size() > 2) fail(".bound: expected COUNT or COUNT, LOOP");
+    bound_ = {eval(items[0], ".bound"), -1};
+    if (bound_.count < 0) fail(".bound: expected a count >= 0, got " + std::to_string(bound_.count));
+    if (items.size() == 2) bound_.per = value_in(items[1], ".bound: loop", 0, opt_.imem_words - 1);
     bound_line_ = line_;
     list_line();
   }
@@ -599,7 +601,7 @@ class Assembler {
   size_t pos_ = 0;
   bool strict_ = false;  // pass 1 tolerates labels not yet seen (only pass 2 encodes)
   int bound_line_ = 0;   // a .bound waiting for its instruction (its line)
-  int64_t bound_ = 0;
+  Program::Bound bound_;
   std::vector<Cond> conds_;  // the open .if blocks, innermost last
 };
 

@@ -6,7 +6,7 @@
 // Source: one statement per line, `;` starts a comment.
 //   label:                     (may precede a statement on the same line)
 //   .equ NAME, expr            .org expr (IMEM address)   .word expr[, expr...]
-//   .bound expr                (for the next instruction: Program::bounds)
+//   .bound expr[, loop]        (for the next instruction: Program::bounds)
 //   ld.h [V + x1]   add k[C]   ld io[PORT]   lt.h15 a   add p   ld 5   shl 12
 //   st [V + x2]     out io[PORT]   j.lt label   djnz x2, loop   call f   ret
 //   wait 0x1   sqrt   sqrtr   ldx x1, 3   addx x1, -1   tax x3   txa x3   nop
@@ -61,10 +61,16 @@ struct Program {
   std::vector<uint32_t> words;  // IMEM image, address 0 .. highest address written
   std::map<std::string, int64_t> symbols;  // labels, .equ and predefined symbols
   std::vector<ListingLine> listing;  // one entry per source line (and per extra .word)
-  // `.bound EXPR` before an instruction: the most times that backward
-  // branch is taken per entry of its loop, or the largest count of that
-  // shift by a memory / P operand (ucode/frame_bound.h), by its address.
-  std::map<uint32_t, int64_t> bounds;
+  // `.bound COUNT[, LOOP]` before an instruction (ucode/frame_bound.h), by
+  // its address: a branch that closes a loop is taken at most COUNT times
+  // per entry of its loop (with LOOP, in all per entry of the loop around
+  // it that jumps back to address LOOP); a shift by a memory / P count
+  // shifts by at most COUNT.
+  struct Bound {
+    int64_t count = 0;
+    int64_t per = -1;  // LOOP, -1 without
+  };
+  std::map<uint32_t, Bound> bounds;
 };
 
 Program assemble(const std::string& source, const std::string& file, const Options& opt = {});
