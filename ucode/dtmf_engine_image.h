@@ -225,6 +225,20 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // takes it once the sample it is on is done (a frame's sample, the
   // longest: dtmf_top_sdft_clocks), and the port is registered (+ 2).
   sym("SDFT_BUSY", dtmf_top_sdft_clocks(ks, p.spec.sdft_lanes) + 2);
+  // The static frame bound's assumptions (ucode/dtmf_frame_bound.h): the
+  // largest count of each izhikevich_layer shift by a constant word, the
+  // plan's (over both layers: NSH<word>), the spike window's events at the
+  // plan's decimation, and the longest command payload, the protocol's.
+  for (int w : {4, 7, 9, 11, 13, 14, 15})
+    sym("NSH" + std::to_string(w), std::max(neuron_block(p.neuron[0])[size_t(w)] & 63,
+                                             neuron_block(p.neuron[1])[size_t(w)] & 63));
+  // The events a spike window can hold: every neuron of both layers once a
+  // frame of the window (decim_tax frames), at most MAXSPK
+  // (longest_packet_bytes' rule).
+  sym("SPKWIN", std::min<long>(p.max_spikes, 2L * T * p.decim_tax));
+  int payload = 0;
+  for (const auto& c : kDtmfCommands) payload = std::max(payload, c.payload_bytes());
+  sym("CMD_PAYLOAD", payload);
   sym("CF", 14), sym("TW", 10), sym("QUART", kQ);
   sym("SHL_Q", p.mag_shift == 0 ? 2 : 0), sym("SHR_Q", p.mag_shift == 0 ? 0 : 2 * p.mag_shift - 2);
   sym("GRND", p.taxel.recip_shift + 14);

@@ -3,6 +3,13 @@
 // command, and what a frame's clocks must hold. host/fpga/engine_load.h
 // measures the same three on the instruction-set model; the measured worst
 // case must stay below this bound (tests/fpga/frame_bound_test.cpp).
+//
+// Its assumptions are the measurement's: the plan's neuron constants (the
+// counts of izhikevich_layer's shifts by constant words: the image's NSH*
+// symbols), its taxel decimation (a spike window's events: SPKWIN) and the
+// commands of docs/protocol.md (payloads up to the longest type's:
+// CMD_PAYLOAD). Everything else is any data: every path of
+// every frame, every packet the mask may enable, every loop at its most.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +32,19 @@ struct DtmfFrameBound {
   // frame may wait for one command begun just before it came
   // (host/fpga/engine_load.h's stress_total, the same rule).
   uint64_t total() const { return frame + command; }
+  // The same without the plan's assumptions: izhikevich_layer's shift
+  // counts at the most SET_NEURON accepts (neuron_params), a spike window
+  // of MAXSPK events (any SET_DECIMATION), and a command
+  // frame as long as the command FIFO holds (kDtmfCmdFifoBytes: a junk
+  // type or length is drained byte by byte before it is rejected). Not
+  // what a build is checked against; what a host can make of it.
+  uint64_t frame_any = 0, command_any = 0;
+  uint64_t total_any() const { return frame_any + command_any; }
 };
+
+// rtl/dtmf_top.v's command FIFO (cmd_decoder DEPTH): a committed frame,
+// type, seq, len (2 bytes) and payload, fits it whole.
+constexpr int kDtmfCmdFifoBytes = 512;
 
 // The wait latencies the bound takes (fe_bound::Options::wait_clocks): the
 // main wait 1 (the analysis starts when the event is there); EV_IZ_DONE the

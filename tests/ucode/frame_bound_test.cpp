@@ -309,9 +309,11 @@ TEST(FrameBound, DtmfDefaultPlan) {
   const eskin::sim::Scene sc = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const auto plan = make_dtmf_top_plan(eskin::sim::dtmf_top_spec(sc, kDtmfTopClkHz));
   const DtmfFrameBound b = dtmf_frame_bound(plan);
-  std::printf("default plan: frame %llu, command %llu, total %llu clocks\n",
+  std::printf("default plan: frame %llu, command %llu, total %llu clocks; any neuron "
+              "constants and command frames: %llu + %llu\n",
               (unsigned long long)b.frame, (unsigned long long)b.command,
-              (unsigned long long)b.total());
+              (unsigned long long)b.total(), (unsigned long long)b.frame_any,
+              (unsigned long long)b.command_any);
   EXPECT_GT(b.frame, 0u);
   EXPECT_GT(b.command, 0u);
 }
