@@ -228,7 +228,8 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // The static frame bound's assumptions (ucode/dtmf_frame_bound.h): the
   // largest count of each izhikevich_layer shift by a constant word, the
   // plan's (over both layers: NSH<word>), the spike window's events at the
-  // plan's decimation, and the longest command payload, the protocol's.
+  // plan's decimation, sparse packets as its mask asks, and the longest
+  // command payload, the protocol's.
   for (int w : {4, 7, 9, 11, 13, 14, 15})
     sym("NSH" + std::to_string(w), std::max(neuron_block(p.neuron[0])[size_t(w)] & 63,
                                              neuron_block(p.neuron[1])[size_t(w)] & 63));
@@ -236,6 +237,9 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // frame of the window (decim_tax frames), at most MAXSPK
   // (longest_packet_bytes' rule).
   sym("SPKWIN", std::min<long>(p.max_spikes, 2L * T * p.decim_tax));
+  // Whether the plan's mask asks for sparse taxel packets (their two passes
+  // over every taxel).
+  sym("SPARSE", (p.mask & kMaskSparse) ? 1 : 0);
   int payload = 0;
   for (const auto& c : kDtmfCommands) payload = std::max(payload, c.payload_bytes());
   sym("CMD_PAYLOAD", payload);

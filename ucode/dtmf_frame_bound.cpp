@@ -61,6 +61,7 @@ DtmfFrameBound dtmf_frame_bound(const DtmfTopPlan& p) {
     if (name == "NSH15") value = hi("x_shift").hi;
     if (name == "CMD_PAYLOAD") value = kDtmfCmdFifoBytes - 4;
     if (name == "SPKWIN") value = p.max_spikes;  // any decimation
+    if (name == "SPARSE") value = 1;             // any mask
   }
   std::tie(b.frame_any, b.command_any) = frame_and_command(image, o);
   return b;

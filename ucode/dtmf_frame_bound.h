@@ -6,9 +6,11 @@
 //
 // Its assumptions are the measurement's: the plan's neuron constants (the
 // counts of izhikevich_layer's shifts by constant words: the image's NSH*
-// symbols), its taxel decimation (a spike window's events: SPKWIN) and the
-// commands of docs/protocol.md (payloads up to the longest type's:
-// CMD_PAYLOAD). Everything else is any data: every path of
+// symbols), its taxel decimation (a spike window's events: SPKWIN), its
+// output mask (sparse taxel packets or none: SPARSE) and the commands of
+// docs/protocol.md (payloads up to the longest type's: CMD_PAYLOAD): the
+// commands that change those (SET_NEURON, SET_DECIMATION, SET_OUTPUT_MASK)
+// can take a frame past the bound (frame_any, command_any below). Everything else is any data: every path of
 // every frame, every packet the mask may enable, every loop at its most.
 #pragma once
 
@@ -34,7 +36,8 @@ struct DtmfFrameBound {
   uint64_t total() const { return frame + command; }
   // The same without the plan's assumptions: izhikevich_layer's shift
   // counts at the most SET_NEURON accepts (neuron_params), a spike window
-  // of MAXSPK events (any SET_DECIMATION), and a command
+  // of MAXSPK events (any SET_DECIMATION), sparse packets (any
+  // SET_OUTPUT_MASK), and a command
   // frame as long as the command FIFO holds (kDtmfCmdFifoBytes: a junk
   // type or length is drained byte by byte before it is rejected). Not
   // what a build is checked against; what a host can make of it.

@@ -445,6 +445,9 @@ class Analyzer {
     routines_[entry] = std::nullopt;
     const uint64_t c = run(entry, {}, true).at(entry);
     routines_[entry] = c;
+    if (std::getenv("ESKIN_BOUND_DEBUG"))
+      std::fprintf(stderr, "routine at %u (line %d): %llu clocks\n", entry,
+                   line_of_[entry] ? line_of_[entry]->line : 0, (unsigned long long)c);
     return c;
   }
 

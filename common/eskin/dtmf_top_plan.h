@@ -33,8 +33,24 @@ namespace eskin::hls {
 // the clocks between frames: docs/figures.csv (docs/fpga.md).
 constexpr long kDtmfTopClkHz = 18000000;
 
+// The datapath that does a frame's work after the DFT: the frame engine's
+// microprogram (rtl/dtmf_top.v), or a streaming datapath for large FPGAs
+// (none is built yet). It sets how much of a frame the proven worst case
+// may take (dtmf_frame_bound_limit_percent).
+enum class DtmfDatapath { FrameEngine, Streaming };
+
+// The most of a frame's clocks the static worst-case bound of a frame and
+// a command (ucode/dtmf_frame_bound.h) may take: 90 % on the frame engine,
+// whose bound covers every path of its microprogram; 70 % on a streaming
+// datapath, whose fixed latencies leave less to prove and more to what the
+// bound does not model (its blocks' back-pressure).
+inline int dtmf_frame_bound_limit_percent(DtmfDatapath d) {
+  return d == DtmfDatapath::Streaming ? 70 : 90;
+}
+
 // What a skin asks of the FPGA top.
 struct DtmfTopSpec {
+  DtmfDatapath datapath = DtmfDatapath::FrameEngine;
   int rows = 3, cols = 3;
   std::vector<double> carrier_hz;  // rows first, then columns
   double sample_hz = 35000.0;
@@ -328,6 +344,11 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    frame (commands run between frames) must fit in STEP x period clocks.
 //    `engine_clocks` is that sum; host/fpga/engine_load.h measures it on the
 //    instruction-set model (the microcode's time depends on the data).
+//    `bound_clocks` (when > 0) is the same sum proven from the microprogram
+//    (ucode/dtmf_frame_bound.h: every path, every loop at its bound): it
+//    must fit in dtmf_frame_bound_limit_percent of the frame (90 % on the
+//    frame engine), so a build keeps a margin even over its proven worst
+//    case.
 //  - the UART: a bit is round(clk / baud) clocks (uart_tx/uart_rx, which
 //    stop at elaboration beyond 3 %); within 2 % here, leaving the host's
 //    own rate error room.
@@ -342,6 +363,8 @@ struct DtmfTopClockBudget {
   long sdft_min_period = 0;   // what those need of the period: dtmf_top_sdft_min_period()
   long frame_clocks = 0;   // STEP x period: the engine's time per frame
   long engine_clocks = 0;  // what the engine needs of it
+  long bound_clocks = 0;   // its static bound (0: not checked)
+  long bound_limit_clocks = 0;  // the most of the frame the bound may take
   std::vector<std::string> problems;  // empty: the top keeps up
   bool ok() const { return problems.empty(); }
 };
@@ -383,8 +406,13 @@ inline std::string dtmf_top_adc_problem(double fs, long adc_hz) {
   return s;
 }
 
+// The frame clocks the bound may take: limit % of frame_clocks.
+inline long dtmf_frame_bound_limit_clocks(const DtmfTopPlan& p, long frame_clocks) {
+  return long(frame_clocks * int64_t(dtmf_frame_bound_limit_percent(p.spec.datapath)) / 100);
+}
+
 inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_hz,
-                                                long engine_clocks) {
+                                                long engine_clocks, long bound_clocks = 0) {
   DtmfTopClockBudget b;
   const double fs = p.spec.sample_hz;
   b.clk_hz = clk_hz;
@@ -404,6 +432,8 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
     b.frame_clocks = long(p.step) * b.period;
   }
   b.engine_clocks = engine_clocks;
+  b.bound_clocks = bound_clocks;
+  b.bound_limit_clocks = dtmf_frame_bound_limit_clocks(p, b.frame_clocks);
   auto at = [&] {
     char s[64];
     std::snprintf(s, sizeof s, " (%.6g MHz / %.6g S/s)", double(clk_hz) / 1e6, fs);
@@ -430,6 +460,16 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
                               : "STEP x period = " + n(p.step) + " x " + n(b.period) + " = " +
                                     n(b.frame_clocks)) +
                          at());
+  if (bound_clocks > b.bound_limit_clocks) {
+    char s[400];
+    std::snprintf(s, sizeof s,
+                  "frame_engine: the static bound of a frame and a command, %ld clocks, is %.1f %% "
+                  "of a frame of %ld clocks; a build may take at most %d %% (%ld clocks)",
+                  bound_clocks, 100.0 * double(bound_clocks) / double(b.frame_clocks),
+                  b.frame_clocks, dtmf_frame_bound_limit_percent(p.spec.datapath),
+                  b.bound_limit_clocks);
+    b.problems.push_back(std::string(s) + at());
+  }
   const long cpb = std::lround(double(clk_hz) / double(p.spec.baud));
   const double err = cpb > 0 ? double(clk_hz) / double(cpb * p.spec.baud) - 1.0 : 1.0;
   if (cpb < 2 || std::fabs(err) > 0.02) {
@@ -452,14 +492,22 @@ struct DtmfTopClockNeeds {
   long dft_period = 0;  // dtmf_top_sdft_min_period
 };
 
-inline DtmfTopClockNeeds dtmf_top_clock_needs(const DtmfTopPlan& p, long engine_clocks) {
+// The engine's clocks a frame must hold: the measured `engine_clocks`, and
+// the static bound over the limit's share of the frame (when > 0).
+inline double dtmf_top_engine_need(const DtmfTopPlan& p, long engine_clocks, long bound_clocks) {
+  return std::max(double(engine_clocks),
+                  double(bound_clocks) * 100.0 / dtmf_frame_bound_limit_percent(p.spec.datapath));
+}
+
+inline DtmfTopClockNeeds dtmf_top_clock_needs(const DtmfTopPlan& p, long engine_clocks,
+                                              long bound_clocks = 0) {
   DtmfTopClockNeeds n;
   const double fs = p.spec.sample_hz;
   const double room = 1.0 / fs - 250e-9;  // s per sample left after tACQ
   n.adc_ok = room > 28.0 / 40e6;          // 28 H / clk >= 0.7 us at any clock
   // On its own clock the ADC asks nothing of clk.
   n.adc_hz = n.adc_ok && p.spec.adc_clk_hz == 0 ? 28.0 / room : 0.0;
-  n.engine_hz = fs * double(engine_clocks) / double(p.step);
+  n.engine_hz = fs * dtmf_top_engine_need(p, engine_clocks, bound_clocks) / double(p.step);
   n.dft_period = dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step);
   n.dft_hz = fs * double(n.dft_period);
   return n;
@@ -468,8 +516,9 @@ inline DtmfTopClockNeeds dtmf_top_clock_needs(const DtmfTopPlan& p, long engine_
 // The slowest clock the ADC's acquisition time and the engine allow, the
 // DFT aside: what its lanes must not exceed. 0 when the ADC cannot convert
 // at the sample rate at any clock.
-inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_clocks) {
-  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
+inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_clocks,
+                                              long bound_clocks = 0) {
+  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks, bound_clocks);
   return n.adc_ok ? long(std::ceil(std::max(n.adc_hz, n.engine_hz))) : 0;
 }
 
@@ -478,8 +527,9 @@ inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_
 // dtmf_top_clock_budget (the SCLK divider steps up at every 40 MHz, and
 // periods are rounded). 0 when the ADC cannot convert at the sample rate at
 // any clock.
-inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
-  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
+inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks,
+                                  long bound_clocks = 0) {
+  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks, bound_clocks);
   return n.adc_ok ? long(std::ceil(std::max({n.adc_hz, n.engine_hz, n.dft_hz}))) : 0;
 }
 
@@ -488,8 +538,9 @@ inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
 // lanes, which the flow picks as the fewest that ask no more than the other
 // two at the board's clock: then the DFT's figure may be the largest while
 // the others set it).
-inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_clocks) {
-  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
+inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_clocks,
+                                             long bound_clocks = 0) {
+  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks, bound_clocks);
   if (!n.adc_ok) return "the AD7476A cannot convert that fast";
   char adc[96];
   if (p.spec.adc_clk_hz > 0)
@@ -497,12 +548,16 @@ inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_c
                   double(p.spec.adc_clk_hz) / 1e6);
   else
     std::snprintf(adc, sizeof adc, "the AD7476A's acquisition time %.1f MHz", n.adc_hz / 1e6);
-  char s[400];
+  char bound[160] = "";
+  if (bound_clocks > 0)
+    std::snprintf(bound, sizeof bound, " (its static bound %ld clocks within %d %% of the frame)",
+                  bound_clocks, dtmf_frame_bound_limit_percent(p.spec.datapath));
+  char s[560];
   std::snprintf(s, sizeof s,
-                "%s, the frame engine's %ld clocks a frame of %d samples %.1f MHz, the DFT's %ld "
+                "%s, the frame engine's %ld clocks a frame of %d samples%s %.1f MHz, the DFT's %ld "
                 "clocks a sample in %d lane%s %.1f MHz",
-                adc, engine_clocks, p.step, n.engine_hz / 1e6, n.dft_period, p.spec.sdft_lanes,
-                p.spec.sdft_lanes == 1 ? "" : "s", n.dft_hz / 1e6);
+                adc, engine_clocks, p.step, bound, n.engine_hz / 1e6, n.dft_period,
+                p.spec.sdft_lanes, p.spec.sdft_lanes == 1 ? "" : "s", n.dft_hz / 1e6);
   return s;
 }
 

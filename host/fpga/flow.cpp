@@ -84,8 +84,9 @@ std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text) {
   return out;
 }
 
-int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks) {
-  const long other = hls::dtmf_top_min_clock_hz_without_dft(plan, engine_clocks);
+int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks,
+                      long bound_clocks) {
+  const long other = hls::dtmf_top_min_clock_hz_without_dft(plan, engine_clocks, bound_clocks);
   if (other == 0) return 1;
   // The board clock the rest would get (its clocks come in steps: a lane
   // that saves less than a step saves nothing), and its sample period.
@@ -131,9 +132,10 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
   auto load_with = [&](const hls::DtmfTopSpec& s) {
     c.plan = hls::make_dtmf_top_plan(s);
     c.load = measure_engine_load(c.plan, x);
+    c.bound = hls::dtmf_frame_bound(c.plan);
     c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
                                ? c.load.stress_total() : c.load.scene_clocks);
-    return hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
+    return hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks, long(c.bound.total()));
   };
   long need = load_with(spec);
   // The board's engine when needed (Board::engine_when_needed): the first
@@ -162,13 +164,14 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
     }
     c = best;
   }
-  c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
-  c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
+  c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks, long(c.bound.total()));
+  c.bound = hls::dtmf_frame_bound(c.plan);  // at its lanes (the DFT's busy time)
+  c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks, long(c.bound.total()));
   auto budget_at = [&](const Clocking& k) {
     c.plan.spec.clk_hz = k.clk_hz;
     c.plan.spec.adc_clk_hz = k.adc_clk_hz;
     c.plan.spec.baud = k.baud;
-    return hls::dtmf_top_clock_budget(c.plan, k.clk_hz, c.engine_clocks);
+    return hls::dtmf_top_clock_budget(c.plan, k.clk_hz, c.engine_clocks, long(c.bound.total()));
   };
   // k, or k with an ADC clock of its own when only that keeps up.
   auto keeps_up = [&](const Clocking& k) -> std::optional<Clocking> {
@@ -238,10 +241,11 @@ bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& 
   clk = cc.clocking;
   r.step = plan.step;
   r.load = cc.load;
+  r.bound = cc.bound;
   r.policy = opt.load;
   r.engine_clocks = cc.engine_clocks;
   r.core_min_hz = cc.core_min_hz;
-  r.core_min_reason = hls::dtmf_top_min_clock_reason(plan, cc.engine_clocks);
+  r.core_min_reason = hls::dtmf_top_min_clock_reason(plan, cc.engine_clocks, long(cc.bound.total()));
   r.budget = cc.budget;
   r.spec = plan.spec;
   r.clk_hz = clk.clk_hz;

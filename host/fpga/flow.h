@@ -17,6 +17,7 @@
 #include "host/fpga/board.h"
 #include "host/fpga/engine_load.h"
 #include "host/fpga/hall_pins.h"
+#include "ucode/dtmf_frame_bound.h"
 #include "sim/hall_top_spec.h"
 #include "sim/scene.h"
 
@@ -74,6 +75,7 @@ struct FlowReport {
   hls::DtmfTopSpec spec;            // DTMF and mixed builds: clk_hz and baud as built
   int step = 1;                      // from the plan
   EngineLoad load;                   // the frame engine's clocks per frame
+  hls::DtmfFrameBound bound;         // their static bound (budget.bound_clocks: its total)
   LoadPolicy policy = LoadPolicy::Scene;
   long engine_clocks = 0;            // what the policy makes the clock carry
   long core_min_hz = 0;              // no slower clock keeps up (a lower bound)
@@ -105,7 +107,9 @@ struct FlowReport {
 // when the ADC needs a clock of its own there); the board's most
 // when none does (the budget then names the DFT). 1 when the ADC cannot
 // convert at the rate at all.
-int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks);
+// bound_clocks: the engine's static bound (hls::dtmf_top_clock_needs).
+int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks,
+                      long bound_clocks = 0);
 
 // The core's clock for a scene on board `b`: the plan, the engine's load
 // (engine_load.h) under `policy`, the DFT lanes (choose_sdft_lanes; the
@@ -115,9 +119,14 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
 // board's default or the asked-for clock is returned with the problems).
 // The plan's spec carries the chosen clock and baud rate, and its packet
 // decimation is planned for that baud rate.
+// Every clock keeps the engine's static bound (ucode/dtmf_frame_bound.h)
+// within its share of the frame (hls::dtmf_frame_bound_limit_percent): a
+// skin whose bound no board clock holds is refused with the bound, the
+// frame and the limit (budget.problems).
 struct CoreClock {
   hls::DtmfTopPlan plan;
   EngineLoad load;
+  hls::DtmfFrameBound bound;  // the plan's as built (its DFT lanes)
   long engine_clocks = 0;  // what the policy makes the clock carry
   long core_min_hz = 0;    // no slower clock keeps up (a lower bound)
   Clocking clocking;
