@@ -492,22 +492,14 @@ struct DtmfTopClockNeeds {
   long dft_period = 0;  // dtmf_top_sdft_min_period
 };
 
-// The engine's clocks a frame must hold: the measured `engine_clocks`, and
-// the static bound over the limit's share of the frame (when > 0).
-inline double dtmf_top_engine_need(const DtmfTopPlan& p, long engine_clocks, long bound_clocks) {
-  return std::max(double(engine_clocks),
-                  double(bound_clocks) * 100.0 / dtmf_frame_bound_limit_percent(p.spec.datapath));
-}
-
-inline DtmfTopClockNeeds dtmf_top_clock_needs(const DtmfTopPlan& p, long engine_clocks,
-                                              long bound_clocks = 0) {
+inline DtmfTopClockNeeds dtmf_top_clock_needs(const DtmfTopPlan& p, long engine_clocks) {
   DtmfTopClockNeeds n;
   const double fs = p.spec.sample_hz;
   const double room = 1.0 / fs - 250e-9;  // s per sample left after tACQ
   n.adc_ok = room > 28.0 / 40e6;          // 28 H / clk >= 0.7 us at any clock
   // On its own clock the ADC asks nothing of clk.
   n.adc_hz = n.adc_ok && p.spec.adc_clk_hz == 0 ? 28.0 / room : 0.0;
-  n.engine_hz = fs * dtmf_top_engine_need(p, engine_clocks, bound_clocks) / double(p.step);
+  n.engine_hz = fs * double(engine_clocks) / double(p.step);
   n.dft_period = dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step);
   n.dft_hz = fs * double(n.dft_period);
   return n;
@@ -516,9 +508,8 @@ inline DtmfTopClockNeeds dtmf_top_clock_needs(const DtmfTopPlan& p, long engine_
 // The slowest clock the ADC's acquisition time and the engine allow, the
 // DFT aside: what its lanes must not exceed. 0 when the ADC cannot convert
 // at the sample rate at any clock.
-inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_clocks,
-                                              long bound_clocks = 0) {
-  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks, bound_clocks);
+inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_clocks) {
+  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
   return n.adc_ok ? long(std::ceil(std::max(n.adc_hz, n.engine_hz))) : 0;
 }
 
@@ -527,9 +518,8 @@ inline long dtmf_top_min_clock_hz_without_dft(const DtmfTopPlan& p, long engine_
 // dtmf_top_clock_budget (the SCLK divider steps up at every 40 MHz, and
 // periods are rounded). 0 when the ADC cannot convert at the sample rate at
 // any clock.
-inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks,
-                                  long bound_clocks = 0) {
-  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks, bound_clocks);
+inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks) {
+  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
   return n.adc_ok ? long(std::ceil(std::max({n.adc_hz, n.engine_hz, n.dft_hz}))) : 0;
 }
 
@@ -538,9 +528,8 @@ inline long dtmf_top_min_clock_hz(const DtmfTopPlan& p, long engine_clocks,
 // lanes, which the flow picks as the fewest that ask no more than the other
 // two at the board's clock: then the DFT's figure may be the largest while
 // the others set it).
-inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_clocks,
-                                             long bound_clocks = 0) {
-  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks, bound_clocks);
+inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_clocks) {
+  const DtmfTopClockNeeds n = dtmf_top_clock_needs(p, engine_clocks);
   if (!n.adc_ok) return "the AD7476A cannot convert that fast";
   char adc[96];
   if (p.spec.adc_clk_hz > 0)
@@ -548,16 +537,12 @@ inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_c
                   double(p.spec.adc_clk_hz) / 1e6);
   else
     std::snprintf(adc, sizeof adc, "the AD7476A's acquisition time %.1f MHz", n.adc_hz / 1e6);
-  char bound[160] = "";
-  if (bound_clocks > 0)
-    std::snprintf(bound, sizeof bound, " (its static bound %ld clocks within %d %% of the frame)",
-                  bound_clocks, dtmf_frame_bound_limit_percent(p.spec.datapath));
-  char s[560];
+  char s[400];
   std::snprintf(s, sizeof s,
-                "%s, the frame engine's %ld clocks a frame of %d samples%s %.1f MHz, the DFT's %ld "
+                "%s, the frame engine's %ld clocks a frame of %d samples %.1f MHz, the DFT's %ld "
                 "clocks a sample in %d lane%s %.1f MHz",
-                adc, engine_clocks, p.step, bound, n.engine_hz / 1e6, n.dft_period,
-                p.spec.sdft_lanes, p.spec.sdft_lanes == 1 ? "" : "s", n.dft_hz / 1e6);
+                adc, engine_clocks, p.step, n.engine_hz / 1e6, n.dft_period, p.spec.sdft_lanes,
+                p.spec.sdft_lanes == 1 ? "" : "s", n.dft_hz / 1e6);
   return s;
 }
 

@@ -84,9 +84,8 @@ std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text) {
   return out;
 }
 
-int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks,
-                      long bound_clocks) {
-  const long other = hls::dtmf_top_min_clock_hz_without_dft(plan, engine_clocks, bound_clocks);
+int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks) {
+  const long other = hls::dtmf_top_min_clock_hz_without_dft(plan, engine_clocks);
   if (other == 0) return 1;
   // The board clock the rest would get (its clocks come in steps: a lane
   // that saves less than a step saves nothing), and its sample period.
@@ -132,10 +131,9 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
   auto load_with = [&](const hls::DtmfTopSpec& s) {
     c.plan = hls::make_dtmf_top_plan(s);
     c.load = measure_engine_load(c.plan, x);
-    c.bound = hls::dtmf_frame_bound(c.plan);
     c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
                                ? c.load.stress_total() : c.load.scene_clocks);
-    return hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks, long(c.bound.total()));
+    return hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   };
   long need = load_with(spec);
   // The board's engine when needed (Board::engine_when_needed): the first
@@ -164,14 +162,14 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
     }
     c = best;
   }
-  c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks, long(c.bound.total()));
+  c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
   c.bound = hls::dtmf_frame_bound(c.plan);  // at its lanes (the DFT's busy time)
-  c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks, long(c.bound.total()));
+  c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   auto budget_at = [&](const Clocking& k) {
     c.plan.spec.clk_hz = k.clk_hz;
     c.plan.spec.adc_clk_hz = k.adc_clk_hz;
     c.plan.spec.baud = k.baud;
-    return hls::dtmf_top_clock_budget(c.plan, k.clk_hz, c.engine_clocks, long(c.bound.total()));
+    return hls::dtmf_top_clock_budget(c.plan, k.clk_hz, c.engine_clocks);
   };
   // k, or k with an ADC clock of its own when only that keeps up.
   auto keeps_up = [&](const Clocking& k) -> std::optional<Clocking> {
@@ -245,7 +243,7 @@ bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& 
   r.policy = opt.load;
   r.engine_clocks = cc.engine_clocks;
   r.core_min_hz = cc.core_min_hz;
-  r.core_min_reason = hls::dtmf_top_min_clock_reason(plan, cc.engine_clocks, long(cc.bound.total()));
+  r.core_min_reason = hls::dtmf_top_min_clock_reason(plan, cc.engine_clocks);
   r.budget = cc.budget;
   r.spec = plan.spec;
   r.clk_hz = clk.clk_hz;
@@ -263,6 +261,20 @@ bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& 
                                 : fmt::format("It needs at least {} MHz; board {} has no clock "
                                               "that meets every budget.",
                                               mhz(double(r.core_min_hz)), b.name));
+    return false;
+  }
+  // The plan refuses a build whose proven worst case (ucode/dtmf_frame_bound.h)
+  // takes more of the frame than its datapath may (90 % on the frame
+  // engine), though its measured one keeps up at this clock.
+  const hls::DtmfTopClockBudget bounded =
+      hls::dtmf_top_clock_budget(plan, clk.clk_hz, cc.engine_clocks, long(cc.bound.total()));
+  r.budget.bound_clocks = bounded.bound_clocks;
+  r.budget.bound_limit_clocks = bounded.bound_limit_clocks;
+  if (!bounded.ok()) {
+    r.failure = fmt::format("frame bound: {} (measured: {} clocks; the bound is frame {} + "
+                            "command {})",
+                            bounded.problems.front(), cc.engine_clocks, cc.bound.frame,
+                            cc.bound.command);
     return false;
   }
   const fs::path out = fs::absolute(opt.out_dir);

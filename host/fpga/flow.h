@@ -107,9 +107,7 @@ struct FlowReport {
 // when the ADC needs a clock of its own there); the board's most
 // when none does (the budget then names the DFT). 1 when the ADC cannot
 // convert at the rate at all.
-// bound_clocks: the engine's static bound (hls::dtmf_top_clock_needs).
-int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks,
-                      long bound_clocks = 0);
+int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks);
 
 // The core's clock for a scene on board `b`: the plan, the engine's load
 // (engine_load.h) under `policy`, the DFT lanes (choose_sdft_lanes; the
@@ -119,10 +117,12 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
 // board's default or the asked-for clock is returned with the problems).
 // The plan's spec carries the chosen clock and baud rate, and its packet
 // decimation is planned for that baud rate.
-// Every clock keeps the engine's static bound (ucode/dtmf_frame_bound.h)
-// within its share of the frame (hls::dtmf_frame_bound_limit_percent): a
-// skin whose bound no board clock holds is refused with the bound, the
-// frame and the limit (budget.problems).
+// The clock is chosen for the measured load (`engine_clocks`); `bound` is
+// its static bound (ucode/dtmf_frame_bound.h), which run_flow then checks
+// at that clock: a build whose bound takes more than its datapath's share
+// of the frame (hls::dtmf_frame_bound_limit_percent, 90 % on the frame
+// engine) is refused before the tools, naming the bound, the frame and the
+// limit (FlowReport::failure "frame bound: ...").
 struct CoreClock {
   hls::DtmfTopPlan plan;
   EngineLoad load;
