@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <stdexcept>
@@ -224,7 +225,30 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // The most clocks IO_SDFT_BUSY reads 1 after a carrier write: the DFT
   // takes it once the sample it is on is done (a frame's sample, the
   // longest: dtmf_top_sdft_clocks), and the port is registered (+ 2).
-  sym("SDFT_BUSY", dtmf_top_sdft_clocks(ks, p.spec.sdft_lanes) + 2);
+  const long sdft_busy = dtmf_top_sdft_clocks(ks, p.spec.sdft_lanes) + 2;
+  sym("SDFT_BUSY", sdft_busy);
+  // The most polls of IO_SDFT_BUSY in all while sdft_program loads KS - 1
+  // carriers (the last one's wait has SDFT_BUSY of its own): a sample the
+  // DFT is on when a write comes (F = SDFT_BUSY clocks at most) delays it,
+  // and samples come every P clocks (the plan's sample period at its
+  // clock), so over the D clocks of the loop the DFT starts at most D / P
+  // + 3 samples (those arriving, one held by the ADC, one in progress), and
+  // D = (KS - 1) L + busy with busy <= F (D / P + 3): busy <= F ((KS - 1) L
+  // / P + 3) / (1 - F / P) when F < P. L: the loop's clocks besides its
+  // polls (10; 16 leaves room for changes). A poll takes 3 clocks (2 at
+  // the least): busy / 2 + one more per write. Without F < P, or when
+  // smaller: each write waits a whole sample.
+  {
+    constexpr long kLoop = 16;
+    const long writes = ks - 1, period = dtmf_top_clock_budget(p, p.spec.clk_hz, 0).period;
+    long polls = writes * ((sdft_busy + 1) / 2);
+    if (period > sdft_busy) {
+      const double busy = double(sdft_busy) * (double(writes * kLoop) / double(period) + 3.0) /
+                          (1.0 - double(sdft_busy) / double(period));
+      polls = std::min(polls, long(std::ceil(busy / 2.0)) + writes);
+    }
+    sym("SDFT_POLLS", polls);
+  }
   // The static frame bound's assumptions (ucode/dtmf_frame_bound.h): the
   // largest count of each izhikevich_layer shift by a constant word, the
   // plan's (over both layers: NSH<word>), the spike window's events at the

@@ -163,7 +163,6 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
     c = best;
   }
   c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
-  c.bound = hls::dtmf_frame_bound(c.plan);  // at its lanes (the DFT's busy time)
   c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   auto budget_at = [&](const Clocking& k) {
     c.plan.spec.clk_hz = k.clk_hz;
@@ -191,6 +190,9 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
         }
   }
   c.budget = budget_at(c.clocking);
+  // At its lanes and clock: the DFT's busy time and sample period bound
+  // the carrier load's polls.
+  c.bound = hls::dtmf_frame_bound(c.plan);
   return c;
 }
 
