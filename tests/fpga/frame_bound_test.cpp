@@ -31,12 +31,13 @@ sim::Scene base() { return sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.
 //
 // How loose: the bound adds up what no one frame does together (a spike in
 // every neuron of both layers, every packet type, the sparse one over
-// every taxel twice, the site rule and the pairing at their longest), and
-// the polling of the DFT for its longest busy time (the measurement's DFT
+// every taxel twice when the mask asks, the site rule and the pairing at
+// their longest), and the DFT's polls for the samples it may be on during
+// a carrier load (the measurement's DFT
 // takes carrier writes at once). Observed (printed): total bound / measured
-// 1.18 (3x3), 1.63 (8x8), 2.02 (10x10), 2.09 (16x16); the frame alone 1.11
-// to 1.78. The bound must stay within 2.5x of the measurement: looser than
-// that it would refuse builds that keep up by a wide margin.
+// 1.18 (3x3), 1.53 (8x8), 1.81 (10x10), 1.55 (16x16); the frame alone 1.11
+// to 1.78. The bound must stay within 2x of the measurement: looser than
+// that it would refuse builds that keep up with half their frame to spare.
 TEST(FrameBound, MeasuredWorstCaseIsBelowTheBound) {
   struct Case {
     std::string name;
@@ -77,7 +78,7 @@ TEST(FrameBound, MeasuredWorstCaseIsBelowTheBound) {
     EXPECT_LE(load.stress_bound(), bound.frame) << c.name;
     EXPECT_LE(load.command_clocks, bound.command) << c.name << ": " << load.command_case;
     EXPECT_LE(load.stress_total(), bound.total()) << c.name;
-    EXPECT_LT(ratio, 2.5) << c.name;
+    EXPECT_LT(ratio, 2.0) << c.name;
     // Without the plan's assumptions the bound can only grow.
     EXPECT_GE(bound.frame_any, bound.frame) << c.name;
     EXPECT_GE(bound.command_any, bound.command) << c.name;
@@ -134,7 +135,7 @@ namespace {
 // (docs/scale_table.csv: 50 MHz, barrel shifter and neuron lanes; at 1 MS/s
 // the ADC on its own 40 MHz clock; measured 49 778 and 48 021 of 50 015 and
 // 49 999 clocks a frame) and its UP5K 8x8 (18 MHz, bit-serial with the
-// neuron unit; 11 959 of 17 990).
+// neuron unit; 11 959 of 17 990): each bound printed with the failure.
 TEST(FrameBound, ScaleTableBuildsBeyondTheLimitAreRefused) {
   struct Probe {
     const char* board;
