@@ -582,12 +582,7 @@ class Analyzer {
     }
     size_t live = 0;
     for (size_t i = 0; i < nn; ++i) live += rep[i] == int(i);
-    if (topo.size() != live) {
-      if (std::getenv("ESKIN_BOUND_DEBUG"))
-        for (size_t i = 0; i < nn; ++i)
-          if (rep[i] == int(i) && indeg[i] > 0) std::fprintf(stderr, "  in a cycle: node %zu (address %u)\n", i, where + uint32_t(i));
-      fail(where, "loop: a cycle its counted branches do not bound");
-    }
+    if (topo.size() != live) fail(where, "loop: a cycle its counted branches do not bound");
     constexpr uint64_t kNone = ~uint64_t(0);
     std::vector<uint64_t> dist(nn, kNone);
     for (int u : topo) {

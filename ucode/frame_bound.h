@@ -31,7 +31,8 @@
 //
 // The bound is sound for the program as the manual times it; it is loose
 // where paths the data never takes together (a spike in every neuron, every
-// packet in one frame) are added up.
+// packet in one frame) are added up. ESKIN_BOUND_DEBUG=1 in the environment
+// prints each loop's and routine's bound to stderr: where the clocks go.
 #pragma once
 
 #include <cstdint>
