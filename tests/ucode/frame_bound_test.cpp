@@ -303,11 +303,26 @@ TEST(FrameBound, BoundDirective) {
             "prog.fe:2: .bound: the .bound of line 1 has no instruction yet");
 }
 
-// The DTMF microprogram for the default scene's plan: every loop of a frame
-// and of a command is bounded (no error), and the figures are printed.
+// The DTMF microprogram for the default scene's plan and every variant of
+// its assembly (.if: no ghost filter, no neurons, the neuron unit, its
+// lanes, the barrel shifter): every loop of a frame and of a command is
+// bounded (no error), and the figures are printed.
 TEST(FrameBound, DtmfDefaultPlan) {
   const eskin::sim::Scene sc = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  const auto plan = make_dtmf_top_plan(eskin::sim::dtmf_top_spec(sc, kDtmfTopClkHz));
+  const auto spec = eskin::sim::dtmf_top_spec(sc, kDtmfTopClkHz);
+  for (int v = 0; v < 5; ++v) {
+    auto s = spec;
+    if (v == 0) s.ghost = false;
+    if (v == 1) s.spikes = false;
+    if (v == 2) s.neuron_unit = true;
+    if (v == 3) s.neuron_unit = true, s.neuron_lanes = 5;
+    if (v == 4) s.engine_fast_shift = true;
+    const DtmfFrameBound b = dtmf_frame_bound(make_dtmf_top_plan(s));
+    std::printf("variant %d: frame %llu, command %llu\n", v, (unsigned long long)b.frame,
+                (unsigned long long)b.command);
+    EXPECT_GT(b.frame, 0u);
+  }
+  const auto plan = make_dtmf_top_plan(spec);
   const DtmfFrameBound b = dtmf_frame_bound(plan);
   std::printf("default plan: frame %llu, command %llu, total %llu clocks; any neuron "
               "constants and command frames: %llu + %llu\n",
