@@ -463,8 +463,10 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
   if (bound_clocks > b.bound_limit_clocks) {
     char s[400];
     std::snprintf(s, sizeof s,
-                  "frame_engine: the static bound of a frame and a command, %ld clocks, is %.1f %% "
+                  "%s: the static bound of a frame and a command, %ld clocks, is %.1f %% "
                   "of a frame of %ld clocks; a build may take at most %d %% (%ld clocks)",
+                  p.spec.datapath == DtmfDatapath::Streaming ? "streaming datapath"
+                                                             : "frame_engine",
                   bound_clocks, 100.0 * double(bound_clocks) / double(b.frame_clocks),
                   b.frame_clocks, dtmf_frame_bound_limit_percent(p.spec.datapath),
                   b.bound_limit_clocks);
