@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <stdexcept>
@@ -221,6 +222,51 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // Layer 0's spike flags for synapse_weights: S0 in DMEM (SZ, zeros, the
   // row above it; S1 below), or the lanes' columns of three at FLAGS + n.
   if (p.spec.neuron_lanes) sym("FLAGS", kIoIzFlag + C);
+  // The most clocks IO_SDFT_BUSY reads 1 after a carrier write: the DFT
+  // takes it once the sample it is on is done (a frame's sample, the
+  // longest: dtmf_top_sdft_clocks), and the port is registered (+ 2).
+  const long sdft_busy = dtmf_top_sdft_clocks(ks, p.spec.sdft_lanes) + 2;
+  sym("SDFT_BUSY", sdft_busy);
+  // The most polls of IO_SDFT_BUSY in all while sdft_program loads KS - 1
+  // carriers (the last one's wait has SDFT_BUSY of its own): a sample the
+  // DFT is on when a write comes (F = SDFT_BUSY clocks at most) delays it,
+  // and samples come every P clocks (the plan's sample period at its
+  // clock), so over the D clocks of the loop the DFT starts at most D / P
+  // + 3 samples (those arriving, one held by the ADC, one in progress), and
+  // D = (KS - 1) L + busy with busy <= F (D / P + 3): busy <= F ((KS - 1) L
+  // / P + 3) / (1 - F / P) when F < P. L: the loop's clocks besides its
+  // polls (10; 16 leaves room for changes). A poll takes 3 clocks (2 at
+  // the least): busy / 2 + one more per write. Without F < P, or when
+  // smaller: each write waits a whole sample.
+  {
+    constexpr long kLoop = 16;
+    const long writes = ks - 1, period = dtmf_top_clock_budget(p, p.spec.clk_hz, 0).period;
+    long polls = writes * ((sdft_busy + 1) / 2);
+    if (period > sdft_busy) {
+      const double busy = double(sdft_busy) * (double(writes * kLoop) / double(period) + 3.0) /
+                          (1.0 - double(sdft_busy) / double(period));
+      polls = std::min(polls, long(std::ceil(busy / 2.0)) + writes);
+    }
+    sym("SDFT_POLLS", polls);
+  }
+  // The static frame bound's assumptions (ucode/dtmf_frame_bound.h): the
+  // largest count of each izhikevich_layer shift by a constant word, the
+  // plan's (over both layers: NSH<word>), the spike window's events at the
+  // plan's decimation, sparse packets as its mask asks, and the longest
+  // command payload, the protocol's.
+  for (int w : {4, 7, 9, 11, 13, 14, 15})
+    sym("NSH" + std::to_string(w), std::max(neuron_block(p.neuron[0])[size_t(w)] & 63,
+                                             neuron_block(p.neuron[1])[size_t(w)] & 63));
+  // The events a spike window can hold: every neuron of both layers once a
+  // frame of the window (decim_tax frames), at most MAXSPK
+  // (longest_packet_bytes' rule).
+  sym("SPKWIN", std::min<long>(p.max_spikes, 2L * T * p.decim_tax));
+  // Whether the plan's mask asks for sparse taxel packets (their two passes
+  // over every taxel).
+  sym("SPARSE", (p.mask & kMaskSparse) ? 1 : 0);
+  int payload = 0;
+  for (const auto& c : kDtmfCommands) payload = std::max(payload, c.payload_bytes());
+  sym("CMD_PAYLOAD", payload);
   sym("CF", 14), sym("TW", 10), sym("QUART", kQ);
   sym("SHL_Q", p.mag_shift == 0 ? 2 : 0), sym("SHR_Q", p.mag_shift == 0 ? 0 : 2 * p.mag_shift - 2);
   sym("GRND", p.taxel.recip_shift + 14);

@@ -35,6 +35,8 @@ std::vector<uint32_t> dtmf_ucode_words(const EngineImage& image) {
   return assemble_for(image).words;
 }
 
+fe_asm::Program dtmf_ucode_program(const EngineImage& image) { return assemble_for(image); }
+
 std::vector<std::string> dtmf_ucode_routines(const EngineImage& image) {
   const fe_asm::Program prog = assemble_for(image);
   std::vector<std::string> routine(prog.words.size(), "?");

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ucode/dtmf_engine_image.h"
+#include "ucode/frame_engine_asm.h"
 
 namespace eskin::hls {
 
@@ -19,6 +20,8 @@ const std::string& dtmf_ucode_source();
 // Assembles it with the image's symbols; throws fe_asm::AsmError naming the
 // line on an error (e.g. a program larger than kDtmfImemWords).
 std::vector<uint32_t> dtmf_ucode_words(const EngineImage& image);
+// The same, whole: words, symbols, listing and .bound annotations.
+fe_asm::Program dtmf_ucode_program(const EngineImage& image);
 
 // The routine each microcode word belongs to: the program's sections, each
 // opened by a `; ==== NAME ==` line and named after the HLS kernel it

@@ -94,6 +94,70 @@ constexpr uint32_t ctl(uint32_t fn, uint32_t x, uint32_t cond, uint32_t addr) {
 constexpr uint32_t kSqrtClocks = 52;      // 1 + 50 root steps + 1
 constexpr uint32_t kSqrtClocksFast = 15;  // FAST_SHIFT: 1 + 13 root steps (2 digits) + 1
 
+// ---- timing: the one definition of the manual's "Timing" -------------------
+// FrameEngine below runs by these, and the static frame bound
+// (ucode/frame_bound.h) adds them up over the paths of a program, so the
+// bound uses the clocks the RTL tests check.
+
+// shl, shr, rnd: the functions whose operand is a shift count n (m[5:0]).
+constexpr bool is_shift(uint32_t w) {
+  const uint32_t fn = fn_of(w);
+  return cls_of(w) != kCtl && (fn == kShl || fn == kShr || fn == kRnd);
+}
+// What the next instruction's cycle A needs of the one before it.
+struct Hazard {
+  bool overlap_ok = false;  // cycle A may run in its last B clock (not after
+                            // reset, a wait or a shift by a loaded count of 0)
+  bool st = false, out = false;
+  bool writes_a = false;    // its last B clock may write A
+};
+// The hazard instruction w leaves; n is its shift count (is_shift), else unused.
+constexpr Hazard hazard_after(uint32_t w, uint32_t n) {
+  const uint32_t cls = cls_of(w), fn = fn_of(w);
+  Hazard h;
+  h.st = cls == kMem && fn == kSt;
+  h.out = cls == kMem && fn == kOut;
+  // Writes A in its B clocks: the arithmetic and logic, the shifts (not an
+  // immediate shift by 0), txa and the roots.
+  h.writes_a = cls == kCtl ? (fn == kTxa || fn == kSqrt || fn == kSqrtr)
+                           : (fn <= kXor || fn == kShl || fn == kShr || fn == kRnd);
+  h.overlap_ok = !(cls == kCtl && fn == kWait);
+  if (is_shift(w) && n == 0) {
+    h.overlap_ok = cls == kImm;  // a loaded count of 0 ends B in the loading clock
+    h.writes_a = cls != kImm;    // by an immediate 0: A is left alone
+  }
+  return h;
+}
+// Whether w reads A in its cycle A (a jump on a condition, tax, the roots).
+constexpr bool reads_a_in_cycle_a(uint32_t w) {
+  const uint32_t fn = fn_of(w);
+  return cls_of(w) == kCtl &&
+         ((fn == kJ && (field_of(w) & 3u) != 0) || fn == kTax || fn == kSqrt || fn == kSqrtr);
+}
+// Whether w's cycle A runs in the last B clock of the instruction that
+// left `prev` (else it costs a clock of its own: a bubble).
+constexpr bool overlaps(const Hazard& prev, uint32_t w) {
+  const uint32_t fn = fn_of(w);
+  const bool reads = cls_of(w) == kMem && fn <= kRnd;
+  return prev.overlap_ok && !(reads_a_in_cycle_a(w) && prev.writes_a) &&
+         !(prev.st && reads && space_of(w) == kDmem) && !(prev.out && reads && space_of(w) == kIo);
+}
+// B clocks of w, any instruction but `wait` (its B clocks are the events');
+// n is its shift count (is_shift), `fast` the barrel shifter.
+constexpr uint32_t b_clocks(uint32_t w, uint32_t n, bool fast) {
+  const uint32_t cls = cls_of(w), fn = fn_of(w);
+  if (cls == kCtl)
+    return fn == kSqrt || fn == kSqrtr ? (fast ? kSqrtClocksFast : kSqrtClocks) - 1 : 1;
+  if (fn == kMin || fn == kMax) return 2;  // compare, then write
+  if (is_shift(w)) {
+    if (n == 0) return 1;
+    // An immediate count is known in cycle A, another takes a B clock to
+    // load; rnd adds a clock for the rounding carry.
+    return (cls == kImm ? 0 : 1) + (fast ? 1 : n) + (fn == kRnd ? 1 : 0);
+  }
+  return 1;
+}
+
 }  // namespace fe
 
 struct FrameEngineConfig {
@@ -164,7 +228,7 @@ class FrameEngine {
     overflow_pc_ = 0;
     overflow_clock_ = 0;
     waiting_ = false;
-    overlap_ok_ = prev_st_ = prev_out_ = prev_writes_a_ = false;
+    hazard_ = fe::Hazard{};
     last_ = FrameEngineRetired{};
   }
 
@@ -250,30 +314,22 @@ class FrameEngine {
     const uint32_t cls = fe::cls_of(w), fn = fe::fn_of(w), xi = fe::x_of(w);
     const uint32_t addr = fe::addr_of(w);
     const uint64_t start = clocks_;
-    const uint64_t c0 = overlaps(w) ? clocks_ - 1 : clocks_;  // cycle A
+    const uint64_t c0 = fe::overlaps(hazard_, w) ? clocks_ - 1 : clocks_;  // cycle A
     last_.a_clock = c0;
-    prev_st_ = cls == fe::kMem && fn == fe::kSt;
-    prev_out_ = cls == fe::kMem && fn == fe::kOut;
-    // Writes A in its B clocks: the arithmetic and logic, the shifts (not
-    // an immediate shift by 0: shift() clears it), txa and the roots.
-    prev_writes_a_ = cls == fe::kCtl ? (fn == fe::kTxa || fn == fe::kSqrt || fn == fe::kSqrtr)
-                                     : (fn <= fe::kXor || fn == fe::kShl || fn == fe::kShr ||
-                                        fn == fe::kRnd);
-    overlap_ok_ = true;
+    uint32_t n = 0;  // a shift's count
     const uint32_t pc1 = (pc_ + 1) & (kImemWords - 1);
     pc_ = pc1;  // end of cycle A; control flow may change it
-    uint32_t clk = 2;  // cycle A and the B clocks
     if (cls == fe::kCtl && fn == fe::kWait) {
       wait_mask_ = uint16_t(addr);
       waiting_ = true;
-      overlap_ok_ = false;
+      hazard_ = fe::hazard_after(w, 0);
       clocks_ = c0 + 1;
       wait_clocks(io, limit);
       return uint32_t(clocks_ - start);
     } else if (cls == fe::kCtl) {
       if (fn == fe::kCall && depth_ == 2 && overflows_++ == 0)
         overflow_pc_ = last_.pc, overflow_clock_ = c0;
-      clk = control(fn, xi, fe::field_of(w), addr, pc1);
+      control(fn, xi, fe::field_of(w), addr, pc1);
     } else {
       const uint16_t ea = uint16_t(addr + xreg(xi));
       const bool imm_class = cls == fe::kImm;
@@ -299,13 +355,11 @@ class FrameEngine {
         case fe::kLd: a_ = m; break;
         case fe::kAdd: a_ = wrap48(a_ + m); break;
         case fe::kSub: a_ = wrap48(a_ - m); break;
-        case fe::kMin:  // compare, then write: one more B clock
+        case fe::kMin:  // compare, then write: one more B clock (fe::b_clocks)
           if (a_ >= m) a_ = m;
-          clk = 3;
           break;
         case fe::kMax:
           if (a_ < m) a_ = m;
-          clk = 3;
           break;
         case fe::kAnd: a_ = wrap48(a_ & m); break;
         case fe::kOr: a_ = wrap48(a_ | m); break;
@@ -313,7 +367,8 @@ class FrameEngine {
         case fe::kLt: t_ = int16_t(uint16_t(m)); break;
         case fe::kMpy: p_ = int32_t(t_) * int32_t(int16_t(uint16_t(m))); break;
         case fe::kShl: case fe::kShr: case fe::kRnd:
-          clk = shift(fn, uint32_t(m) & 63u, imm_class);
+          n = uint32_t(m) & 63u;
+          shift(fn, n);
           break;
         case fe::kSt:
           if (cls == fe::kMem) {
@@ -329,47 +384,28 @@ class FrameEngine {
         default: break;
       }
     }
-    clocks_ = c0 + clk;
+    hazard_ = fe::hazard_after(w, n);
+    clocks_ = c0 + 1 + fe::b_clocks(w, n, FAST_SHIFT);  // cycle A and the B clocks
     return uint32_t(clocks_ - start);
   }
 
-  // Whether w's cycle A runs in the last B clock of the instruction before.
-  bool overlaps(uint32_t w) const {
-    const uint32_t cls = fe::cls_of(w), fn = fe::fn_of(w);
-    const bool reads = cls == fe::kMem && fn <= fe::kRnd;
-    const bool reads_a = cls == fe::kCtl && ((fn == fe::kJ && (fe::field_of(w) & 3u) != 0) ||
-                                             fn == fe::kTax || fn == fe::kSqrt || fn == fe::kSqrtr);
-    return overlap_ok_ && !(reads_a && prev_writes_a_) &&
-           !(prev_st_ && reads && fe::space_of(w) == fe::kDmem) &&
-           !(prev_out_ && reads && fe::space_of(w) == fe::kIo);
-  }
-
-  // shl/shr/rnd by n: one bit per clock (FAST_SHIFT: all n bits in one
-  // clock); an immediate count is known in cycle A, another takes one B
-  // clock to load; rnd adds one clock for the rounding carry. n = 0 leaves
-  // A alone in one B clock. The clocks returned include cycle A.
-  uint32_t shift(uint32_t fn, uint32_t n, bool imm_count) {
-    if (n == 0) {
-      overlap_ok_ = imm_count;  // a loaded count of 0 ends B in the loading clock
-      prev_writes_a_ = !imm_count;  // by an immediate 0: A is left alone
-      return 2;
-    }
-    const uint32_t base = imm_count ? 1 : 2, steps = FAST_SHIFT ? 1 : n;
+  // shl/shr/rnd by n (its clocks: fe::b_clocks; n = 0 leaves A alone).
+  void shift(uint32_t fn, uint32_t n) {
+    if (n == 0) return;
     if (fn == fe::kShl) {
       a_ = n >= 48 ? 0 : wrap48(int64_t(uint64_t(a_) << n));
-      return base + steps;
+      return;
     }
     const int64_t q = a_ >> (n >= 48 ? 47 : n);             // floor(A / 2^n)
     if (fn == fe::kShr) {
       a_ = q;
-      return base + steps;
+      return;
     }
     const int64_t half = n - 1 >= 47 ? (a_ < 0) : ((a_ >> (n - 1)) & 1);  // bit n-1 of A
     a_ = q + half;
-    return base + steps + 1;
   }
 
-  uint32_t control(uint32_t fn, uint32_t xi, uint32_t cond, uint32_t addr, uint32_t pc1) {
+  void control(uint32_t fn, uint32_t xi, uint32_t cond, uint32_t addr, uint32_t pc1) {
     const uint32_t target = addr & (kImemWords - 1);
     switch (fn) {
       case fe::kJ: {
@@ -378,35 +414,35 @@ class FrameEngine {
                           : (cond & 3u) == 2 ? a_ < 0
                                              : a_ <= 0;
         if (base != bool(cond & 4u)) pc_ = target;
-        return 2;
+        return;
       }
       case fe::kDjnz: {
         const uint16_t dec = uint16_t(xreg(xi) - 1u);
         if (xi != 0) x_[xi] = dec;
         if (dec != 0) pc_ = target;
-        return 2;
+        return;
       }
       case fe::kCall:  // push; the older entry of two falls off
         if (depth_ < 2) ++depth_;
         stack_[1] = stack_[0];
         stack_[0] = pc1;
         pc_ = target;
-        return 2;
+        return;
       case fe::kRet:  // pop; the bottom entry stays
         if (depth_ > 0) --depth_;
         pc_ = stack_[0];
         stack_[0] = stack_[1];
-        return 2;
+        return;
       case fe::kSqrt: case fe::kSqrtr:
         // sqrtr: floor(sqrt(A) + 1/2) = (floor(sqrt(4 A)) + 1) >> 1.
         a_ = a_ < 0 ? 0
                     : int64_t(fn == fe::kSqrt ? isqrt64(uint64_t(a_)) : (isqrt64(uint64_t(a_) * 4) + 1) >> 1);
-        return FAST_SHIFT ? fe::kSqrtClocksFast : fe::kSqrtClocks;
-      case fe::kLdx: if (xi != 0) x_[xi] = uint16_t(addr); return 2;
-      case fe::kAddx: if (xi != 0) x_[xi] = uint16_t(addr + x_[xi]); return 2;
-      case fe::kTax: if (xi != 0) x_[xi] = uint16_t(uint64_t(a_)); return 2;
-      case fe::kTxa: a_ = xreg(xi); return 2;
-      default: return 2;
+        return;
+      case fe::kLdx: if (xi != 0) x_[xi] = uint16_t(addr); return;
+      case fe::kAddx: if (xi != 0) x_[xi] = uint16_t(addr + x_[xi]); return;
+      case fe::kTax: if (xi != 0) x_[xi] = uint16_t(uint64_t(a_)); return;
+      case fe::kTxa: a_ = xreg(xi); return;
+      default: return;
     }
   }
 
@@ -440,10 +476,8 @@ class FrameEngine {
   uint64_t clocks_ = 0;
   bool waiting_ = false;
   uint16_t wait_mask_ = 0;
-  // The last instruction's end: may the next cycle A overlap its last B
-  // clock, was it `st` / `out`, and did its last B clock write A
-  // (overlaps()).
-  bool overlap_ok_ = false, prev_st_ = false, prev_out_ = false, prev_writes_a_ = false;
+  // What the last instruction leaves the next one's cycle A (fe::overlaps).
+  fe::Hazard hazard_;
   FrameEngineRetired last_;
 };
 

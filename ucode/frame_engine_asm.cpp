@@ -92,6 +92,7 @@ class Assembler {
       top.name = file_;
       stack_.assign(1, top);
       read_lines(lines);
+      if (bound_line_) fail_where(bound_where_, ".bound: expected an instruction after it");
     }
     prog_.symbols = symbols_;
     prog_.file = file_;
@@ -218,14 +219,36 @@ class Assembler {
     if (op == ".equ") return equ(rest);
     if (op == ".org") return org(rest);
     if (op == ".word") return word_directive(rest);
+    if (op == ".bound") return bound(rest);
     if (op == ".macro") return begin_macro(rest);
     if (op == ".endm") fail(".endm: no .macro before it");
     if (op == ".include") return include(rest);
     if (!op.empty() && op[0] == '.')
-      fail("directive: expected .equ, .org, .word, .if, .else, .endif, .macro, .endm or .include, got " + op);
+      fail("directive: expected .equ, .org, .word, .bound, .if, .else, .endif, .macro, .endm or .include, got " +
+           op);
     const auto m = macros_.find(op);
     if (m != macros_.end()) return expand(m->second, rest);
+    const uint32_t at = addr_;
     emit(instruction(op, rest));
+    if (bound_line_ && pass_ == 2) prog_.bounds[at] = bound_;
+    bound_line_ = 0;
+  }
+
+  // `.bound COUNT[, LOOP]`: a bound of the next instruction (seeing only the
+  // symbols defined above it, as .equ).
+  void bound(const std::string& rest) {
+    if (bound_line_) fail(".bound: the .bound of line " + std::to_string(bound_line_) +
+                          " has no instruction yet");
+    strict_ = true;
+    struct Relax { bool& f; ~Relax() { f = false; } } relax{strict_};
+    const std::vector<std::string> items = split_commas(rest);
+    if (rest.empty() || items.size() > 2) fail(".bound: expected COUNT or COUNT, LOOP");
+    bound_ = {eval(items[0], ".bound"), -1};
+    if (bound_.count < 0) fail(".bound: expected a count >= 0, got " + std::to_string(bound_.count));
+    if (items.size() == 2) bound_.per = value_in(items[1], ".bound: loop", 0, opt_.imem_words - 1);
+    bound_line_ = stack_.back().line;
+    bound_where_ = where();
+    list_line();
   }
 
   // ---- macros -----------------------------------------------------------------
@@ -896,6 +919,9 @@ class Assembler {
   std::string expr_, what_;
   size_t pos_ = 0;
   bool strict_ = false;  // pass 1 tolerates labels not yet seen (only pass 2 encodes)
+  int bound_line_ = 0;   // a .bound waiting for its instruction (its line)
+  Where bound_where_;    // and where it is, for the error at the end
+  Program::Bound bound_;
   std::vector<Cond> conds_;  // the open .if blocks, innermost last
   std::vector<Frame> stack_;  // the top file, then each .include and expansion inside it
   std::map<std::string, Macro> macros_;

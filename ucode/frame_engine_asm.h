@@ -7,6 +7,7 @@
 //   label:                     (may precede a statement on the same line)
 //   @local:                    (scoped to the last global label, or to one macro expansion)
 //   .equ NAME, expr            .org expr (IMEM address)   .word expr[, expr...]
+//   .bound expr[, loop]        (for the next instruction: Program::bounds)
 //   .if expr / .else / .endif  .include "FILE" (relative to the including file)
 //   .macro NAME p1, p2 ... .endm, invoked as `NAME arg1, arg2`; `\p1` in the body
 //   ld.h [V + x1]   add k[C]   ld io[PORT]   lt.h15 a   add p   ld 5   shl 12
@@ -78,6 +79,16 @@ struct Program {
   // macro's invocation, then its expansion's lines; an .include, then the
   // included file's lines.
   std::vector<ListingLine> listing;
+  // `.bound COUNT[, LOOP]` before an instruction (ucode/frame_bound.h), by
+  // its address: a branch that closes a loop is taken at most COUNT times
+  // per entry of its loop (with LOOP, in all per entry of the loop around
+  // it that jumps back to address LOOP); a shift by a memory / P count
+  // shifts by at most COUNT.
+  struct Bound {
+    int64_t count = 0;
+    int64_t per = -1;  // LOOP, -1 without
+  };
+  std::map<uint32_t, Bound> bounds;
 };
 
 // `file` names the source in errors and is where its .include names are

@@ -33,8 +33,24 @@ namespace eskin::hls {
 // the clocks between frames: docs/figures.csv (docs/fpga.md).
 constexpr long kDtmfTopClkHz = 18000000;
 
+// The datapath that does a frame's work after the DFT: the frame engine's
+// microprogram (rtl/dtmf_top.v), or a streaming datapath for large FPGAs
+// (none is built yet). It sets how much of a frame the proven worst case
+// may take (dtmf_frame_bound_limit_percent).
+enum class DtmfDatapath { FrameEngine, Streaming };
+
+// The most of a frame's clocks the static worst-case bound of a frame and
+// a command (ucode/dtmf_frame_bound.h) may take: 90 % on the frame engine,
+// whose bound covers every path of its microprogram; 70 % on a streaming
+// datapath, whose fixed latencies leave less to prove and more to what the
+// bound does not model (its blocks' back-pressure).
+inline int dtmf_frame_bound_limit_percent(DtmfDatapath d) {
+  return d == DtmfDatapath::Streaming ? 70 : 90;
+}
+
 // What a skin asks of the FPGA top.
 struct DtmfTopSpec {
+  DtmfDatapath datapath = DtmfDatapath::FrameEngine;
   int rows = 3, cols = 3;
   std::vector<double> carrier_hz;  // rows first, then columns
   double sample_hz = 35000.0;
@@ -328,6 +344,11 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    frame (commands run between frames) must fit in STEP x period clocks.
 //    `engine_clocks` is that sum; host/fpga/engine_load.h measures it on the
 //    instruction-set model (the microcode's time depends on the data).
+//    `bound_clocks` (when > 0) is the same sum proven from the microprogram
+//    (ucode/dtmf_frame_bound.h: every path, every loop at its bound): it
+//    must fit in dtmf_frame_bound_limit_percent of the frame (90 % on the
+//    frame engine), so a build keeps a margin even over its proven worst
+//    case.
 //  - the UART: a bit is round(clk / baud) clocks (uart_tx/uart_rx, which
 //    stop at elaboration beyond 3 %); within 2 % here, leaving the host's
 //    own rate error room.
@@ -342,6 +363,8 @@ struct DtmfTopClockBudget {
   long sdft_min_period = 0;   // what those need of the period: dtmf_top_sdft_min_period()
   long frame_clocks = 0;   // STEP x period: the engine's time per frame
   long engine_clocks = 0;  // what the engine needs of it
+  long bound_clocks = 0;   // its static bound (0: not checked)
+  long bound_limit_clocks = 0;  // the most of the frame the bound may take
   std::vector<std::string> problems;  // empty: the top keeps up
   bool ok() const { return problems.empty(); }
 };
@@ -383,8 +406,13 @@ inline std::string dtmf_top_adc_problem(double fs, long adc_hz) {
   return s;
 }
 
+// The frame clocks the bound may take: limit % of frame_clocks.
+inline long dtmf_frame_bound_limit_clocks(const DtmfTopPlan& p, long frame_clocks) {
+  return long(frame_clocks * int64_t(dtmf_frame_bound_limit_percent(p.spec.datapath)) / 100);
+}
+
 inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_hz,
-                                                long engine_clocks) {
+                                                long engine_clocks, long bound_clocks = 0) {
   DtmfTopClockBudget b;
   const double fs = p.spec.sample_hz;
   b.clk_hz = clk_hz;
@@ -404,6 +432,8 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
     b.frame_clocks = long(p.step) * b.period;
   }
   b.engine_clocks = engine_clocks;
+  b.bound_clocks = bound_clocks;
+  b.bound_limit_clocks = dtmf_frame_bound_limit_clocks(p, b.frame_clocks);
   auto at = [&] {
     char s[64];
     std::snprintf(s, sizeof s, " (%.6g MHz / %.6g S/s)", double(clk_hz) / 1e6, fs);
@@ -430,6 +460,18 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
                               : "STEP x period = " + n(p.step) + " x " + n(b.period) + " = " +
                                     n(b.frame_clocks)) +
                          at());
+  if (bound_clocks > b.bound_limit_clocks) {
+    char s[400];
+    std::snprintf(s, sizeof s,
+                  "%s: the static bound of a frame and a command, %ld clocks, is %.1f %% "
+                  "of a frame of %ld clocks; a build may take at most %d %% (%ld clocks)",
+                  p.spec.datapath == DtmfDatapath::Streaming ? "streaming datapath"
+                                                             : "frame_engine",
+                  bound_clocks, 100.0 * double(bound_clocks) / double(b.frame_clocks),
+                  b.frame_clocks, dtmf_frame_bound_limit_percent(p.spec.datapath),
+                  b.bound_limit_clocks);
+    b.problems.push_back(std::string(s) + at());
+  }
   const long cpb = std::lround(double(clk_hz) / double(p.spec.baud));
   const double err = cpb > 0 ? double(clk_hz) / double(cpb * p.spec.baud) - 1.0 : 1.0;
   if (cpb < 2 || std::fabs(err) > 0.02) {

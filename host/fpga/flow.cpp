@@ -190,6 +190,9 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
         }
   }
   c.budget = budget_at(c.clocking);
+  // At its lanes and clock: the DFT's busy time and sample period bound
+  // the carrier load's polls.
+  c.bound = hls::dtmf_frame_bound(c.plan);
   return c;
 }
 
@@ -238,6 +241,7 @@ bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& 
   clk = cc.clocking;
   r.step = plan.step;
   r.load = cc.load;
+  r.bound = cc.bound;
   r.policy = opt.load;
   r.engine_clocks = cc.engine_clocks;
   r.core_min_hz = cc.core_min_hz;
@@ -259,6 +263,20 @@ bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& 
                                 : fmt::format("It needs at least {} MHz; board {} has no clock "
                                               "that meets every budget.",
                                               mhz(double(r.core_min_hz)), b.name));
+    return false;
+  }
+  // The plan refuses a build whose proven worst case (ucode/dtmf_frame_bound.h)
+  // takes more of the frame than its datapath may (90 % on the frame
+  // engine), though its measured one keeps up at this clock.
+  const hls::DtmfTopClockBudget bounded =
+      hls::dtmf_top_clock_budget(plan, clk.clk_hz, cc.engine_clocks, long(cc.bound.total()));
+  r.budget.bound_clocks = bounded.bound_clocks;
+  r.budget.bound_limit_clocks = bounded.bound_limit_clocks;
+  if (!bounded.ok()) {
+    r.failure = fmt::format("frame bound: {} (measured: {} clocks; the bound is frame {} + "
+                            "command {})",
+                            bounded.problems.front(), cc.engine_clocks, cc.bound.frame,
+                            cc.bound.command);
     return false;
   }
   const fs::path out = fs::absolute(opt.out_dir);

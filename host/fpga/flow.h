@@ -17,6 +17,7 @@
 #include "host/fpga/board.h"
 #include "host/fpga/engine_load.h"
 #include "host/fpga/hall_pins.h"
+#include "ucode/dtmf_frame_bound.h"
 #include "sim/hall_top_spec.h"
 #include "sim/scene.h"
 
@@ -74,6 +75,7 @@ struct FlowReport {
   hls::DtmfTopSpec spec;            // DTMF and mixed builds: clk_hz and baud as built
   int step = 1;                      // from the plan
   EngineLoad load;                   // the frame engine's clocks per frame
+  hls::DtmfFrameBound bound;         // their static bound (budget.bound_clocks: its total)
   LoadPolicy policy = LoadPolicy::Scene;
   long engine_clocks = 0;            // what the policy makes the clock carry
   long core_min_hz = 0;              // no slower clock keeps up (a lower bound)
@@ -115,9 +117,16 @@ int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_
 // board's default or the asked-for clock is returned with the problems).
 // The plan's spec carries the chosen clock and baud rate, and its packet
 // decimation is planned for that baud rate.
+// The clock is chosen for the measured load (`engine_clocks`); `bound` is
+// its static bound (ucode/dtmf_frame_bound.h), which run_flow then checks
+// at that clock: a build whose bound takes more than its datapath's share
+// of the frame (hls::dtmf_frame_bound_limit_percent, 90 % on the frame
+// engine) is refused before the tools, naming the bound, the frame and the
+// limit (FlowReport::failure "frame bound: ...").
 struct CoreClock {
   hls::DtmfTopPlan plan;
   EngineLoad load;
+  hls::DtmfFrameBound bound;  // the plan's as built (its DFT lanes)
   long engine_clocks = 0;  // what the policy makes the clock carry
   long core_min_hz = 0;    // no slower clock keeps up (a lower bound)
   Clocking clocking;

@@ -58,6 +58,14 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
                  {"longest_command", r.load.command_case},
                  {"cases", cases},
                  {"stress_longest_frame_by_routine", routines}};
+  // The static bound (ucode/dtmf_frame_bound.h) and its limit.
+  j["engine"]["bound"] = {{"frame_clocks", r.bound.frame},
+                          {"command_clocks", r.bound.command},
+                          {"total_clocks", r.bound.total()},
+                          {"limit_percent", hls::dtmf_frame_bound_limit_percent(r.spec.datapath)},
+                          {"limit_clocks", r.budget.bound_limit_clocks},
+                          {"any_frame_clocks", r.bound.frame_any},
+                          {"any_command_clocks", r.bound.command_any}};
 }
 
 void hall_json(const FlowReport& r, nlohmann::json& j) {
@@ -85,6 +93,7 @@ std::string dtmf_table(const FlowReport& r) {
       "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
       "  stress longest frame  {:>9} ({:.0f} %, {}){}\n"
       "  + longest command     {:>9} ({:.0f} %, {})\n"
+      "  static bound          {:>9} ({:.0f} %: frame {} + command {}; at most {} % of a frame)\n"
       "  the clock carries the {}\n",
       r.spec.rows, r.spec.cols, r.spec.rows + r.spec.cols, r.spec.window, r.spec.sample_hz,
       r.step, mhz(double(r.spec.clk_hz)),
@@ -112,6 +121,8 @@ std::string dtmf_table(const FlowReport& r) {
           : std::string(),
       r.load.stress_total(),
       100.0 * double(r.load.stress_total()) / frame, r.load.command_case,
+      r.bound.total(), 100.0 * double(r.bound.total()) / frame, r.bound.frame, r.bound.command,
+      hls::dtmf_frame_bound_limit_percent(r.spec.datapath),
       r.policy == LoadPolicy::Scene && r.load.scene_frames > 0
           ? "scene's frames (--engine-load scene)"
           : "stress frames and a command (--engine-load stress)");

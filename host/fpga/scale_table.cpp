@@ -118,6 +118,9 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
   // has next to no logic).
   if (const ClockResult* c = r.slowest_clock()) row.fmax_mhz = c->achieved_mhz;
   row.seed = r.seed > 0 ? r.seed : 1;  // 0: stopped before the tools
+  row.frame_clocks = r.budget.frame_clocks;
+  row.engine_clocks = r.engine_clocks;
+  row.bound_clocks = long(r.bound.total());
   row.seconds = r.seconds;
   row.failure = r.failure;
   return row;
@@ -200,6 +203,12 @@ const char* kHeader =
     "target,board,device,sample_hz,rows,cols,window,step,clk_hz,adc_clk_hz,shifter,neurons,fits,"
     "meets_timing,"
     "logic_used,logic_available,dsp_used,dsp_available,ram_used,ram_available,spram_used,seed,"
+    "fmax_mhz,seconds,frame_clocks,engine_clocks,bound_clocks,failure";
+// The header before the engine's clock columns: its rows read with those 0.
+const char* kHeaderWithoutClocks =
+    "target,board,device,sample_hz,rows,cols,window,step,clk_hz,adc_clk_hz,shifter,neurons,fits,"
+    "meets_timing,"
+    "logic_used,logic_available,dsp_used,dsp_available,ram_used,ram_available,spram_used,seed,"
     "fmax_mhz,seconds,failure";
 
 std::string csv_field(const std::string& s) {
@@ -236,12 +245,13 @@ std::string scale_csv(const std::vector<ScaleRow>& rows) {
   std::string s = std::string(kHeader) + "\n";
   for (const auto& r : rows)
     s += fmt::format(
-        "{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{}\n",
+        "{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{},{},{},"
+        "{}\n",
         r.target, r.board, r.device, r.sample_hz, r.rows, r.cols, r.window, r.step, r.clk_hz,
         r.adc_clk_hz, shifter_name(r.engine), neurons_name(r.engine), int(r.fits),
         int(r.meets_timing), r.logic_used, r.logic_available, r.dsp_used, r.dsp_available,
-        r.ram_used, r.ram_available, r.spram_used, r.seed, r.fmax_mhz, r.seconds,
-        csv_field(r.failure));
+        r.ram_used, r.ram_available, r.spram_used, r.seed, r.fmax_mhz, r.seconds, r.frame_clocks,
+        r.engine_clocks, r.bound_clocks, csv_field(r.failure));
   return s;
 }
 
@@ -250,18 +260,21 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
   std::stringstream ss(text);
   std::string line;
   int lineno = 0;
+  size_t fields = 28;
   while (std::getline(ss, line)) {
     ++lineno;
     if (lineno == 1) {
-      if (line != kHeader)
+      if (line == kHeaderWithoutClocks) fields = 25;
+      else if (line != kHeader)
         throw std::runtime_error("scale table line 1: expected the header '" + std::string(kHeader) + "'");
       continue;
     }
     if (line.empty()) continue;
-    const auto f = split_csv(line);
-    if (f.size() != 25)
+    auto f = split_csv(line);
+    if (f.size() != fields)
       throw std::runtime_error(
-          fmt::format("scale table line {}: expected 25 fields, got {}", lineno, f.size()));
+          fmt::format("scale table line {}: expected {} fields, got {}", lineno, fields, f.size()));
+    if (fields == 25) f.insert(f.begin() + 24, {"0", "0", "0"});
     if ((f[10] != "serial" && f[10] != "barrel") ||
         (f[11] != "engine" && f[11] != "unit" && f[11] != "lanes"))
       throw std::runtime_error(fmt::format(
@@ -293,7 +306,10 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
       r.seed = std::stoi(f[21]);
       r.fmax_mhz = std::stod(f[22]);
       r.seconds = std::stod(f[23]);
-      r.failure = f[24];
+      r.frame_clocks = std::stol(f[24]);
+      r.engine_clocks = std::stol(f[25]);
+      r.bound_clocks = std::stol(f[26]);
+      r.failure = f[27];
       rows.push_back(r);
     } catch (const std::logic_error&) {
       throw std::runtime_error(fmt::format("scale table line {}: a number field is not a number", lineno));
@@ -305,8 +321,9 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
 std::string scale_markdown(const std::vector<ScaleRow>& rows) {
   std::string t =
       "| FPGA | rate | largest skin that fits and meets timing | carriers | window | engine | "
-      "clock | logic | DSP | block RAM | Fmax | smallest that fails |\n"
-      "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---|\n";
+      "clock | logic | DSP | block RAM | Fmax | engine clocks a frame: measured / bound of the "
+      "frame's (spare under the bound) | smallest that fails |\n"
+      "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|\n";
   for (const auto& tg : scale_targets())
     for (double fs : scale_rates()) {
       // A size passes when one of its builds (engines) does.
@@ -331,11 +348,18 @@ std::string scale_markdown(const std::vector<ScaleRow>& rows) {
                  builds[i]->failure;
       }
       if (!best) {
-        t += fmt::format("| {} | {} | none | | | | | | | | | {} |\n", tg.label, khz(fs), why);
+        t += fmt::format("| {} | {} | none | | | | | | | | | | {} |\n", tg.label, khz(fs), why);
         continue;
       }
+      const std::string clocks =
+          best->bound_clocks > 0 && best->frame_clocks > 0
+              ? fmt::format("{} / {} of {} ({:.0f} %)", best->engine_clocks, best->bound_clocks,
+                            best->frame_clocks,
+                            100.0 * double(best->frame_clocks - best->bound_clocks) /
+                                double(best->frame_clocks))
+              : std::string("-");
       t += fmt::format(
-          "| {} | {} | {}x{} | {} | {} | {} | {:g} MHz{} | {}/{} | {}/{} | {}/{} | {:.1f} MHz{} | {} |\n",
+          "| {} | {} | {}x{} | {} | {} | {} | {:g} MHz{} | {}/{} | {}/{} | {}/{} | {:.1f} MHz{} | {} | {} |\n",
                        tg.label, khz(fs), best->rows, best->cols, best->rows + best->cols,
                        best->window, variant_name(best->engine), best->clk_hz / 1e6,
                        best->adc_clk_hz > 0 ? fmt::format(" (ADC {:g})", best->adc_clk_hz / 1e6)
@@ -343,7 +367,7 @@ std::string scale_markdown(const std::vector<ScaleRow>& rows) {
                        best->logic_used, best->logic_available, best->dsp_used,
                        best->dsp_available, best->ram_used, best->ram_available, best->fmax_mhz,
                        best->seed != 1 ? fmt::format(" (seed {})", best->seed) : std::string(),
-                       why);
+                       clocks, why);
     }
   return t;
 }

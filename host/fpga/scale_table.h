@@ -81,6 +81,11 @@ struct ScaleRow {
   long ram_used = 0, ram_available = 0, spram_used = 0;
   int seed = 1;  // the placer seed of the run reported (FlowReport::seed)
   double fmax_mhz = 0, seconds = 0;
+  // The frame engine's clocks a frame (0: not recorded, rows from before
+  // these columns): the frame's (budget), the measured worst case the clock
+  // carries (FlowReport::engine_clocks) and its static bound (frame +
+  // command, FlowReport::bound), which must stay within 90 % of the frame.
+  long frame_clocks = 0, engine_clocks = 0, bound_clocks = 0;
   std::string failure;
   bool ok() const { return fits && meets_timing; }
 };

@@ -715,7 +715,7 @@ TEST(FrameEngineAsm, ErrorsNameFileLineAndWhatWasExpected) {
   expect_error("ld 1 +\n", "dtmf.fe:1: ld: immediate: expected a value, got the end of the expression");
   expect_error("ld 0x\n", "dtmf.fe:1: ld: immediate: expected digits after the number prefix");
   expect_error("apac 15\n", "dtmf.fe:1: apac: P shift: expected 0");
-  expect_error(".bss 3\n", "dtmf.fe:1: directive: expected .equ, .org, .word, .if, .else, .endif, "
+  expect_error(".bss 3\n", "dtmf.fe:1: directive: expected .equ, .org, .word, .bound, .if, .else, .endif, "
                            ".macro, .endm or .include, got .bss");
   expect_error("nop\n.if 1\nnop\n", "dtmf.fe:2: .if: no .endif before the end of the file");
   expect_error(".if 1\n.endif\n.else\n", "dtmf.fe:3: .else: no .if before it");
