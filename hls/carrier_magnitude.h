@@ -30,7 +30,10 @@
 // Hardware (the frame engine, docs/frame_engine.md): P from 16-bit halves
 //   of re and im on the engine's 16x16 multiplier (the SB_MAC16) into its
 //   48-bit accumulator, the root by its `sqrt` instruction (the clocks:
-//   docs/frame_engine.md). k and last pass through unchanged.
+//   docs/frame_engine.md). With SHIFT = 0 and demixed inputs (ACC_W = 24:
+//   P up to 2^47) 4 P does not fit that accumulator: the routine takes
+//   `sqrtr` of P itself, floor(sqrt(P) + 1/2), the same mag. k and last
+//   pass through unchanged.
 #pragma once
 
 #include <cstdint>

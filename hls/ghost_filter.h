@@ -12,13 +12,15 @@
 //  1. rise_k = mag_k - mag_k(lookback frames ago) (history starts at 0: a
 //     ring of lookback x K magnitudes); rem_k = rise_k if rise_k > onset
 //     else 0.
-//  2. thesis mode: the first row and the first column with the largest rem
-//     (both > 0) make an active site (nothing if it already is).
-//     improved mode (*): greedy pairing by matching rises: take the largest
-//     remaining row rem and column rem (first index on ties); while both >
-//     pair_tol, pair them as a candidate site and subtract the smaller from
-//     both. If afterwards every line's rem <= pair_tol, all candidates
-//     become active sites; else the thesis step is used.
+//  2. greedy pairing by matching rises (*): take the largest remaining row
+//     rem and column rem (first index on ties); while both > pair_tol, pair
+//     them as a candidate site and subtract the smaller from both. If
+//     afterwards every line's rem <= pair_tol, all candidates become active
+//     sites; else the thesis step: the first row and the first column with
+//     the largest rem (both > 0) make an active site (nothing if it already
+//     is). The thesis step alone (golden's simultaneous = false) is not a
+//     mode here: the top has no way to select it (no scene key, plan field
+//     or command), so the spec holds only what the microcode runs.
 //     (*) golden searches the smallest fitting set exhaustively, defers
 //     ambiguous pairings and solves site values jointly (NNLS). Greedy
 //     pairing finds the same sites when rises differ by more than pair_tol
@@ -37,9 +39,8 @@ namespace eskin::hls {
 struct GhostFilterConfig {
   uint8_t rows = 3, cols = 3;   // 1..R_MAX, 1..C_MAX
   uint16_t lookback = 1;        // 1..L_MAX frames
-  bool improved = true;         // greedy pairing (else thesis §5.2 step)
   uint16_t onset = 0;           // rise > onset starts a site (magnitude units)
-  uint16_t pair_tol = 0;        // improved: max rem a pairing may leave
+  uint16_t pair_tol = 0;        // max rem a pairing may leave (magnitude units)
   uint16_t release = 0;         // site kept while its taxel value >= release (UQ1.15)
 };
 
@@ -93,24 +94,21 @@ class GhostFilter {
     int br, bc;
     argmax(br, bc);
     const bool thesis_ok = rem_[br] > 0 && rem_[R + bc] > 0;
-    bool paired = false;
     steps_ = 0;
-    if (cfg_.improved) {
-      bool pend[R_MAX][C_MAX] = {};
-      int r = br, c = bc;
-      while (rem_[r] > cfg_.pair_tol && rem_[R + c] > cfg_.pair_tol) {
-        const uint16_t f = rem_[r] < rem_[R + c] ? rem_[r] : rem_[R + c];
-        rem_[r] = uint16_t(rem_[r] - f);
-        rem_[R + c] = uint16_t(rem_[R + c] - f);
-        pend[r][c] = true;
-        ++steps_;
-        argmax(r, c);
-      }
-      paired = rem_[r] <= cfg_.pair_tol && rem_[R + c] <= cfg_.pair_tol;
-      if (paired)
-        for (int i = 0; i < R; ++i)
-          for (int j = 0; j < cfg_.cols; ++j) site_[i][j] = site_[i][j] || pend[i][j];
+    bool pend[R_MAX][C_MAX] = {};
+    int r = br, c = bc;
+    while (rem_[r] > cfg_.pair_tol && rem_[R + c] > cfg_.pair_tol) {
+      const uint16_t f = rem_[r] < rem_[R + c] ? rem_[r] : rem_[R + c];
+      rem_[r] = uint16_t(rem_[r] - f);
+      rem_[R + c] = uint16_t(rem_[R + c] - f);
+      pend[r][c] = true;
+      ++steps_;
+      argmax(r, c);
     }
+    const bool paired = rem_[r] <= cfg_.pair_tol && rem_[R + c] <= cfg_.pair_tol;
+    if (paired)
+      for (int i = 0; i < R; ++i)
+        for (int j = 0; j < cfg_.cols; ++j) site_[i][j] = site_[i][j] || pend[i][j];
     if (!paired && thesis_ok) site_[br][bc] = true;
   }
   // Step 3: drop the sites whose value (UQ1.15) fell below `release`.
@@ -121,7 +119,7 @@ class GhostFilter {
         if (site_[i][j] && value(i, j) < cfg_.release) site_[i][j] = false;
   }
   bool site(int i, int j) const { return site_[i][j]; }
-  int pair_steps() const { return steps_; }  // of the last frame (improved mode)
+  int pair_steps() const { return steps_; }  // of the last frame
 
  private:
   // First (lowest index) largest rem among rows, and among columns.

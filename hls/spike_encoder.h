@@ -8,8 +8,11 @@
 // t_spike - t_window (sample counters, mod 2^16) where t_window is the t of
 // the window's first frame. Events are kept in frame order, layer 0 before
 // layer 1, neurons in index order. At most MAX events per window: later
-// spikes of that window are dropped and counted (the host sees the count in
-// the status packet). No arithmetic beyond the subtraction.
+// spikes of that window are dropped and counted. The count is the STATUS
+// packet's spikes_dropped field (u16, docs/protocol.md section 4): it
+// saturates at 65535, as the microcode's SPKDROP does, and is never
+// reset here (CLEAR_COUNTERS zeroes it on the top). No arithmetic beyond
+// the subtraction and the count.
 #pragma once
 
 #include <cstdint>
@@ -36,7 +39,7 @@ class SpikeEncoder {
   // One spike of `layer` (0 or 1) neuron `neuron` in the current frame.
   void spike(uint8_t layer, uint16_t neuron) {
     if (n_ >= MAX) {
-      ++dropped_;
+      if (dropped_ < kDroppedMax) ++dropped_;
       return;
     }
     uint8_t* e = ev_ + kSpikeEventBytes * n_++;
@@ -69,6 +72,7 @@ class SpikeEncoder {
     return true;
   }
   const uint8_t* events() const { return ev_; }
+  static constexpr uint32_t kDroppedMax = 0xFFFFu;  // the STATUS field's full scale
   uint32_t dropped() const { return dropped_; }
 
  private:

@@ -14,26 +14,44 @@
 //   32 H) clocks >= 10 ns. 12 MHz, H = 1 (6 MHz SCLK),
 //   35 kSPS (PERIOD 343) and 40 MHz, H = 1 (20 MHz), 1 MSPS (PERIOD 40) both
 //   meet them.
-// Sampling choice: SDATA bit k is registered on the clock edge that drives
-//   the k-th SCLK falling edge (bit 1 is the first leading zero, put out by
-//   CS falling; bit 16 is DB0). That edge sees the bit the ADC put out one
-//   SCLK period earlier, so the setup budget is a full tSCLK - t4 (40 ns max
-//   access time; 10 ns at 20 MHz, 127 ns at 6 MHz) and the hold budget is
-//   t7 (>= 10 ns) plus the FPGA's own clock-to-SCLK-pin delay, which only
-//   helps. Sampling on the rising edge instead would leave tSCLK/2 - t4,
-//   negative at 20 MHz. SDATA is source-synchronous to our own SCLK, so it
-//   is not passed through a synchroniser (that would shift the sample point).
+// Sampling choice: bit k of SDATA (bit 1 is the first leading zero, put out
+//   by CS falling; bit 16 is DB0) is valid at our capture flip-flop from
+//   RT + t4 after the edge that drove SCLK fall k - 1 until RT + t7 after the
+//   edge that drives fall k, RT the round trip of SCLK out and SDATA back
+//   (clock to out, pads, board: SDATA_RT_MIN_NS .. SDATA_RT_MAX_NS, the
+//   range sim/ad7476_model.h's Ad7476Board tests). Relative to the edge
+//   that drives fall k the window is [RT_MAX + 40 ns - tSCLK, RT_MIN +
+//   10 ns]: at 20 MHz SCLK [RT_MAX - 10, RT_MIN + 10] ns, so that edge
+//   itself (0) is outside it once the round trip passes 10 ns, which any
+//   real pads do. The capture is LAG half clocks after that edge, the first
+//   0 (that edge: every build with tSCLK - t4 well above the round trip)
+//   if it leaves SDATA_MARGIN_PS on both sides of the window, else the
+//   roomier of 1 (the falling clock edge after it: 40 MHz, H = 1) and 2
+//   (the next rising edge: 80 MHz, H = 2) if it does; elaboration stops
+//   when none does. With LAG > 0 the
+//   bit enters the shift register and the code the output one clock after
+//   the edge that drives the fall. SDATA is source-synchronous to our own
+//   SCLK, so it is not passed through a synchroniser (that would shift the
+//   sample point). nextpnr (0.11) takes no input or output delay
+//   constraints, so the round trip is this module's parameters, not the
+//   tool's check: docs/protocol.md section 1.
 // Output stream: one token per conversion, m_data = {ch NCH-1, ..., ch 0}
 //   12 bits each (unsigned codes), m_t = conversion index (32-bit sample
 //   counter, counts every conversion started). m_valid rises 31 H clocks
-//   after E0 (registered on the edge that drives the 16th SCLK fall). If the previous token
+//   after E0 (registered on the edge that drives the 16th SCLK fall), a
+//   clock later when LAG > 0. If the previous token
 //   has not been taken by then, the new one is dropped and `overruns`
 //   (saturating 16 bits) counts it; m_t then shows the gap.
 module adc_ad7476 #(
     parameter integer CLK_HZ    = 12_000_000,
     parameter integer SAMPLE_HZ = 35_000,
     parameter integer SCLK_DIV  = 1,  // clocks per SCLK half period (H >= 1)
-    parameter integer NCH       = 1
+    parameter integer NCH       = 1,
+    // The round trip SCLK out, SDATA back (header), ns, and the least room
+    // the sample point must leave on each side of SDATA's valid window.
+    parameter integer SDATA_RT_MIN_NS = 5,
+    parameter integer SDATA_RT_MAX_NS = 15,
+    parameter integer SDATA_MARGIN_PS = 1000
 ) (
     input  wire              clk,
     input  wire              rst,
@@ -61,8 +79,21 @@ module adc_ad7476 #(
   // t1 (CS high) = (PERIOD - 32 H) clocks >= 10 ns: with CS still low at the
   // period's start the conversion would be skipped (half the rate).
   localparam integer T1 = PERIOD - 32 * SCLK_DIV > 2000 ? 2000 : PERIOD - 32 * SCLK_DIV;
+  // The sample point (header): SDATA's window around the edge that drives
+  // an SCLK fall, in ps (the clock period from kHz: 40 MHz is exact), and
+  // the room a capture d ps after that edge leaves on its tighter side.
+  localparam integer T_PS = 1_000_000_000 / (CLK_KHZ < 1 ? 1 : CLK_KHZ);
+  localparam integer W_LO = SDATA_RT_MAX_NS * 1000 + 40_000 - 2 * SCLK_DIV * T_PS;
+  localparam integer W_HI = SDATA_RT_MIN_NS * 1000 + 10_000;
+  function integer room(input integer d);
+    room = (d - W_LO < W_HI - d) ? d - W_LO : W_HI - d;
+  endfunction
+  localparam integer LAG = room(0) >= SDATA_MARGIN_PS ? 0
+                         : room(T_PS / 2) >= SDATA_MARGIN_PS && room(T_PS / 2) >= room(T_PS) ? 1
+                         : room(T_PS) >= SDATA_MARGIN_PS ? 2 : 3;
   generate
     if (NCH < 1 || SCLK_DIV < 1 || SAMPLE_HZ < 1 || CLK_HZ > 40_000_000 * SCLK_DIV ||
+        LAG > 2 || SDATA_RT_MIN_NS < 0 || SDATA_RT_MAX_NS < SDATA_RT_MIN_NS ||
         CLK_HZ < 20_000 * SCLK_DIV ||  // f_SCLK >= 10 kHz
         SCLK_DIV * 100_000 < CLK_KHZ || QUIET * 1_000_000 < CLK_KHZ * 86 ||
         ACQ * 1_000_000 < CLK_KHZ * 250 ||
@@ -82,12 +113,42 @@ module adc_ad7476 #(
   reg [16*NCH-1:0] shreg;
   reg [31:0] count;           // conversions completed: the next one's index
 
-  // Shift register after this falling edge's sample (bits 15..0 per channel).
+  // SDATA at the sample point: LAG 1 registers it on the falling clock edge
+  // (the rising edge after takes it), 0 and 2 take it as it is at a rising
+  // edge.
+  wire [NCH-1:0] sd_at;
+  generate
+    if (LAG == 1) begin : g_neg
+      reg [NCH-1:0] sd_neg;
+`ifdef FORMAL
+      // The proof has one clock (sby without multiclock), whose steps hold
+      // the free input sdata constant: a register on either edge of a step
+      // takes the same value, so the rising edge stands for the falling
+      // one (which yosys would refuse beside rising-edge registers).
+      always @(posedge clk) sd_neg <= sdata;
+`else
+      always @(negedge clk) sd_neg <= sdata;
+`endif
+      assign sd_at = sd_neg;
+    end else begin : g_pos
+      assign sd_at = sdata;
+    end
+  endgenerate
+
+  // This edge drives an SCLK fall (the 16th); the last edge did (LAG > 0
+  // takes the bit then).
+  wire fall_now = busy && hcnt == H_LAST && !half[0];
+  wire last_now = fall_now && half == 5'd30;
+  reg fall_q, last_q;
+  wire take = LAG == 0 ? fall_now : fall_q;
+  wire take16 = LAG == 0 ? last_now : last_q;
+
+  // Shift register after this sample (bits 15..0 per channel).
   reg [16*NCH-1:0] shifted;
   integer c;
   always @(*) begin
     for (c = 0; c < NCH; c = c + 1)
-      shifted[16*c +: 16] = {shreg[16*c +: 15], sdata[c]};
+      shifted[16*c +: 16] = {shreg[16*c +: 15], sd_at[c]};
   end
 
   // The 12 data bits of each channel once all 16 are in.
@@ -112,10 +173,28 @@ module adc_ad7476 #(
       m_data   <= {12*NCH{1'b0}};
       m_t      <= 32'd0;
       overruns <= 16'd0;
+      fall_q   <= 1'b0;
+      last_q   <= 1'b0;
     end else begin
       if (clear) overruns <= 16'd0;
       if (m_valid && m_ready) m_valid <= 1'b0;
       pcnt <= (pcnt == P_LAST) ? {PW{1'b0}} : pcnt + 1'b1;
+      fall_q <= fall_now;
+      last_q <= last_now;
+      if (take) shreg <= shifted;
+      if (take16) begin  // the 16th bit is in: sample complete
+        // Its index: every conversion started completes (only rst stops
+        // one), in order, so the completed ones before it are the started
+        // ones before it, lost samples included.
+        count <= count + 32'd1;
+        if (m_valid && !m_ready) begin
+          if (overruns != 16'hFFFF && !clear) overruns <= overruns + 16'd1;
+        end else begin
+          m_valid <= 1'b1;
+          m_data  <= codes;
+          m_t     <= count;
+        end
+      end
 
       if (!busy) begin
         if (pcnt == {PW{1'b0}} && en) begin
@@ -130,22 +209,7 @@ module adc_ad7476 #(
         hcnt <= {HW{1'b0}};
         half <= half + 5'd1;
         if (!half[0]) begin
-          // SCLK falling edge k = half/2 + 1: take bit k.
-          sclk  <= 1'b0;
-          shreg <= shifted;
-          if (half == 5'd30) begin  // 16th falling edge: sample complete
-            // Its index: every conversion started completes (only rst
-            // stops one), in order, so the completed ones before it are
-            // the started ones before it, lost samples included.
-            count <= count + 32'd1;
-            if (m_valid && !m_ready) begin
-              if (overruns != 16'hFFFF && !clear) overruns <= overruns + 16'd1;
-            end else begin
-              m_valid <= 1'b1;
-              m_data  <= codes;
-              m_t     <= count;
-            end
-          end
+          sclk <= 1'b0;  // SCLK falling edge k = half/2 + 1 (bit k: take, above)
         end else begin
           sclk <= 1'b1;
           if (half == 5'd31) begin  // 16th rising edge: end of conversion
@@ -167,7 +231,12 @@ module adc_ad7476 #(
   // conversion, t1 (CS high) and tQUIET at least PERIOD - 32H and
   // PERIOD - 31H clocks: the clock counts the elaboration check holds to
   // the datasheet's nanoseconds. And the code delivered is the 12 bits
-  // SDATA showed on the edges of SCLK falls 5..16.
+  // SDATA showed at the sample points of SCLK falls 5..16: the edges that
+  // drive them (LAG 0), the clocks after (LAG 2). The proof has one clock
+  // (sby without multiclock): LAG 1's falling-edge register is a register
+  // of that clock (g_neg), so its sample is SDATA as the step of the edge
+  // that drives the fall shows it, taken a clock later as with LAG 2; what
+  // the half clock buys in time is the pin model's to show (tests/rtl).
   reg f_past = 1'b0;
   always @(posedge clk) f_past <= 1'b1;
   always @(*) if (!f_past) assume (rst);
@@ -182,7 +251,12 @@ module adc_ad7476 #(
   reg [15:0] f_gap;    // clocks since CS rose (saturating)
   wire f_fall = f_conv && f_h == F_H - 16'd1 && !f_half[0];
   wire f_rise = f_conv && f_h == F_H - 16'd1 && f_half[0];
-  reg f_got16, f_full;  // the 16th fall was at the last edge; the output was full then
+  reg f_got16, f_full;  // the 16th bit was taken at the last edge; the output was full then
+  reg f_fall_q, f_last_q, f_sd_q;  // the last edge drove a fall (the 16th); SDATA then
+  wire f_take = LAG == 0 ? f_fall : f_fall_q;
+  wire f_take16 = LAG == 0 ? f_fall && f_half == 6'd30 : f_last_q;
+  wire f_bit = LAG == 1 ? f_sd_q : sdata[0];
+  always @(posedge clk) f_sd_q <= sdata[0];  // as g_neg's register: reset or not
   always @(posedge clk)
     if (rst) begin
       f_pc <= 16'd0;
@@ -192,10 +266,15 @@ module adc_ad7476 #(
       f_sh <= 16'd0;
       f_gap <= 16'hFFFF;
       f_got16 <= 1'b0;
+      f_fall_q <= 1'b0;
+      f_last_q <= 1'b0;
     end else begin
       f_pc <= (f_pc == F_PERIOD - 16'd1) ? 16'd0 : f_pc + 16'd1;
-      f_got16 <= f_fall && f_half == 6'd30;
+      f_got16 <= f_take16;
       f_full <= m_valid && !m_ready;
+      f_fall_q <= f_fall;
+      f_last_q <= f_fall && f_half == 6'd30;
+      if (f_take) f_sh <= {f_sh[14:0], f_bit};
       if (!f_conv) begin
         if (f_gap != 16'hFFFF) f_gap <= f_gap + 16'd1;
         if (f_pc == 16'd0 && en) begin
@@ -207,7 +286,6 @@ module adc_ad7476 #(
       else begin
         f_h <= 16'd0;
         f_half <= f_half + 6'd1;
-        if (f_fall) f_sh <= {f_sh[14:0], sdata[0]};
         if (f_rise && f_half == 6'd31) begin
           f_conv <= 1'b0;
           f_gap <= 16'd0;
@@ -224,6 +302,9 @@ module adc_ad7476 #(
         assert (f_gap + 16'd1 >= F_PERIOD - 16'd32 * F_H);
       // The code: bits 5..16 of the last conversion, unless the token
       // before it was still waiting (then overruns counts it).
+      // (LAG > 0: the RTL's strobes are the monitor's, a clock on.)
+      assert (fall_q == f_fall_q && last_q == f_last_q);
+      if (LAG == 1) assert (sd_at[0] == f_sd_q);  // the falling-edge register
       if (f_got16 && !f_full) assert (m_valid && m_data[11:0] == f_sh[11:0]);
       // The state, for induction: the counters are the monitor's.
       assert ({{(16 - PW){1'b0}}, pcnt} == f_pc && f_pc < F_PERIOD);
@@ -268,10 +349,16 @@ module adc_ad7476 #(
   reg [12*NCH-1:0] p_md;             // m_data one clock ago
   wire e_csf = p_cs && !cs_n, e_csr = !p_cs && cs_n;
   wire e_fall = p_sclk && !sclk, e_rise = !p_sclk && sclk;
+  reg p_16q;                         // the 16th fall was seen one clock ago
+  wire p_done = LAG == 0 ? e_fall && p_nf == 5'd15 : p_16q;  // its code is out now
+  reg [12*NCH-1:0] p_codes_q;        // the codes then
   reg [16*NCH-1:0] p_shn;
   integer g;
+  // SDATA at the sample point of the fall seen now: at the edge that drove
+  // it (LAG 0, 1: see above) or now (LAG 2).
+  wire [NCH-1:0] p_bit = LAG == 2 ? sdata : p_sd;
   always @(*)
-    for (g = 0; g < NCH; g = g + 1) p_shn[16*g +: 16] = {p_sh[16*g +: 15], p_sd[g]};
+    for (g = 0; g < NCH; g = g + 1) p_shn[16*g +: 16] = {p_sh[16*g +: 15], p_bit[g]};
   function [23:0] f_inc(input [23:0] x);
     f_inc = (x == F_SAT) ? F_SAT : x + 24'd1;
   endfunction
@@ -285,7 +372,10 @@ module adc_ad7476 #(
       p_en <= 1'b0;
       p_sh <= {16*NCH{1'b0}};
       p_full <= 1'b0;
+      p_16q <= 1'b0;
     end else begin
+      p_16q <= e_fall && p_nf == 5'd15;
+      p_codes_q <= p_codes;
       p_cs <= cs_n;
       p_sclk <= sclk;
       p_sd <= sdata;
@@ -340,9 +430,10 @@ module adc_ad7476 #(
       end
       if (e_csr) assert (e_rise && p_nf == 5'd16 && p_nr == 5'd15);  // 16 SCLK cycles
       // The code: the 16th fall delivers bits 5..16 (DB11 first) of every
-      // channel, or, with the last token still waiting, keeps it and counts.
-      if (e_fall && p_nf == 5'd15) begin
-        if (!p_full) assert (m_valid && m_data == p_codes);
+      // channel, or, with the last token still waiting, keeps it and counts
+      // (LAG > 0: a clock later).
+      if (p_done) begin
+        if (!p_full) assert (m_valid && m_data == (LAG == 0 ? p_codes : p_codes_q));
         else assert (m_valid && m_data == p_md);
       end
     end
@@ -384,7 +475,8 @@ module adc_ad7476 #(
       if (f_conv && !f_half[0] && f_half >= 6'd2 && !e_rise) assert (p_rise == {8'd0, f_h});
       if (f_conv && f_half[0] && f_half >= 6'd3) assert (p_rise == {8'd0, F_H + f_h});
       if (f_conv && (f_half >= 6'd4 || (f_half == 6'd3 && !e_fall))) assert (p_hi == {8'd0, F_H});
-      assert (e_fall ? shreg == p_shn : shreg == p_sh);
+      assert ((LAG == 0 && e_fall) ? shreg == p_shn : shreg == p_sh);
+      if (LAG != 0) assert (p_16q == f_got16);
     end
   always @(posedge clk)
     if (f_past) begin
@@ -394,8 +486,8 @@ module adc_ad7476 #(
       cover (e_csf && p_nf == 5'd16 && p_csf == F_PER);         // back to back: CS falls PERIOD on
       cover (e_csf && p_nf == 5'd16 && p_csf > F_PER);          // en low for a while: later
       cover (e_csr && p_nf == 5'd16);                           // 16 SCLK cycles, CS up
-      cover (e_fall && p_nf == 5'd15 && !p_full && m_data[11:0] == 12'hA5C);  // a code from SDATA
-      cover (e_fall && p_nf == 5'd15 && p_full);                // an overrun: the token kept
+      cover (p_done && !p_full && m_data[11:0] == 12'hA5C);    // a code from SDATA
+      cover (p_done && p_full);                                 // an overrun: the token kept
     end
 `endif
 endmodule

@@ -17,6 +17,18 @@
 // and access time), sdata() returns a pseudo-random level, so a master that
 // samples there reads garbage and its samples mismatch.
 //
+// The path between the master's flip-flops and the ADC (Ad7476Board): its
+// clock edge reaches CS and SCLK at the ADC out_ns + trace_ns later (clock
+// to out, output pad, board), and SDATA reaches its capture flip-flop
+// trace_ns + in_ns after the ADC drives it (board, input pad, routing,
+// setup). So at 20 MHz SCLK a bit is valid at the flip-flop from tSCLK -
+// (t4 - round trip) before the edge that drives the next SCLK fall until
+// t7 + round trip after it: the datasheet's 10 ns setup budget (tSCLK -
+// t4) shrinks by the round trip, which the master must sample against.
+// kRoundTripMinNs / kRoundTripMaxNs are the range rtl/adc_ad7476.v is
+// built for (SDATA_RT_MIN_NS, SDATA_RT_MAX_NS); Ad7476Board::fastest() and
+// slowest() are boards at its two ends, the default one in between.
+//
 // Timing checks (datasheet Table 4, VDD <= 3.3 V), each recorded as a
 // violation message that names the parameter:
 //   fSCLK <= 20 MHz (tSCLK >= 50 ns) and >= 10 kHz, SCLK low/high (t5, t6)
@@ -26,11 +38,15 @@
 //   max) to the next CS falling, tACQ >= 250 ns, and running out of samples.
 // Usage per clock edge at time t (ns, non-decreasing): first `sdata(t)`
 // (the level the master's flip-flops see just before the edge), then, after
-// the master has updated its outputs, `drive(t, cs_n, sclk)`.
+// the master has updated its outputs, `drive(t, cs_n, sclk)`; a master that
+// samples on the falling clock edge asks `sdata(t + half period)` after
+// drive(t). Times are the master's (its flip-flops' clock edges); the
+// board's delays are added here.
 #pragma once
 
 #include <cstdint>
 #include <cstdio>
+#include <deque>
 #include <limits>
 #include <random>
 #include <string>
@@ -53,26 +69,46 @@ struct Ad7476Timing {  // ns
   double tacq_min = 250.0;     // track-and-hold acquisition
 };
 
+// The range of SCLK-out-to-SDATA-in round trips rtl/adc_ad7476.v is built
+// for (its SDATA_RT_MIN_NS, SDATA_RT_MAX_NS defaults).
+constexpr double kRoundTripMinNs = 5.0, kRoundTripMaxNs = 15.0;
+
+struct Ad7476Board {  // ns, each >= 0
+  double out_ns = 6.0;    // master's clock edge to CS / SCLK at its pins (clock to out, pad)
+  double trace_ns = 0.5;  // board and cable, each way
+  double in_ns = 3.0;     // SDATA pin to the capture flip-flop (pad, routing, setup)
+  double round_trip() const { return out_ns + 2 * trace_ns + in_ns; }
+  // Both ends of the range above: fast pads on a short cable, slow pads
+  // (DRIVE=4 into the Pmod's load) on a longer one.
+  static Ad7476Board fastest() { return {2.5, 0.25, 2.0}; }
+  static Ad7476Board slowest() { return {9.0, 1.0, 4.0}; }
+};
+
 class Ad7476Model {
  public:
   explicit Ad7476Model(std::vector<uint16_t> codes, Ad7476Timing timing = {},
-                       uint64_t seed = 1)
-      : codes_(std::move(codes)), tm_(timing), rng_(seed) {}
+                       uint64_t seed = 1, Ad7476Board board = {})
+      : codes_(std::move(codes)), tm_(timing), board_(board), rng_(seed) {}
 
-  // SDATA as seen at time t (call before drive() for the same t).
+  // SDATA at the master's capture flip-flop at time t: the level the ADC
+  // drove trace_ns + in_ns earlier.
   int sdata(double t) {
-    if (hold_valid_ && t < hold_until_) return hold_bit_;
-    if (out_driven_ && t >= out_from_) return out_bit_;
-    return int(rng_() & 1);  // three-state or changing: undefined
+    const double ta = t - board_.trace_ns - board_.in_ns;
+    while (wave_.size() > 1 && wave_[1].from <= ta) wave_.pop_front();  // queries never go back
+    if (wave_.empty() || wave_[0].from > ta || wave_[0].level < 0)
+      return int(rng_() & 1);  // three-state or changing: undefined
+    return wave_[0].level;
   }
 
-  // Pin levels after the master's update at time t.
+  // Pin levels after the master's update at time t; the ADC sees them
+  // out_ns + trace_ns later.
   void drive(double t, bool cs_n, bool sclk) {
-    if (!cs_n_ && cs_n) cs_rise(t);
-    if (cs_n_ && !cs_n) cs_fall(t);
+    const double ta = t + board_.out_ns + board_.trace_ns;
+    if (!cs_n_ && cs_n) cs_rise(ta);
+    if (cs_n_ && !cs_n) cs_fall(ta);
     cs_n_ = cs_n;
-    if (sclk_ && !sclk) sclk_fall(t);
-    if (!sclk_ && sclk) sclk_rise(t);
+    if (sclk_ && !sclk) sclk_fall(ta);
+    if (!sclk_ && sclk) sclk_rise(ta);
     sclk_ = sclk;
   }
 
@@ -97,6 +133,19 @@ class Ad7476Model {
     if (messages_.size() < 50) messages_.push_back(what);
   }
 
+  // SDATA at the ADC's pin from time `from` on: a bit, or -1 (undefined).
+  // A new level replaces every later one already planned.
+  void level_from(double from, int level) {
+    while (!wave_.empty() && wave_.back().from >= from) wave_.pop_back();
+    wave_.push_back({from, level});
+  }
+  int level_at(double ta) const {
+    int v = -1;
+    for (const Level& l : wave_)
+      if (l.from <= ta) v = l.level;
+    return v;
+  }
+
   void cs_fall(double t) {
     if (last_cs_rise_ != kNever && t - last_cs_rise_ < tm_.t1_min)
       violate(t, "t1 (CS high pulse width)", t - last_cs_rise_, "<", tm_.t1_min);
@@ -116,10 +165,8 @@ class Ad7476Model {
     cs_fall_ = t;
     last_fall_ = last_rise_ = kNever;
     track_from_ = kNever;
-    hold_valid_ = false;
-    out_driven_ = true;
-    out_bit_ = 0;  // first leading zero
-    out_from_ = t + tm_.t3_max;
+    level_from(t, -1);              // leaving three-state
+    level_from(t + tm_.t3_max, 0);  // the first leading zero
   }
 
   void cs_rise(double t) {
@@ -130,8 +177,7 @@ class Ad7476Model {
       relinquish_ = t + tm_.t8_max;
       track_from_ = t;
     }
-    out_driven_ = false;  // three-state
-    hold_valid_ = false;
+    level_from(t, -1);  // three-state
   }
 
   void sclk_fall(double t) {
@@ -161,15 +207,15 @@ class Ad7476Model {
            std::to_string(falls_) + ")");
       return;
     }
-    // The current bit stays for t7 if it was valid by now, then the next one.
-    hold_valid_ = out_driven_ && t >= out_from_;
-    hold_bit_ = out_bit_;
-    hold_until_ = t + (falls_ == 16 ? tm_.t8_min : tm_.t7_min);
+    // The current bit stays for t7 if it was valid by now (t8 min after
+    // the 16th edge), then SDATA changes: the next bit from t4 on, or
+    // three-state after the 16th edge.
+    const int now = level_at(t);
+    level_from(t, now);
+    level_from(t + (falls_ == 16 ? tm_.t8_min : tm_.t7_min), -1);
     if (falls_ < 16) {
-      out_bit_ = (word_ >> (15 - falls_)) & 1;
-      out_from_ = t + tm_.t4_max;
+      level_from(t + tm_.t4_max, (word_ >> (15 - falls_)) & 1);
     } else {
-      out_driven_ = false;  // three-state after the 16th edge
       relinquish_ = t + tm_.t8_max;
       ++conversions_;
     }
@@ -181,9 +227,16 @@ class Ad7476Model {
     if (falls_ == 13) track_from_ = t;  // back to track (datasheet point B)
   }
 
+  struct Level {
+    double from;
+    int level;  // 0, 1, or -1: undefined
+  };
+
   std::vector<uint16_t> codes_;
   Ad7476Timing tm_;
+  Ad7476Board board_;
   std::mt19937_64 rng_;
+  std::deque<Level> wave_;  // SDATA at the ADC's pin, in time order
   size_t next_ = 0, conversions_ = 0, violation_count_ = 0;
   std::vector<std::string> messages_;
 
@@ -192,9 +245,6 @@ class Ad7476Model {
   uint16_t word_ = 0;
   double cs_fall_ = kNever, last_cs_rise_ = kNever, last_fall_ = kNever, last_rise_ = kNever;
   double relinquish_ = kNever, track_from_ = kNever;
-  bool out_driven_ = false, hold_valid_ = false;
-  int out_bit_ = 0, hold_bit_ = 0;
-  double out_from_ = 0, hold_until_ = 0;
 };
 
 }  // namespace eskin::sim

@@ -227,7 +227,6 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
   };
   p.ghost.rows = uint8_t(p.R), p.ghost.cols = uint8_t(p.C);
   p.ghost.lookback = uint16_t(p.lookback);
-  p.ghost.improved = true;
   p.ghost.onset = mag_units(s.ghost_onset_g, "decoder.ghost_onset");
   p.ghost.pair_tol = mag_units(s.ghost_pair_tol_g, "decoder.ghost_pair_tol");
   p.ghost.release = uint16_t(std::min(65535.0, std::ceil(s.ghost_release_g * 32768.0)));

@@ -226,7 +226,7 @@ void DtmfEngine::stage_packets(State& st, const Chunk& c, uint64_t chunk_f0, siz
           const auto& ev = c.spikes[l][s];
           for (size_t& p = cursor[l][s]; p < ev.size() && ev[p].frame == f; ++p) {
             if (int(st.win.size()) >= cf.max_spikes * hls::kSpikeEventBytes) {
-              ++ps.spikes_dropped;
+              if (ps.spikes_dropped < hls::SpikeEncoder<1>::kDroppedMax) ++ps.spikes_dropped;
               continue;
             }
             const uint16_t nr = ev[p].neuron;

@@ -78,7 +78,7 @@ struct EnginePacket {
 struct PacketStream {
   std::vector<EnginePacket> packets;
   std::vector<uint8_t> bytes;
-  uint32_t spikes_dropped = 0;  // spike events beyond max_spikes in a window
+  uint32_t spikes_dropped = 0;  // spike events beyond max_spikes in a window (saturates at 65535)
   uint64_t frames = 0;
   const uint8_t* payload(const EnginePacket& p) const { return bytes.data() + p.offset; }
 };

@@ -64,6 +64,30 @@ TEST(SpikeEncoderHls, OverflowingAWindowDropsAndCounts) {
   EXPECT_EQ(tw, 200u);
 }
 
+// The drop count is the STATUS packet's spikes_dropped field (u16,
+// docs/protocol.md section 4: counters saturate at 0xFFFF), the rule of the
+// microcode's SPKDROP: 65535 drops and more read 65535, in one window or
+// over many, and stay there.
+TEST(SpikeEncoderHls, DropCountSaturatesAtTheStatusFieldsFullScale) {
+  eskin::hls::SpikeEncoder<1> enc;
+  uint32_t tw = 0;
+  enc.frame(0);
+  for (int i = 0; i < 65535; ++i) enc.spike(0, 0);  // 1 kept, 65534 dropped
+  EXPECT_EQ(enc.dropped(), 65534u);
+  enc.spike(0, 1);
+  EXPECT_EQ(enc.dropped(), 65535u);
+  enc.spike(0, 2);
+  EXPECT_EQ(enc.dropped(), 65535u);
+  ASSERT_EQ(enc.close(tw), 1);
+  for (uint32_t w = 1; w <= 3; ++w) {  // later windows overflow too: still 65535
+    enc.frame(100 * w);
+    for (int i = 0; i < 10; ++i) enc.spike(1, uint16_t(i));
+    ASSERT_EQ(enc.close(tw), 1);
+    EXPECT_EQ(tw, 100 * w);
+    EXPECT_EQ(enc.dropped(), 65535u);
+  }
+}
+
 }  // namespace
 
 // close_packet: the SPIKES packet as docs/protocol.md lays it out (bytes

@@ -9,11 +9,17 @@
 //    a wrong sampling instant shows up as wrong codes.
 //  * Zero timing violations in both legal configurations (the model checks
 //    every datasheet limit it knows, listed in its header).
+//  * The pads and the board: the model delays SCLK out and SDATA back by
+//    its Ad7476Board (default: the middle of the range the module is built
+//    for); at 1 MSPS the codes are exact at both ends of that range, and
+//    wrong beyond it (the module samples half a clock late there: its
+//    header's LAG).
 //  * Exact cycles: CS falls every round(CLK_HZ/SAMPLE_HZ) clocks (343 at
 //    12 MHz/35 kSPS, 40 at 40 MHz/1 MSPS); m_valid rises 31*H clocks after
 //    CS falls: the 16th SCLK falling edge is driven 31 H clocks after CS
 //    (t2 = H, then 15 periods of 2 H) and the code is registered on that
-//    same clock edge, H = SCLK_DIV.
+//    same clock edge, H = SCLK_DIV; at 40 MHz a clock later (the bit is
+//    taken on the falling edge after).
 //  * Back-pressure: a stalled consumer loses whole samples, never corrupts
 //    one: delivered tokens match codes[m_t], data stable while valid &&
 //    !ready, and every completed conversion is accounted for exactly:
@@ -42,6 +48,7 @@
 #include "sim/scene.h"
 #include "sim/world_model.h"
 
+using eskin::sim::Ad7476Board;
 using eskin::sim::Ad7476Model;
 
 namespace {
@@ -61,10 +68,12 @@ struct Result {
 
 template <class M>
 Result run(double clk_hz, int nch, const std::vector<std::vector<uint16_t>>& codes,
-           size_t n_tokens, double p_ready, uint64_t seed, uint64_t max_edges) {
+           size_t n_tokens, double p_ready, uint64_t seed, uint64_t max_edges,
+           const Ad7476Board& board = {}) {
   auto m = std::make_unique<M>();
   std::vector<Ad7476Model> adc;
-  for (int c = 0; c < nch; ++c) adc.emplace_back(codes[size_t(c)], eskin::sim::Ad7476Timing{}, seed + c);
+  for (int c = 0; c < nch; ++c)
+    adc.emplace_back(codes[size_t(c)], eskin::sim::Ad7476Timing{}, seed + c, board);
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution ready(p_ready);
   const double tc = 1e9 / clk_hz;
@@ -94,8 +103,12 @@ Result run(double clk_hz, int nch, const std::vector<std::vector<uint16_t>>& cod
       }
     }
     m->clk = 1; m->eval();
-    m->clk = 0; m->eval();
     for (int c = 0; c < nch; ++c) adc[size_t(c)].drive(t, m->cs_n, m->sclk);
+    // SDATA half a period on, at the falling edge (a build that samples there).
+    sd = 0;
+    for (int c = 0; c < nch; ++c) sd |= uint32_t(adc[size_t(c)].sdata(t + tc / 2)) << c;
+    m->sdata = sd;
+    m->clk = 0; m->eval();
     if (prev_cs && !m->cs_n) r.cs_fall_edges.push_back(edge);
     if (!prev_valid && m->m_valid) r.valid_rise_edges.push_back(edge);
     prev_cs = m->cs_n; prev_valid = m->m_valid;
@@ -132,12 +145,14 @@ void expect_exact(const Result& r, const std::vector<std::vector<uint16_t>>& cod
   }
 }
 
-void expect_cycles(const Result& r, uint64_t period, uint64_t h) {
+// valid_after: clocks from CS falling to m_valid (31 H; a clock more where
+// the module samples late, LAG > 0 in its header: the 40 MHz builds).
+void expect_cycles(const Result& r, uint64_t period, uint64_t valid_after) {
   ASSERT_GE(r.cs_fall_edges.size(), 3u);
   for (size_t i = 1; i < r.cs_fall_edges.size(); ++i)
     ASSERT_EQ(r.cs_fall_edges[i] - r.cs_fall_edges[i - 1], period);
   for (size_t i = 0; i < r.valid_rise_edges.size() && i < r.cs_fall_edges.size(); ++i)
-    ASSERT_EQ(r.valid_rise_edges[i] - r.cs_fall_edges[i], 31 * h);
+    ASSERT_EQ(r.valid_rise_edges[i] - r.cs_fall_edges[i], valid_after);
 }
 
 }  // namespace
@@ -152,7 +167,7 @@ TEST(AdcAd7476, SceneCodesAt35kSps) {
   const auto r = run<Vadc_ad7476>(12e6, 1, {codes}, n, 1.0, 1, 400 * 1500);
   EXPECT_EQ(r.violation_count, 0u) << joined(r.violations);
   expect_exact(r, {codes}, n);
-  expect_cycles(r, (12000000 + 17500) / 35000, 1);
+  expect_cycles(r, (12000000 + 17500) / 35000, 31);
   EXPECT_EQ(r.overruns, 0u);
 }
 
@@ -162,7 +177,37 @@ TEST(AdcAd7476, RandomCodesAt1MspsTwoChannels) {
   const auto r = run<Vadc_ad7476_fast>(40e6, 2, codes, n, 1.0, 2, 41 * (n + 2));
   EXPECT_EQ(r.violation_count, 0u) << joined(r.violations);
   expect_exact(r, codes, n);
-  expect_cycles(r, 40, 1);
+  expect_cycles(r, 40, 32);  // the falling clock edge after the SCLK fall's takes each bit
+}
+
+// The pads and the board (sim/ad7476_model.h's Ad7476Board): at 1 MS/s
+// (20 MHz SCLK: tSCLK - t4 = 10 ns) the round trip of SCLK out and SDATA
+// back takes the setup budget of a capture at the edge that drives the
+// next SCLK fall. The module samples on the falling clock edge after it
+// at 40 MHz (LAG 1, its header), so the codes are exact at both ends of
+// the round trip it is built for: the slowest board (15 ns: the edge
+// itself would see each bit 5 ns before it is valid, and read the
+// model's random levels) and the fastest (5 ns: the half clock, 12.5 ns,
+// still inside t7 + 5 ns of hold). A board beyond the range (25 ns) reads
+// wrong codes: the check that the delays reach the sample point.
+TEST(AdcAd7476, RandomCodesAt1MspsAtBothEndsOfTheBoardsRoundTrip) {
+  EXPECT_EQ(Ad7476Board::slowest().round_trip(), eskin::sim::kRoundTripMaxNs);
+  EXPECT_EQ(Ad7476Board::fastest().round_trip(), eskin::sim::kRoundTripMinNs);
+  const size_t n = 2000;
+  const std::vector<std::vector<uint16_t>> codes{random_codes(n + 1, 12), random_codes(n + 1, 13)};
+  for (const Ad7476Board& board : {Ad7476Board::slowest(), Ad7476Board::fastest()}) {
+    SCOPED_TRACE("round trip " + std::to_string(board.round_trip()) + " ns");
+    const auto r = run<Vadc_ad7476_fast>(40e6, 2, codes, n, 1.0, 12, 41 * (n + 2), board);
+    EXPECT_EQ(r.violation_count, 0u) << joined(r.violations);
+    expect_exact(r, codes, n);
+  }
+  const Ad7476Board beyond{15.0, 2.0, 6.0};
+  ASSERT_EQ(beyond.round_trip(), 25.0);
+  const auto r = run<Vadc_ad7476_fast>(40e6, 2, codes, n, 1.0, 12, 41 * (n + 2), beyond);
+  ASSERT_EQ(r.tokens.size(), n);
+  size_t wrong = 0;
+  for (size_t i = 0; i < n; ++i) wrong += r.tokens[i].codes[0] != codes[0][r.tokens[i].t];
+  EXPECT_GT(wrong, n / 2);
 }
 
 TEST(AdcAd7476, BackPressureDropsWholeSamplesAndCountsThem) {
@@ -210,7 +255,7 @@ TEST(AdcAd7476, NegativeControlSampleRateTooHigh) {
 TEST(Ad7476Model, UndefinedWindowIsNotReadable) {
   const auto codes = random_codes(64, 8);
   for (bool at_rise : {false, true}) {
-    Ad7476Model adc(codes);
+    Ad7476Model adc(codes, {}, 1, {0, 0, 0});  // at the ADC's pins: no board delays
     double t = 1000;
     size_t wrong = 0;
     for (size_t s = 0; s < codes.size(); ++s) {

@@ -82,10 +82,13 @@ class Board {
     m_->uart_rxd = rx_level();
     m_->clk = 1;
     m_->eval();
-    m_->clk = 0;
-    m_->eval();
     ++cycle_;
     adc_edge(t_ns);
+    // SDATA at the falling edge, half a period on (where the 40 MHz ADC
+    // builds sample it: rtl/adc_ad7476.v's LAG).
+    m_->adc_sdata = adc_.sdata(t_ns + 0.5e9 / clk_hz_);
+    m_->clk = 0;
+    m_->eval();
     uart_sample(m_->uart_txd);
     probe();
   }
@@ -133,11 +136,14 @@ class Board {
       m_->clk = e.a;
       m_->adc_clk = e.b;
       m_->eval();
+      if (e.a) ++cycle_;
+      if (e.b) {  // the pins to the model, then SDATA at adc_clk's falling edge
+        adc_edge(e.t_ns());
+        m_->adc_sdata = adc_.sdata(e.t_ns() + double(two_->period_b) * 0.5e-6);
+      }
       m_->clk = 0;
       m_->adc_clk = 0;
       m_->eval();
-      if (e.a) ++cycle_;
-      if (e.b) adc_edge(e.t_ns());
       if (e.a) {
         uart_sample(m_->uart_txd);
         probe();

@@ -296,37 +296,61 @@ TEST(DtmfTop, DefaultSceneMatchesTheChainAndTheTruth) {
   scene_test<Vdtmf_top, eskin::hls::DtmfChainSizes<3, 3, 32>>(kDefault, prepare(kDefault));
 }
 
-// Every command over the UART while the default scene runs, then the HLS
-// chain with the same changes before the same frames: the data packets
-// stay equal byte for byte (exact), so each command was applied, at once,
-// and to the right thing. Each bad command is rejected with its documented
-// reason (docs/protocol.md §5), answered by a STATUS packet naming its
-// type and seq, and changes nothing (the packets after it still equal the
-// chain's); a corrupted frame is counted as a CRC error; CLEAR_COUNTERS
-// zeroes the counters. Expected counts are counted here from what was sent.
-using Chain3 = eskin::hls::DtmfChain<eskin::hls::DtmfChainSizes<3, 3, 32>>;
-
+// Every command over the UART while a skin runs, then the HLS chain with
+// the same changes before the same frames: the data packets stay equal
+// byte for byte (exact), so each command was applied, at once, and to the
+// right thing; every SET_THRESHOLD id (0 sparse minimum, 1 ghost onset, 2
+// ghost release, 3 pairing tolerance) among them. Each bad command is
+// rejected with its documented reason (docs/protocol.md §5), answered by a
+// STATUS packet naming its type and seq, and changes nothing (the packets
+// after it still equal the chain's); a corrupted frame is counted as a CRC
+// error; CLEAR_COUNTERS zeroes the counters. Expected counts are counted
+// here from what was sent. On the default build (the scene's own samples)
+// and on the engine's other forms, each with its own microcode: the barrel
+// shifter, the neuron unit and the unit's lanes (random on/off carriers:
+// lines rise and fall every 3 frames, so every packet type flows).
+template <class S>
 struct Command {
   uint32_t after_frame;                    // sent once this many frames are done
   std::vector<uint8_t> bytes;
-  std::function<void(Chain3&)> hls;        // the same change (none: rejected/no data effect)
+  std::function<void(eskin::hls::DtmfChain<S>&)> hls;  // the same change (none: rejected/no data effect)
   uint8_t reject_reason = 0;               // 0: accepted
   uint8_t type = 0, seq = 0;
 };
 
-TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
-  const BuildSetup s = prepare(kDefault);
-  const size_t n = 14000;
-  auto codes = s.codes12;
-  codes.resize(n + 400, 2048);
-  auto padded = s;
-  padded.codes12 = codes;
+template <class V, class S>
+void every_command_at_run_time(const Build& k) {
+  using Chain = eskin::hls::DtmfChain<S>;
+  BuildSetup s = prepare(k);
   const auto& plan = s.plan;
+  const int step = plan.step;
+  size_t n = 14000;  // the default scene: 400 frames
+  if (k.name != kDefault.name) {
+    n = size_t(plan.N + 300 * step);
+    const auto& sp = plan.spec;
+    std::vector<double> f(s.scene.skin.row_freq_hz);
+    f.insert(f.end(), s.scene.skin.col_freq_hz.begin(), s.scene.skin.col_freq_hz.end());
+    s.codes12 = dtmf_stimulus::random_carrier_codes(
+        f, sp.sample_hz, sp.full_carrier_lsb * std::ldexp(1.0, 12 - sp.adc_bits), int(n), 3 * step, 9);
+  }
+  auto codes = s.codes12;
+  codes.resize(n + size_t(12 * step), 2048);
+  const int K = plan.K;
+  // The taxel decimation the run sets: 2 on the default build; on the
+  // large skins one whose worst taxel frame (dense, every taxel sparse, a
+  // full spike window) takes under 80 % of the link's bytes in that many
+  // frames, so that no packet is dropped.
+  int d1 = 2;
+  if (k.name != kDefault.name) {
+    const double link_per_frame = plan.spec.baud / 10.0 * step / plan.spec.sample_hz;
+    const double worst = 23.0 + 6.0 * plan.T + 5.0 * plan.max_spikes;
+    d1 = std::max(2, int(std::ceil(worst / (0.8 * link_per_frame))));
+  }
   eskin::link::LinkEncoder enc;
-  std::vector<Command> cmds;
-  auto add = [&](uint32_t f, std::vector<uint8_t> bytes, std::function<void(Chain3&)> h,
+  std::vector<Command<S>> cmds;
+  auto add = [&](uint32_t f, std::vector<uint8_t> bytes, std::function<void(Chain&)> h,
                  uint8_t reason = 0) {
-    Command c{f, std::move(bytes), std::move(h), reason, 0, 0};
+    Command<S> c{f, std::move(bytes), std::move(h), reason, 0, 0};
     c.seq = uint8_t(enc.next_seq() - 1);
     // type: the raw frame's first byte (COBS: the code byte comes first).
     c.type = c.bytes[1];
@@ -341,49 +365,73 @@ TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
   add(18, enc.set_output_mask(0x20), nullptr, kRejectReservedBits);
   add(20, enc.set_neuron(0x20, 0), nullptr, kRejectBadIndex);
   add(22, enc.set_neuron(0x07, 41), nullptr, kRejectBadValue);  // s2 > 40
-  add(24, enc.set_carrier_inc(6, 1000), nullptr, kRejectBadIndex);
+  add(24, enc.set_carrier_inc(uint8_t(K), 1000), nullptr, kRejectBadIndex);
   add(26, enc.set_carrier_inc(0, 0x80000000u), nullptr, kRejectBadValue);
   add(28, enc.set_weight(9, 0), nullptr, kRejectBadIndex);
-  add(30, enc.set_demix_coef(169, 0), nullptr, kRejectBadIndex);
+  const int dim = plan.spec.demix ? 2 * K + 1 : 0;
+  add(30, enc.set_demix_coef(uint16_t(dim * dim), 0), nullptr, kRejectBadIndex);
   // Index and value both wrong: the index is checked first (protocol §5).
   add(32, enc.set_decimation(3, 0), nullptr, kRejectBadIndex);
   // Accepted changes.
-  add(40, enc.set_output_mask(0x1F), [](Chain3& c) { c.set_mask(0x1F); });
-  add(50, enc.set_decimation(0, 3), [](Chain3& c) { c.set_decimation(0, 3); });
-  add(60, enc.set_decimation(1, 2), [](Chain3& c) { c.set_decimation(1, 2); });
-  add(70, enc.set_decimation(2, 25), [](Chain3&) {});  // periodic status only
-  add(80, enc.set_threshold(0, 2000), [](Chain3& c) { c.set_sparse_min(2000); });
+  int accepted = 0;
+  auto change = [&](uint32_t f, std::vector<uint8_t> bytes, std::function<void(Chain&)> h) {
+    add(f, std::move(bytes), std::move(h));
+    ++accepted;
+  };
+  change(40, enc.set_output_mask(0x1F), [](Chain& c) { c.set_mask(0x1F); });
+  change(50, enc.set_decimation(0, 3), [](Chain& c) { c.set_decimation(0, 3); });
+  change(60, enc.set_decimation(1, uint16_t(d1)), [d1](Chain& c) { c.set_decimation(1, uint16_t(d1)); });
+  change(70, enc.set_decimation(2, 25), [](Chain&) {});  // periodic status only
+  change(80, enc.set_threshold(0, 2000), [](Chain& c) { c.set_sparse_min(2000); });
   const uint16_t onset = uint16_t(plan.ghost.onset / 2);
-  add(100, enc.set_threshold(1, onset), [onset](Chain3& c) {
+  change(100, enc.set_threshold(1, onset), [onset](Chain& c) {
     const auto& g = c.ghost_config();
     c.set_ghost_thresholds(onset, g.pair_tol, g.release);
   });
-  add(120, enc.set_weight(4, 12 * 256), [](Chain3& c) { c.set_weight(4, 12 * 256); });
+  // A higher release ends sites sooner; a wider pairing tolerance pairs
+  // rises that differ more.
+  const uint16_t release = uint16_t(std::min(32767, 2 * int(plan.ghost.release) + 1000));
+  change(110, enc.set_threshold(2, release), [release](Chain& c) {
+    const auto& g = c.ghost_config();
+    c.set_ghost_thresholds(g.onset, g.pair_tol, release);
+  });
+  const uint16_t pair_tol = uint16_t(std::min(65535, 3 * int(plan.ghost.pair_tol) + 1));
+  change(115, enc.set_threshold(3, pair_tol), [pair_tol](Chain& c) {
+    const auto& g = c.ghost_config();
+    c.set_ghost_thresholds(g.onset, pair_tol, g.release);
+  });
+  change(120, enc.set_weight(4, 12 * 256), [](Chain& c) { c.set_weight(4, 12 * 256); });
   const int32_t gain1 = plan.neuron[1].gain / 2;
-  add(140, enc.set_neuron(0x10 | 2, gain1), [gain1](Chain3& c) {
-    auto n = c.neuron_config(1);
-    ASSERT_TRUE(eskin::hls::apply_neuron_param(n, 2, gain1));
-    c.set_neuron(1, n);
+  change(140, enc.set_neuron(0x10 | 2, gain1), [gain1](Chain& c) {
+    auto nc = c.neuron_config(1);
+    ASSERT_TRUE(eskin::hls::apply_neuron_param(nc, 2, gain1));
+    c.set_neuron(1, nc);
   });
   const int32_t gs0 = plan.neuron[0].gain_shift + 1;
-  add(150, enc.set_neuron(0x03, gs0), [gs0](Chain3& c) {
-    auto n = c.neuron_config(0);
-    ASSERT_TRUE(eskin::hls::apply_neuron_param(n, 3, gs0));
-    c.set_neuron(0, n);
+  change(150, enc.set_neuron(0x03, gs0), [gs0](Chain& c) {
+    auto nc = c.neuron_config(0);
+    ASSERT_TRUE(eskin::hls::apply_neuron_param(nc, 3, gs0));
+    c.set_neuron(0, nc);
   });
-  const int16_t coef0 = int16_t(plan.demix.coef[0] + 64);
-  add(160, enc.set_demix_coef(0, coef0), [coef0](Chain3& c) { c.set_demix_coef(0, coef0); });
-  const uint32_t inc5 = plan.inc[5] + 100000;
-  add(200, enc.set_carrier_inc(5, inc5), nullptr);  // applied at its sample (below)
+  if (plan.spec.demix) {
+    const int16_t coef0 = int16_t(plan.demix.coef[0] + 64);
+    change(160, enc.set_demix_coef(0, coef0), [coef0](Chain& c) { c.set_demix_coef(0, coef0); });
+  }
+  const int kr = K - 1;  // the last carrier's new increment
+  const uint32_t inc_r = plan.inc[size_t(kr)] + 100000;
+  change(200, enc.set_carrier_inc(uint8_t(kr), inc_r), nullptr);  // applied at its sample (below)
   add(230, enc.request_status(), nullptr);
   auto bad = enc.set_threshold(0, 1);
   bad[3] ^= 0x04;  // a payload bit: the CRC catches it
   add(240, bad, nullptr);
   add(250, enc.clear_counters(), nullptr);
   add(260, enc.request_status(), nullptr);
+  int thresholds = 0;  // SET_THRESHOLD ids accepted: every one
+  for (const auto& c : cmds) thresholds += c.type == kCmdSetThreshold && c.hls;
+  EXPECT_EQ(thresholds, 4);
 
   // ---- the RTL run ----
-  Board<Vdtmf_top> b(codes, double(kDefault.clk_hz), s.cpb);
+  Board<V> b(codes, double(k.clk_hz), s.cpb, double(k.adc_clk_hz));
   std::vector<size_t> status_before(cmds.size());
   size_t next = 0;
   while (b.adc().samples_taken() < n + 60) {
@@ -401,21 +449,18 @@ TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
   std::vector<const Received*> statuses;
   for (const auto& r : b.received())
     if (r.p.type == kStatus) statuses.push_back(&r);
-  int changes = 0, rejected = 0;
-  auto status_after = [&](size_t i) -> const Received* {
-    for (size_t j = status_before[i]; j < b.received().size(); ++j)
-      if (b.received()[j].p.type == kStatus) return &b.received()[j];
-    return nullptr;
-  };
+  int rejected = 0;
   for (size_t i = 0; i < cmds.size(); ++i) {
-    const Command& c = cmds[i];
-    if (!c.reject_reason) {
-      changes += c.hls || c.type == kCmdSetDecimation || c.type == kCmdSetCarrierInc;
-      continue;
-    }
+    const Command<S>& c = cmds[i];
+    if (!c.reject_reason) continue;
     ++rejected;
-    const Received* st = status_after(i);
-    ASSERT_NE(st, nullptr) << "no STATUS after rejected command " << i;
+    // Its reply names its seq: on a slow link (16x16 at 2 Mbaud) the reply
+    // to the rejection two frames before can still be on the line.
+    const Received* st = nullptr;
+    for (size_t j = status_before[i]; j < b.received().size() && !st; ++j)
+      if (b.received()[j].p.type == kStatus && b.received()[j].p.status.last_reject_seq == c.seq)
+        st = &b.received()[j];
+    ASSERT_NE(st, nullptr) << "no STATUS naming rejected command " << i;
     EXPECT_EQ(st->p.status.last_reject_reason, c.reject_reason) << "command " << i;
     EXPECT_EQ(st->p.status.last_reject_type, c.type) << "command " << i;
     EXPECT_EQ(st->p.status.last_reject_seq, c.seq) << "command " << i;
@@ -424,11 +469,17 @@ TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
   }
   // The first REQUEST_STATUS (command cmds.size() - 4) sees every change and
   // itself; the corrupted frame after it is a CRC error; after CLEAR_COUNTERS
-  // the last request sees only itself.
-  const Received* req = status_after(cmds.size() - 4);
-  ASSERT_NE(req, nullptr);
-  EXPECT_EQ(changes, 11);
-  EXPECT_EQ(req->p.status.cmd_accepted, changes + 1);
+  // the last request sees only itself. Their replies are the first STATUS
+  // to count the request (a periodic one sent before it may still be on a
+  // slow link), and the first after the counters were cleared (no last
+  // rejection) to count anything.
+  const Received* req = nullptr;
+  for (size_t j = status_before[cmds.size() - 4]; j < b.received().size() && !req; ++j)
+    if (b.received()[j].p.type == kStatus && b.received()[j].p.status.cmd_accepted > accepted)
+      req = &b.received()[j];
+  ASSERT_NE(req, nullptr) << "no STATUS counts the first REQUEST_STATUS";
+  EXPECT_EQ(accepted, plan.spec.demix ? 13 : 12);
+  EXPECT_EQ(req->p.status.cmd_accepted, accepted + 1);
   EXPECT_EQ(req->p.status.cmd_rejected, rejected);
   EXPECT_EQ(req->p.status.cmd_crc_errors, 0);
   EXPECT_EQ(req->p.status.output_mask, 0x1F);
@@ -436,23 +487,31 @@ TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
   for (const auto* st : statuses)
     crc_seen |= st->p.t > req->p.t && st->p.status.cmd_crc_errors == 1;
   EXPECT_TRUE(crc_seen) << "the corrupted frame was not counted";
-  const Received* last = status_after(cmds.size() - 1);
-  ASSERT_NE(last, nullptr);
+  const Received* last = nullptr;
+  for (size_t j = status_before[cmds.size() - 1]; j < b.received().size() && !last; ++j) {
+    const auto& st = b.received()[j].p;
+    if (st.type == kStatus && st.status.last_reject_type == 0 && st.status.cmd_accepted > 0)
+      last = &b.received()[j];
+  }
+  ASSERT_NE(last, nullptr) << "no STATUS counts the last REQUEST_STATUS";
   EXPECT_EQ(last->p.status.cmd_accepted, 1);
   EXPECT_EQ(last->p.status.cmd_rejected + last->p.status.cmd_crc_errors, 0);
   EXPECT_EQ(last->p.status.last_reject_type, 0);
-  // Periodic status every 25 frames once the mask and decimation say so.
+  // Periodic status every 25 frames once the mask and decimation say so
+  // (frames 72 .. 228: between SET_DECIMATION 2 and the last commands).
   size_t periodic = 0;
-  for (const auto* st : statuses) periodic += st->p.t > 2504 && st->p.t < 8000;
+  for (const auto* st : statuses)
+    periodic += st->p.t > uint32_t(plan.N + 72 * step) && st->p.t < uint32_t(plan.N + 228 * step);
   EXPECT_GE(periodic, 5u);
 
   // ---- the chain with the same changes ----
   ASSERT_EQ(b.carrier_loads.size(), 2u);  // boot + the SET_CARRIER_INC
   const size_t reload_sample = b.carrier_load_samples[1];
   ASSERT_GT(reload_sample, 0u);
-  auto chain = std::make_unique<Chain3>(eskin::hls::chain_config<eskin::hls::DtmfChainSizes<3, 3, 32>>(plan));
+  auto chain = std::make_unique<Chain>(eskin::hls::chain_config<S>(plan));
   std::vector<Key> want;
-  Chain3::Packet pk[Chain3::kMaxPackets];
+  auto pk = std::make_unique<typename Chain::Packet[]>(Chain::kMaxPackets);
+  auto& p4 = *reinterpret_cast<typename Chain::Packet(*)[Chain::kMaxPackets]>(pk.get());
   size_t ci = 0;
   for (size_t i = 0; i < n + 60; ++i) {
     while (ci < cmds.size() && chain->frames() >= cmds[ci].after_frame) {
@@ -461,19 +520,36 @@ TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
     }
     if (i == reload_sample) {
       auto sd = chain->chain_sdft_config();
-      sd.inc[5] = inc5;
+      sd.inc[size_t(kr)] = inc_r;
       auto dm = chain->demix_config();
-      dm.inc[5] = inc5 * uint32_t(plan.step);
-      for (int k = 0; k < 6; ++k) dm.phase0[k] = 0;
+      dm.inc[size_t(kr)] = inc_r * uint32_t(step);
+      for (int j = 0; j < K; ++j) dm.phase0[j] = 0;
       ASSERT_TRUE(chain->set_carriers(sd, dm));
     }
-    const int np = chain->push(codes[i], uint32_t(i), pk);
+    const int np = chain->push(codes[i], uint32_t(i), p4);
     for (int j = 0; j < np; ++j)
-      want.push_back({pk[j].type, pk[j].t, {pk[j].payload, pk[j].payload + pk[j].len}});
+      want.push_back({p4[j].type, p4[j].t, {p4[j].payload, p4[j].payload + p4[j].len}});
   }
-  const uint32_t limit = uint32_t(n) - 4 * uint32_t(plan.step);
+  // Spike windows span d1 frames: compare those that closed well before.
+  const uint32_t limit = uint32_t(n) - uint32_t((d1 + 4) * step);
   expect_same_packets(want, b.received(),
                       {kAmplitudes, kTaxelsDense, kTaxelsSparse, kSpikes}, limit);
+  std::printf("%s: %zu commands (%d accepted, %d rejected), taxels every %d frames, %zu packets "
+              "equal the chain's\n",
+              k.name.c_str(), cmds.size(), accepted, rejected, d1, want.size());
+}
+
+TEST(DtmfTop, EveryCommandIsAppliedAtRunTime) {
+  every_command_at_run_time<Vdtmf_top, eskin::hls::DtmfChainSizes<3, 3, 32>>(kDefault);
+}
+TEST(DtmfTop, EveryCommandIsAppliedAtRunTimeWithTheBarrelShifter) {
+  every_command_at_run_time<Vdtmf_top_s10fast, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Fast);
+}
+TEST(DtmfTop, EveryCommandIsAppliedAtRunTimeWithTheNeuronUnit) {
+  every_command_at_run_time<Vdtmf_top_s10unit, eskin::hls::DtmfChainSizes<10, 10, 64>>(kS10Unit);
+}
+TEST(DtmfTop, EveryCommandIsAppliedAtRunTimeWithTheNeuronLanes) {
+  every_command_at_run_time<Vdtmf_top_s16m, eskin::hls::DtmfChainSizes<16, 16, 128>>(kS16M);
 }
 
 TEST(DtmfTop, Staggered10x10MatchesTheChainAndTheTruth) {

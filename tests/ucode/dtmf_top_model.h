@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -77,6 +78,7 @@ class TopModel {
       } else {
         for (int k = 0; k < plan_.ks; ++k)
           io_.frame[size_t(2 * k)] = tok[k].re, io_.frame[size_t(2 * k + 1)] = tok[k].im;
+        if (on_frame) on_frame(io_.frame);
         io_.pending = true;
         io_.frame_t = io_.adc_t;
         frame_start_ = eng_->clocks();
@@ -96,6 +98,10 @@ class TopModel {
     }
     check_stack();
   }
+  // Called with each captured frame's window sums (token k's re at 2k, im
+  // at 2k + 1) before the engine sees them: a test may replace them with
+  // sums no ADC input gives, to reach the routines' bounds.
+  std::function<void(std::vector<int32_t>& sums)> on_frame;
   // Clocks spent per instruction address (~0u: waiting), from now on.
   void profile(std::map<uint32_t, uint64_t>* p) { profile_ = p; }
   // A command frame's bytes as cmd_decoder queues them (type, seq, len, payload).

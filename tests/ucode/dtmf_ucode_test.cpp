@@ -188,6 +188,84 @@ TEST(DtmfUcode, RandomCarriersOn5x7EqualTheChain) {
   }
 }
 
+// carrier_magnitude's bound with demixing: y is saturated to 24 bits, so
+// re and im reach 2^23 and p = re^2 + im^2 nearly 2^47, past the 48-bit
+// accumulator's room for 4 p (MAG_SHIFT = 0) from p = 2^45; the kernel
+// (hls/carrier_magnitude.h) gives 65535 for every p >= 2^32. No ADC input
+// gets there (window sums of 12-bit codes through the builder's matrix stay
+// near the sums), so the test plays the DFT: the engine and the chain's
+// demix kernel get the same full-scale sums (|sum| = 2^17 - 1, ACC_W = 18),
+// their signs chosen each frame against the kernel's rotation so that they
+// add up in rows 0 and 1 of a matrix whose entries there are all the
+// largest Q2.14 value (what a host can send with SET_DEMIX_COEF): carrier
+// 0's p passes 2^45 (counted). The engine's AMPLITUDES packets equal the
+// chain's kernels (hls/dtmf_chain.h: Demix, then Magnitude) on those sums.
+TEST(DtmfUcode, DemixedMagnitudeSaturatesPastTheAccumulatorsRoom) {
+  using S = hls::DtmfChainSizes<5, 7, 32>;
+  using Chain = hls::DtmfChain<S>;
+  using Token = hls::CarrierDemixToken;
+  constexpr int K = S::K, DIM = 2 * K + 1;
+  auto [spec, period, codes] = random_5x7();
+  spec.demix = true;
+  auto plan = hls::make_dtmf_top_plan(spec);
+  ASSERT_EQ(plan.mag_shift, 0);  // the routine's q = 4 p path
+  plan.mask |= hls::kMaskAmplitudes;
+  plan.decim_amp = 1;
+  for (int i = 0; i < 2 * DIM; ++i) plan.demix.coef.at(size_t(i)) = 32767;  // rows 0 and 1
+  typename Chain::Demix demix;
+  ASSERT_TRUE(demix.configure(hls::chain_config<S>(plan).demix_cfg));
+  dtmf_model::TopModel<S> top(plan, period);
+  constexpr int32_t kFull = (1 << (S::ACC_W - 1)) - 1;
+  std::vector<std::vector<uint8_t>> want;  // AMPLITUDES payloads, frame by frame
+  int beyond = 0;                          // frames with carrier 0's p >= 2^45
+  top.on_frame = [&](std::vector<int32_t>& sums) {
+    Token tok[K + 1], out[K];
+    for (int k = 0; k <= K; ++k) tok[k] = {uint8_t(k), kFull, kFull, k == K};
+    const auto y0 = [&] {  // row 0 (= row 1) on these tokens, the kernel's state kept
+      auto d = demix;
+      for (const Token& t : tok) d.push(t, out);
+      return out[0].re;
+    };
+    for (Token& t : tok) {  // y0 is linear in each token's pair: the best signs one by one
+      int32_t best_re = t.re, best_im = t.im, best = y0();
+      for (int sgn = 1; sgn < 4; ++sgn) {
+        t.re = sgn & 1 ? -kFull : kFull, t.im = sgn & 2 ? -kFull : kFull;
+        const int32_t y = y0();
+        if (y > best) best = y, best_re = t.re, best_im = t.im;
+      }
+      t.re = best_re, t.im = best_im;
+    }
+    for (const Token& t : tok) demix.push(t, out);
+    const int64_t re = out[0].re, im = out[0].im;
+    beyond += re * re + im * im >= int64_t(1) << 45;
+    std::vector<uint8_t> pay;
+    for (int k = 0; k < K; ++k) {
+      const uint32_t m = Chain::Magnitude::magnitude(out[k].re, out[k].im);
+      pay.push_back(uint8_t(m)), pay.push_back(uint8_t(m >> 8));
+    }
+    want.push_back(pay);
+    for (int k = 0; k <= K; ++k) sums[size_t(2 * k)] = tok[k].re, sums[size_t(2 * k + 1)] = tok[k].im;
+  };
+  for (size_t n = 0; n < size_t(S::N + 60 * plan.step); ++n) top.sample(codes.at(n));
+  std::vector<std::vector<uint8_t>> got;
+  for (const auto& p : top.packets())
+    if (p.type == hls::kDtmfAmplitudes) got.push_back(p.payload);
+  EXPECT_EQ(top.frame_overruns(), 0u);
+  EXPECT_GE(beyond, 50);
+  ASSERT_GE(got.size() + 2, want.size());  // the last frame may still be in the engine
+  ASSERT_LE(got.size(), want.size());
+  int saturated = 0;
+  for (size_t f = 0; f < got.size(); ++f) {
+    ASSERT_EQ(got[f], want[f]) << "frame " << f << ": carrier 0's magnitude "
+                               << (got[f][0] | got[f][1] << 8) << ", the chain's "
+                               << (want[f][0] | want[f][1] << 8);
+    saturated += want[f][0] == 0xFF && want[f][1] == 0xFF;
+  }
+  EXPECT_EQ(saturated, int(got.size()));
+  std::printf("%zu frames, carrier 0's p >= 2^45 in %d: every AMPLITUDES packet the chain's\n",
+              got.size(), beyond);
+}
+
 // The ghost filter's argmax takes four lines a loop and the last (n - 1) &
 // 3 lines of a dimension of n by name: skins whose rows and columns give
 // every count of loops (0, 1, 2) and of last lines (0..3), one line alone
