@@ -3,7 +3,7 @@
 // LANES sdft_bank instances that run in parallel, for sample rates at which
 // one multiplier (6 clocks per channel) is too slow. Same ports, parameters
 // and token contract as sdft_bank (bit-exact spec: hls/sdft_bank.h), plus
-// LANES (1..16, at most K_MAX).
+// LANES (1..64, at most K_MAX).
 //
 // LANES = 1 is sdft_bank itself (the instance's ports are this module's),
 // so a 1-lane top is sdft_bank clock for clock, area for area.
@@ -93,7 +93,7 @@ module sdft_lanes #(
     parameter integer ACC_W = 24,
     parameter integer FB = 0,
     parameter integer K_W = 8,
-    parameter integer LANES = 1    // parallel sdft_bank instances, 1..16
+    parameter integer LANES = 1    // parallel sdft_bank instances, 1..64
 ) (
     input  wire             clk,
     input  wire             rst,        // synchronous, active high
@@ -114,7 +114,7 @@ module sdft_lanes #(
     output wire             out_last
 );
   generate
-    if (LANES < 1 || LANES > 16 || LANES > K_MAX || K_MAX > (1 << K_W)) begin : g_bad_params
+    if (LANES < 1 || LANES > 64 || LANES > K_MAX || K_MAX > (1 << K_W)) begin : g_bad_params
       sdft_lanes_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
