@@ -66,7 +66,10 @@
 // STEP), so the merger's K + 8 is paid once a frame and the other samples
 // go at the lanes' pace: more than 6 lanes do shorten those (K = 64, a
 // 32x32 skin, in 11 lanes: 38 clocks; its frame samples take 72, which the
-// ADC's one-sample hold absorbs, common/eskin/dtmf_top_plan.h's budget).
+// ADC's one-sample hold absorbs, common/eskin/dtmf_top_plan.h's budget;
+// K = 128, a 64x64 skin, in 32 lanes: 26 clocks, its frame samples 136,
+// more than three sample periods at 40 MHz and 1 MS/s, which
+// rtl/sdft_front.v's sample FIFO absorbs).
 // hls/sdft_bank.h's sdft_lanes_interval() and sdft_skip_interval() are
 // these formulas; the test (tests/rtl/sdft_lanes_test.cpp) asserts them
 // clock for clock.
