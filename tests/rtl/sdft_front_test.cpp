@@ -98,7 +98,7 @@ void run(size_t conversions, uint64_t period, uint64_t seed, Result& r) {
   m->cfg_valid = 0;
   auto bank = std::make_unique<typename B::Bank>();
   ASSERT_TRUE(bank->configure(cfg));
-  auto toks = std::make_unique<eskin::hls::SdftBankToken[]>(k);
+  eskin::hls::SdftBankToken toks[k];
 
   const auto xs = sdft_port::random_samples(12, conversions, seed + 1);
   frame_rule::FrameRule rule(B::kN, B::kStep);
@@ -166,7 +166,7 @@ void run(size_t conversions, uint64_t period, uint64_t seed, Result& r) {
         ADD_FAILURE() << "sample " << smp.j << " entered the lanes at " << cycle - start
                       << ", expected " << due - start;
       r.max_wait = std::max(r.max_wait, cycle - smp.at);
-      ASSERT_EQ(bank->push(xs[smp.j], toks.get()), k);
+      ASSERT_EQ(bank->push(xs[smp.j], toks), k);
       const bool frame = rule.next();
       if (frame) {
         Want w{uint32_t(smp.j), {}};
