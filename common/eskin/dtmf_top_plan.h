@@ -357,7 +357,9 @@ struct DtmfTopClockBudget {
   long sdft_clocks = 0;    // a frame sample's II: dtmf_top_sdft_clocks()
   long sdft_skip_clocks = 0;  // any other sample's: dtmf_top_sdft_skip_clocks()
   long sdft_min_period = 0;   // what those need of the period: dtmf_top_sdft_min_period()
-  long sdft_backlog = 0;      // samples waiting after a frame's at P (sdft_front_backlog; the FIFO holds up to sdft_fifo of them)
+  // Samples waiting after a frame's at P (sdft_front_backlog): the FIFO
+  // holds up to sdft_fifo of them, the ADC's register one more.
+  long sdft_backlog = 0;
   long frame_clocks = 0;   // STEP x period: the engine's time per frame
   long engine_clocks = 0;  // what the engine needs of it
   std::vector<std::string> problems;  // empty: the top keeps up
