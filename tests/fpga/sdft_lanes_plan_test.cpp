@@ -174,7 +174,8 @@ TEST(SdftLanesPlan, SixtyFourBySixtyFourAtOneMegasampleIn32LanesWithAFourSampleF
 TEST(SdftLanesPlan, SixtyFourBySixtyFourAt40MHzRefusesTooSmallAFifoOrTooFewLanes) {
   EXPECT_EQ(dft_problem(hls::dtmf_top_clock_budget(sixty_four(32, 2), 40000000, 0)), "");
   for (int fifo : {0, 1}) {
-    const std::string why = dft_problem(hls::dtmf_top_clock_budget(sixty_four(32, fifo), 40000000, 0));
+    const std::string why =
+        dft_problem(hls::dtmf_top_clock_budget(sixty_four(32, fifo), 40000000, 0));
     EXPECT_NE(why.find("the 3 samples converted while a frame's sample holds the lanes do not "
                        "fit " + std::string(fifo ? "the 1-sample FIFO and " : "") +
                        "the ADC's one register (F < (" + std::to_string(fifo) + " + 2) P)"),
