@@ -58,7 +58,9 @@
 // hls/sdft_bank.h's sdft_front_backlog() and sdft_front_min_period() are
 // these; common/eskin/dtmf_top_plan.h's budget takes them. K = 128 (a
 // 64x64 skin), 32 lanes: F = 136, S = 26; at P = 40 (40 MHz, 1 MS/s) B = 3,
-// DEPTH >= 2; DEPTH 4 keeps up down to P = 23 for F (S needs 26).
+// DEPTH >= 2; with DEPTH 4, F < 6 P holds down to P = 23 and the least
+// period, 27, is the catch-up's at STEP 1000 (tests/rtl/sdft_front_test.cpp
+// runs 27 and 26).
 module sdft_front #(
     parameter integer K_MAX = 6,
     parameter integer N = 32,
