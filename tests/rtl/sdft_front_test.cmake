@@ -19,15 +19,17 @@ set_tests_properties(lint.Vsdft_front_l64_d64 lint.Vsdft_front_l1_d1 PROPERTIES 
 # Illegal sets stop at elaboration: a FIFO depth that is not a power of
 # two, one beyond 64, and 65 lanes (sdft_lanes' stop, reached through the
 # front end).
-foreach(set "depth3|sdft_front|-GDEPTH=3" "depth128|sdft_front|-GDEPTH=128"
+foreach(front_set "depth3|sdft_front|-GDEPTH=3" "depth128|sdft_front|-GDEPTH=128"
             "lanes65|sdft_lanes|-GK_MAX=128;-GN=512;-GXW=12;-GACC_W=22;-GLANES=65")
-  string(REPLACE "|" ";" parts "${set}")
-  list(GET parts 0 name)
-  list(GET parts 1 stop)
-  list(SUBLIST parts 2 -1 params)
-  add_test(NAME lint.sdft_front_rejects_illegal_parameters_${name}
+  # Names of their own: this file is included inside the loop over the
+  # tests, whose `name` the default build still needs.
+  string(REPLACE "|" ";" front_parts "${front_set}")
+  list(GET front_parts 0 front_name)
+  list(GET front_parts 1 front_stop)
+  list(SUBLIST front_parts 2 -1 front_params)
+  add_test(NAME lint.sdft_front_rejects_illegal_parameters_${front_name}
     COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module sdft_front
-      ${params} ${CMAKE_SOURCE_DIR}/rtl/sdft_front.v)
-  set_tests_properties(lint.sdft_front_rejects_illegal_parameters_${name} PROPERTIES LABELS lint
-    PASS_REGULAR_EXPRESSION "${stop}_illegal_parameters")
+      ${front_params} ${CMAKE_SOURCE_DIR}/rtl/sdft_front.v)
+  set_tests_properties(lint.sdft_front_rejects_illegal_parameters_${front_name} PROPERTIES
+    LABELS lint PASS_REGULAR_EXPRESSION "${front_stop}_illegal_parameters")
 endforeach()
