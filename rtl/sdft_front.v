@@ -18,8 +18,8 @@
 // front of the handshake lets the ADC go on. The lanes set every other
 // sample's pace, S = 6 ceil(K / L) + 2: K = 128 needs L >= 22 for S <= 40
 // (38), L = 32 gives 26 (35 % of a 40-clock period spare, and S <= P down
-// to a 26 MHz clock). Each lane holds its own copy of the N-sample window
-// (one DP16KD for N <= 1024 at 12 bits) and its quarter-sine ROM.
+// to a 26 MHz clock). Each lane has its multiplier and its quarter-sine
+// ROM; the N-sample window is one, lane 0's (rtl/sdft_lanes.v).
 //
 // Ports: s_* from the ADC (valid/ready, the sample and its tag); dft_fire
 // is high in the clock a sample enters the lanes (the handshake

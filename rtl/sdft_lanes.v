@@ -11,8 +11,11 @@
 // LANES >= 2: channel k lives in lane k mod LANES at local index
 // k / LANES (interleaved: the lanes' j-th tokens, global k = j LANES + l,
 // come out of every lane at the same clock, in the order the merger needs
-// them). Lanes hold ceil(K_MAX / LANES) channels each, and each its own
-// copy of the N-sample window (sdft_bank keeps it).
+// them). Lanes hold ceil(K_MAX / LANES) channels each; the N-sample
+// window is lane 0's alone (sdft_bank OWN_WIN): every active lane takes
+// each sample in the same clock and clears at the same cfg_last, so the
+// other lanes read x[n-N] from lane 0's window read register (one RAM
+// instead of LANES copies; lane 0 is active in every configuration).
 //  - Samples: accepted when every active lane is ready (a lane is active
 //    when it has a channel, l < K) and the previous sample's last token was
 //    taken from out_* or is taken in this clock (out_ready reaches in_ready
@@ -75,7 +78,8 @@
 // clock for clock.
 //
 // Resources (K_MAX 9, N 32, XW 12, ACC_W 18; Yosys 0.70 synth_ecp5; measured
-// before sdft_bank's pipelining, which moved its size by a few LUTs and FFs):
+// before sdft_bank's pipelining, which moved its size by a few LUTs and FFs,
+// and while every lane had its own window, here in DPR16X4):
 //   1 lane:   301 LUT4,  97 CCU2C,  320 FF, 32 DPR16X4, 1 MULT18X18D, 1 DP16KD
 //   2 lanes:  733 LUT4, 198 CCU2C,  764 FF, 64 DPR16X4, 2 MULT18X18D, 2 DP16KD
 //   3 lanes: 1112 LUT4, 299 CCU2C, 1106 FF, 96 DPR16X4, 3 MULT18X18D, 3 DP16KD
@@ -124,12 +128,16 @@ module sdft_lanes #(
 
   generate
     if (LANES == 1) begin : g_one
+      /* verilator lint_off UNUSEDSIGNAL */
+      wire [XW-1:0] win_unused;
+      /* verilator lint_on UNUSEDSIGNAL */
       sdft_bank #(.K_MAX(K_MAX), .N(N), .XW(XW), .CW(CW), .TW(TW), .ACC_W(ACC_W), .FB(FB),
                   .K_W(K_W)) u_bank (
           .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .in_x(in_x),
           .in_skip(in_skip), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k),
           .cfg_inc(cfg_inc), .cfg_last(cfg_last), .out_valid(out_valid), .out_ready(out_ready),
-          .out_k(out_k), .out_re(out_re), .out_im(out_im), .out_last(out_last));
+          .out_k(out_k), .out_re(out_re), .out_im(out_im), .out_last(out_last),
+          .win_ext({XW{1'b0}}), .win_rd(win_unused));
     end else if (LANES >= 2) begin : g_lanes
       localparam integer KL = (K_MAX + LANES - 1) / LANES;      // channels per lane
       localparam integer KB = (K_MAX > 1) ? $clog2(K_MAX) : 1;  // global index bits used
@@ -155,6 +163,14 @@ module sdft_lanes #(
       wire [LANES-1:0] act;                 // lane l has a channel (l < K)
       wire [LANES-1:0] l_in_ready, l_cfg_ready, l_out_valid, l_take;
       wire [LANES*ACC_W-1:0] l_re, l_im;
+      // Lane 0's window serves every lane (one RAM, not LANES copies): the
+      // active lanes take every sample in the same clock and clear at the
+      // same cfg_last (lane 0 always has a channel), so their windows and
+      // write pointers are equal.
+      /* verilator lint_off UNUSEDSIGNAL */
+      wire [LANES*XW-1:0] l_win;  // lanes >= 1 only pass win0 back
+      /* verilator lint_on UNUSEDSIGNAL */
+      wire [XW-1:0] win0 = l_win[0 +: XW];
       wire cfg_fire = cfg_valid && cfg_ready;
       wire in_fire = in_valid && in_ready;
       assign cfg_ready = (&l_cfg_ready) && !busy;
@@ -225,13 +241,14 @@ module sdft_lanes #(
         assign l_take[l] = sel == LID;
         /* verilator lint_off PINCONNECTEMPTY */
         sdft_bank #(.K_MAX(KL), .N(N), .XW(XW), .CW(CW), .TW(TW), .ACC_W(ACC_W), .FB(FB),
-                    .K_W(K_W)) u_bank (
+                    .K_W(K_W), .OWN_WIN(l == 0 ? 1 : 0)) u_bank (
             .clk(clk), .rst(rst), .in_valid(in_fire && act[l]), .in_ready(l_in_ready[l]),
             .in_x(in_x), .in_skip(in_skip), .cfg_valid(b_cfg_valid), .cfg_ready(l_cfg_ready[l]),
             .cfg_k({{(K_W - JB){1'b0}}, b_idx}), .cfg_inc(resend ? rem_inc : cfg_inc),
             .cfg_last(cfg_last),
             .out_valid(l_out_valid[l]), .out_ready(l_take[l] && m_free), .out_k(),
-            .out_re(l_re[l*ACC_W +: ACC_W]), .out_im(l_im[l*ACC_W +: ACC_W]), .out_last());
+            .out_re(l_re[l*ACC_W +: ACC_W]), .out_im(l_im[l*ACC_W +: ACC_W]), .out_last(),
+            .win_ext(win0), .win_rd(l_win[l*XW +: XW]));
         /* verilator lint_on PINCONNECTEMPTY */
       end
 
