@@ -24,3 +24,15 @@ add_test(NAME lint.Vsdft_lanes_l64
   COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module sdft_lanes
     -GK_MAX=128 -GN=512 -GXW=12 -GACC_W=22 -GLANES=64 ${CMAKE_SOURCE_DIR}/rtl/sdft_lanes.v)
 set_tests_properties(lint.Vsdft_lanes_l16 lint.Vsdft_lanes_l64 PROPERTIES LABELS lint)
+# sdft_bank without a window of its own (OWN_WIN 0: the lanes after lane 0
+# read lane 0's) is clean on its own too; OWN_WIN is 0 or 1.
+add_test(NAME lint.Vsdft_bank_shared_window
+  COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module sdft_bank
+    -GOWN_WIN=0 ${CMAKE_SOURCE_DIR}/rtl/sdft_bank.v)
+add_test(NAME lint.sdft_bank_rejects_illegal_parameters_own_win
+  COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module sdft_bank
+    -GOWN_WIN=2 ${CMAKE_SOURCE_DIR}/rtl/sdft_bank.v)
+set_tests_properties(lint.Vsdft_bank_shared_window lint.sdft_bank_rejects_illegal_parameters_own_win
+  PROPERTIES LABELS lint)
+set_tests_properties(lint.sdft_bank_rejects_illegal_parameters_own_win PROPERTIES
+  PASS_REGULAR_EXPRESSION "sdft_bank_illegal_parameters")
