@@ -64,16 +64,16 @@
 //
 // Resources, the 64x64 front end (K_MAX 128, N 512, XW 12, ACC_W 22,
 // LANES 32, DEPTH 4, TAG_W 32; scripts/synth_ecp5.sh sdft_front --param
-// ... --pnr --freq 50 --device 85k, Yosys 0.70 synth_ecp5, nextpnr seed 1,
-// out of context): 9607 LUT4, 2460 CCU2C, 12121 FF, 907 DPR16X4 (each
-// lane's phases, increments and sums; the FIFO), 32 MULT18X18D, 64 DP16KD
-// (each lane's window and its sine ROM), placed 21247 of the ECP5-85F's
-// 83640 TRELLIS_COMB; Fmax 67.2 MHz against 50, the critical path a lane's
-// ROM -> multiplier -> product register (14.9 ns), as in sdft_bank alone:
-// the 32-way merger is not on it. The lanes' identical window copies are
-// the RAM to save next: one window read in the lanes' common OLD clock and
-// broadcast would free 31 DP16KD (the lanes take every sample in the same
-// clock), and pairs of lanes could share a ROM through its second port.
+// ..., Yosys 0.70 synth_ecp5, out of context): 9288 LUT4, 2305 CCU2C,
+// 11842 FF, 907 DPR16X4 (each lane's phases, increments and sums; the
+// FIFO), 32 MULT18X18D, 33 DP16KD (each lane's sine ROM, and the one
+// window). Before the lanes shared lane 0's window (a copy per lane):
+// 9607 LUT4, 2460 CCU2C, 12121 FF, 64 DP16KD, and placed on the ECP5-85F
+// (--pnr --freq 50 --device 85k, nextpnr seed 1) 21247 of its 83640
+// TRELLIS_COMB, Fmax 67.2 MHz against 50, the critical path a lane's ROM
+// -> multiplier -> product register (14.9 ns), as in sdft_bank alone: the
+// 32-way merger is not on it. Pairs of lanes could share a ROM through its
+// second port (16 DP16KD more).
 module sdft_front #(
     parameter integer K_MAX = 6,
     parameter integer N = 32,
