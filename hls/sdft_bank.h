@@ -94,7 +94,7 @@ constexpr int64_t sdft_front_backlog(int64_t frame_clocks, int64_t period) {
 // the least P with S <= P, F < (depth + 2) P and F - P <= (step - 1)(P -
 // S); step 1 (every sample a frame's): F. depth 0 is the lanes behind the
 // ADC's register alone (F < 2 P: the sample after a frame's must be taken
-// before the next conversion replaces it).
+// before the next conversion lands, which rtl/adc_ad7476.v would drop).
 constexpr int64_t sdft_front_min_period(int64_t frame_clocks, int64_t skip_clocks, int64_t step,
                                         int64_t depth) {
   const int64_t f = frame_clocks, s = skip_clocks;
