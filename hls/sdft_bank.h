@@ -78,6 +78,33 @@ constexpr int64_t sdft_skip_interval(int64_t k, int64_t lanes) {
   return 6 * ((k + l - 1) / l) + 2;
 }
 
+// rtl/sdft_front.v (a FIFO of `depth` samples in front of the lanes) fed
+// by an ADC that converts every `period` clocks and holds one sample: the
+// most samples the FIFO holds at once after a frame's sample that takes
+// `frame_clocks` (F, sdft_lanes_interval with a consumer taking a token a
+// clock) entered on arrival, floor((F - 1) / P), should it have room. The
+// derivation is in the RTL's header; tests/rtl/sdft_front_test.cpp
+// measures it.
+constexpr int64_t sdft_front_backlog(int64_t frame_clocks, int64_t period) {
+  return period > 0 && frame_clocks > 0 ? (frame_clocks - 1) / period : 0;
+}
+
+// The shortest ADC period (clocks) at which rtl/sdft_front.v loses no
+// sample, every sample but one in `step` skipped (skip_clocks each, S):
+// the least P with S <= P, F < (depth + 2) P and F - P <= (step - 1)(P -
+// S); step 1 (every sample a frame's): F. depth 0 is the lanes behind the
+// ADC's register alone (F < 2 P: the sample after a frame's must be taken
+// before the next conversion lands, which rtl/adc_ad7476.v would drop).
+constexpr int64_t sdft_front_min_period(int64_t frame_clocks, int64_t skip_clocks, int64_t step,
+                                        int64_t depth) {
+  const int64_t f = frame_clocks, s = skip_clocks;
+  if (step <= 1) return f;
+  const int64_t by_fifo = f / (depth + 2) + 1;                  // F < (depth + 2) P
+  const int64_t by_catch_up = (f + (step - 1) * s + step - 1) / step;  // step P >= F + (step-1) S
+  int64_t p = s > by_fifo ? s : by_fifo;
+  return p > by_catch_up ? p : by_catch_up;
+}
+
 constexpr int sdft_ceil_log2(int64_t v) {
   int b = 0;
   while ((int64_t(1) << b) < v) ++b;

@@ -85,7 +85,11 @@ module sdft_bank #(
     parameter integer TW = 10,
     parameter integer ACC_W = 24,
     parameter integer FB = 0,      // term fraction bits (sums in 2^-FB LSB)
-    parameter integer K_W = 8
+    parameter integer K_W = 8,
+    // 1: the window RAM is here. 0: none; x[n-N] comes from win_ext, another
+    // bank's win_rd, which must take every sample in the same clock as this
+    // one and clear with it (rtl/sdft_lanes.v: its lanes share lane 0's).
+    parameter integer OWN_WIN = 1
 ) (
     input  wire             clk,
     input  wire             rst,        // synchronous, active high
@@ -105,14 +109,19 @@ module sdft_bank #(
     output reg  [K_W-1:0]   out_k,
     output reg  [ACC_W-1:0] out_re,     // signed window sum
     output reg  [ACC_W-1:0] out_im,     // signed window sum
-    output reg              out_last
+    output reg              out_last,
+    /* verilator lint_off UNUSEDSIGNAL */
+    input  wire [XW-1:0]    win_ext,    // OWN_WIN = 0: the window's read register
+    /* verilator lint_on UNUSEDSIGNAL */
+    output wire [XW-1:0]    win_rd      // the window's read register (x[n-N] in OLD)
 );
   // The width rules of hls/sdft_bank.h's static_asserts: no window sum can
   // overflow (N * 2^(XW-1+FB) < 2^(ACC_W-1)), k fits K_W bits.
   generate
     if (K_MAX < 1 || K_MAX > 256 || K_MAX > (1 << K_W) || N < 2 || N > 65536 || XW < 2 || XW > 24 ||
         CW < 3 || CW > 24 || TW < 3 || TW > 14 || ACC_W > 32 || FB < 0 || FB > CW - 2 ||
-        ACC_W - XW - FB < 1 || N >= (1 << (ACC_W - XW - FB))) begin : g_bad_params
+        ACC_W - XW - FB < 1 || N >= (1 << (ACC_W - XW - FB)) || OWN_WIN < 0 || OWN_WIN > 1)
+    begin : g_bad_params
       sdft_bank_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -189,12 +198,11 @@ module sdft_bank #(
   // address (window: OLD writes wp after x_old was latched; state: C6 writes
   // k while reading k + 1; config writes precede the reads in C1), so Yosys
   // needs no collision bypass logic.
-  (* no_rw_check *) reg [XW-1:0] win [0:N-1];
   (* no_rw_check *) reg [31:0] inc_mem [0:KD-1];
   (* no_rw_check *) reg [31:0] ph_mem [0:KD-1];
   (* no_rw_check *) reg [ACC_W-1:0] re_mem [0:KD-1];
   (* no_rw_check *) reg [ACC_W-1:0] im_mem [0:KD-1];
-  reg [XW-1:0] win_q;
+  wire [XW-1:0] win_q;
   reg [31:0] inc_q, ph_q;
   reg [ACC_W-1:0] re_q, im_q;
 
@@ -219,10 +227,24 @@ module sdft_bank #(
   // there) and still in C1 (latched). k is 0 in IDLE and OLD: carrier 0 is
   // read there. C5 and C6 read k + 1 while C6 writes k (k + 1 != k: KD >= 2).
   wire [KB-1:0] ra = (state == S_C5 || state == S_C6) ? k + 1'b1 : k;
-  always @(posedge clk) begin
-    if (state == S_OLD) win[wp] <= x_new;
-    win_q <= win[wp];
-  end
+  // The window: written in OLD, read every clock (the read of IDLE is
+  // x[n-N] in OLD). Banks that take every sample in the same clock and
+  // clear together have the same window and the same wp, so one RAM serves
+  // them all (OWN_WIN = 0 reads another's).
+  generate
+    if (OWN_WIN != 0) begin : g_win
+      (* no_rw_check *) reg [XW-1:0] win [0:N-1];
+      reg [XW-1:0] q;
+      always @(posedge clk) begin
+        if (state == S_OLD) win[wp] <= x_new;
+        q <= win[wp];
+      end
+      assign win_q = q;
+    end else begin : g_ext_win
+      assign win_q = win_ext;
+    end
+  endgenerate
+  assign win_rd = win_q;
   always @(posedge clk) begin
     if (cfg_fire) inc_mem[cfg_k[KB-1:0]] <= cfg_inc;
     inc_q <= inc_mem[ra];

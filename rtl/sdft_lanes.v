@@ -3,7 +3,7 @@
 // LANES sdft_bank instances that run in parallel, for sample rates at which
 // one multiplier (6 clocks per channel) is too slow. Same ports, parameters
 // and token contract as sdft_bank (bit-exact spec: hls/sdft_bank.h), plus
-// LANES (1..16, at most K_MAX).
+// LANES (1..64, at most K_MAX).
 //
 // LANES = 1 is sdft_bank itself (the instance's ports are this module's),
 // so a 1-lane top is sdft_bank clock for clock, area for area.
@@ -11,8 +11,11 @@
 // LANES >= 2: channel k lives in lane k mod LANES at local index
 // k / LANES (interleaved: the lanes' j-th tokens, global k = j LANES + l,
 // come out of every lane at the same clock, in the order the merger needs
-// them). Lanes hold ceil(K_MAX / LANES) channels each, and each its own
-// copy of the N-sample window (sdft_bank keeps it).
+// them). Lanes hold ceil(K_MAX / LANES) channels each; the N-sample
+// window is lane 0's alone (sdft_bank OWN_WIN): every active lane takes
+// each sample in the same clock and clears at the same cfg_last, so the
+// other lanes read x[n-N] from lane 0's window read register (one RAM
+// instead of LANES copies; lane 0 is active in every configuration).
 //  - Samples: accepted when every active lane is ready (a lane is active
 //    when it has a channel, l < K) and the previous sample's last token was
 //    taken from out_* or is taken in this clock (out_ready reaches in_ready
@@ -66,13 +69,17 @@
 // STEP), so the merger's K + 8 is paid once a frame and the other samples
 // go at the lanes' pace: more than 6 lanes do shorten those (K = 64, a
 // 32x32 skin, in 11 lanes: 38 clocks; its frame samples take 72, which the
-// ADC's one-sample hold absorbs, common/eskin/dtmf_top_plan.h's budget).
+// ADC's one-sample hold absorbs, common/eskin/dtmf_top_plan.h's budget;
+// K = 128, a 64x64 skin, in 32 lanes: 26 clocks, its frame samples 136,
+// more than three sample periods at 40 MHz and 1 MS/s, which
+// rtl/sdft_front.v's sample FIFO absorbs).
 // hls/sdft_bank.h's sdft_lanes_interval() and sdft_skip_interval() are
 // these formulas; the test (tests/rtl/sdft_lanes_test.cpp) asserts them
 // clock for clock.
 //
 // Resources (K_MAX 9, N 32, XW 12, ACC_W 18; Yosys 0.70 synth_ecp5; measured
-// before sdft_bank's pipelining, which moved its size by a few LUTs and FFs):
+// before sdft_bank's pipelining, which moved its size by a few LUTs and FFs,
+// and while every lane had its own window, here in DPR16X4):
 //   1 lane:   301 LUT4,  97 CCU2C,  320 FF, 32 DPR16X4, 1 MULT18X18D, 1 DP16KD
 //   2 lanes:  733 LUT4, 198 CCU2C,  764 FF, 64 DPR16X4, 2 MULT18X18D, 2 DP16KD
 //   3 lanes: 1112 LUT4, 299 CCU2C, 1106 FF, 96 DPR16X4, 3 MULT18X18D, 3 DP16KD
@@ -93,7 +100,7 @@ module sdft_lanes #(
     parameter integer ACC_W = 24,
     parameter integer FB = 0,
     parameter integer K_W = 8,
-    parameter integer LANES = 1    // parallel sdft_bank instances, 1..16
+    parameter integer LANES = 1    // parallel sdft_bank instances, 1..64
 ) (
     input  wire             clk,
     input  wire             rst,        // synchronous, active high
@@ -114,19 +121,23 @@ module sdft_lanes #(
     output wire             out_last
 );
   generate
-    if (LANES < 1 || LANES > 16 || LANES > K_MAX || K_MAX > (1 << K_W)) begin : g_bad_params
+    if (LANES < 1 || LANES > 64 || LANES > K_MAX || K_MAX > (1 << K_W)) begin : g_bad_params
       sdft_lanes_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
 
   generate
     if (LANES == 1) begin : g_one
+      /* verilator lint_off UNUSEDSIGNAL */
+      wire [XW-1:0] win_unused;
+      /* verilator lint_on UNUSEDSIGNAL */
       sdft_bank #(.K_MAX(K_MAX), .N(N), .XW(XW), .CW(CW), .TW(TW), .ACC_W(ACC_W), .FB(FB),
                   .K_W(K_W)) u_bank (
           .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .in_x(in_x),
           .in_skip(in_skip), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k),
           .cfg_inc(cfg_inc), .cfg_last(cfg_last), .out_valid(out_valid), .out_ready(out_ready),
-          .out_k(out_k), .out_re(out_re), .out_im(out_im), .out_last(out_last));
+          .out_k(out_k), .out_re(out_re), .out_im(out_im), .out_last(out_last),
+          .win_ext({XW{1'b0}}), .win_rd(win_unused));
     end else if (LANES >= 2) begin : g_lanes
       localparam integer KL = (K_MAX + LANES - 1) / LANES;      // channels per lane
       localparam integer KB = (K_MAX > 1) ? $clog2(K_MAX) : 1;  // global index bits used
@@ -152,6 +163,14 @@ module sdft_lanes #(
       wire [LANES-1:0] act;                 // lane l has a channel (l < K)
       wire [LANES-1:0] l_in_ready, l_cfg_ready, l_out_valid, l_take;
       wire [LANES*ACC_W-1:0] l_re, l_im;
+      // Lane 0's window serves every lane (one RAM, not LANES copies): the
+      // active lanes take every sample in the same clock and clear at the
+      // same cfg_last (lane 0 always has a channel), so their windows and
+      // write pointers are equal.
+      /* verilator lint_off UNUSEDSIGNAL */
+      wire [LANES*XW-1:0] l_win;  // lanes >= 1 only pass win0 back
+      /* verilator lint_on UNUSEDSIGNAL */
+      wire [XW-1:0] win0 = l_win[0 +: XW];
       wire cfg_fire = cfg_valid && cfg_ready;
       wire in_fire = in_valid && in_ready;
       assign cfg_ready = (&l_cfg_ready) && !busy;
@@ -222,13 +241,14 @@ module sdft_lanes #(
         assign l_take[l] = sel == LID;
         /* verilator lint_off PINCONNECTEMPTY */
         sdft_bank #(.K_MAX(KL), .N(N), .XW(XW), .CW(CW), .TW(TW), .ACC_W(ACC_W), .FB(FB),
-                    .K_W(K_W)) u_bank (
+                    .K_W(K_W), .OWN_WIN(l == 0 ? 1 : 0)) u_bank (
             .clk(clk), .rst(rst), .in_valid(in_fire && act[l]), .in_ready(l_in_ready[l]),
             .in_x(in_x), .in_skip(in_skip), .cfg_valid(b_cfg_valid), .cfg_ready(l_cfg_ready[l]),
             .cfg_k({{(K_W - JB){1'b0}}, b_idx}), .cfg_inc(resend ? rem_inc : cfg_inc),
             .cfg_last(cfg_last),
             .out_valid(l_out_valid[l]), .out_ready(l_take[l] && m_free), .out_k(),
-            .out_re(l_re[l*ACC_W +: ACC_W]), .out_im(l_im[l*ACC_W +: ACC_W]), .out_last());
+            .out_re(l_re[l*ACC_W +: ACC_W]), .out_im(l_im[l*ACC_W +: ACC_W]), .out_last(),
+            .win_ext(win0), .win_rd(l_win[l*XW +: XW]));
         /* verilator lint_on PINCONNECTEMPTY */
       end
 

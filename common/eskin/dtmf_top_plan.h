@@ -78,9 +78,14 @@ struct DtmfTopSpec {
   // same packets in fewer clocks, for ~1000 logic cells more; the flow turns it
   // on for boards with room (host/fpga/board.h).
   bool engine_fast_shift = false;
-  // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS): the board flow
+  // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(64, KS): the board flow
   // picks them (host/fpga/flow.cpp choose_core_clock); 1 is sdft_bank.
   int sdft_lanes = 1;
+  // Samples queued in front of the lanes (rtl/sdft_front.v's DEPTH: 0, or a
+  // power of two up to 64): the ADC's samples wait there while a frame's
+  // sample sends its KS tokens, one a clock. 0 is the ADC's one register
+  // alone, rtl/dtmf_top.v's wiring until it instantiates sdft_front.
+  int sdft_fifo = 0;
   // The hardware neuron unit (rtl/izhikevich_layer.v, NEURON_UNIT): the
   // engine hands it each neuron update (13 clocks, overlapped: 14 engine
   // clocks a neuron with level input, the spike test included) instead of
@@ -159,9 +164,13 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
   DtmfTopPlan p;
   p.spec = s;
   p.R = s.rows, p.C = s.cols, p.K = s.rows + s.cols, p.T = s.rows * s.cols, p.N = s.window;
-  if (s.rows < 1 || s.cols < 1 || p.K > 127 || p.T > 4096)
-    throw std::invalid_argument("skin.rows/cols: expected 1..127 carriers and 1..4096 taxels, got " +
-                                std::to_string(s.rows) + "x" + std::to_string(s.cols));
+  // At most 128 DFT channels (the carriers, + DC when demixing):
+  // rtl/frame_capture.v's 2 KS words in its 8-bit address.
+  if (s.rows < 1 || s.cols < 1 || p.K + (s.demix ? 1 : 0) > 128 || p.T > 4096)
+    throw std::invalid_argument(
+        "skin.rows/cols: expected 1..128 DFT channels (carriers" +
+        std::string(s.demix ? " + the demixing's DC channel" : "") +
+        ") and 1..4096 taxels, got " + std::to_string(s.rows) + "x" + std::to_string(s.cols));
   if (int(s.carrier_hz.size()) != p.K)
     throw std::invalid_argument("skin.carriers: expected " + std::to_string(p.K) +
                                 " frequencies, got " + std::to_string(s.carrier_hz.size()));
@@ -173,10 +182,13 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
                                 std::to_string(s.window));
   p.acc_w = 12 + 1 + clog2(p.N);
   const int ks = s.demix ? p.K + 1 : p.K;
-  if (s.sdft_lanes < 1 || s.sdft_lanes > std::min(16, ks))
-    throw std::invalid_argument("sdft_lanes: expected 1.." + std::to_string(std::min(16, ks)) +
-                                " (at most 16, at most the " + std::to_string(ks) +
+  if (s.sdft_lanes < 1 || s.sdft_lanes > std::min(64, ks))
+    throw std::invalid_argument("sdft_lanes: expected 1.." + std::to_string(std::min(64, ks)) +
+                                " (at most 64, at most the " + std::to_string(ks) +
                                 " DFT channels), got " + std::to_string(s.sdft_lanes));
+  if (s.sdft_fifo < 0 || s.sdft_fifo > 64 || (s.sdft_fifo & (s.sdft_fifo - 1)) != 0)
+    throw std::invalid_argument("sdft_fifo: expected 0 or a power of two up to 64 samples, got " +
+                                std::to_string(s.sdft_fifo));
   if (s.neuron_lanes != 0 && (!s.neuron_unit || s.neuron_lanes < 5 || s.neuron_lanes > 8 ||
                               2 * p.T > 2048))
     throw std::invalid_argument("neuron_lanes: expected 0, or 5..8 with the neuron unit and at "
@@ -329,14 +341,19 @@ DtmfChainConfig<S> chain_config(const DtmfTopPlan& p) {
 //    lanes on (rtl/sdft_lanes.v). Every other sample gives no tokens (dtmf_top
 //    skips them) and takes S = sdft_skip_interval(KS, L) = 6 ceil(KS / L)
 //    + 2. The ADC converts every period P clocks whatever the DFT does and
-//    holds one sample: it loses one when the previous is not taken by the
-//    next conversion, so a sample may wait up to P clocks. With S <= P a
-//    frame's sample that takes F > P delays the next by F - P, and each
-//    sample after it makes up P - S. No sample is lost when
-//      S <= P,  F <= 2 P  and  F - P <= (STEP - 1)(P - S)
-//    (the delay is back to 0 by the next frame's sample; STEP = 1: F <= P):
-//    dtmf_top_sdft_min_period. tests/rtl/dft_capture_test.cpp runs the two
-//    modules at these paces, and at a 32x32 skin's 1 MS/s.
+//    holds one sample: it loses one when the previous is not taken before
+//    the next conversion lands. D = spec.sdft_fifo samples may queue in
+//    front of the lanes (rtl/sdft_front.v). With S <= P a frame's sample
+//    that takes F > P delays the next by F - P, and each sample after it
+//    makes up P - S. No sample is lost iff
+//      S <= P,  F < (D + 2) P  and  F - P <= (STEP - 1)(P - S)
+//    (the samples converted while the frame's sample holds the lanes fit
+//    the FIFO and the ADC's register; the delay is back to 0 by the next
+//    frame's sample; STEP = 1: F <= P): dtmf_top_sdft_min_period, which is
+//    hls::sdft_front_min_period. tests/rtl/sdft_front_test.cpp runs the
+//    lanes into frame_capture at the ADC's pace at and one clock below that
+//    period (a 64x64 skin at 1 MS/s, and without a FIFO);
+//    tests/rtl/dft_capture_test.cpp at a 32x32 skin's 1 MS/s.
 //  - frame_engine: frame_capture loses a frame unless the engine has
 //    released the previous one when it is complete, so the engine's longest
 //    frame plus the longest command it may have started just before that
@@ -360,6 +377,9 @@ struct DtmfTopClockBudget {
   long sdft_clocks = 0;    // a frame sample's II: dtmf_top_sdft_clocks()
   long sdft_skip_clocks = 0;  // any other sample's: dtmf_top_sdft_skip_clocks()
   long sdft_min_period = 0;   // what those need of the period: dtmf_top_sdft_min_period()
+  // Samples waiting after a frame's at P (sdft_front_backlog): the FIFO
+  // holds up to sdft_fifo of them, the ADC's register one more.
+  long sdft_backlog = 0;
   long frame_clocks = 0;   // STEP x period: the engine's time per frame
   long engine_clocks = 0;  // what the engine needs of it
   long bound_clocks = 0;   // its static bound (0: not checked)
@@ -379,12 +399,42 @@ inline long dtmf_top_sdft_skip_clocks(int ks, int lanes) {
   return long(sdft_skip_interval(ks, lanes));
 }
 // The shortest sample period (clocks) at which the ADC loses no sample to
-// the DFT (above): the least P with S <= P, F <= 2 P and STEP P >= F +
-// (STEP - 1) S.
-inline long dtmf_top_sdft_min_period(int ks, int lanes, long step) {
+// the DFT (above), `fifo` samples queued in front of it: the least P with
+// S <= P, F < (fifo + 2) P and STEP P >= F + (STEP - 1) S.
+inline long dtmf_top_sdft_min_period(int ks, int lanes, long step, int fifo = 0) {
+  return long(sdft_front_min_period(dtmf_top_sdft_clocks(ks, lanes),
+                                    dtmf_top_sdft_skip_clocks(ks, lanes), step, fifo));
+}
+
+// Why the DFT loses samples at `period` (empty when it keeps up), `at`
+// after the period (the clock and rate): the first of the three
+// conditions above that fails, in words.
+inline std::string dtmf_top_sdft_problem(int ks, int lanes, long step, int fifo, long period,
+                                         const std::string& at = "") {
   const long f = dtmf_top_sdft_clocks(ks, lanes), sk = dtmf_top_sdft_skip_clocks(ks, lanes);
-  if (step <= 1) return f;
-  return std::max({sk, (f + 1) / 2, (f + (step - 1) * sk + step - 1) / step});
+  const long min = dtmf_top_sdft_min_period(ks, lanes, step, fifo);
+  if (period >= min) return "";
+  auto n = [](long v) { return std::to_string(v); };
+  if (lanes == 1)  // S = F: every sample needs the whole period
+    return "sdft_bank: needs 6 KS + 2 = " + n(f) + " clocks per sample, the sample period is " +
+           n(period) + at;
+  std::string why;
+  if (step <= 1)
+    why = "every sample is a frame's";
+  else if (sk > period)
+    why = "the skipped samples take longer than a sample period";
+  else if (f >= (fifo + 2) * period)
+    why = "the " + n(f / period) + " samples converted while a frame's sample holds the lanes "
+          "do not fit " + (fifo > 0 ? "the " + n(fifo) + "-sample FIFO and " : "") +
+          "the ADC's one register (F < (" + n(fifo) + " + 2) P)";
+  else
+    why = "the samples queued after a frame's (the next " + n(f - period) +
+          " clocks late) do not catch up before the next frame's (F - P <= (STEP - 1)(P - S))";
+  return "sdft_lanes (" + n(lanes) + " lanes of KS = " + n(ks) + " channels" +
+         (fifo > 0 ? ", a " + n(fifo) + "-sample FIFO" : "") + "): a frame's sample takes " +
+         n(f) + " clocks, the others " + n(sk) + "; with STEP " + n(step) +
+         " that needs a sample period of " + n(min) + " clocks, the sample period is " +
+         n(period) + at + ": " + why;
 }
 
 // What keeps adc_ad7476 on a clock of adc_hz from converting at fs (above),
@@ -421,7 +471,7 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
   const int lanes = p.spec.sdft_lanes;
   b.sdft_clocks = dtmf_top_sdft_clocks(p.ks, lanes);
   b.sdft_skip_clocks = dtmf_top_sdft_skip_clocks(p.ks, lanes);
-  b.sdft_min_period = dtmf_top_sdft_min_period(p.ks, lanes, p.step);
+  b.sdft_min_period = dtmf_top_sdft_min_period(p.ks, lanes, p.step, p.spec.sdft_fifo);
   if (p.spec.adc_clk_hz > 0) {  // exact in integers: clk and a are whole Hz
     const long double per = (long double)clk_hz * b.adc_period / b.adc_clk_hz;
     b.period = long(std::floor(per)) - 1;
@@ -441,15 +491,11 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
   auto n = [](long v) { return std::to_string(v); };
   if (const std::string adc = dtmf_top_adc_problem(fs, b.adc_clk_hz); !adc.empty())
     b.problems.push_back(adc);
-  if (b.period < b.sdft_min_period)
-    b.problems.push_back(
-        (lanes == 1 ? std::string("sdft_bank: needs 6 KS + 2 = ") + n(b.sdft_clocks) +
-                          " clocks per sample"
-                    : "sdft_lanes (" + n(lanes) + " lanes of KS = " + n(p.ks) + " channels): a " +
-                          "frame's sample takes " + n(b.sdft_clocks) + " clocks, the others " +
-                          n(b.sdft_skip_clocks) + "; with STEP " + n(p.step) +
-                          " that needs a sample period of " + n(b.sdft_min_period) + " clocks") +
-        ", the sample period is " + n(b.period) + at());
+  b.sdft_backlog = long(sdft_front_backlog(b.sdft_clocks, b.period));
+  if (const std::string dft =
+          dtmf_top_sdft_problem(p.ks, lanes, p.step, p.spec.sdft_fifo, b.period, at());
+      !dft.empty())
+    b.problems.push_back(dft);
   if (engine_clocks > b.frame_clocks)
     b.problems.push_back("frame_engine: its longest frame and command take " + n(engine_clocks) +
                          " clocks, a frame is " +
@@ -501,7 +547,7 @@ inline DtmfTopClockNeeds dtmf_top_clock_needs(const DtmfTopPlan& p, long engine_
   // On its own clock the ADC asks nothing of clk.
   n.adc_hz = n.adc_ok && p.spec.adc_clk_hz == 0 ? 28.0 / room : 0.0;
   n.engine_hz = fs * double(engine_clocks) / double(p.step);
-  n.dft_period = dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step);
+  n.dft_period = dtmf_top_sdft_min_period(p.ks, p.spec.sdft_lanes, p.step, p.spec.sdft_fifo);
   n.dft_hz = fs * double(n.dft_period);
   return n;
 }

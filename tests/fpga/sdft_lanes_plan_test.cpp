@@ -47,10 +47,13 @@ TEST(SdftLanesPlan, ClocksPerSampleAtEachLaneCount) {
 
 // Every sample but a frame's is skipped (no tokens): S = 6 ceil(KS / L) +
 // 2. The ADC holds one sample, so the least period P the budget takes is
-// max(S, ceil(F / 2), ceil((F + (STEP - 1) S) / STEP)) (F the frame's
-// sample, above; STEP 1: every sample is a frame's, P = F). Figures at 1
-// MS/s (STEP 1000): 16x16 (32 channels) in 6 lanes 39; 24x24 (48) in 8
-// lanes 39; 32x32 (64) in 11 lanes 39, in 10 lanes 45 (S = 44 > 40).
+// max(S, floor(F / 2) + 1, ceil((F + (STEP - 1) S) / STEP)) (F the frame's
+// sample, above: F < 2 P; STEP 1: every sample is a frame's, P = F).
+// Figures at 1 MS/s (STEP 1000): 16x16 (32 channels) in 6 lanes 39; 24x24
+// (48) in 8 lanes 39; 32x32 (64) in 11 lanes 39, in 10 lanes 45 (S = 44 >
+// 40), in 16 lanes 37 (F = 72: at 36 = F / 2 the sample after a frame's is
+// taken in the clock the next conversion lands, and that one is lost,
+// tests/rtl/sdft_front_test.cpp NoFifoNeedsTheFrameSampleShorterThanTwoPeriods).
 TEST(SdftLanesPlan, SkippedSamplesAndTheLeastPeriod) {
   EXPECT_EQ(hls::dtmf_top_sdft_skip_clocks(8, 1), 50);
   EXPECT_EQ(hls::dtmf_top_sdft_skip_clocks(8, 3), 6 * 3 + 2);
@@ -62,7 +65,7 @@ TEST(SdftLanesPlan, SkippedSamplesAndTheLeastPeriod) {
   EXPECT_EQ(hls::dtmf_top_sdft_min_period(48, 8, 1000), 39);         // S 38, F 56
   EXPECT_EQ(hls::dtmf_top_sdft_min_period(64, 11, 1000), 39);        // S 38, F 72
   EXPECT_EQ(hls::dtmf_top_sdft_min_period(64, 10, 1000), 45);        // (72 + 999 x 44) / 1000
-  EXPECT_EQ(hls::dtmf_top_sdft_min_period(64, 16, 1000), 36);        // F 72: ceil(F / 2)
+  EXPECT_EQ(hls::dtmf_top_sdft_min_period(64, 16, 1000), 37);        // F 72: F < 2 P
   EXPECT_EQ(hls::dtmf_top_sdft_min_period(64, 16, 2), 49);           // (72 + 26) / 2
 }
 
@@ -90,6 +93,100 @@ TEST(SdftLanesPlan, LanesInTheParametersAndTheBudget) {
     spec.sdft_lanes = bad;
     EXPECT_THROW(hls::make_dtmf_top_plan(spec), std::invalid_argument) << bad;
   }
+  spec.sdft_lanes = 2;
+  for (int bad : {-1, 3, 128}) {
+    spec.sdft_fifo = bad;
+    EXPECT_THROW(hls::make_dtmf_top_plan(spec), std::invalid_argument) << "FIFO " << bad;
+  }
+}
+
+// scenes/skin64x64.yaml: 128 carriers on bin centres of a 512-sample window
+// at 1 MS/s (no demixing: 128 DFT channels, the most frame_capture holds),
+// one frame a millisecond (STEP 1000). A frame's sample takes F = 136
+// clocks in any number of lanes from 6 on, every other one S = 6 ceil(128
+// / L) + 2. The ADC on its own 40 MHz clock (the AD7476A's band), the core
+// at clk: P = clk / 1 MHz - 1 (the CDC's clock of doubt).
+hls::DtmfTopPlan sixty_four(int lanes, int fifo) {
+  auto spec = sim::dtmf_top_spec(sim::load_scene(ESKIN_SOURCE_DIR "/scenes/skin64x64.yaml"));
+  spec.sdft_lanes = lanes;
+  spec.sdft_fifo = fifo;
+  spec.adc_clk_hz = 40000000;
+  spec.baud = 2000000;  // 20 clocks a bit at 40 MHz, 25 at 50
+  return hls::make_dtmf_top_plan(spec);
+}
+
+std::string dft_problem(const hls::DtmfTopClockBudget& b) {
+  for (const auto& p : b.problems)
+    if (p.rfind("sdft_", 0) == 0) return p;
+  return "";
+}
+
+TEST(SdftLanesPlan, SixtyFourBySixtyFourPlanHas128ChannelsAndA512SampleWindow) {
+  const auto p = sixty_four(32, 4);
+  EXPECT_EQ(p.K, 128);
+  EXPECT_EQ(p.ks, 128);
+  EXPECT_EQ(p.T, 4096);
+  EXPECT_EQ(p.N, 512);
+  EXPECT_EQ(p.step, 1000);
+  EXPECT_FALSE(p.spec.demix);
+  // With the demixing's DC channel a 64x64 skin would need 129: refused,
+  // naming the reason.
+  auto spec = p.spec;
+  spec.demix = true;
+  try {
+    hls::make_dtmf_top_plan(spec);
+    ADD_FAILURE() << "129 DFT channels accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("expected 1..128 DFT channels (carriers + the "
+                                         "demixing's DC channel)"),
+              std::string::npos) << e.what();
+  }
+}
+
+// 32 lanes (S = 26) and a 4-sample FIFO keep up at 40 and 50 MHz (P = 39,
+// 49; the FIFO holds floor(135 / P) = 3, 2 samples after a frame's); the
+// least period is 27 (the catch-up: 1000 P >= 136 + 999 x 26), so 28 MHz
+// (P = 27) passes and 27 MHz (P = 26) is refused for that reason.
+TEST(SdftLanesPlan, SixtyFourBySixtyFourAtOneMegasampleIn32LanesWithAFourSampleFifo) {
+  const auto p = sixty_four(32, 4);
+  for (long clk : {40000000L, 50000000L}) {
+    const auto b = hls::dtmf_top_clock_budget(p, clk, 0);
+    EXPECT_TRUE(b.ok()) << clk << ": " << b.problems.front();
+    EXPECT_EQ(b.sdft_clocks, 136);
+    EXPECT_EQ(b.sdft_skip_clocks, 26);
+    EXPECT_EQ(b.sdft_min_period, 27);
+    EXPECT_EQ(b.period, clk / 1000000 - 1);
+    EXPECT_EQ(b.sdft_backlog, clk == 40000000L ? 3 : 2);
+  }
+  EXPECT_EQ(dft_problem(hls::dtmf_top_clock_budget(p, 28000000, 0)), "");
+  const std::string why = dft_problem(hls::dtmf_top_clock_budget(p, 27000000, 0));
+  EXPECT_NE(why.find("sdft_lanes (32 lanes of KS = 128 channels, a 4-sample FIFO): a frame's "
+                     "sample takes 136 clocks, the others 26; with STEP 1000 that needs a sample "
+                     "period of 27 clocks, the sample period is 26 (27 MHz / 1e+06 S/s): the "
+                     "samples queued after a frame's (the next 110 clocks late) do not catch up"),
+            std::string::npos) << why;
+}
+
+// At 40 MHz (P = 39) each of the three conditions at its edge: the FIFO
+// (F < (D + 2) P: 2 samples are the fewest, 1 is refused, and none, the
+// ADC's register alone as rtl/dtmf_top.v is wired today), and the lanes (S
+// <= P: 22 lanes, S = 38, are the fewest; 21 take 44 and need 45).
+TEST(SdftLanesPlan, SixtyFourBySixtyFourAt40MHzRefusesTooSmallAFifoOrTooFewLanes) {
+  EXPECT_EQ(dft_problem(hls::dtmf_top_clock_budget(sixty_four(32, 2), 40000000, 0)), "");
+  for (int fifo : {0, 1}) {
+    const std::string why =
+        dft_problem(hls::dtmf_top_clock_budget(sixty_four(32, fifo), 40000000, 0));
+    EXPECT_NE(why.find("the 3 samples converted while a frame's sample holds the lanes do not "
+                       "fit " + std::string(fifo ? "the 1-sample FIFO and " : "") +
+                       "the ADC's one register (F < (" + std::to_string(fifo) + " + 2) P)"),
+              std::string::npos) << why;
+  }
+  EXPECT_EQ(dft_problem(hls::dtmf_top_clock_budget(sixty_four(22, 4), 40000000, 0)), "");
+  const std::string why = dft_problem(hls::dtmf_top_clock_budget(sixty_four(21, 4), 40000000, 0));
+  EXPECT_NE(why.find("the others 44; with STEP 1000 that needs a sample period of 45 clocks, the "
+                     "sample period is 39 (40 MHz / 1e+06 S/s): the skipped samples take longer "
+                     "than a sample period"),
+            std::string::npos) << why;
 }
 
 // A 4x4 skin at 1 MS/s on the ULX3S: one lane would need 50 MHz, outside

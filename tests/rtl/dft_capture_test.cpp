@@ -220,7 +220,7 @@ TEST(DftCapture, OneLaneTakesASampleEvery6KPlus2ClocksAndKeepsEveryFrame) {
 // lanes, the ADC's pace (a conversion every 40 clocks, one held). A frame's
 // sample takes F = 64 + 8 = 72 clocks and every other one S = 6 ceil(64 /
 // 11) + 2 = 38 (both asserted clock for clock above at smaller builds), so
-// the budget's P >= S, F <= 2 P and F - P <= (STEP - 1)(P - S) hold (39 <=
+// the budget's P >= S, F < 2 P and F - P <= (STEP - 1)(P - S) hold (39 <=
 // 40) and no sample may be lost: the sample after a frame's waits exactly F
 // - P = 32 clocks (it comes P after the frame's, which the DFT took at
 // once), and each later one 2 clocks less, back to 0 long before the next

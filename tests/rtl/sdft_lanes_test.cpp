@@ -29,7 +29,9 @@
 // Builds (sdft_lanes_test.cmake): LANES 2 (K_MAX 9, N 32, XW 12, ACC_W 18:
 // a 4x4 skin's DFT in dtmf_top), 3 (K_MAX 13, N 48, XW 12, CW 12, TW 8,
 // FB 2, ACC_W 21), 8 (K_MAX 20, N 64, ACC_W 20: the merger's regime
-// G LANES >= 6 for both consumers) and 1 (sdft_bank's defaults).
+// G LANES >= 6 for both consumers), 32 (K_MAX 128, N 512, XW 12, ACC_W 22:
+// a 64x64 skin's 128 bin-centred carriers at 1 MS/s, the top's pattern of
+// one sample in STEP with tokens) and 1 (sdft_bank's defaults).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -41,6 +43,7 @@
 #include "Vsdft_lanes.h"
 #include "Vsdft_lanes_l1.h"
 #include "Vsdft_lanes_l3.h"
+#include "Vsdft_lanes_l32.h"
 #include "Vsdft_lanes_l8.h"
 #include "hls/sdft_bank.h"
 #include "sdft_port.h"
@@ -216,6 +219,7 @@ using L2 = Harness<Vsdft_lanes, SdftBank<9, 32, 12, 16, 10, 18>, 2, 12, 18>;
 using L3 = Harness<Vsdft_lanes_l3, SdftBank<13, 48, 12, 12, 8, 21, 2>, 3, 12, 21>;
 using L8 = Harness<Vsdft_lanes_l8, SdftBank<20, 64, 13, 16, 10, 20>, 8, 13, 20>;
 using L1 = Harness<Vsdft_lanes_l1, SdftBank<6, 32>, 1, 13, 24>;
+using L32 = Harness<Vsdft_lanes_l32, SdftBank<128, 512, 12, 16, 10, 22>, 32, 12, 22>;
 
 // Random data, random stalls everywhere, reconfigurations between.
 template <class H>
@@ -250,19 +254,29 @@ TEST(SdftLanesRtl, OneLaneIsSdftBank) {
   random_run<L1>({6, 3, 6, 1}, 20000, 4);
 }
 
+// 128 channels in 32 lanes, N 512 (the window wraps: 1500 samples), then 40
+// (fewer than two a lane), 128 again with full-scale extremes, and 31
+// (fewer channels than lanes).
+TEST(SdftLanesRtl, ThirtyTwoLanes128ChannelsRandomWithReconfiguration) {
+  random_run<L32>({128, 40, 128, 31}, 1500, 5);
+}
+
 // Exact clocks with in_valid always high, for every K of the build; with
 // `skips`, samples skipped in the pattern dtmf_top gives (runs of skipped
 // samples between ones with tokens, here 2 in 3 skipped, and a run of 7):
 // after a skipped sample the next comes II_skip = 6 ceil(K / L) + 2 clocks
 // later, whatever the consumer; a sample with tokens is followed II later,
 // its tokens at the same offsets as without skips.
+// `step` > 3: one sample in `step` with tokens, the others skipped (dtmf_top's
+// pattern with STEP samples a frame).
 template <class H>
-void check_timing(int k, Consumer consumer, uint64_t seed, bool skips) {
+void check_timing(int k, Consumer consumer, uint64_t seed, bool skips, size_t step = 3) {
   auto h = std::make_unique<H>();
   Timing t;
   const size_t n = 60;
   Segment seg = segment(k, random_samples(H::kXw, n, seed), seed, false);
-  for (size_t s = 0; s < n && skips; ++s) seg.skip.push_back(s % 3 != 2 || (s >= 30 && s < 37));
+  for (size_t s = 0; s < n && skips; ++s)
+    seg.skip.push_back(s % step != step - 1 || (step == 3 && s >= 30 && s < 37));
   h->run({seg}, 1.0, consumer, 1.0, seed, &t);
   const int64_t L = H::kLanes, g = consumer == Consumer::TwoClock ? 2 : 1;
   const int64_t wait = std::max<int64_t>(0, 6 - g * L);  // idle clocks per row boundary
@@ -302,6 +316,19 @@ TEST(SdftLanesRtl, LatencyAndInitiationIntervalThreeLanes) { check_timing_all<L3
 TEST(SdftLanesRtl, LatencyAndInitiationIntervalEightLanes) { check_timing_all<L8>(20); }
 TEST(SdftLanesRtl, LatencyAndInitiationIntervalOneLane) { check_timing_all<L1>(6); }
 
+// 32 lanes: K around the lane count and the row boundaries, up to 128; with
+// no skips, the 2-in-3 pattern, and one sample in 10 with tokens.
+TEST(SdftLanesRtl, LatencyAndInitiationIntervalThirtyTwoLanes) {
+  for (int k : {1, 2, 31, 32, 33, 64, 65, 127, 128})
+    for (Consumer c : {Consumer::Always, Consumer::TwoClock}) {
+      const uint64_t seed = uint64_t(200 + k) + (c == Consumer::TwoClock ? 1000 : 0);
+      check_timing<L32>(k, c, seed, false);
+      check_timing<L32>(k, c, seed, true);
+      check_timing<L32>(k, c, seed, true, 10);
+      if (::testing::Test::HasFatalFailure()) return;
+    }
+}
+
 // The figures the header quotes: a 4x4 skin's 9 channels in 2 lanes, a
 // 12x12 skin's 24 and a 16x16 skin's 32 in 6 (G = 1: K + 8, the merger's
 // token a clock), and the G = 2 bound 2 K + 7 from 3 lanes on.
@@ -319,6 +346,15 @@ TEST(SdftLanesRtl, QuotedIntervals) {
   EXPECT_EQ(eskin::hls::sdft_skip_interval(64, 11), 38);
   EXPECT_EQ(eskin::hls::sdft_skip_interval(64, 10), 44);
   EXPECT_EQ(eskin::hls::sdft_skip_interval(9, 1), eskin::hls::sdft_lanes_interval(9, 1));
+  // 64x64 (128 channels): the frame's sample K + 8 = 136 in any number of
+  // lanes from 6 on; the others 50 in 16 lanes (no room at 50 MHz / 1 MS/s),
+  // 38 in 22, 26 in 32, 14 in 64.
+  EXPECT_EQ(eskin::hls::sdft_lanes_interval(128, 16), 136);
+  EXPECT_EQ(eskin::hls::sdft_lanes_interval(128, 32), 136);
+  EXPECT_EQ(eskin::hls::sdft_skip_interval(128, 16), 50);
+  EXPECT_EQ(eskin::hls::sdft_skip_interval(128, 22), 38);
+  EXPECT_EQ(eskin::hls::sdft_skip_interval(128, 32), 26);
+  EXPECT_EQ(eskin::hls::sdft_skip_interval(128, 64), 14);
 }
 
 }  // namespace

@@ -228,7 +228,7 @@ TEST(Scene, DefaultSceneLoadsAndValidates) {
 }
 
 TEST(Scene, AllShippedScenesLoad) {
-  for (const char* f : {"neuroskin2", "staggered10x10", "skin32x32", "planned3x3"}) {
+  for (const char* f : {"neuroskin2", "staggered10x10", "skin32x32", "skin64x64", "planned3x3"}) {
     SCOPED_TRACE(f);
     Scene s;
     ASSERT_NO_THROW(s = load_scene(kDir + f + ".yaml"));
@@ -240,7 +240,7 @@ TEST(Scene, AllShippedScenesLoad) {
 // k * fs / N (integer k, to 1e-9 of a bin: the plan is exact in binary
 // fractions here) and all of them on distinct bins.
 TEST(Scene, PlannedCarriersSitOnDistinctBinCentres) {
-  for (const char* f : {"staggered10x10", "skin32x32", "planned3x3"}) {
+  for (const char* f : {"staggered10x10", "skin32x32", "skin64x64", "planned3x3"}) {
     SCOPED_TRACE(f);
     Scene s = load_scene(kDir + f + ".yaml");
     double bin = s.skin.adc.rate_hz / s.decoder.window;
