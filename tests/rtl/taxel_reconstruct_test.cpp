@@ -112,7 +112,7 @@ template <int R_MAX, int C_MAX>
 std::vector<Frame> ghost_frames(int rows, int cols, int frames, uint64_t seed) {
   std::mt19937_64 rng(seed);
   GhostFilterConfig gc;
-  gc.rows = uint8_t(rows), gc.cols = uint8_t(cols), gc.lookback = 2, gc.improved = true;
+  gc.rows = uint8_t(rows), gc.cols = uint8_t(cols), gc.lookback = 2;
   gc.onset = 2500, gc.pair_tol = 1500, gc.release = 6000;
   auto gf = std::make_unique<GhostFilter<R_MAX, C_MAX, 4>>();
   EXPECT_TRUE(gf->configure(gc));
