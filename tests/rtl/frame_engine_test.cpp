@@ -395,8 +395,10 @@ TEST(FrameEngineRtl, SelfTestFromUcodeHex) {
   std::stringstream ss;
   ss << in.rdbuf();
   const auto words = fa::parse_readmemh(ss.str(), FRAME_ENGINE_SELFTEST_HEX);
-  const auto prog = fa::assemble_file(std::string(ESKIN_SOURCE_DIR) + "/tests/rtl/frame_engine_selftest.fe",
-                                      fa::Options{{{"EV_GO", 1}, {"OUT", 0x100}}, 1024});
+  fa::Options opt;
+  opt.symbols = {{"EV_GO", 1}, {"OUT", 0x100}};
+  opt.imem_words = 1024;
+  const auto prog = fa::assemble_file(std::string(ESKIN_SOURCE_DIR) + "/tests/rtl/frame_engine_selftest.fe", opt);
   ASSERT_EQ(words, prog.words);  // the build assembled the same program
   Lockstep<Vframe_engine_tb_dw14, SetSpram> ls(4);
   for (uint32_t i = 0; i < words.size(); ++i) ASSERT_EQ(ls.peek(0, i), words[i]) << "IMEM[" << i << "]";
