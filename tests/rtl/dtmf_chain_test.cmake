@@ -1,12 +1,12 @@
 # Builds of dtmf_chain for tests/rtl/dtmf_chain_test.cpp (each also linted
 # with -Wall fatal): the default 3x3 skin (N 32: MAG_SHIFT 0), the 10x10
-# scene's (N 64: MAG_SHIFT 1) and 64x64 (128 carriers, N 512: MAG_SHIFT 4),
-# the ECP5-85F's streaming target.
+# scene's (N 64: MAG_SHIFT 1) and 64x64 (128 carriers, N 512: MAG_SHIFT 4,
+# 1024 spike events a window), the ECP5-85F's streaming target.
 set(eskin_default_args -GR=3 -GC=3 -GMAG_SHIFT=0)
 eskin_verilate(${exe} Vdtmf_chain_10 ${CMAKE_SOURCE_DIR}/rtl/dtmf_chain.v dtmf_chain
   -GR=10 -GC=10 -GMAG_SHIFT=1)
 eskin_verilate(${exe} Vdtmf_chain_64 ${CMAKE_SOURCE_DIR}/rtl/dtmf_chain.v dtmf_chain
-  -GR=64 -GC=64 -GMAG_SHIFT=4)
+  -GR=64 -GC=64 -GMAG_SHIFT=4 -GMAX_SPIKES=1024)
 # Illegal sets stop at elaboration: no skin, and 256 carriers (k is 8 bits).
 foreach(set "|-GR=0" "_k|-GR=200;-GC=56")
   string(REPLACE "|" ";" parts "${set}")
@@ -22,5 +22,5 @@ endforeach()
 # ECP5 tools from build/venv): figures in build/synth/dtmf_chain_ecp5_64x64/.
 add_test(NAME synth.ecp5_dtmf_chain_64x64
   COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ecp5.sh dtmf_chain --param R=64 --param C=64
-    --param MAG_SHIFT=4 --out ${CMAKE_BINARY_DIR}/synth/dtmf_chain_ecp5_64x64)
+    --param MAG_SHIFT=4 --param MAX_SPIKES=1024 --out ${CMAKE_BINARY_DIR}/synth/dtmf_chain_ecp5_64x64)
 set_tests_properties(synth.ecp5_dtmf_chain_64x64 PROPERTIES LABELS synth TIMEOUT 900)

@@ -4,26 +4,36 @@
 // Frames: ADC codes through the chain's own front end (SdftBank, and
 // CarrierDemix when the plan demixes: DtmfChain::push's steps, run here to
 // get the tokens the datapath takes), the frame's K tokens into the block.
-// The control plane (C++ here, the frame engine in the top) reads the K
-// magnitudes back from the block's RAM, builds the AMPLITUDES packet from
-// them, runs hls/ghost_filter.h's frame() step on them, writes the sites it
-// added into the mask, pulses sites_done, sends the frame's packetizer
-// header (t, dense and sparse from the decimation and the output mask), and
-// after the frame's last taxel applies the release the block reported
+// The control plane (C++ here, the frame engine in the top) configures the
+// two neuron layers (hls::neuron_block words) and resets their state, then
+// per frame reads the K magnitudes back from the block's RAM, builds the
+// AMPLITUDES packet from them, runs hls/ghost_filter.h's frame() step on
+// them, writes the sites it added into the mask, pulses sites_done, sends
+// the frame's header (t; dense and sparse, spike recording and the spike
+// window's end from DtmfChain's decimation counters and the output mask),
+// and after the frame's last taxel applies the release the block reported
 // (tax_site) to its filter.
 //
-// Bound: exact. Every packet's FIFO bytes equal the reference's, in order:
-//   3x3, 10x10: DtmfChain itself (the default scene neuroskin2, demixed; the
-//     staggered 10x10 scene, bin-centred), neurons off;
+// Bound: exact. The packets of each type equal the reference's, in order
+// (the block's two packet sources share the output packet by packet, so
+// SPIKES may come before or after a later frame's taxel packets; each
+// packet whole):
+//   3x3, 10x10: DtmfChain itself (the default scene neuroskin2, demixed,
+//     neurons off and on; the staggered 10x10 scene, bin-centred, neurons
+//     on), spike windows of 2 frames with neurons;
 //   64x64: DtmfChain does not compile beyond 64 carriers (CarrierDemix's
-//     K_MAX), so the reference is its frame() body without neurons, step by
-//     step from the same kernels (chain_frame below); at 3x3 and 10x10 this
-//     composition is checked against DtmfChain too.
+//     K_MAX), so the reference is its frame() body step by step from the
+//     same kernels (ChainFrame below), neurons on (the default scene's
+//     neuron constants); at 3x3 and 10x10 this composition is checked
+//     against DtmfChain too.
 // Random token gaps, control-plane delays, header delays and output
-// back-pressure (seeded); out_data must hold while stalled.
-// Timing (nothing stalls): a frame every K + R C + 24 clocks with no packet
-// (taxel_reconstruct's period; the tokens wait in carrier_magnitude), at
-// 3x3 and 64x64.
+// back-pressure (seeded); out_data must hold while stalled. The runs must
+// reach what they are for: sites added and released, sparse packets with
+// entries, SPIKES packets with events of both layers.
+// Timing (nothing stalls, neurons off): a frame every K + R C + 24 clocks
+// with no packet (taxel_reconstruct's period; the tokens wait in
+// carrier_magnitude), and the dense / sparse periods stated at timing_run,
+// at 3x3 and 64x64.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -44,6 +54,7 @@
 #include "sim/dtmf_top_spec.h"
 #include "sim/scene.h"
 #include "sim/world_model.h"
+#include "ucode/dtmf_engine_image.h"
 
 namespace {
 
@@ -61,6 +72,7 @@ struct FrameIn {
   std::vector<Token> tok;
   bool amp = false, dense = false, sparse = false;  // this frame's packets
   uint16_t sparse_min = 0;
+  bool spikes = false, close = false;  // record this frame's spikes; the window ends
 };
 
 // A packet as the output FIFO holds it.
@@ -75,9 +87,9 @@ Bytes fifo(const P& p) {
   return b;
 }
 
-// DtmfChain::frame's body without neurons, from the same kernels: the
-// reference where DtmfChain itself does not compile.
-template <int R, int C>
+// DtmfChain::frame's body, from the same kernels: the reference where
+// DtmfChain itself does not compile.
+template <int R, int C, int MAX>
 struct ChainFrame {
   static constexpr int K = R + C, T = R * C;
   using Tax = hls::TaxelPacketizer<R, C>;
@@ -85,12 +97,25 @@ struct ChainFrame {
     uint8_t type = 0;
     uint32_t t = 0;
     uint16_t len = 0;
-    uint8_t payload[4 * T + 2 * K + 2] = {};
+    uint8_t payload[4 * T + 2 * K + 5 * MAX + 2] = {};
   };
   hls::TaxelReconstruct<R, C> taxel;
   std::unique_ptr<hls::GhostFilter<R, C, 4>> ghost = std::make_unique<hls::GhostFilter<R, C, 4>>();
   bool ghost_on = true;
+  bool neurons = false;
+  std::unique_ptr<hls::IzhikevichLayer<T>> l0, l1;
+  hls::SynapseWeights<R, C> synapse;
+  std::unique_ptr<hls::SpikeEncoder<MAX>> enc = std::make_unique<hls::SpikeEncoder<MAX>>();
   std::vector<uint16_t> g = std::vector<uint16_t>(T);
+  std::unique_ptr<bool[]> s0 = std::make_unique<bool[]>(T), s1 = std::make_unique<bool[]>(T);
+
+  void set_neurons(const hls::IzhikevichConfig& c0, const hls::IzhikevichConfig& c1,
+                   const hls::SynapseWeightsConfig& w) {
+    neurons = true;
+    l0 = std::make_unique<hls::IzhikevichLayer<T>>(c0);
+    l1 = std::make_unique<hls::IzhikevichLayer<T>>(c1);
+    EXPECT_TRUE(synapse.configure(w));
+  }
 
   template <int SHIFT>
   std::vector<Bytes> frame(const FrameIn& f) {
@@ -106,6 +131,18 @@ struct ChainFrame {
     for (int i = 0; i < R; ++i)
       for (int j = 0; j < C; ++j)
         g[size_t(i * C + j)] = (!ghost_on || ghost->site(i, j)) ? taxel.value(i, j) : 0;
+    const bool record = neurons && f.spikes;
+    if (record) enc->frame(f.t);
+    if (neurons) {
+      for (int i = 0; i < T; ++i) s0[i] = l0->update(i, g[size_t(i)]);
+      for (int i = 0; i < T; ++i) s1[i] = l1->update(i, synapse.input(s0.get(), i / C, i % C));
+      if (record) {
+        for (int i = 0; i < T; ++i)
+          if (s0[i]) enc->spike(0, uint16_t(i));
+        for (int i = 0; i < T; ++i)
+          if (s1[i]) enc->spike(1, uint16_t(i));
+      }
+    }
     std::vector<Bytes> out;
     auto p = std::make_unique<Packet[]>(2);
     if (f.amp) {
@@ -116,6 +153,7 @@ struct ChainFrame {
     }
     const int n = Tax::frame(g.data(), f.t, f.dense, f.sparse, f.sparse_min, p.get());
     for (int i = 0; i < n; ++i) out.push_back(fifo(p[i]));
+    if (f.close && record && enc->close_packet(p[0])) out.push_back(fifo(p[0]));
     return out;
   }
 };
@@ -142,6 +180,9 @@ struct Bench : ClockedDut<V> {
   std::vector<uint64_t> hdr_edge;          // per frame
   std::vector<uint64_t> out_edge;          // per byte
   bool static_sites = false;  // sites_done held high (a static mask), no pairing
+  bool neurons = false;
+  hls::IzhikevichConfig neuron[2];
+  hls::SynapseWeightsConfig synapse;
   uint64_t sites_written = 0, sites_released = 0;
   bool assertion_fail = false;
 
@@ -150,6 +191,8 @@ struct Bench : ClockedDut<V> {
     m.mask_we = 0;
     m.sites_done = 0;
     m.mag_raddr = 0;
+    m.nu_cfg_we = 0;
+    m.nu_init = 0;
     m.out_free = 0xFFFF;
     this->reset();
   }
@@ -160,6 +203,25 @@ struct Bench : ClockedDut<V> {
     m.cfg_recip_shift = tc.recip_shift;
     m.cfg_ghost = ghost;
     m.cfg_release = ghost_cfg.release;
+    m.cfg_neurons = neurons;
+    for (int w = 0; w < 5; ++w) m.cfg_w[w] = 0;
+    for (int k = 0; k < 9; ++k)
+      m.cfg_w[k / 2] |= uint32_t(uint16_t(synapse.w[k])) << (16 * (k % 2));
+    if (neurons) {
+      for (int l = 0; l < 2; ++l) {
+        const auto w = hls::neuron_block(neuron[l]);
+        for (int a = 0; a <= 16; ++a) {
+          m.nu_cfg_we = uint8_t(1 << l), m.nu_cfg_addr = uint8_t(a), m.nu_cfg_data = uint32_t(w[size_t(a)]);
+          tick();
+        }
+      }
+      m.nu_cfg_we = 0;
+      m.nu_init = 1;
+      tick();
+      m.nu_init = 0;
+      for (int k = 0; k < T + 2 && m.nu_busy; ++k) tick();
+      ASSERT_FALSE(m.nu_busy) << "init";
+    }
     size_t fi = 0, ti = 0;     // token source: frame, token
     size_t hi = 0;             // next header
     size_t cp_frame = 0;       // the frame the control plane serves
@@ -196,6 +258,8 @@ struct Bench : ClockedDut<V> {
         m.hdr_dense = frames[hi].dense;
         m.hdr_sparse = frames[hi].sparse;
         m.hdr_sparse_min = frames[hi].sparse_min;
+        m.hdr_spikes = frames[hi].spikes;
+        m.hdr_close = frames[hi].close;
       }
       // Control plane.
       m.mask_we = 0;
@@ -295,51 +359,64 @@ struct Bench : ClockedDut<V> {
   }
 };
 
-// Checks the block's bytes and the control plane's amplitudes against the
-// expected packets (in order; AMPLITUDES apart, as the engine writes them).
+// Checks the block's packets and the control plane's amplitudes against
+// the expected ones, type by type in order (the block's two packet sources
+// share the port packet by packet, so types may interleave across frames;
+// AMPLITUDES are the engine's).
 template <class B>
 void check(const B& b, const std::vector<std::vector<Bytes>>& want, bool want_dense = true,
-           bool want_sparse = true) {
-  Bytes want_out;
-  std::vector<Bytes> want_amp;
-  size_t dense = 0, sparse = 0;
+           bool want_sparse = true, bool want_spikes = false) {
+  std::vector<Bytes> want_type[6], got_type[6];
   for (const auto& fr : want)
-    for (const auto& p : fr) {
-      if (p[0] == hls::kDtmfAmplitudes) {
-        want_amp.push_back(p);
-        continue;
-      }
-      dense += p[0] == hls::kDtmfTaxelsDense;
-      sparse += p[0] == hls::kDtmfTaxelsSparse && p.size() > 7;
-      want_out.insert(want_out.end(), p.begin(), p.end());
-    }
-  ASSERT_EQ(b.amplitudes.size(), want_amp.size());
-  for (size_t i = 0; i < want_amp.size(); ++i) ASSERT_EQ(b.amplitudes[i], want_amp[i]) << "AMPLITUDES " << i;
-  for (size_t i = 0; i < std::min(want_out.size(), b.out.size()); ++i)
-    ASSERT_EQ(b.out[i], want_out[i]) << "byte " << i;
-  ASSERT_EQ(b.out.size(), want_out.size()) << "byte count";
+    for (const auto& p : fr) want_type[p[0] % 6].push_back(p);
+  got_type[hls::kDtmfAmplitudes] = b.amplitudes;
+  for (size_t at = 0; at < b.out.size();) {
+    ASSERT_LE(at + 7, b.out.size()) << "a packet cut short at byte " << at;
+    const size_t len = size_t(b.out[at + 5] | b.out[at + 6] << 8);
+    ASSERT_LE(at + 7 + len, b.out.size()) << "a packet cut short at byte " << at;
+    const uint8_t type = b.out[at];
+    ASSERT_TRUE(type >= hls::kDtmfTaxelsDense && type <= hls::kDtmfSpikes) << "type " << int(type);
+    got_type[type].push_back(Bytes(b.out.begin() + long(at), b.out.begin() + long(at + 7 + len)));
+    at += 7 + len;
+  }
+  for (int t = 1; t <= 4; ++t) {
+    ASSERT_EQ(got_type[t].size(), want_type[t].size()) << "packets of type " << t;
+    for (size_t i = 0; i < want_type[t].size(); ++i)
+      ASSERT_EQ(got_type[t][i], want_type[t][i]) << "packet " << i << " of type " << t;
+  }
   // The frames reach what they are for.
+  size_t sparse = 0;
+  for (const auto& p : want_type[hls::kDtmfTaxelsSparse]) sparse += p.size() > 7;
   if (want_dense) {
-    EXPECT_GT(dense, 0u);
+    EXPECT_GT(want_type[hls::kDtmfTaxelsDense].size(), 0u);
   }
   if (want_sparse) {
     EXPECT_GT(sparse, 0u);
+  }
+  if (want_spikes) {
+    EXPECT_GT(want_type[hls::kDtmfSpikes].size(), 2u);
+    size_t layer_events[2] = {0, 0};
+    for (const auto& p : want_type[hls::kDtmfSpikes])
+      for (size_t e = 7; e + 5 <= p.size(); e += 5) ++layer_events[p[e + 2] & 1];
+    EXPECT_GT(layer_events[0], 0u) << "layer 0 events";
+    EXPECT_GT(layer_events[1], 0u) << "layer 1 events";
   }
 }
 
 // A scene through the plan: DtmfChain's packets, the chain's front end's
 // tokens. Frames [0, max_frames).
 template <class S, class V>
-void scene_run(const std::string& scene_file, size_t max_frames, uint32_t seed, double p_in,
-               double p_hdr, double p_out, double p_cp) {
+void scene_run(const std::string& scene_file, size_t max_frames, bool neurons, uint32_t seed,
+               double p_in, double p_hdr, double p_out, double p_cp) {
   const eskin::sim::Scene sc = eskin::sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/" + scene_file);
   const auto plan = hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(sc));
   auto cfg = hls::chain_config<S>(plan);
-  cfg.neurons = false;
-  cfg.mask = hls::kMaskAmplitudes | hls::kMaskTaxels | hls::kMaskSparse;
+  cfg.neurons = neurons;
+  cfg.mask = hls::kMaskAmplitudes | hls::kMaskTaxels | hls::kMaskSparse |
+             (neurons ? hls::kMaskSpikes : 0);
   cfg.sparse_min = uint16_t(plan.ghost.release);
   cfg.decim_amp = 2;
-  cfg.decim_tax = 1;
+  cfg.decim_tax = neurons ? 2 : 1;
   auto chain = std::make_unique<hls::DtmfChain<S>>(cfg);
   ASSERT_TRUE(chain->ok());
   using Chain = hls::DtmfChain<S>;
@@ -349,10 +426,12 @@ void scene_run(const std::string& scene_file, size_t max_frames, uint32_t seed, 
   if (cfg.demix) {
     ASSERT_TRUE(demix->configure(cfg.demix_cfg));
   }
-  ChainFrame<S::R, S::C> comp;
+  auto compp = std::make_unique<ChainFrame<S::R, S::C, S::MAX_SPIKES>>();
+  auto& comp = *compp;
   ASSERT_TRUE(comp.taxel.configure(cfg.taxel));
   ASSERT_TRUE(comp.ghost->configure(cfg.ghost_cfg));
   comp.ghost_on = cfg.ghost;
+  if (neurons) comp.set_neurons(cfg.neuron[0], cfg.neuron[1], cfg.synapse);
 
   eskin::sim::WorldModel world(sc);
   const std::vector<int> codes = world.all_codes();
@@ -363,6 +442,9 @@ void scene_run(const std::string& scene_file, size_t max_frames, uint32_t seed, 
   b->ghost = cfg.ghost;
   b->ghost_cfg = cfg.ghost_cfg;
   ASSERT_TRUE(b->gf->configure(cfg.ghost_cfg));
+  b->neurons = neurons;
+  b->neuron[0] = cfg.neuron[0], b->neuron[1] = cfg.neuron[1];
+  b->synapse = cfg.synapse;
   std::vector<std::vector<Bytes>> want;
   struct Packets {
     typename Chain::Packet p[Chain::kMaxPackets];
@@ -370,7 +452,7 @@ void scene_run(const std::string& scene_file, size_t max_frames, uint32_t seed, 
   auto pk = std::make_unique<Packets>();
   auto& pka = pk->p;
   int filled = 0, phase = 0;
-  uint32_t amp_cnt = 0;
+  uint32_t amp_cnt = 0, tax_cnt = 0;
   size_t expect_bytes = 0;
   for (size_t n = 0; n < codes.size() && b->frames.size() < max_frames; ++n) {
     const uint16_t code = uint16_t(codes[n] << up);
@@ -390,7 +472,11 @@ void scene_run(const std::string& scene_file, size_t max_frames, uint32_t seed, 
     f.t = uint32_t(n);
     f.amp = amp_cnt == 0;
     amp_cnt = amp_cnt + 1 >= cfg.decim_amp ? 0 : amp_cnt + 1;
-    f.dense = true, f.sparse = true, f.sparse_min = cfg.sparse_min;
+    // The control plane's decimation (DtmfChain's counters).
+    const bool tax_sel = tax_cnt == 0, win_end = tax_cnt + 1 >= cfg.decim_tax;
+    tax_cnt = win_end ? 0 : tax_cnt + 1;
+    f.dense = f.sparse = tax_sel, f.sparse_min = cfg.sparse_min;
+    f.spikes = neurons, f.close = win_end;
     typename Chain::Demix::Token dm[S::K];
     if (cfg.demix)
       for (int k = 0; k <= S::K; ++k)
@@ -408,7 +494,7 @@ void scene_run(const std::string& scene_file, size_t max_frames, uint32_t seed, 
     b->frames.push_back(f);
   }
   b->run(expect_bytes, cfg.taxel);
-  check(*b, want);
+  check(*b, want, true, true, neurons);
   EXPECT_GT(b->sites_written, 0u) << "released " << b->sites_released;
   EXPECT_GT(b->sites_released, 0u);
 }
@@ -423,6 +509,7 @@ void scene_run(const std::string& scene_file, size_t max_frames, uint32_t seed, 
 // on every other.
 struct Skin64 {
   static constexpr int R = 64, C = 64, K = 128, T = 4096, N = 512, STEP = 128, SHIFT = 4;
+  static constexpr int MAX_SPIKES = 1024;
   static constexpr double kFull = 30.0;  // one full carrier's amplitude, ADC LSB
   hls::TaxelReconstructConfig taxel;
   hls::GhostFilterConfig ghost;
@@ -451,14 +538,24 @@ void skin64_run(int frames, int noise_from, uint32_t seed, double p_in, double p
   for (int k = 0; k < S::K; ++k) sc.inc[k] = uint32_t(2 + k) << 23;  // bin 2 + k of 512
   auto bank = std::make_unique<hls::SdftBank<S::K + 1, S::N, 12, 16, 10, 22>>();
   ASSERT_TRUE(bank->configure(sc));
-  auto comp = std::make_unique<ChainFrame<S::R, S::C>>();
+  auto comp = std::make_unique<ChainFrame<S::R, S::C, S::MAX_SPIKES>>();
   ASSERT_TRUE(comp->taxel.configure(skin.taxel));
   ASSERT_TRUE(comp->ghost->configure(skin.ghost));
+  // The neurons of the default scene's plan (one step a frame), the
+  // synapse at 64x64.
+  const auto plan = hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(
+      eskin::sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/scenes/neuroskin2.yaml")));
+  hls::SynapseWeightsConfig syn = plan.synapse;
+  syn.rows = S::R, syn.cols = S::C;
+  comp->set_neurons(plan.neuron[0], plan.neuron[1], syn);
   auto b = std::make_unique<Bench<V, S::R, S::C>>(seed);
   b->p_in = p_in, b->p_hdr = p_hdr, b->p_out = p_out, b->p_cp = p_cp;
   b->ghost = true;
   b->ghost_cfg = skin.ghost;
   ASSERT_TRUE(b->gf->configure(skin.ghost));
+  b->neurons = true;
+  b->neuron[0] = plan.neuron[0], b->neuron[1] = plan.neuron[1];
+  b->synapse = syn;
 
   struct Touch {
     int i, j, left;
@@ -502,6 +599,8 @@ void skin64_run(int frames, int noise_from, uint32_t seed, double p_in, double p
     fr.dense = fn % 3 != 2;
     fr.sparse = fn % 2 == 1 || fn % 5 == 0;
     fr.sparse_min = uint16_t(fn % 4 == 0 ? 0 : skin.ghost.release);
+    fr.spikes = fn % 7 != 3;  // mask bit 2 off now and then
+    fr.close = fn % 3 != 0;   // windows of 1 and 2 frames
     for (int k = 0; k < S::K; ++k)
       fr.tok.push_back(Token{uint8_t(k), tok[k].re, tok[k].im, k == S::K - 1});
     const auto ps = comp->template frame<S::SHIFT>(fr);
@@ -512,20 +611,22 @@ void skin64_run(int frames, int noise_from, uint32_t seed, double p_in, double p
   }
   ASSERT_EQ(int(b->frames.size()), frames);
   b->run(expect_bytes, skin.taxel);
-  check(*b, want);
+  check(*b, want, true, true, true);
   EXPECT_GT(b->sites_written, 0u);
   EXPECT_GT(b->sites_released, 0u);
 }
 
 TEST(DtmfChain, DefaultSceneBytesExactUnderRandomStalls) {
-  scene_run<hls::DtmfChainSizes<3, 3, 32>, Vdtmf_chain>("scenes/neuroskin2.yaml", 600, 1, 0.7, 0.5,
-                                                         0.6, 0.5);
+  scene_run<hls::DtmfChainSizes<3, 3, 32>, Vdtmf_chain>("scenes/neuroskin2.yaml", 600, false, 1, 0.7,
+                                                         0.5, 0.6, 0.5);
+  scene_run<hls::DtmfChainSizes<3, 3, 32>, Vdtmf_chain>("scenes/neuroskin2.yaml", 600, true, 11, 0.7,
+                                                         0.5, 0.6, 0.5);
 }
 
 
 TEST(DtmfChain, Staggered10x10SceneBytesExactUnderRandomStalls) {
-  scene_run<hls::DtmfChainSizes<10, 10, 64>, Vdtmf_chain_10>("scenes/staggered10x10.yaml", 300, 2, 0.8,
-                                                              0.6, 0.7, 0.6);
+  scene_run<hls::DtmfChainSizes<10, 10, 64>, Vdtmf_chain_10>("scenes/staggered10x10.yaml", 300, true,
+                                                              2, 0.8, 0.6, 0.7, 0.6);
 }
 
 TEST(DtmfChain, Skin64x64BytesExactUnderRandomStalls) {
@@ -545,19 +646,20 @@ TEST(DtmfChain, Skin64x64BytesExactUnderRandomStalls) {
 //                  23 after L (the dense packet's last byte at L + 2, the
 //                  next header at L + 3, its taxel 0 at L + K + 25 >= L +
 //                  13);
-//   dense, sparse: the sparse packet (n entries) from L + 4 to L + 10 + 4n,
-//                  the next header at L + 11 + 4n, its taxel 0 at
-//                  max(L + K + 25, L + 21 + 4n) (taxel k 10 + 2k edges
-//                  after the header: taxel_packetizer's), so the next
-//                  frame's last taxel max(K + 25, 21 + 4n) + 2 (T - 1)
-//                  after L.
+//   dense, sparse: the sparse packet (n entries) from L + 5 to L + 11 + 4n
+//                  (the output arbiter's grant takes a clock a packet),
+//                  the next header at L + 12 + 4n, its taxel 0 at
+//                  max(L + K + 25, L + 23 + 4n) (taxel k 10 + 2k edges
+//                  after the header, taxel_packetizer's, and the grant),
+//                  so the next frame's last taxel max(K + 25, 23 + 4n) +
+//                  2 (T - 1) after L.
 template <class V, int R, int C, int SHIFT>
 void timing_run(int mode, uint32_t seed) {
   constexpr int K = R + C, T = R * C;
   std::mt19937 rng(seed);
   hls::TaxelReconstructConfig tc;
   tc.rows = R, tc.cols = C, tc.recip = 1, tc.recip_shift = 0;  // g = sqrt(m_i m_j)
-  auto comp = std::make_unique<ChainFrame<R, C>>();
+  auto comp = std::make_unique<ChainFrame<R, C, 256>>();
   ASSERT_TRUE(comp->taxel.configure(tc));
   comp->ghost_on = false;
   auto b = std::make_unique<Bench<V, R, C>>(seed);
@@ -594,7 +696,7 @@ void timing_run(int mode, uint32_t seed) {
   const int64_t per_taxel = mode >= 1 ? 2 : 1;
   if (mode == 2) {  // both bounds of the period are reached: the line roots' and the sparse packet's
     int by_sparse = 0;
-    for (int f = 0; f + 1 < frames; ++f) by_sparse += 21 + 4 * lit[size_t(f)] > K + 25;
+    for (int f = 0; f + 1 < frames; ++f) by_sparse += 23 + 4 * lit[size_t(f)] > K + 25;
     EXPECT_GT(by_sparse, 0);
     EXPECT_LT(by_sparse, frames - 1);
   }
@@ -602,7 +704,7 @@ void timing_run(int mode, uint32_t seed) {
   for (int f = 1; f < frames; ++f) {
     const int64_t L = int64_t(b->last_taxel_edge[size_t(f - 1)]);
     int64_t want_d = mode == 0 ? K + T + 24 : mode == 1 ? K + 2 * T + 23
-                                                        : std::max<int64_t>(K + 25, 21 + 4 * lit[size_t(f - 1)]) + 2 * (T - 1);
+                                                        : std::max<int64_t>(K + 25, 23 + 4 * lit[size_t(f - 1)]) + 2 * (T - 1);
     EXPECT_EQ(int64_t(b->last_taxel_edge[size_t(f)]) - L, want_d)
         << "frame " << f << " mode " << mode << " lit " << lit[size_t(f - 1)];
   }
