@@ -74,10 +74,12 @@
 // frame wait in carrier_magnitude's pipeline meanwhile). A dense packet
 // takes a taxel every 2 clocks (two bytes), and the sparse packet follows
 // the last taxel; tests/rtl/dtmf_chain_test.cpp states and checks the
-// periods for each case (neurons off). The layers add 6 clocks each, the
-// synapse about a row (C + 4), the events one a clock after the frame's
-// last layer-1 neuron, and the SPIKES packet 8 + 5 n clocks before the
-// next frame's header is taken (not yet measured as a fixed bound).
+// periods for each case, and that the layers (spikes not recorded) add
+// nothing to them: they finish a frame within the K + 25 clocks before the
+// next frame's taxels. Recording, the layers' 7 clocks each, the synapse's
+// row, the events one a clock after the frame's last layer-1 neuron and
+// the SPIKES packet (8 + 5 n clocks) come before the next frame's header
+// is taken (not yet stated as a fixed bound).
 module dtmf_chain #(
     parameter integer R = 3,
     parameter integer C = 3,

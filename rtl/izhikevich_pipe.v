@@ -6,7 +6,7 @@
 // IzhikevichLayer<N>::update(n, x) (the kernel's header is the spec of the
 // Q formats, the rounding rnd(y >> s) = floor((y + 2^(s-1)) / 2^s) and the
 // saturations); rtl/izhikevich_layer.v computes the same update in 13
-// clocks on one multiplier for the frame engine, this block in 6 stages on
+// clocks on one multiplier for the frame engine, this block in 7 stages on
 // eight (MULT18X18D), which is what one neuron a clock costs.
 //
 // Configuration: the unit's constant words (cfg_we/cfg_addr/cfg_data; the
@@ -26,6 +26,8 @@
 //
 // Stages (all move together while en = !out_valid || out_ready):
 //   0  the handshake: n, x; the state read (registered RAM read)
+//   a  the state registered again (the RAM's clock-to-out and its output
+//      mux at 4096 neurons would otherwise share stage 1's clock)
 //   1  drive = input_change ? clamp(x - x_prev, 0, 2^31-1) : x;
 //      w = v + 62.5 mV: wh = w[30:15], wl = w[14:0]; vh = rnd(v >> 14);
 //      Uh = U[30:15], Ul = U[14:0]; U22 = rnd(U >> (FU - 22))
@@ -40,7 +42,7 @@
 //   6  (the output register, and the write-back) v' = vj + c2w2; spike =
 //      v' >= 30 mV; v = spike ? v_reset : max(v', V_MIN); U = spike ?
 //      sat(un + u_jump) : un; x_prev = input_change ? x : x_prev
-// Latency: an update taken at edge E is on the outputs after edge E + 6.
+// Latency: an update taken at edge E is on the outputs after edge E + 7.
 // Domain: as the unit's (rtl/izhikevich_layer.v): the operand fields equal
 // the C++'s values for v in [-2^29 - 2^13, 2^29 - 2^13) and U in [-2^30,
 // 2^30), which holds every stored state; x any 32-bit value.
@@ -120,10 +122,10 @@ module izhikevich_pipe #(
   assign busy = initing;
 
   wire en = !out_valid || out_ready;
-  // Valid stages 0..5 and their neurons (the ones not yet written back).
+  // Valid stages 0, a, 1..5 and their neurons (the ones not yet written back).
   reg v0, v1, v2, v3, v4, v5;
   reg [NB-1:0] n0, n1, n2, n3, n4, n5;
-  wire hit = (v0 && n0 == in_n) || (v1 && n1 == in_n) || (v2 && n2 == in_n) ||
+  wire hit = (v0 && n0 == in_n) || (va && na == in_n) || (v1 && n1 == in_n) || (v2 && n2 == in_n) ||
              (v3 && n3 == in_n) || (v4 && n4 == in_n) || (v5 && n5 == in_n);
   assign in_ready = en && !initing && !hit;
   wire take = in_valid && in_ready;
@@ -131,11 +133,17 @@ module izhikevich_pipe #(
   // ---- stage 0 ---------------------------------------------------------------
   reg [31:0] x0;
   reg l0;
-  wire signed [31:0] sv0 = rd_q[31:0], su0 = rd_q[63:32], sxp0 = rd_q[95:64];
+  // Stage a: the read data registered once more (a block RAM's clock-to-out
+  // and the output mux of a deep RAM get a clock of their own).
+  reg [95:0] sa;
+  reg [31:0] xa;
+  reg [NB-1:0] na;
+  reg la, va;
+  wire signed [31:0] sv0 = sa[31:0], su0 = sa[63:32], sxp0 = sa[95:64];
 
   // ---- stage 1 ---------------------------------------------------------------
-  wire signed [32:0] dx = {x0[31], x0} - {sxp0[31], sxp0};
-  wire [31:0] drive_d = !c_ic ? x0 : dx[32] ? 32'd0 : dx[31] ? 32'h7fffffff : dx[31:0];
+  wire signed [32:0] dx = {xa[31], xa} - {sxp0[31], sxp0};
+  wire [31:0] drive_d = !c_ic ? xa : dx[32] ? 32'd0 : dx[31] ? 32'h7fffffff : dx[31:0];
   wire signed [32:0] u22_t = $signed({su0, 1'b0}) >>> c_fu;
   reg  [31:0] drive1, x1, xp1;
   reg  signed [31:0] v1r, u1r, u22_1;
@@ -211,8 +219,10 @@ module izhikevich_pipe #(
     if (en) rd_q <= mem[in_n];
     if (en) begin
       n0 <= in_n; x0 <= in_x; l0 <= in_last;
+      // a
+      na <= n0; xa <= x0; la <= l0; sa <= rd_q;
       // 1
-      n1 <= n0; l1 <= l0; x1 <= x0; xp1 <= sxp0; drive1 <= drive_d;
+      n1 <= na; l1 <= la; x1 <= xa; xp1 <= sxp0; drive1 <= drive_d;
       v1r <= sv0; u1r <= su0;
       wh1 <= sv0[30:15] + W_OFF_H;
       wl1 <= sv0[14:0];
@@ -251,13 +261,13 @@ module izhikevich_pipe #(
       out_v <= v_res; out_u <= u_res;
     end
     if (rst) begin
-      v0 <= 1'b0; v1 <= 1'b0; v2 <= 1'b0; v3 <= 1'b0; v4 <= 1'b0; v5 <= 1'b0;
+      v0 <= 1'b0; va <= 1'b0; v1 <= 1'b0; v2 <= 1'b0; v3 <= 1'b0; v4 <= 1'b0; v5 <= 1'b0;
       out_valid <= 1'b0;
       initing <= 1'b0;
       init_n <= {NB{1'b0}};
     end else begin
       if (en) begin
-        v0 <= take; v1 <= v0; v2 <= v1; v3 <= v2; v4 <= v3; v5 <= v4;
+        v0 <= take; va <= v0; v1 <= va; v2 <= v1; v3 <= v2; v4 <= v3; v5 <= v4;
         out_valid <= v5;
       end
       if (init && !initing) begin

@@ -24,3 +24,14 @@ add_test(NAME synth.ecp5_dtmf_chain_64x64
   COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ecp5.sh dtmf_chain --param R=64 --param C=64
     --param MAG_SHIFT=4 --param MAX_SPIKES=1024 --out ${CMAKE_BINARY_DIR}/synth/dtmf_chain_ecp5_64x64)
 set_tests_properties(synth.ecp5_dtmf_chain_64x64 PROPERTIES LABELS synth TIMEOUT 900)
+# The 64x64 datapath placed and routed for the ECP5-85F at 50 MHz through the
+# pin wrapper tests/rtl/dtmf_chain_pnr.v (its ports outnumber the package's
+# pins): must fit and meet it (Fmax in the output line).
+add_test(NAME lint.dtmf_chain_pnr
+  COMMAND verilator --lint-only -Wall -y ${CMAKE_SOURCE_DIR}/rtl --top-module dtmf_chain_pnr
+    ${CMAKE_CURRENT_SOURCE_DIR}/dtmf_chain_pnr.v)
+set_tests_properties(lint.dtmf_chain_pnr PROPERTIES LABELS lint)
+add_test(NAME pnr.dtmf_chain_64x64_ecp5
+  COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ecp5.sh ${CMAKE_CURRENT_SOURCE_DIR}/dtmf_chain_pnr.v
+    --pnr --freq 50 --device 85k --out ${CMAKE_BINARY_DIR}/synth/dtmf_chain_pnr_ecp5)
+set_tests_properties(pnr.dtmf_chain_64x64_ecp5 PROPERTIES LABELS "synth;pnr" TIMEOUT 2400)

@@ -14,7 +14,7 @@
 // back-pressure. The state starts from init (v_init, u_init, x_prev 0)
 // and evolves only through updates, so every operand is a stored state.
 // Timing: with nothing stalled an update taken at edge E is out after edge
-// E + 6, one a clock; init takes N clocks.
+// E + 7, one a clock; init takes N clocks.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -183,9 +183,9 @@ TEST(IzhikevichPipe, N4096MatchesHls) {
   EXPECT_GT(r.quiet, 100);
 }
 
-// Nothing stalled: out 6 edges after the handshake, one a clock (N = 4096,
+// Nothing stalled: out 7 edges after the handshake, one a clock (N = 4096,
 // no neuron repeats within the pipeline).
-TEST(IzhikevichPipe, LatencySixOneAClock) {
+TEST(IzhikevichPipe, LatencySevenOneAClock) {
   std::mt19937 g(6);
   auto p = std::make_unique<Pipe<Vizhikevich_pipe_4096, 4096>>(7);
   p->configure(random_config(g, false));
@@ -196,7 +196,7 @@ TEST(IzhikevichPipe, LatencySixOneAClock) {
   std::vector<uint64_t> ie, oe;
   p->run(ins, 1.0, 1.0, outs, ie, oe);
   for (size_t k = 0; k < ins.size(); ++k) {
-    ASSERT_EQ(oe[k], ie[k] + 6) << "update " << k;
+    ASSERT_EQ(oe[k], ie[k] + 7) << "update " << k;
     if (k > 0) {
       ASSERT_EQ(ie[k], ie[k - 1] + 1) << "update " << k;
     }
