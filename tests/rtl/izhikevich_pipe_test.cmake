@@ -9,8 +9,11 @@ add_test(NAME lint.izhikevich_pipe_rejects_illegal_parameters
     -GN=0 ${CMAKE_SOURCE_DIR}/rtl/izhikevich_pipe.v)
 set_tests_properties(lint.izhikevich_pipe_rejects_illegal_parameters PROPERTIES LABELS lint
   PASS_REGULAR_EXPRESSION "izhikevich_pipe_illegal_parameters")
-# At 64x64 through Yosys synth_ecp5: figures in build/synth/izhikevich_pipe_ecp5_4096/.
+# At 64x64 through Yosys synth_ecp5: figures in
+# build/synth/izhikevich_pipe_ecp5_4096/. Eight 16 x 16 products, one
+# MULT18X18D each.
 add_test(NAME synth.ecp5_izhikevich_pipe_4096
   COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ecp5.sh izhikevich_pipe --param N=4096
     --out ${CMAKE_BINARY_DIR}/synth/izhikevich_pipe_ecp5_4096)
-set_tests_properties(synth.ecp5_izhikevich_pipe_4096 PROPERTIES LABELS synth TIMEOUT 900)
+set_tests_properties(synth.ecp5_izhikevich_pipe_4096 PROPERTIES LABELS synth TIMEOUT 900
+  PASS_REGULAR_EXPRESSION "izhikevich_pipe: yosys LUT4 [0-9]+, FF [0-9]+, MULT18X18D 8,")
