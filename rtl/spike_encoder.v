@@ -9,8 +9,9 @@
 //   OP_FRAME  frame(in_t): a window opens at the first frame after a close
 //             (t0 = t, n = 0); the frame's t is every later event's t
 //   OP_SPIKE  spike(in_layer, in_neuron): event n, dt = t - t0 (mod 2^16),
-//             while n < MAX; later ones are counted in spikes_dropped
-//             (32 bits, not saturating, as the kernel's)
+//             while n < MAX; later ones are counted in spikes_dropped,
+//             saturating at 65535 as the kernel's (the STATUS packet's u16
+//             field, docs/protocol.md)
 //   OP_CLOSE  close: the window's packet, when it holds events
 // The caller keeps the kernel's order: within a frame layer 0's spikes in
 // neuron order, then layer 1's (the two layers' streams meet before this
@@ -142,7 +143,7 @@ module spike_encoder #(
               end
               OP_SPIKE:
                 if (n != N_MAX) n <= n + 1'b1;
-                else spikes_dropped <= spikes_dropped + 32'd1;
+                else if (spikes_dropped != 32'hFFFF) spikes_dropped <= spikes_dropped + 32'd1;
               OP_CLOSE: begin
                 open <= 1'b0;
                 if (n != {NB{1'b0}}) state <= S_CHK;

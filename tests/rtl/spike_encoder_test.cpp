@@ -11,6 +11,8 @@
 //     rest counted), closes with no event (no packet), frames sent while a
 //     window is open (no reopening), under random in_valid and out_ready
 //     (seeded); out_data holds while the output stalls;
+//   - the drop count past 65535 events over MAX in one window: it saturates
+//     there, as the kernel's (the STATUS field is u16);
 //   - the room rule at the byte, into a FIFO nobody reads;
 //   - timing with every stream ready: a command a clock; the packet's first
 //     byte taken 3 edges after the close's handshake, one byte a clock to
@@ -185,6 +187,18 @@ TEST(SpikeEncoder, Max256ByteExactUnderRandomValidAndBackPressure) {
 
 TEST(SpikeEncoder, Max4096ByteExactUnderRandomValidAndBackPressure) {
   random_windows<B4096>(4, 6, 1000, 0.6, 0.5);
+}
+
+// 256 + 65540 events in one window: the kernel's count stops at 65535 and
+// so must the block's (a 32-bit counter that kept going reads 65540).
+TEST(SpikeEncoder, Max256DropCountSaturatesAt65535) {
+  auto b = std::make_unique<B256>(11);
+  b->add({kFrame, 1000, 0, 0});
+  for (int k = 0; k < 256 + 65540; ++k) b->add({kSpike, 0, uint8_t(k & 1), uint16_t(k % 9)});
+  b->add({kClose, 0, 0, 0});
+  ASSERT_EQ(b->enc->dropped(), 65535u);
+  b->run();
+  b->check_exact();
 }
 
 TEST(SpikeEncoder, Max256RoomRuleAtTheByte) {
