@@ -521,7 +521,7 @@ struct Skin64 {
     while (std::ldexp(1.0, 15 + rs) / F < 16384.0) ++rs;
     taxel.recip_shift = uint8_t(rs);
     taxel.recip = uint16_t(std::lround(std::ldexp(1.0, 15 + rs) / F));
-    ghost.rows = R, ghost.cols = C, ghost.lookback = N / STEP, ghost.improved = true;
+    ghost.rows = R, ghost.cols = C, ghost.lookback = N / STEP;
     ghost.onset = uint16_t(0.05 * F), ghost.pair_tol = uint16_t(0.02 * F);
     ghost.release = uint16_t(std::ceil(0.05 * 32768));
   }
