@@ -91,6 +91,15 @@ bool read_rss(pid_t pid, MemorySample& s) {
   return rss && hwm;
 }
 
+// Bytes `pid`'s threads have taken with read() and its kin so far
+// (/proc/PID/io rchar), or -1 when it is gone.
+int64_t read_rchar(pid_t pid) {
+  std::ifstream f("/proc/" + std::to_string(pid) + "/io");
+  for (std::string line; std::getline(f, line);)
+    if (line.rfind("rchar:", 0) == 0) return std::stoll(line.substr(6));
+  return -1;
+}
+
 // The packets of a DTMF board, one after the other (sizes: stream_memory.h):
 // each frame's AMPLITUDES, TAXELS dense and SPIKES, and a STATUS after
 // every 1000th frame.
@@ -254,6 +263,9 @@ MemoryResult measure_stream_memory(const MemoryOptions& o) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   const auto t0 = clock_type::now();
+  // Everything the stream reads from here on is the pty's (and, recording,
+  // the HDF5 file's own metadata, which only makes the count larger).
+  const int64_t rchar_at_open = read_rchar(child.pid());
   const auto sample = [&](uint64_t written) {
     MemorySample s;
     s.packets = written;
@@ -279,13 +291,24 @@ MemoryResult measure_stream_memory(const MemoryOptions& o) {
     if (at_sample && !sample(r.packets_written))
       r.error = "eskin stream ended at packet " + std::to_string(r.packets_written);
   }
-  // Every byte read by the stream before the last sample and the hang-up.
+  // Every byte read by the stream before the last sample and the hang-up:
+  // the slave's FIONREAD misses bytes still in the tty's flip buffer (the
+  // kernel moves them to the line discipline from a worker), and a hang-up
+  // flushes them, so the stream's own read count must cover every byte
+  // written and nothing may wait in the line discipline.
+  const auto taken = [&] {
+    const int64_t now = read_rchar(child.pid());
+    return rchar_at_open >= 0 && now >= 0 && uint64_t(now - rchar_at_open) >= r.wire_bytes;
+  };
   if (r.error.empty()) {
     const auto drained_by = clock_type::now() + std::chrono::duration<double>(o.stall_s);
-    while (pty.unread() != 0 && r.error.empty()) {
+    while ((pty.unread() != 0 || !taken()) && r.error.empty()) {
       if (child.poll_exit() >= 0) r.error = "eskin stream ended before reading every byte";
       else if (clock_type::now() > drained_by)
-        r.error = "eskin stream left " + std::to_string(pty.unread()) + " bytes unread";
+        r.error = "eskin stream left " + std::to_string(pty.unread()) +
+                  " bytes unread in the pty and read " +
+                  std::to_string(read_rchar(child.pid()) - rchar_at_open) + " of " +
+                  std::to_string(r.wire_bytes) + " bytes written";
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
   }
