@@ -41,9 +41,10 @@
 //   coef         : signed CW-bit, Q(CW-CF).CF, row-major (2K+1)^2 matrix
 //                  M = (N/2) G^{-1} / gains (host-side builder).
 //   y            : y_i = R_CF(sum_j coef_ij b_j), R_CF(p) = (p + 2^(CF-1))
-//                  >> CF, accumulated exactly in 64 bits (products < 2^(ACC_W
-//                  + CW), 2K+1 <= 33 of them: < 2^(ACC_W + CW + 6) <= 2^62),
-//                  then saturated to signed OUT_W bits.
+//                  >> CF, accumulated exactly in 64 bits (products of the
+//                  rotated sums, ACC_W + 1 bits, and CW-bit coefficients: <
+//                  2^(ACC_W + CW); 2K+1 <= 257 of them: < 2^(ACC_W + CW + 9)
+//                  <= 2^59), then saturated to signed OUT_W bits.
 //
 // Hardware (the frame engine's `carrier_demix` routine): per frame 4
 // products per input token (the rotation to the oldest sample) + 2K (2K+1)
@@ -77,7 +78,10 @@ struct CarrierDemixConfig {
 template <int K_MAX, int N, int ACC_W = 24, int OUT_W = 24, int TW = 10, int SW = 16,
           int CW = 16, int CF = 14>
 class CarrierDemix {
-  static_assert(K_MAX >= 1 && K_MAX <= 64, "K_MAX must be 1..64 (2K+1 <= 129 terms: sums < 2^(ACC_W + CW + 8))");
+  // 128: a 64x64 skin's carriers (hls/dtmf_chain.h instantiates the demix
+  // type for every chain, demixing or not).
+  static_assert(K_MAX >= 1 && K_MAX <= 128,
+                "K_MAX must be 1..128 (2K+1 <= 257 terms: sums < 2^(ACC_W + 1 + CW + 9) <= 2^60)");
   static_assert(N >= 3, "window N must be >= 3 (2 K + 1 <= N is checked by the builder)");
   static_assert(ACC_W >= 2 && ACC_W <= 32, "ACC_W must be 2..32");
   static_assert(OUT_W >= 2 && OUT_W <= 32, "OUT_W must be 2..32");
