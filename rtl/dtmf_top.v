@@ -2,9 +2,10 @@
 // dtmf_top: the FPGA top of the DTMF (spatial-frequency) skin path, the whole
 // decoding chain (docs/fpga.md):
 //
-//   AD7476A --SPI--> adc_ad7476 -> x = code - 2048 -> sdft_lanes (KS channels:
-//   the carriers, + DC when demixing; SDFT_LANES sdft_bank lanes, 1: sdft_bank
-//   itself; tokens only for the samples frame_capture keeps) -> frame_capture
+//   AD7476A --SPI--> adc_ad7476 -> x = code - 2048 -> sdft_front (SDFT_FIFO
+//   samples queue, then sdft_lanes: KS channels, the carriers + DC when
+//   demixing; SDFT_LANES sdft_bank lanes, 1: sdft_bank itself; tokens only
+//   for the samples frame_capture keeps) -> frame_capture
 //   (every STEP-th sample once the window is full; double-buffered) ->
 //   frame_engine, microcode
 //   rtl/ucode/dtmf_chain.fe: carrier_demix, carrier_magnitude,
@@ -60,7 +61,7 @@ module dtmf_top #(
     // same line (rtl/mixed_top.v): this top's decoder drops them, and keeps
     // every other type, so an unknown type is still rejected here, once.
     parameter integer HALL_CMDS = 0,
-    // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(16, KS). A frame's
+    // Parallel DFT lanes (rtl/sdft_lanes.v), 1..min(64, KS). A frame's
     // sample takes 6 KS + 2 clocks with 1 lane, 9 + (KS - 1) + max(0, 6 - L)
     // (ceil(KS / L) - 1) with L >= 2, KS + 8 from 6 lanes on (frame_capture
     // takes a token every clock; hls/sdft_bank.h's sdft_lanes_interval);
@@ -68,6 +69,12 @@ module dtmf_top #(
     // (sdft_skip_interval). common/eskin/dtmf_top_plan.h's budget says when the
     // ADC keeps up. 1 on the UP5K.
     parameter integer SDFT_LANES = 1,
+    // Samples the DFT's front FIFO holds (rtl/sdft_front.v): 0, none (the
+    // ADC's output register alone, the lanes as before), or a power of two
+    // up to 64, with which a frame's sample may hold the lanes for several
+    // sample periods (common/eskin/dtmf_top_plan.h's budget: F < (FIFO + 2)
+    // P); the flow gives 4 where the lanes alone cannot keep up.
+    parameter integer SDFT_FIFO = 0,
     // 1: the hardware neuron unit (rtl/izhikevich_layer.v): the microcode
     // hands it each neuron update (13 clocks; 14 engine clocks a neuron
     // with level input, the spike test included, overlapped) instead of
@@ -107,7 +114,8 @@ module dtmf_top #(
         OUT_DEPTH < 512 || OUT_DEPTH > 32768 || (OUT_DEPTH & (OUT_DEPTH - 1)) != 0 ||
         (EXT_LINK != 0 && EXT_LINK != 1) || (HALL_CMDS != 0 && HALL_CMDS != 1) ||
         (ENGINE_FAST_SHIFT != 0 && ENGINE_FAST_SHIFT != 1) ||
-        SDFT_LANES < 1 || SDFT_LANES > 16 || SDFT_LANES > KS ||
+        SDFT_LANES < 1 || SDFT_LANES > 64 || SDFT_LANES > KS ||
+        SDFT_FIFO < 0 || SDFT_FIFO > 64 || (SDFT_FIFO & (SDFT_FIFO - 1)) != 0 ||
         (NEURON_UNIT != 0 && NEURON_UNIT != 1) || ADC_CLK_HZ < 0 ||
         NEURON_BITS < 1 || NEURON_BITS > 30 ||
         // the lanes' flag address io_raddr[NEURON_BITS:0] must stay below
@@ -238,23 +246,31 @@ module dtmf_top #(
   endgenerate
 
   // ---------------- sliding DFT and frame capture -----------------------
+  // sdft_front: the sample FIFO (SDFT_FIFO samples; none: the ADC's sample
+  // straight into the lanes, clock for clock as sdft_lanes alone) and the
+  // lanes. A sample's tag is its ADC counter, so frame_capture dates a
+  // frame by the sample that enters the DFT, however long it queued.
   wire [11:0] x = {~adc_code[11], adc_code[10:0]};  // code - 2048
-  wire sdft_fire = adc_valid && sdft_in_ready;
+  wire sdft_fire;  // a sample enters the lanes
+  wire [31:0] sdft_t;
   wire sd_valid, sd_last, sd_ready;
   wire smp_frame;  // frame_capture: the sample entering now is a frame
   wire [7:0] sd_k;
   wire [ACC_W-1:0] sd_re, sd_im;
-  sdft_lanes #(.K_MAX(KS), .N(N), .XW(12), .CW(16), .TW(10), .ACC_W(ACC_W), .K_W(8),
-               .LANES(SDFT_LANES)) u_sdft (
-      .clk(clk), .rst(rst), .in_valid(adc_valid), .in_ready(sdft_in_ready), .in_x(x),
-      .in_skip(!smp_frame), .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k),
+  /* verilator lint_off PINCONNECTEMPTY */
+  sdft_front #(.K_MAX(KS), .N(N), .XW(12), .CW(16), .TW(10), .ACC_W(ACC_W), .K_W(8),
+               .LANES(SDFT_LANES), .DEPTH(SDFT_FIFO), .TAG_W(32)) u_sdft (
+      .clk(clk), .rst(rst), .s_valid(adc_valid), .s_ready(sdft_in_ready), .s_x(x), .s_t(adc_t),
+      .dft_fire(sdft_fire), .dft_t(sdft_t), .dft_skip(!smp_frame), .backlog(),
+      .cfg_valid(cfg_valid), .cfg_ready(cfg_ready), .cfg_k(cfg_k),
       .cfg_inc(cfg_inc), .cfg_last(cfg_last), .out_valid(sd_valid), .out_ready(sd_ready),
       .out_k(sd_k), .out_re(sd_re), .out_im(sd_im), .out_last(sd_last));
+  /* verilator lint_on PINCONNECTEMPTY */
   wire frame_pending;
   wire [31:0] frame_t;
   wire [15:0] frame_overruns;
   frame_capture #(.KS(KS), .W(ACC_W), .N(N), .STEP(STEP)) u_cap (
-      .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(sdft_fire), .smp_t(adc_t),
+      .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(sdft_fire), .smp_t(sdft_t),
       .smp_frame(smp_frame), .tok_valid(sd_valid), .tok_ready(sd_ready), .tok_last(sd_last),
       .tok_re(sd_re), .tok_im(sd_im), .rd_addr(io_raddr[7:0]), .rd_data(cap_data),
       .pending(frame_pending), .frame_t(frame_t), .done(wr_done), .clear(wr_clear),
@@ -497,7 +513,7 @@ module dtmf_top #(
   // ---------------- probes (tests and latency benchmarks) ---------------
   wire p_cfg_done /* verilator public_flat_rd */ = cfg_done;
   wire p_adc_fire /* verilator public_flat_rd */ = sdft_fire;
-  wire [31:0] p_adc_t /* verilator public_flat_rd */ = adc_t;
+  wire [31:0] p_adc_t /* verilator public_flat_rd */ = sdft_t;  // the tag of the sample p_adc_fire takes
   wire p_sd_fire /* verilator public_flat_rd */ = sd_valid && sd_ready;
   wire p_sd_last /* verilator public_flat_rd */ = sd_last;
   wire p_frame_fire /* verilator public_flat_rd */ = frame_pending;

@@ -301,6 +301,8 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
           {"ADC_CLK_HZ", i(p.spec.adc_clk_hz)},
           {"UCODE_HEX", "\"" + ucode_hex + "\""},
           {"KROM_HEX", "\"" + krom_hex + "\""}};
+  if (p.spec.sdft_fifo)  // (without, dtmf_top's default: none)
+    v.insert(v.end() - 3, {"SDFT_FIFO", i(p.spec.sdft_fifo)});
   if (p.spec.neuron_lanes)  // (without lanes dtmf_top's defaults, unused)
     v.insert(v.end() - 3, {{"NEURON_LANES", i(p.spec.neuron_lanes)},
                            {"NEURON_BITS", i(std::max(1, clog2(2L * p.T)))},

@@ -38,7 +38,9 @@ struct Board {
   // 6 ceil(KS / L) + 2 (common/eskin/dtmf_top_plan.h's budget), so a 32x32 skin
   // (KS 64) at 1 MS/s and 40 MHz needs 11.
   // iCEBreaker 1: the UP5K has no block RAM left for a second window.
-  // ULX3S 16 (rtl/sdft_lanes.v's most): of the ECP5's 28 (25F) or 156 (85F)
+  // ULX3S 32 (a 64x64 skin's 128 carriers at 1 MS/s need 22; 32 lanes of
+  // them: 9288 LUT4, 32 MULT18X18D, 33 DP16KD, rtl/sdft_front.v): of the
+  // ECP5's 28 (25F) or 156 (85F)
   // multipliers and 56 or 208 DP16KDs; a lane of a 12x12 skin (K_MAX 24,
   // N 64) is about 390 LUT4, 75 CCU2C, 38 DPR16X4 and 360 FF (Yosys 0.23),
   // about 1100 TRELLIS_COMB placed (12x12 at 1 MS/s, 3 -> 5 lanes: 7665 ->

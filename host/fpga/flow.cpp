@@ -84,23 +84,53 @@ std::vector<Resource> parse_nextpnr_utilisation(const std::string& log_text) {
   return out;
 }
 
-int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks) {
+namespace {
+
+// The sample period, in core clocks, that the DFT must keep (0: the rest
+// of the top needs no clock, any DFT will do): the one at the board clock
+// the rest would get (its clocks come in steps: a lane that saves less
+// than a step saves nothing).
+long dft_period_needed(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks) {
   const long other = hls::dtmf_top_min_clock_hz_without_dft(plan, engine_clocks);
-  if (other == 0) return 1;
-  // The board clock the rest would get (its clocks come in steps: a lane
-  // that saves less than a step saves nothing), and its sample period.
+  if (other == 0) return 0;
   const auto board_clk = slowest_clock_from(b, other);
   const long clk = board_clk ? board_clk->clk_hz : std::max(other, b.default_clk_hz);
   // An ADC that cannot convert on that clock gets its own (with_adc_clock),
   // whose samples may come a clock sooner (hls::dtmf_top_clock_budget).
   const bool own_adc = !hls::dtmf_top_adc_problem(plan.spec.sample_hz, clk).empty() &&
                        with_adc_clock(b, {clk, 0, {}, 0}, plan.spec.sample_hz).has_value();
-  const long period = std::lround(double(clk) / plan.spec.sample_hz) - (own_adc ? 1 : 0);
-  const int most = std::min({b.max_sdft_lanes, 16, plan.ks});
+  return std::lround(double(clk) / plan.spec.sample_hz) - (own_adc ? 1 : 0);
+}
+
+// The sample FIFO a board's flow may put in front of the lanes
+// (rtl/sdft_front.v): 4 samples, a few LUT RAM cells, where block RAM
+// is plentiful; none on the UP5K (one lane, its pace never needs one).
+int fifo_allowed(const Board& b) { return b.max_sdft_lanes > 1 ? 4 : 0; }
+
+}  // namespace
+
+int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks) {
+  const long period = dft_period_needed(b, plan, engine_clocks);
+  if (period == 0) return 1;
+  const int most = std::min({b.max_sdft_lanes, 64, plan.ks});
+  const int fifo = std::max(plan.spec.sdft_fifo, fifo_allowed(b));
   int lanes = 1;
-  while (lanes < most && hls::dtmf_top_sdft_min_period(plan.ks, lanes, plan.step) > period)
+  while (lanes < most && hls::dtmf_top_sdft_min_period(plan.ks, lanes, plan.step, fifo) > period)
     ++lanes;
   return lanes;
+}
+
+int choose_sdft_fifo(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks) {
+  const long period = dft_period_needed(b, plan, engine_clocks);
+  const int lanes = plan.spec.sdft_lanes;
+  if (period == 0 ||
+      hls::dtmf_top_sdft_min_period(plan.ks, lanes, plan.step, plan.spec.sdft_fifo) <= period)
+    return plan.spec.sdft_fifo;
+  const int fifo = fifo_allowed(b);
+  return fifo > plan.spec.sdft_fifo &&
+                 hls::dtmf_top_sdft_min_period(plan.ks, lanes, plan.step, fifo) <= period
+             ? fifo
+             : plan.spec.sdft_fifo;
 }
 
 int neuron_lanes_for(const Board& b, int neuron_unit, int taxels) {
@@ -163,6 +193,7 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
     c = best;
   }
   c.plan.spec.sdft_lanes = choose_sdft_lanes(b, c.plan, c.engine_clocks);
+  c.plan.spec.sdft_fifo = choose_sdft_fifo(b, c.plan, c.engine_clocks);
   c.core_min_hz = hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   auto budget_at = [&](const Clocking& k) {
     c.plan.spec.clk_hz = k.clk_hz;

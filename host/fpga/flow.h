@@ -106,8 +106,16 @@ struct FlowReport {
 // (hls::dtmf_top_sdft_min_period at its sample period, a clock shorter
 // when the ADC needs a clock of its own there); the board's most
 // when none does (the budget then names the DFT). 1 when the ADC cannot
-// convert at the rate at all.
+// convert at the rate at all. Counts the sample FIFO a board with more
+// than one lane may have (choose_sdft_fifo).
 int choose_sdft_lanes(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks);
+
+// The sample FIFO in front of the lanes (DtmfTopSpec::sdft_fifo,
+// rtl/sdft_front.v) for the plan's lanes: the plan's own when the DFT keeps
+// up with it, else 4 where the board allows one (more than one lane) and
+// that keeps up: a frame's sample may then hold the lanes for several
+// sample periods (K = 128 at 1 MS/s: KS + 8 = 136 clocks against 40).
+int choose_sdft_fifo(const Board& b, const hls::DtmfTopPlan& plan, long engine_clocks);
 
 // The core's clock for a scene on board `b`: the plan, the engine's load
 // (engine_load.h) under `policy`, the DFT lanes (choose_sdft_lanes; the

@@ -255,6 +255,34 @@ TEST(SdftLanesPlan, ThirtyTwoByThirtyTwoAtOneMegasampleDftKeepsUpOnTheUlx3s) {
   EXPECT_TRUE(at40.ok()) << at40.problems.front();
 }
 
+// scenes/skin64x64.yaml on the ULX3S, the DFT alone (an engine that needs
+// nothing; the ADC's band sets the clock, 37.3..40 MHz, P = 39 with the
+// ADC on a clock of its own): no number of lanes keeps up without a FIFO
+// (a frame's sample holds the lanes F = 136 >= 2 P clocks), so the flow
+// counts the 4-sample FIFO: the fewest lanes with S = 6 ceil(128 / L) + 2
+// <= 39 are 22 (S = 38; 21 lanes: 44), and the FIFO it then gives is 4.
+TEST(SdftLanesPlan, SixtyFourBySixtyFourTakesLanesAndTheFifoOnTheUlx3s) {
+  const fpga::Board b = fpga::find_board("ulx3s", "85k");
+  auto plan = hls::make_dtmf_top_plan(
+      sim::dtmf_top_spec(sim::load_scene(ESKIN_SOURCE_DIR "/scenes/skin64x64.yaml")));
+  ASSERT_EQ(plan.ks, 128);
+  for (int lanes : {6, 22, 64})
+    EXPECT_GT(hls::dtmf_top_sdft_min_period(128, lanes, plan.step, 0), 40) << lanes << " lanes";
+  plan.spec.sdft_lanes = fpga::choose_sdft_lanes(b, plan, 0);
+  EXPECT_EQ(plan.spec.sdft_lanes, 22);
+  EXPECT_EQ(hls::dtmf_top_sdft_skip_clocks(128, 22), 38);
+  EXPECT_EQ(hls::dtmf_top_sdft_skip_clocks(128, 21), 44);
+  EXPECT_EQ(fpga::choose_sdft_fifo(b, plan, 0), 4);
+  plan.spec.sdft_fifo = 4;
+  EXPECT_EQ(dft_problem(hls::dtmf_top_clock_budget(plan, 40000000, 0)), "");
+  plan.spec.sdft_fifo = 0;
+  EXPECT_NE(dft_problem(hls::dtmf_top_clock_budget(plan, 40000000, 0)), "");
+  // A plan that keeps up without one keeps none (the 32x32's 11 lanes).
+  auto p32 = hls::make_dtmf_top_plan(sim::dtmf_top_spec(fpga::scale_scene(base(), 32, 1e6)));
+  p32.spec.sdft_lanes = fpga::choose_sdft_lanes(b, p32, 0);
+  EXPECT_EQ(fpga::choose_sdft_fifo(b, p32, 0), 0);
+}
+
 // The iCEBreaker never gets a second lane, whatever the skin asks.
 TEST(SdftLanesPlan, IcebreakerKeepsOneLane) {
   const fpga::Board b = fpga::find_board("icebreaker");
@@ -263,6 +291,7 @@ TEST(SdftLanesPlan, IcebreakerKeepsOneLane) {
     const auto spec = sim::dtmf_top_spec(fpga::scale_scene(base(), n, 1e6));
     const auto plan = hls::make_dtmf_top_plan(spec);
     EXPECT_EQ(fpga::choose_sdft_lanes(b, plan, 0), 1) << n << "x" << n;
+    EXPECT_EQ(fpga::choose_sdft_fifo(b, plan, 0), 0) << n << "x" << n;  // nor a FIFO
   }
   const auto c = fpga::choose_core_clock(b, fpga::scale_scene(base(), 4, 1e6),
                                          fpga::LoadPolicy::Stress);
