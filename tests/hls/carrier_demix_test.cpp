@@ -366,8 +366,8 @@ TEST(CarrierDemix, OscillatorDriftLimitsTheGain) {
 //                    <= 2^ACC_W + 1,
 // and the DC sum |b_2K| <= 2^ACC_W; with |coef| <= 2^(CW-1):
 //   |acc_i| <= 2^(CW-1) (K + 1) (2^ACC_W + 1),
-// reached to within 2^(CW-1) (2K + 1) (every sum at the end of its range,
-// the signs of a row's coefficients those of the sums): for K = 128 at the
+// and 2^(CW-1) ((K + 1) 2^ACC_W - (2K + 1)) is reached (every sum at the
+// end of its range, a row's coefficients all most negative): for K = 128 at the
 // widest formats (ACC_W 32, CW 18) 129 2^49 ~ 2^56.01, a 58-bit signed sum,
 // inside int64 (the header's coarser bound: 257 terms < 2^(ACC_W+CW) each,
 // < 2^59). At DtmfChain<64x64, N 512>'s formats (ACC_W 22, CW 16):
