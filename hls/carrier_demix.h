@@ -44,7 +44,10 @@
 //                  >> CF, accumulated exactly in 64 bits (products of the
 //                  rotated sums, ACC_W + 1 bits, and CW-bit coefficients: <
 //                  2^(ACC_W + CW); 2K+1 <= 257 of them: < 2^(ACC_W + CW + 9)
-//                  <= 2^59), then saturated to signed OUT_W bits.
+//                  <= 2^59; a carrier's two sums share 2^ACC_W, so at most
+//                  2^(CW-1) (K+1) (2^ACC_W + 1), 2^56.01 at the widest, is
+//                  reached, as tests/hls/carrier_demix_test.cpp checks),
+//                  then saturated to signed OUT_W bits.
 //
 // Hardware (the frame engine's `carrier_demix` routine): per frame 4
 // products per input token (the rotation to the oldest sample) + 2K (2K+1)
@@ -81,7 +84,7 @@ class CarrierDemix {
   // 128: a 64x64 skin's carriers (hls/dtmf_chain.h instantiates the demix
   // type for every chain, demixing or not).
   static_assert(K_MAX >= 1 && K_MAX <= 128,
-                "K_MAX must be 1..128 (2K+1 <= 257 terms: sums < 2^(ACC_W + 1 + CW + 9) <= 2^60)");
+                "K_MAX must be 1..128 (2K+1 <= 257 terms: sums < 2^(ACC_W + CW + 9) <= 2^59)");
   static_assert(N >= 3, "window N must be >= 3 (2 K + 1 <= N is checked by the builder)");
   static_assert(ACC_W >= 2 && ACC_W <= 32, "ACC_W must be 2..32");
   static_assert(OUT_W >= 2 && OUT_W <= 32, "OUT_W must be 2..32");

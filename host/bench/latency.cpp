@@ -87,6 +87,7 @@ struct HarnessBuild {
   std::string top;                  // module, rtl/<top>.v
   std::string harness;              // bench/latency/<harness>.cpp
   std::vector<std::string> g_args;  // "-GNAME=VALUE"
+  std::vector<std::string> flags;   // further Verilator options (--assert)
   std::vector<std::string> deps;    // further files it depends on, relative to the source tree
   std::vector<fs::path> data;       // files the model reads ($readmemh)
   std::string ldflags;
@@ -107,6 +108,7 @@ fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& 
   for (const auto& d : deps) h = fnv1a(d.filename().string() + slurp(d), h);
   for (const auto& d : hb.data) h = fnv1a(slurp(d), h);
   for (const auto& a : hb.g_args) h = fnv1a(a, h);
+  for (const auto& a : hb.flags) h = fnv1a(a, h);  // a build without them is another model
   const fs::path dir = cache_dir / fmt::format("{:016x}", h);
   const fs::path exe = dir / "obj" / hb.harness;
   build_seconds = 0;
@@ -137,6 +139,7 @@ fs::path harness_for(const HarnessBuild& hb, const fs::path& cache_dir, double& 
                                "-Wno-fatal", "--x-assign", "unique", "--x-initial", "unique",
                                "-y", (src / "rtl").string(), "--top-module", hb.top};
   cmd.insert(cmd.end(), hb.g_args.begin(), hb.g_args.end());
+  cmd.insert(cmd.end(), hb.flags.begin(), hb.flags.end());
   for (const auto& a : {(src / "rtl" / (hb.top + ".v")).string(), harness.string(),
                         std::string("-CFLAGS"),
                         "-std=c++17 -O2 -I" + src.string() + " -I" + (src / "tests/rtl").string() +
@@ -267,6 +270,10 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
   hb.harness = "latency_harness";
   const auto params = hls::write_dtmf_top_build(p, fs::absolute(hex_dir).string(), c.name);
   hb.g_args = hls::verilator_g_args(params);
+  // The RTL's simulation assertions (the microcode's timing contracts) fire
+  // here as in every other build of the top (tests/rtl/dtmf_top_test.cmake,
+  // sim/vboard): a run that breaks one fails instead of timing it.
+  hb.flags = {"--assert"};
   for (const auto& q : params)  // the microcode and constants the model reads
     if (q.name == "UCODE_HEX" || q.name == "KROM_HEX") hb.data.push_back(q.value.substr(1, q.value.size() - 2));
   hb.deps = {"tests/rtl/dtmf_top_board.h", "sim/ad7476_model.h", "host/link/link_decoder.h",

@@ -32,10 +32,13 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <memory>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 #include "hls/carrier_demix_config.h"
+#include "hls/dtmf_chain.h"
 #include "hls/sdft_bank.h"
 #include "hls/sdft_bank_config.h"
 #include "host/golden/carrier_demix.h"
@@ -348,6 +351,222 @@ TEST(CarrierDemix, OscillatorDriftLimitsTheGain) {
   }
   EXPECT_LT(dm_at[0], 0.01);
   EXPECT_LT(4 * dm_at[1], raw_at[1]);
+}
+
+// ---- The 64-bit accumulation at the extreme ---------------------------------
+// K = 128 carriers (the most CarrierDemix takes: a 64x64 skin), the largest
+// token values, table entries and coefficients the number formats allow,
+// against the same arithmetic evaluated here in __int128 from the header's
+// formats (floor divisions, not the kernel's shifts or code).
+//
+// Bound. A carrier's token (re, im), |re|, |im| <= 2^(ACC_W-1), rotated by
+// (c, s), |c|, |s| <= 2^(SW-1) (any SW-bit table entry), gives
+//   |b_2k| + |b_2k+1| = max(|pr + pi|, |pr - pi|) / 2^(SW-1) + rounding
+//                    <= 2^(ACC_W-1) (|c + s| + |c - s|) / 2^(SW-1) + 1
+//                    <= 2^ACC_W + 1,
+// and the DC sum |b_2K| <= 2^ACC_W; with |coef| <= 2^(CW-1):
+//   |acc_i| <= 2^(CW-1) (K + 1) (2^ACC_W + 1),
+// and 2^(CW-1) ((K + 1) 2^ACC_W - (2K + 1)) is reached (every sum at the
+// end of its range, a row's coefficients all most negative): for K = 128 at the
+// widest formats (ACC_W 32, CW 18) 129 2^49 ~ 2^56.01, a 58-bit signed sum,
+// inside int64 (the header's coarser bound: 257 terms < 2^(ACC_W+CW) each,
+// < 2^59). At DtmfChain<64x64, N 512>'s formats (ACC_W 22, CW 16):
+// 129 2^37 ~ 2^44.01.
+//
+// The frames: two that drive every sum to the end of its range (all low,
+// all high), then random extremes and random tokens. The rows: all most
+// negative, all most positive, alternating, random extremes, random, and
+// "boundary" rows whose last two coefficients (set_coef before each frame,
+// against two small sums, 256 and 1) put the exact sum on a rounding
+// boundary of the output (acc = 2^(CF-1) or 2^(CF-1) - 1 mod 2^CF), so an
+// error of 1 anywhere in the sum changes the output.
+// The test checks that it can fail: the same rows summed in 32 bits, in one
+// bit fewer than the bound needs (wrapping), and (where the bound exceeds
+// 2^53) in double give outputs that differ from the exact ones.
+using I128 = __int128;
+
+I128 floor_div_pow2(I128 a, int sh) {
+  const I128 d = I128(1) << sh;
+  I128 q = a / d;
+  if (a % d != 0 && a < 0) --q;
+  return q;
+}
+
+template <int K, int N, int ACC_W, int OUT_W, int TW, int SW, int CW, int CF>
+void extreme_accumulation(uint32_t seed) {
+  using D = CarrierDemix<K, N, ACC_W, OUT_W, TW, SW, CW, CF>;
+  constexpr int dim = 2 * K + 1, Q = 1 << (TW - 2);
+  static_assert(CF - 8 <= CW - 1, "boundary rows: (2^CF - 1) >> 8 must fit a coefficient");
+  std::mt19937_64 rng(seed);
+  const int64_t M = int64_t(1) << (SW - 1);
+  const int64_t lo = -(int64_t(1) << (ACC_W - 1)), hi = (int64_t(1) << (ACC_W - 1)) - 1;
+  const int64_t cmin = -(int64_t(1) << (CW - 1)), cmax = (int64_t(1) << (CW - 1)) - 1;
+  const I128 ymax = (I128(1) << (OUT_W - 1)) - 1, ymin = -ymax - 1;
+  const auto sat = [&](I128 v) { return v > ymax ? ymax : (v < ymin ? ymin : v); };
+  const auto y_of = [&](I128 acc) { return sat(floor_div_pow2(acc + (I128(1) << (CF - 1)), CF)); };
+
+  // Quadrant phases only: carrier k starts at quadrant k % 4 and advances
+  // (k / 4) % 4 quadrants a frame. The quarter-wave table's two entries
+  // those phases read are the most negative SW-bit value, so every rotation
+  // product is as large as the format allows (the kernel takes any SW-bit
+  // table; sin(m pi/2) = qsin[0], qsin[Q], -qsin[0], -qsin[Q] for m = 0..3).
+  auto cfg = std::make_unique<typename D::Config>();
+  cfg->carriers = K;
+  for (int k = 0; k < K; ++k)
+    cfg->phase0[k] = uint32_t(k % 4) << 30, cfg->inc[k] = uint32_t((k / 4) % 4) << 30;
+  cfg->qsin[0] = int32_t(-M), cfg->qsin[Q] = int32_t(-M);
+  const auto sin_q = [&](int m) -> int64_t {
+    const int64_t t[4] = {cfg->qsin[0], cfg->qsin[Q], -int64_t(cfg->qsin[0]), -int64_t(cfg->qsin[Q])};
+    return t[m & 3];
+  };
+  const auto rotate = [&](int64_t re, int64_t im, int m, I128& b0, I128& b1) {
+    const I128 c = sin_q(m + 1), s = sin_q(m), half = I128(1) << (SW - 2);
+    b0 = floor_div_pow2(I128(re) * c - I128(im) * s + half, SW - 1);
+    b1 = -floor_div_pow2(I128(re) * s + I128(im) * c + half, SW - 1);
+  };
+
+  // The trim slots of the boundary rows: carriers K-2 (sums +-256) and K-1
+  // (sums +-1) on every frame from frame 2.
+  const int j1 = 2 * (K - 2), j2 = 2 * (K - 1);
+  std::vector<int64_t> coef(size_t(dim) * dim);
+  std::uniform_int_distribution<int64_t> any_coef(cmin, cmax);
+  for (int i = 0; i < dim; ++i)
+    for (int j = 0; j < dim; ++j) {
+      int64_t& v = coef[size_t(i) * dim + j];
+      switch (i % 6) {
+        case 0: v = cmin; break;
+        case 1: v = cmax; break;
+        case 2: v = j % 2 ? cmax : cmin; break;
+        case 4: v = any_coef(rng); break;
+        default: v = rng() % 2 ? cmax : cmin; break;  // 3, and 5 (boundary)
+      }
+    }
+  for (size_t n = 0; n < coef.size(); ++n) cfg->coef[n] = int32_t(coef[n]);
+  auto dm = std::make_unique<D>();
+  ASSERT_TRUE(dm->configure(*cfg));
+
+  const int64_t extremes[] = {lo, hi, lo + 1, hi - 1, 0, -1, 1};
+  std::uniform_int_distribution<int64_t> any_tok(lo, hi);
+  const auto extreme = [&]() { return rng() % 8 == 7 ? any_tok(rng) : extremes[rng() % 7]; };
+  const int frames = 10;
+  I128 max_acc = 0;
+  bool differs_32 = false, differs_wrap = false, differs_double = false;
+  int saturated = 0, unsaturated_large = 0, boundary_rows = 0;
+  const int wrap_bits = ACC_W + CW + 7;  // one bit fewer than the bound's sums need
+  for (int f = 0; f < frames; ++f) {
+    std::vector<int64_t> re(K + 1), im(K + 1);
+    std::vector<I128> b(dim);
+    for (int k = 0; k <= K; ++k) {
+      const int m = k < K ? int((cfg->phase0[k] >> 30) + uint32_t(f) * (cfg->inc[k] >> 30)) & 3 : 0;
+      if (f < 2) {  // every sum at the end of its range: frame 0 low, frame 1 high
+        I128 best = 0;
+        bool first = true;
+        for (int64_t r : {lo, hi})
+          for (int64_t q : {lo, hi}) {
+            I128 b0, b1;
+            rotate(r, q, m, b0, b1);
+            const I128 v = k < K ? b0 + b1 : b0;
+            if (first || (f == 0 ? v < best : v > best)) best = v, re[k] = r, im[k] = q, first = false;
+          }
+      } else if (k == K - 2 || k == K - 1) {
+        re[k] = k == K - 2 ? 256 : 1, im[k] = 0;
+      } else if (f < 8) {
+        re[k] = extreme(), im[k] = extreme();
+      } else {
+        re[k] = any_tok(rng), im[k] = any_tok(rng);
+      }
+      I128 b0, b1;
+      rotate(re[k], im[k], m, b0, b1);
+      if (k < K) b[2 * k] = b0, b[2 * k + 1] = b1;
+      else b[2 * K] = b0;
+    }
+    if (f >= 2) {  // the boundary rows' trims for this frame's sums
+      ASSERT_TRUE((b[j1] == 256 || b[j1] == -256) && (b[j2] == 1 || b[j2] == -1)) << "frame " << f;
+      for (int i = 5; i < dim; i += 6) {
+        I128 rest = 0;
+        for (int j = 0; j < dim; ++j)
+          if (j != j1 && j != j2) rest += I128(coef[size_t(i) * dim + j]) * b[j];
+        const I128 target = (I128(1) << (CF - 1)) - (i / 6) % 2, mod = I128(1) << CF;
+        const I128 d = ((target - rest) % mod + mod) % mod;
+        const int64_t c1 = int64_t(d >> 8) * (b[j1] > 0 ? 1 : -1);
+        const int64_t c2 = int64_t(d & 255) * (b[j2] > 0 ? 1 : -1);
+        coef[size_t(i) * dim + j1] = c1, coef[size_t(i) * dim + j2] = c2;
+        ASSERT_TRUE(dm->set_coef(i * dim + j1, int32_t(c1)));
+        ASSERT_TRUE(dm->set_coef(i * dim + j2, int32_t(c2)));
+      }
+    }
+    // The exact outputs and those of the narrower sums.
+    std::vector<I128> y(dim);
+    for (int i = 0; i < dim; ++i) {
+      I128 acc = 0;
+      uint32_t acc32 = 0;
+      double accd = 0;
+      for (int j = 0; j < dim; ++j) {
+        const I128 p = I128(coef[size_t(i) * dim + j]) * b[j];
+        acc += p;
+        acc32 += uint32_t(uint64_t(int64_t(p)));
+        accd += double(int64_t(p));
+      }
+      y[i] = y_of(acc);
+      max_acc = std::max(max_acc, acc < 0 ? -acc : acc);
+      I128 wrapped = acc & ((I128(1) << wrap_bits) - 1);
+      if (wrapped >= I128(1) << (wrap_bits - 1)) wrapped -= I128(1) << wrap_bits;
+      differs_32 |= y_of(I128(int32_t(acc32))) != y[i];
+      differs_wrap |= y_of(wrapped) != y[i];
+      differs_double |= y_of(I128(int64_t(accd))) != y[i];
+      if (y[i] == ymax || y[i] == ymin) ++saturated;
+      else if ((acc < 0 ? -acc : acc) > (I128(1) << (ACC_W + CW + 3))) ++unsaturated_large;
+      if (f >= 2 && i % 6 == 5) {
+        ASSERT_EQ((acc % (I128(1) << CF) + (I128(1) << CF)) % (I128(1) << CF),
+                  (I128(1) << (CF - 1)) - (i / 6) % 2);
+        boundary_rows += y[i] != ymax && y[i] != ymin;
+      }
+    }
+    // The kernel.
+    typename D::Token out[K];
+    for (int k = 0; k <= K; ++k) {
+      const int n = dm->push(typename D::Token{uint8_t(k), int32_t(re[k]), int32_t(im[k]), k == K}, out);
+      ASSERT_EQ(n, k == K ? K : 0) << "frame " << f << " token " << k;
+    }
+    for (int k = 0; k < K; ++k) {
+      EXPECT_EQ(int(out[k].k), k) << "frame " << f;
+      EXPECT_EQ(out[k].last, k == K - 1) << "frame " << f << " carrier " << k;
+      EXPECT_EQ(int64_t(out[k].re), int64_t(y[2 * k])) << "frame " << f << " carrier " << k;
+      EXPECT_EQ(int64_t(out[k].im), int64_t(sat(-y[2 * k + 1]))) << "frame " << f << " carrier " << k;
+    }
+    EXPECT_EQ(int64_t(dm->dc()), int64_t(y[2 * K])) << "frame " << f;
+  }
+  // The bound holds and the frames reach it (to within the rounding of
+  // the sums at the ends of their ranges).
+  const I128 bound = I128(-cmin) * (K + 1) * ((I128(1) << ACC_W) + 1);
+  const I128 reached = I128(-cmin) * ((I128(K + 1) << ACC_W) - (2 * K + 1));
+  EXPECT_LE(max_acc, bound);
+  EXPECT_GE(max_acc, reached);
+  EXPECT_GE(max_acc, I128(1) << (wrap_bits - 1)) << "a " << wrap_bits << "-bit sum would hold it";
+  std::printf("K %d ACC_W %d CW %d: max |acc| = 2^%.4f (bound 2^%.4f), %d outputs saturated, "
+              "%d unsaturated above 2^%d, %d boundary rows unsaturated\n",
+              K, ACC_W, CW, std::log2(double(max_acc)), std::log2(double(bound)), saturated,
+              unsaturated_large, ACC_W + CW + 3, boundary_rows);
+  // The test tells the exact sum from narrower ones.
+  EXPECT_TRUE(differs_32) << "no output tells a 32-bit sum from the exact one";
+  EXPECT_TRUE(differs_wrap) << "no output tells a " << wrap_bits << "-bit sum from the exact one";
+  if (double(bound) > std::ldexp(1.0, 53)) {
+    EXPECT_TRUE(differs_double) << "no output tells a double sum from the exact one";
+    EXPECT_GT(boundary_rows, 0);
+  }
+}
+
+TEST(CarrierDemix, Exact64BitSumsAt128CarriersWidestFormats) {
+  // ACC_W 32, OUT_W 32, TW 10, SW 18, CW 18, CF 25: each the largest the
+  // kernel's static_asserts allow.
+  extreme_accumulation<128, 512, 32, 32, 10, 18, 18, 25>(1);
+}
+
+TEST(CarrierDemix, Exact64BitSumsAt128CarriersDtmfChain64x64) {
+  // The demix DtmfChain instantiates for the 64x64 skin (N 512).
+  static_assert(std::is_same_v<eskin::hls::DtmfChain<eskin::hls::DtmfChainSizes<64, 64, 512>>::Demix,
+                               CarrierDemix<128, 512, 22, 24, 10, 16, 16, 14>>);
+  extreme_accumulation<128, 512, 22, 24, 10, 16, 16, 14>(2);
 }
 
 }  // namespace

@@ -21,11 +21,14 @@
 //   3x3, 10x10: DtmfChain itself (the default scene neuroskin2, demixed,
 //     neurons off and on; the staggered 10x10 scene, bin-centred, neurons
 //     on), spike windows of 2 frames with neurons;
-//   64x64: DtmfChain does not compile beyond 64 carriers (CarrierDemix's
-//     K_MAX), so the reference is its frame() body step by step from the
-//     same kernels (ChainFrame below), neurons on (the default scene's
-//     neuron constants); at 3x3 and 10x10 this composition is checked
-//     against DtmfChain too.
+//   64x64: DtmfChain itself on the 64x64 scene (bin-centred, not demixed,
+//     two presses and a slide; neurons off and on, spike windows of 2
+//     frames, 1024 events a packet); and for what the scene does not reach (random
+//     codes, frames' packet mixes other than DtmfChain's decimation, spike
+//     recording off, windows of 1 frame) its frame() body step by step from
+//     the same kernels (ChainFrame below, the default scene's neuron
+//     constants), which every scene run checks against DtmfChain frame by
+//     frame, 64x64 included.
 // Random token gaps, control-plane delays, header delays and output
 // back-pressure (seeded); out_data must hold while stalled. The runs must
 // reach what they are for: sites added and released, sparse packets with
@@ -87,8 +90,8 @@ Bytes fifo(const P& p) {
   return b;
 }
 
-// DtmfChain::frame's body, from the same kernels: the reference where
-// DtmfChain itself does not compile.
+// DtmfChain::frame's body, from the same kernels: the reference of frames
+// whose packets DtmfChain's decimation would not ask for.
 template <int R, int C, int MAX>
 struct ChainFrame {
   static constexpr int K = R + C, T = R * C;
@@ -409,8 +412,13 @@ template <class S, class V>
 void scene_run(const std::string& scene_file, size_t max_frames, bool neurons, uint32_t seed,
                double p_in, double p_hdr, double p_out, double p_cp) {
   const eskin::sim::Scene sc = eskin::sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/" + scene_file);
-  const auto plan = hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(sc));
-  auto cfg = hls::chain_config<S>(plan);
+  auto plan = hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(sc));
+  // The spike capacity of the block's build (dtmf_chain_test.cmake: 256,
+  // 1024 at 64x64); the plan's is the frame engine's 256.
+  plan.max_spikes = S::MAX_SPIKES;
+  // On the heap: at 64x64 the configuration holds a 257 x 257 demix table.
+  const auto cfgp = std::make_unique<typename hls::DtmfChain<S>::Config>(hls::chain_config<S>(plan));
+  auto& cfg = *cfgp;
   cfg.neurons = neurons;
   cfg.mask = hls::kMaskAmplitudes | hls::kMaskTaxels | hls::kMaskSparse |
              (neurons ? hls::kMaskSpikes : 0);
@@ -627,6 +635,16 @@ TEST(DtmfChain, DefaultSceneBytesExactUnderRandomStalls) {
 TEST(DtmfChain, Staggered10x10SceneBytesExactUnderRandomStalls) {
   scene_run<hls::DtmfChainSizes<10, 10, 64>, Vdtmf_chain_10>("scenes/staggered10x10.yaml", 300, true,
                                                               2, 0.8, 0.6, 0.7, 0.6);
+}
+
+// The 64x64 scene (128 bin-centred carriers, N 512, a frame every 1000
+// samples at 1 MS/s: two presses and a slide) against DtmfChain at 64x64
+// itself, ghost filter on, neurons off (every frame's taxels) and on, every
+// frame of the scene (30).
+TEST(DtmfChain, Skin64x64SceneBytesExactUnderRandomStalls) {
+  using S = hls::DtmfChainSizes<64, 64, 512, 4, 1024>;
+  scene_run<S, Vdtmf_chain_64>("scenes/skin64x64.yaml", 30, false, 4, 0.7, 0.5, 0.6, 0.5);
+  scene_run<S, Vdtmf_chain_64>("scenes/skin64x64.yaml", 30, true, 5, 0.8, 0.5, 0.7, 0.5);
 }
 
 TEST(DtmfChain, Skin64x64BytesExactUnderRandomStalls) {
