@@ -99,35 +99,12 @@ module izhikevich_layer (
   localparam [15:0] W_OFF_H = 16'd8000;                // 62.5 mV = 8000 2^15 (low 15 bits 0)
 
   // ---- configuration words (field use as the microcode reads DMEM) --------
-  reg [31:0] c_vreset, c_ujump, c_const;
-  reg [15:0] c_m2, c_m3, c_m4, c_gain;
-  reg [5:0]  c_fu, c_s2, c_s3, c_s4, c_gsr, c_gsl, c_xsh;
-  reg        c_ic;
-  always @(posedge clk)
-    if (rst) begin
-      c_vreset <= 0; c_ujump <= 0; c_const <= 0;
-      c_m2 <= 0; c_m3 <= 0; c_m4 <= 0; c_gain <= 0;
-      c_fu <= 0; c_s2 <= 0; c_s3 <= 0; c_s4 <= 0; c_gsr <= 0; c_gsl <= 0; c_xsh <= 0;
-      c_ic <= 0;
-    end else if (cfg_we)
-      case (cfg_addr)
-        5'd2: c_vreset <= cfg_data;
-        5'd3: c_ujump <= cfg_data;
-        5'd4: c_fu <= cfg_data[5:0];
-        5'd5: c_const <= cfg_data;
-        5'd6: c_m2 <= cfg_data[15:0];
-        5'd7: c_s2 <= cfg_data[5:0];
-        5'd8: c_m3 <= cfg_data[15:0];
-        5'd9: c_s3 <= cfg_data[5:0];
-        5'd10: c_m4 <= cfg_data[15:0];
-        5'd11: c_s4 <= cfg_data[5:0];
-        5'd12: c_gain <= cfg_data[15:0];
-        5'd13: c_gsr <= cfg_data[5:0];
-        5'd14: c_gsl <= cfg_data[5:0];
-        5'd15: c_xsh <= cfg_data[5:0];
-        5'd16: c_ic <= |cfg_data;
-        default: ;
-      endcase
+  `include "neuron_config.vh"
+  // v_init and u_init are the state's first values: the caller's (the
+  // microcode's or rtl/izhikevich_lanes.v's), not this unit's.
+  /* verilator lint_off UNUSEDSIGNAL */
+  wire unused_init = ^{c_vinit, c_uinit};
+  /* verilator lint_on UNUSEDSIGNAL */
 
   // ---- sequencer -----------------------------------------------------------
   reg       busy;

@@ -20,7 +20,8 @@
 // rtl/byte_fifo.v) holds all of it (7 + len, plus the byte waiting in
 // out_data); otherwise it is left out and `dropped` pulses for a clock (the
 // top counts it in dropped_frames). A dense packet left out still lets its
-// taxels through to the sparse list.
+// taxels through to the sparse list. rtl/list_packet_writer.v writes the
+// sparse packet.
 //
 // Rate: one byte a clock on out_* from a packet's first byte to its last
 // while out_ready is high; a taxel a clock in while no dense packet is
@@ -55,7 +56,7 @@ module taxel_packetizer #(
     output reg         out_valid,
     input  wire        out_ready,
     output reg  [7:0]  out_data,
-    output reg         dropped,
+    output wire        dropped,
     output wire        idle
 );
   localparam integer T = R * C;
@@ -70,27 +71,25 @@ module taxel_packetizer #(
   localparam [15:0] DENSE_LEN = 16'(2 + 2 * T);
   localparam [16:0] DENSE_ROOM = 17'(7 + 2 + 2 * T);
 
-  localparam [2:0] S_IDLE = 3'd0, S_DHDR = 3'd1, S_TAX = 3'd2, S_SCHK = 3'd3, S_SHDR = 3'd4,
-                   S_SPAY = 3'd5;
-  reg [2:0]  state;
-  reg [3:0]  bidx;        // header byte; entry byte (0..3) in S_SPAY
+  // S_SKIP: a frame without a sparse packet takes the clock its room check
+  // would.
+  localparam [1:0] S_IDLE = 2'd0, S_DHDR = 2'd1, S_TAX = 2'd2, S_SKIP = 2'd3;
+  reg [1:0]  state;
+  reg [3:0]  bidx;        // dense header byte
   reg [31:0] t;
   reg        dense_on, sparse_on, hi_next;
   reg [15:0] lo;          // max(1, sparse_min)
   reg [7:0]  hi_byte;
   reg [NB-1:0] n;         // entries in the list
-  reg [NB-1:0] ridx;      // the list entry rd_q is read from (up to T: none)
-  reg [31:0] ent;         // the entry being sent: {g hi, g lo, col, row}
+  wire [AB-1:0] ridx;     // the list entry rd_q is read from
   reg        last_in;     // the frame's last taxel is in
 
   wire en = !out_valid || out_ready;
-  assign hdr_ready = state == S_IDLE && !out_valid;
+  wire w_idle;            // no sparse packet being checked or written
+  assign hdr_ready = state == S_IDLE && w_idle && !out_valid;
   assign idle = hdr_ready;
   wire hdr_take = hdr_valid && hdr_ready;
-  wire [16:0] pending = {16'd0, out_valid};  // the byte in out_data is not in the FIFO yet
-  wire dense_room = {1'b0, out_free} >= DENSE_ROOM + pending;
-  wire [15:0] sparse_len = 16'({n, 2'b00});
-  wire sparse_room = {1'b0, out_free} >= {1'b0, sparse_len} + 17'd7 + pending;
+  wire dense_room = {1'b0, out_free} >= DENSE_ROOM + {16'd0, out_valid};
 
   // The list of lit taxels (one write a clock while they come in, one
   // registered read a clock while the sparse packet goes out).
@@ -100,32 +99,38 @@ module taxel_packetizer #(
   wire lit = sparse_on && in_value >= lo;
   always @(posedge clk) begin
     if (in_take && lit) list[n[AB-1:0]] <= {in_value, in_col, in_row};
-    rd_q <= list[ridx[AB-1:0]];
+    rd_q <= list[ridx];
   end
 
+  // The frame's last taxel (its high byte, with a dense packet) leaves this
+  // clock: the sparse packet's turn.
+  wire frame_end = state == S_TAX && (dense_on ? (hi_next && en && last_in)
+                                               : (in_take && in_last));
+  // The sparse packet: its entries {row, col, g lo, g hi} as stored.
+  wire       w_valid;
+  wire [7:0] w_data;
+  wire       w_dropped;
+  list_packet_writer #(.TYPE(8'h03), .EB(4), .N(T)) u_writer (
+      .clk(clk), .rst(rst),
+      .start_valid(frame_end && sparse_on), .start_ready(w_idle),
+      .t(t), .n(n), .out_free(out_free), .out_pending(out_valid),
+      .rd_addr(ridx), .rd_q(rd_q),
+      .byte_valid(w_valid), .byte_ready(en), .byte_data(w_data), .dropped(w_dropped));
+  reg dense_dropped;
+  assign dropped = dense_dropped || w_dropped;
+
+  `include "fifo_packet_header.vh"
   // This clock's byte, if any.
   reg       emit;
   reg [7:0] byte_out;
-  reg [7:0] hdr_byte;  // header byte bidx of the packet being started
-  always @(*) begin
-    case (bidx)
-      4'd0: hdr_byte = (state == S_DHDR) ? 8'h02 : 8'h03;
-      4'd1: hdr_byte = t[7:0];
-      4'd2: hdr_byte = t[15:8];
-      4'd3: hdr_byte = t[23:16];
-      4'd4: hdr_byte = t[31:24];
-      4'd5: hdr_byte = (state == S_DHDR) ? DENSE_LEN[7:0] : sparse_len[7:0];
-      4'd6: hdr_byte = (state == S_DHDR) ? DENSE_LEN[15:8] : sparse_len[15:8];
-      4'd7: hdr_byte = 8'(R);
-      default: hdr_byte = 8'(C);
-    endcase
-  end
   always @(*) begin
     emit = 1'b0;
-    byte_out = hdr_byte;
+    // The dense header: the FIFO's 7 bytes, then rows, cols.
+    byte_out = (bidx == 4'd7) ? 8'(R)
+             : bidx[3] ? 8'(C) : fifo_header_byte(bidx[2:0], 8'h02, t, DENSE_LEN);
     in_ready = 1'b0;
     case (state)
-      S_DHDR, S_SHDR: emit = en;
+      S_DHDR: emit = en;
       S_TAX:
         if (!dense_on) begin
           in_ready = 1'b1;
@@ -137,11 +142,11 @@ module taxel_packetizer #(
           emit = in_valid && en;
           byte_out = in_value[7:0];
         end
-      S_SPAY: begin
-        emit = en;
-        byte_out = ent[8 * bidx[1:0] +: 8];
-      end
-      default: ;
+      default:
+        if (w_valid) begin
+          emit = en;
+          byte_out = w_data;
+        end
     endcase
   end
 
@@ -149,14 +154,13 @@ module taxel_packetizer #(
     if (rst) begin
       state <= S_IDLE;
       out_valid <= 1'b0;
-      dropped <= 1'b0;
+      dense_dropped <= 1'b0;
       bidx <= 4'd0;
       hi_next <= 1'b0;
       last_in <= 1'b0;
       n <= {NB{1'b0}};
-      ridx <= {NB{1'b0}};
     end else begin
-      dropped <= 1'b0;
+      dense_dropped <= 1'b0;
       if (en) begin
         out_valid <= emit;
         if (emit) out_data <= byte_out;
@@ -179,7 +183,7 @@ module taxel_packetizer #(
             bidx <= 4'd0;
             hi_next <= 1'b0;
             dense_on <= hdr_dense && dense_room;
-            dropped <= hdr_dense && !dense_room;
+            dense_dropped <= hdr_dense && !dense_room;
             state <= (hdr_dense && dense_room) ? S_DHDR : S_TAX;
           end
         S_DHDR:
@@ -187,49 +191,10 @@ module taxel_packetizer #(
             bidx <= bidx + 4'd1;
             if (bidx == 4'd8) state <= S_TAX;
           end
-        S_TAX:
-          if (dense_on && hi_next) begin
-            if (en) begin
-              hi_next <= 1'b0;
-              if (last_in) state <= S_SCHK;
-            end
-          end else if (in_take && in_last && !dense_on) begin
-            state <= S_SCHK;
-          end
-        S_SCHK: begin
-          bidx <= 4'd0;
-          ridx <= {NB{1'b0}};
-          if (!sparse_on) begin
-            state <= S_IDLE;
-          end else if (sparse_room) begin
-            state <= S_SHDR;
-          end else begin
-            dropped <= 1'b1;
-            state <= S_IDLE;
-          end
+        S_TAX: begin
+          if (dense_on && hi_next && en) hi_next <= 1'b0;
+          if (frame_end) state <= sparse_on ? S_IDLE : S_SKIP;
         end
-        S_SHDR:
-          if (en) begin
-            bidx <= bidx + 4'd1;
-            if (bidx == 4'd6) begin
-              // rd_q has held entry 0 since the header's first byte.
-              ent <= rd_q;
-              ridx <= NB'(1);
-              bidx <= 4'd0;
-              state <= (n == {NB{1'b0}}) ? S_IDLE : S_SPAY;
-            end
-          end
-        S_SPAY:
-          if (en) begin
-            bidx <= bidx + 4'd1;
-            if (bidx == 4'd3) begin
-              // rd_q = entry ridx, read during this entry's bytes.
-              bidx <= 4'd0;
-              ent <= rd_q;
-              ridx <= ridx + 1'b1;
-              if (ridx == n) state <= S_IDLE;
-            end
-          end
         default: state <= S_IDLE;
       endcase
     end

@@ -31,14 +31,13 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <deque>
-#include <memory>
-#include <random>
+#include <string>
 #include <vector>
 
 #include "Vdft_capture_tb.h"
 #include "Vdft_capture_tb_l1.h"
 #include "Vdft_capture_tb_s32.h"
+#include "dft_capture_bench.h"
 #include "frame_rule.h"
 #include "eskin/dtmf_top_plan.h"
 #include "hls/sdft_bank.h"
@@ -76,52 +75,21 @@ struct Result {
 // pending frame word by word and releases it.
 template <class B>
 void run(int k, size_t n, uint64_t seed, Result& r, uint64_t period = 0) {
-  auto m = std::make_unique<typename B::Model>();
-  uint64_t cycle = 0;
-  auto tick = [&] {
-    m->clk = 0;
-    m->eval();
-    m->clk = 1;
-    m->eval();
-    ++cycle;
-  };
-  m->rst = 1;
-  m->in_valid = m->cfg_valid = m->done = m->clear = 0;
-  m->rd_addr = 0;
-  for (int i = 0; i < 3; ++i) tick();
-  m->rst = 0;
-
-  std::mt19937_64 rng(seed);
-  typename B::Bank::Config cfg;
-  cfg.carriers = k;
-  for (int c = 0; c < k; ++c) {
-    cfg.inc[c] = uint32_t(rng());
-    m->cfg_valid = 1;
-    m->cfg_k = uint8_t(c);
-    m->cfg_inc = cfg.inc[c];
-    m->cfg_last = c == k - 1;
-    for (bool fire = false; !fire;) {
-      m->clk = 0;
-      m->eval();
-      fire = m->cfg_ready;
-      tick();
-    }
-  }
-  m->cfg_valid = 0;
-  auto bank = std::make_unique<typename B::Bank>();
-  ASSERT_TRUE(bank->configure(cfg));
+  dft_capture_bench::Bench<typename B::Model> bench;
+  auto& m = bench.m;
+  const uint64_t& cycle = bench.cycle;
+  m->in_valid = 0;
+  bench.reset();
+  auto bank = bench.template configure<typename B::Bank>(k, seed);
+  ASSERT_TRUE(bank) << "K " << k << ": the kernel refuses the carriers";
 
   const auto xs = sdft_port::random_samples(12, n, seed + 1);
   frame_rule::FrameRule rule(B::kN, B::kStep);
-  struct Want {
-    uint32_t t;
-    std::vector<int32_t> words;
-  };
-  std::deque<Want> want;
+  dft_capture_bench::FrameReader reader;
+  reader.k = k;
+  reader.context = "K " + std::to_string(k) + ": ";
   SdftBankToken toks[B::kKs];
   size_t next = 0;
-  int word = -1;  // the engine's next word to read; -1: idle
-  std::vector<int32_t> got;
   const uint64_t start = cycle;
   bool held = period == 0;  // the ADC holds sample `next` (offered every clock without a pace)
   uint64_t held_since = start;
@@ -136,20 +104,11 @@ void run(int k, size_t n, uint64_t seed, Result& r, uint64_t period = 0) {
     }
     m->in_valid = next < n && held;
     m->in_x = next < n ? uint16_t(xs[next] & 0xFFF) : 0;
-    m->done = 0;
-    if (word < 0 && m->pending) {  // a frame handed over: read it
-      ASSERT_FALSE(want.empty()) << "K " << k << ": a frame the rule does not pick";
-      ASSERT_EQ(m->frame_t, want.front().t) << "K " << k << ": the pending frame's t";
-      word = 0;
-    }
-    if (word >= 0 && word < 2 * k) m->rd_addr = uint8_t(word);
-    if (word == 2 * k) m->done = 1;  // every word read: release the frame
+    ASSERT_TRUE(reader.before_edge(*m));
     m->clk = 0;
     m->eval();
     r.tokens_refused += m->tok_valid && !m->tok_ready;
     const bool in_fire = m->in_valid && m->in_ready;
-    const bool reading = word >= 0 && word < 2 * k;
-    const bool releasing = word == 2 * k;
     r.tokens += m->tok_valid && m->tok_ready;
     if (in_fire) {
       last_fire = cycle;
@@ -160,26 +119,15 @@ void run(int k, size_t n, uint64_t seed, Result& r, uint64_t period = 0) {
       r.frame.push_back(false);
       if (rule.next()) {
         r.frame.back() = true;
-        Want w{uint32_t(next), {}};
-        for (int j = 0; j < k; ++j) w.words.insert(w.words.end(), {toks[j].re, toks[j].im});
-        want.push_back(std::move(w));
-        ++r.frames_want;
+        reader.expect(uint32_t(next), toks);
       }
       if (++next == n) end = cycle + 400 + 2 * uint64_t(k);  // the last frame's tokens and read
     }
-    tick();
-    if (reading) {
-      got.push_back(int32_t(m->rd_data));  // the word asked for one clock ago
-      ++word;
-    } else if (releasing) {
-      const Want& w = want.front();
-      EXPECT_EQ(got, w.words) << "K " << k << ": frame of sample " << w.t;
-      ++r.frames_read;
-      want.pop_front();
-      got.clear();
-      word = -1;
-    }
+    bench.tick();
+    reader.after_edge(*m);
   }
+  r.frames_want = reader.wanted;
+  r.frames_read = reader.read;
   r.overruns = m->overruns;
 }
 

@@ -27,12 +27,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <deque>
-#include <memory>
-#include <random>
 #include <vector>
 
 #include "Vsdft_front_tb.h"
 #include "Vsdft_front_tb_d0.h"
+#include "dft_capture_bench.h"
 #include "frame_rule.h"
 #include "hls/sdft_bank.h"
 #include "sdft_port.h"
@@ -64,40 +63,13 @@ struct Result {
 template <class B>
 void run(size_t conversions, uint64_t period, uint64_t seed, Result& r) {
   constexpr int k = B::kKs;
-  auto m = std::make_unique<typename B::Model>();
-  uint64_t cycle = 0;
-  auto tick = [&] {
-    m->clk = 0;
-    m->eval();
-    m->clk = 1;
-    m->eval();
-    ++cycle;
-  };
-  m->rst = 1;
-  m->s_valid = m->cfg_valid = m->done = m->clear = 0;
-  m->rd_addr = 0;
-  for (int i = 0; i < 3; ++i) tick();
-  m->rst = 0;
-
-  std::mt19937_64 rng(seed);
-  typename B::Bank::Config cfg;
-  cfg.carriers = k;
-  for (int c = 0; c < k; ++c) {
-    cfg.inc[c] = uint32_t(rng());
-    m->cfg_valid = 1;
-    m->cfg_k = uint8_t(c);
-    m->cfg_inc = cfg.inc[c];
-    m->cfg_last = c == k - 1;
-    for (bool fire = false; !fire;) {
-      m->clk = 0;
-      m->eval();
-      fire = m->cfg_ready;
-      tick();
-    }
-  }
-  m->cfg_valid = 0;
-  auto bank = std::make_unique<typename B::Bank>();
-  ASSERT_TRUE(bank->configure(cfg));
+  dft_capture_bench::Bench<typename B::Model> bench;
+  auto& m = bench.m;
+  const uint64_t& cycle = bench.cycle;
+  m->s_valid = 0;
+  bench.reset();
+  auto bank = bench.template configure<typename B::Bank>(k, seed);
+  ASSERT_TRUE(bank) << "the kernel refuses the carriers";
   eskin::hls::SdftBankToken toks[k];
 
   const auto xs = sdft_port::random_samples(12, conversions, seed + 1);
@@ -107,13 +79,8 @@ void run(size_t conversions, uint64_t period, uint64_t seed, Result& r) {
     uint64_t at;   // its conversion's clock
   };
   std::deque<Sample> queued;  // taken from the ADC, not yet in the lanes (FIFO order)
-  struct Want {
-    uint32_t t;
-    std::vector<int32_t> words;
-  };
-  std::deque<Want> want;
-  int word = -1;  // the engine's next word to read; -1: idle
-  std::vector<int32_t> got;
+  dft_capture_bench::FrameReader reader;
+  reader.k = k;
   bool held = false;
   Sample adc{};
   size_t conv = 0;
@@ -137,21 +104,12 @@ void run(size_t conversions, uint64_t period, uint64_t seed, Result& r) {
     m->s_valid = held;
     m->s_x = uint16_t(xs[adc.j] & 0xFFF);
     m->s_t = uint32_t(adc.j);
-    m->done = 0;
-    if (word < 0 && m->pending) {  // a frame handed over: read it
-      ASSERT_FALSE(want.empty()) << "a frame the rule does not pick";
-      ASSERT_EQ(m->frame_t, want.front().t) << "the pending frame's t";
-      word = 0;
-    }
-    if (word >= 0 && word < 2 * k) m->rd_addr = uint8_t(word);
-    if (word == 2 * k) m->done = 1;  // every word read: release the frame
+    ASSERT_TRUE(reader.before_edge(*m));
     m->clk = 0;
     m->eval();
     r.max_backlog = std::max(r.max_backlog, int(m->backlog));
     r.tokens_refused += m->tok_valid && !m->tok_ready;
     r.tokens += m->tok_valid && m->tok_ready;
-    const bool reading = word >= 0 && word < 2 * k;
-    const bool releasing = word == 2 * k;
     if (m->s_valid && m->s_ready) {
       queued.push_back(adc);
       held = false;
@@ -168,32 +126,19 @@ void run(size_t conversions, uint64_t period, uint64_t seed, Result& r) {
       r.max_wait = std::max(r.max_wait, cycle - smp.at);
       ASSERT_EQ(bank->push(xs[smp.j], toks), k);
       const bool frame = rule.next();
-      if (frame) {
-        Want w{uint32_t(smp.j), {}};
-        for (int j = 0; j < k; ++j) w.words.insert(w.words.end(), {toks[j].re, toks[j].im});
-        want.push_back(std::move(w));
-        ++r.frames_want;
-      }
+      if (frame) reader.expect(uint32_t(smp.j), toks);
       first = false;
       last_entry = cycle;
       last_interval = uint64_t(frame ? B::f() : B::s());
       ++r.taken;
       progress = cycle;
     }
-    tick();
-    if (reading) {
-      got.push_back(int32_t(m->rd_data));  // the word asked for one clock ago
-      ++word;
-    } else if (releasing) {
-      const Want& w = want.front();
-      EXPECT_EQ(got, w.words) << "frame of sample " << w.t;
-      ++r.frames_read;
-      want.pop_front();
-      got.clear();
-      word = -1;
-    }
+    bench.tick();
+    reader.after_edge(*m);
   }
   EXPECT_TRUE(queued.empty() && !held) << "samples left behind";
+  r.frames_want = reader.wanted;
+  r.frames_read = reader.read;
   r.overruns = m->overruns;
 }
 
