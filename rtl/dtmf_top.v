@@ -387,6 +387,7 @@ module dtmf_top #(
   // few frames may be in the chain's magnitude pipeline at once) until
   // the engine's header takes the oldest.
   wire [31:0] spk_drop;       // the chain's spike events dropped (saturating)
+  wire        frame_done;     // a frame's work handed back (the header, or IO_FRAME_DONE)
   reg  [15:0] ch_pkt_drops;   // its packets dropped for room (saturating)
   wire        nu_busy;
   generate
@@ -468,6 +469,7 @@ module dtmf_top #(
         else if (wr_hdr) sites_given <= 1'b1;
       end
       assign frame_pending = mag_ready && !sites_given && tq_n != 4'd0;
+      assign frame_done = wr_hdr;
       assign frame_t = tq[tq_r];
       // The chain's FIFO and its packets onto the link with the engine's.
       wire co_in_valid, co_in_ready, co_valid, co_ready, ch_dropped;
@@ -508,7 +510,8 @@ module dtmf_top #(
       // frame whose magnitudes wait and whose tag is queued, and never
       // over one the chain has not taken; no frame tag lost; magnitudes
       // read only while they are the frame's; a site only before the
-      // frame's header.
+      // frame's header (the chain checks that no mask write, a clear
+      // included, falls in its taxel phase).
       always @(posedge clk)
         if (!rst) begin
           if (wr_hdr)
@@ -520,7 +523,7 @@ module dtmf_top #(
           if (io_re && !io_raddr[9])
             assert (frame_pending)
             else $error("dtmf_top: the microcode read magnitude %0d with no frame's magnitudes waiting", io_raddr[KA-1:0]);
-          if (wr_site || wr_site_clr)
+          if (wr_site)  // (clears: at boot, before any frame)
             assert (frame_pending)
             else $error("dtmf_top: the microcode wrote a site outside a frame's control step");
           if (wr_site || wr_site_clr)
@@ -531,6 +534,7 @@ module dtmf_top #(
     end else begin : g_engine
       assign frame_pending = cap_pending;
       assign frame_t = cap_t;
+      assign frame_done = wr_done;
       assign fifo_valid = eo_valid;
       assign fifo_data = eo_data;
       assign eo_ready = fifo_ready;
@@ -729,7 +733,7 @@ module dtmf_top #(
   wire p_sd_last /* verilator public_flat_rd */ = sd_last;
   wire p_frame_fire /* verilator public_flat_rd */ = frame_pending;
   wire [31:0] p_frame_t /* verilator public_flat_rd */ = frame_t;
-  wire p_frame_done /* verilator public_flat_rd */ = wr_done;
+  wire p_frame_done /* verilator public_flat_rd */ = frame_done;
   wire p_out_fire /* verilator public_flat_rd */ = wr_out || wr_word;
   wire [15:0] p_out_overflows /* verilator public_flat_rd */ = out_overflows;
   wire p_fr_fire /* verilator public_flat_rd */ = link_fire;
