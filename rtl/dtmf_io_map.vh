@@ -3,7 +3,7 @@
 // (DtmfIoMap.VerilogIncludeIsGenerated fails when it differs).
 // A module includes it inside its body; it uses only some of them.
 /* verilator lint_off UNUSEDPARAM */
-localparam [15:0] IO_FRAME = 16'h0000;  // r: frame token k: re at 2k, im at 2k + 1 (k = 0..KS-1)
+localparam [15:0] IO_FRAME = 16'h0000;  // r: frame token k: re at 2k, im at 2k + 1 (k = 0..KS-1); stream: line magnitude k at k
 localparam [15:0] IO_FRAME_T = 16'h0200;  // r: t of the frame's newest sample
 localparam [15:0] IO_STATUS = 16'h0201;  // r: bit 0 frame pending, bit 1 command available
 localparam [15:0] IO_CMD = 16'h0202;  // r: command FIFO head byte
@@ -37,6 +37,18 @@ localparam [15:0] IO_IZ_SU = 16'h020F;  // w: U: initialises the neuron (v, U, x
 localparam [15:0] IO_IZ_EVN = 16'h020F;  // r: spike events since the last kIoIzN
 localparam [15:0] IO_IZ_FLAG = 16'h1000;  // r: at 0x1000 + C + n: neuron n's flag (bit 1), n - C's (2), n + C's (0)
 localparam [15:0] IO_IZ_EV = 16'h2000;  // r: the neuron of event i at 0x2000 + i
+localparam [15:0] IO_SITE = 16'h0210;  // w: stream: make taxel i (row-major) an active site
+localparam [15:0] IO_SITE_CLR = 16'h0211;  // w: stream: clear taxel i's site (a ghost reset)
+localparam [15:0] IO_HEADER = 16'h0212;  // w: stream: sites done; the frame's packets: bit 0 dense, 1 sparse, 2 spikes, 3 close
+localparam [15:0] IO_RECIP = 16'h0213;  // w: stream: taxel reciprocal, bits 14:0, its shift at 20:16
+localparam [15:0] IO_GHOST = 16'h0214;  // w: stream: bit 16 ghost filter on, 15:0 the release level
+localparam [15:0] IO_SPARSE_MIN = 16'h0215;  // w: stream: TAXELS_SPARSE's least value
+localparam [15:0] IO_NEURONS = 16'h0216;  // w: stream: bit 0 the layers on; bit 1 initialise their state
+localparam [15:0] IO_WEIGHT = 16'h0230;  // w: stream: synapse weight i (0..8) at 0x230 + i
+localparam [15:0] IO_IZ_CFG1 = 16'h0240;  // w: stream: layer 1's constant word w at 0x240 + w (layer 0: IO_IZ_CFG)
+localparam [15:0] IO_SPK_DROP = 16'h0210;  // r: stream: spike events dropped in the window (saturating)
+localparam [15:0] IO_PKT_DROP = 16'h0211;  // r: stream: the chain's packets dropped for room (16-bit, saturating)
+localparam [15:0] IO_STREAM_BUSY = 16'h0212;  // r: stream: bit 0 the layers initialising
 localparam integer EV_FRAME_PENDING_BIT = 0;  // a frame waits
 localparam integer EV_CMD_AVAIL_BIT = 1;  // a command byte waits
 localparam integer EV_IZ_DONE_BIT = 2;  // the neuron unit holds the results of its last update (lanes: all written back)

@@ -95,7 +95,19 @@ module dtmf_top #(
     // runs instead (its samples cross to clk in rtl/stream_cdc.v): the
     // AD7476A's SCLK ties a 1 MS/s ADC to 37.3-40 MHz (or 74.7-80), and
     // this frees the rest of the core from that band.
-    parameter integer ADC_CLK_HZ = 0
+    parameter integer ADC_CLK_HZ = 0,
+    // 1: the streaming datapath (rtl/dtmf_chain.v) does every frame's work
+    // after the DFT, one element a clock, and the frame engine is its
+    // control plane (the microcode built with STREAM: commands, the ghost
+    // filter's pairing, AMPLITUDES, headers, status); the large FPGAs'
+    // architecture (host/fpga/flow.h picks it). KS = ROWS + COLS carriers,
+    // no demixing (the plan's bin-centred carriers), no neuron unit (the
+    // chain has its own layers). MAG_SHIFT and MAX_SPIKES: the chain's
+    // (hls::DtmfChainSizes). 0: the frame engine alone.
+    parameter integer STREAM = 0,
+    parameter integer ROWS = 3,
+    parameter integer MAG_SHIFT = 0,
+    parameter integer MAX_SPIKES = 256
 ) (
     input  wire clk,
     input  wire adc_clk,     // ADC_CLK_HZ != 0: the ADC's clock (else unused)
@@ -121,7 +133,11 @@ module dtmf_top #(
         // the lanes' flag address io_raddr[NEURON_BITS:0] must stay below
         // its select bit (IO_IZ_FLAG: bit 12), the events' below bit 13
         (NEURON_LANES != 0 && NEURON_BITS > 11) ||
-        (NEURON_LANES != 0 && (NEURON_UNIT != 1 || NEURON_LANES < 2 || NEURON_LANES > 8))) begin : g_bad_params
+        (NEURON_LANES != 0 && (NEURON_UNIT != 1 || NEURON_LANES < 2 || NEURON_LANES > 8)) ||
+        (STREAM != 0 && STREAM != 1) ||
+        (STREAM == 1 && (KS != ROWS + COLS || ROWS < 1 || ROWS > 255 || COLS < 1 ||
+                         COLS > 255 || ROWS * COLS > 16383 || NEURON_UNIT != 0 ||
+                         ACC_W > 24))) begin : g_bad_params
       dtmf_top_illegal_parameters u_stop ();  // no such module: stops elaboration
     end
   endgenerate
@@ -142,8 +158,10 @@ module dtmf_top #(
   wire [31:0] cap_data;
   wire [2:0]  lane_flags;
   wire [NEURON_BITS-1:0] lane_ev;
+  wire [15:0] mag_q;  // STREAM: the chain's magnitude at IO_FRAME + k (registered there)
   wire [31:0] io_rdata = io_ev_q ? {{(32 - NEURON_BITS){1'b0}}, lane_ev} :
-                         io_flag_q ? {29'd0, lane_flags} : io_frame_q ? cap_data : io_reg;
+                         io_flag_q ? {29'd0, lane_flags} :
+                         io_frame_q ? (STREAM != 0 ? {16'd0, mag_q} : cap_data) : io_reg;
   wire        wr_out = io_we && io_waddr == IO_OUT_BYTE;
   wire        wr_word = io_we && io_waddr == IO_OUT_WORD;  // two bytes (below)
   wire        wr_done = io_we && io_waddr == IO_FRAME_DONE;
@@ -266,14 +284,25 @@ module dtmf_top #(
       .cfg_inc(cfg_inc), .cfg_last(cfg_last), .out_valid(sd_valid), .out_ready(sd_ready),
       .out_k(sd_k), .out_re(sd_re), .out_im(sd_im), .out_last(sd_last));
   /* verilator lint_on PINCONNECTEMPTY */
-  wire frame_pending;
-  wire [31:0] frame_t;
+  wire frame_pending;  // the engine's frame event
+  wire [31:0] frame_t;  // IO_FRAME_T
+  wire cap_pending;
+  wire [31:0] cap_t;
   wire [15:0] frame_overruns;
+  // STREAM: the tokens go to the chain, and the capture only counts them
+  // (those the chain takes) to date each frame: done held high, `pending`
+  // is one clock after each frame's last token and frame_t its t (its
+  // buffer, never read, goes in synthesis).
+  wire ch_in_ready;
+  wire cap_tok_ready;
+  wire cap_done = STREAM != 0 ? 1'b1 : wr_done;
+  assign sd_ready = STREAM != 0 ? ch_in_ready : cap_tok_ready;
   frame_capture #(.KS(KS), .W(ACC_W), .N(N), .STEP(STEP)) u_cap (
       .clk(clk), .rst(rst), .clr(cfg_done), .smp_fire(sdft_fire), .smp_t(sdft_t),
-      .smp_frame(smp_frame), .tok_valid(sd_valid), .tok_ready(sd_ready), .tok_last(sd_last),
+      .smp_frame(smp_frame), .tok_valid(sd_valid && sd_ready), .tok_ready(cap_tok_ready),
+      .tok_last(sd_last),
       .tok_re(sd_re), .tok_im(sd_im), .rd_addr(io_raddr[7:0]), .rd_data(cap_data),
-      .pending(frame_pending), .frame_t(frame_t), .done(wr_done), .clear(wr_clear),
+      .pending(cap_pending), .frame_t(cap_t), .done(cap_done), .clear(wr_clear),
       .overruns(frame_overruns));
   /* verilator lint_off UNUSEDSIGNAL */
   wire [7:0] sd_k_unused = sd_k;  // tokens arrive in k order; capture counts them
@@ -335,10 +364,189 @@ module dtmf_top #(
 `endif
   wire       fifo_in_valid = wr_out || wr_word || word_held;
   wire [7:0] fifo_in_data = word_held ? word_hi : io_wdata[7:0];
+  // The engine's packets; STREAM: beside the chain's, both onto the link
+  // whole packets at a time (below).
+  wire eo_valid, eo_ready;
+  wire [7:0] eo_data;
   byte_fifo #(.DEPTH(OUT_DEPTH)) u_out (
       .clk(clk), .rst(rst), .in_valid(fifo_in_valid), .in_data(fifo_in_data),
-      .out_valid(fifo_valid), .out_ready(fifo_ready), .out_data(fifo_data), .free(out_free),
+      .out_valid(eo_valid), .out_ready(eo_ready), .out_data(eo_data), .free(out_free),
       .overflows(out_overflows));
+
+  // ---------------- the streaming datapath (STREAM) ----------------------
+  // rtl/dtmf_chain.v takes the DFT's tokens (sign-extended to the kernel's
+  // 24 bits) and sends TAXELS and SPIKES into a FIFO of its own; the
+  // engine, its control plane, reads each frame's K magnitudes at
+  // IO_FRAME + k once they are there (EV_FRAME_PENDING), runs the ghost
+  // filter's pairing (IO_SITE for each site it adds: the chain clears the
+  // released ones itself), sends AMPLITUDES and status into its FIFO and
+  // writes IO_HEADER: sites done, and the frame's packets. The chain's
+  // configuration comes from the engine's registers (IO_RECIP, IO_GHOST,
+  // IO_SPARSE_MIN, IO_NEURONS, IO_WEIGHT, IO_IZ_CFG / IO_IZ_CFG1).
+  // Frame tags: the capture's t of each frame the chain took, queued (a
+  // few frames may be in the chain's magnitude pipeline at once) until
+  // the engine's header takes the oldest.
+  wire [31:0] spk_drop;       // the chain's spike events dropped (saturating)
+  wire        frame_done;     // a frame's work handed back (the header, or IO_FRAME_DONE)
+  reg  [15:0] ch_pkt_drops;   // its packets dropped for room (saturating)
+  wire        nu_busy;
+  generate
+    if (STREAM != 0) begin : g_stream
+      localparam integer KA = (KS > 1) ? $clog2(KS) : 1;
+      localparam integer T = ROWS * COLS;
+      localparam integer MA = (T > 1) ? $clog2(T) : 1;
+      wire wr_site = io_we && io_waddr == IO_SITE;
+      wire wr_site_clr = io_we && io_waddr == IO_SITE_CLR;
+      wire wr_hdr = io_we && io_waddr == IO_HEADER;
+      wire wr_recip = io_we && io_waddr == IO_RECIP;
+      wire wr_ghost = io_we && io_waddr == IO_GHOST;
+      wire wr_smin = io_we && io_waddr == IO_SPARSE_MIN;
+      wire wr_neurons = io_we && io_waddr == IO_NEURONS;
+      wire wr_weight = io_we && io_waddr[15:4] == IO_WEIGHT[15:4] && io_waddr[3:0] < 4'd9;
+      wire wr_cfg1 = io_we && io_waddr[15:5] == IO_IZ_CFG1[15:5];
+      reg [14:0] c_recip;
+      reg [4:0]  c_rshift;
+      reg        c_ghost, c_neurons;
+      reg [15:0] c_release, c_smin;
+      reg [143:0] c_w;
+      reg        nu_init_q;
+      always @(posedge clk) begin
+        if (rst) begin
+          c_recip <= 15'd1;
+          c_rshift <= 5'd0;
+          c_ghost <= 1'b0;
+          c_release <= 16'd0;
+          c_smin <= 16'd0;
+          c_neurons <= 1'b0;
+          c_w <= 144'd0;
+          nu_init_q <= 1'b0;
+        end else begin
+          if (wr_recip) {c_rshift, c_recip} <= {io_wdata[20:16], io_wdata[14:0]};
+          if (wr_ghost) {c_ghost, c_release} <= io_wdata[16:0];
+          if (wr_smin) c_smin <= io_wdata[15:0];
+          if (wr_neurons) c_neurons <= io_wdata[0];
+          nu_init_q <= wr_neurons && io_wdata[1];
+          if (wr_weight) c_w[16 * io_waddr[3:0] +: 16] <= io_wdata[15:0];
+        end
+      end
+      // Frame tags.
+      reg [31:0] tq [0:7];
+      reg [2:0]  tq_w, tq_r;
+      reg [3:0]  tq_n;
+      reg [31:0] hdr_t;
+      reg        hdr_valid;
+      reg [3:0]  hdr_bits;
+      wire       hdr_ready;
+      always @(posedge clk) begin
+        if (cap_pending) tq[tq_w] <= cap_t;
+        if (rst) begin
+          tq_w <= 3'd0;
+          tq_r <= 3'd0;
+          tq_n <= 4'd0;
+          hdr_valid <= 1'b0;
+          hdr_bits <= 4'd0;
+          hdr_t <= 32'd0;
+        end else begin
+          tq_w <= tq_w + {2'd0, cap_pending};
+          tq_r <= tq_r + {2'd0, wr_hdr};
+          tq_n <= tq_n + {3'd0, cap_pending} - {3'd0, wr_hdr};
+          if (wr_hdr) begin
+            hdr_valid <= 1'b1;
+            hdr_bits <= io_wdata[3:0];
+            hdr_t <= tq[tq_r];
+          end else if (hdr_ready) begin
+            hdr_valid <= 1'b0;
+          end
+        end
+      end
+      // A frame waits for the engine from its magnitudes (mag_ready) until
+      // its header; mag_ready stays high until the frame's last taxel.
+      wire mag_ready;
+      reg  mag_ready_q, sites_given;
+      always @(posedge clk) begin
+        mag_ready_q <= !rst && mag_ready;
+        if (rst || (mag_ready_q && !mag_ready)) sites_given <= 1'b0;
+        else if (wr_hdr) sites_given <= 1'b1;
+      end
+      assign frame_pending = mag_ready && !sites_given && tq_n != 4'd0;
+      assign frame_done = wr_hdr;
+      assign frame_t = tq[tq_r];
+      // The chain's FIFO and its packets onto the link with the engine's.
+      wire co_in_valid, co_in_ready, co_valid, co_ready, ch_dropped;
+      wire [7:0] co_in_data, co_data;
+      wire [15:0] co_free;
+      /* verilator lint_off PINCONNECTEMPTY */
+      dtmf_chain #(.R(ROWS), .C(COLS), .ACC_W(24), .MAG_SHIFT(MAG_SHIFT),
+                   .MAX_SPIKES(MAX_SPIKES), .KA(KA), .MA(MA)) u_chain (
+          .clk(clk), .rst(rst), .cfg_recip(c_recip), .cfg_recip_shift(c_rshift),
+          .cfg_ghost(c_ghost), .cfg_release(c_release), .cfg_neurons(c_neurons), .cfg_w(c_w),
+          .nu_cfg_we({wr_cfg1, wr_iz_cfg}), .nu_cfg_addr(io_waddr[4:0]), .nu_cfg_data(io_wdata),
+          .nu_init(nu_init_q), .nu_busy(nu_busy),
+          .in_valid(sd_valid), .in_ready(ch_in_ready), .in_k(sd_k),
+          .in_re(24'($signed(sd_re))), .in_im(24'($signed(sd_im))), .in_last(sd_last),
+          .mag_ready(mag_ready), .mag_raddr(io_raddr[KA-1:0]), .mag_rdata(mag_q),
+          .mask_we(wr_site || wr_site_clr), .mask_addr(io_wdata[MA-1:0]), .mask_din(wr_site),
+          .sites_done(wr_hdr), .hdr_valid(hdr_valid), .hdr_ready(hdr_ready), .hdr_t(hdr_t),
+          .hdr_dense(hdr_bits[0]), .hdr_sparse(hdr_bits[1]), .hdr_sparse_min(c_smin),
+          .hdr_spikes(hdr_bits[2]), .hdr_close(hdr_bits[3]), .out_free(co_free),
+          .out_valid(co_in_valid), .out_ready(co_in_ready), .out_data(co_in_data),
+          .dropped(ch_dropped), .spikes_dropped(spk_drop), .tax_valid(), .tax_site(), .idle());
+      byte_fifo #(.DEPTH(OUT_DEPTH)) u_chain_out (
+          .clk(clk), .rst(rst), .in_valid(co_in_valid), .in_data(co_in_data),
+          .out_valid(co_valid), .out_ready(co_ready), .out_data(co_data), .free(co_free),
+          .overflows());
+      /* verilator lint_on PINCONNECTEMPTY */
+      assign co_in_ready = 1'b1;  // the chain sends a packet only with room for it
+      packet_arbiter #(.NS(2)) u_arb (
+          .clk(clk), .rst(rst), .s_valid({co_valid, eo_valid}), .s_ready({co_ready, eo_ready}),
+          .s_data({co_data, eo_data}), .m_valid(fifo_valid), .m_ready(fifo_ready),
+          .m_data(fifo_data));
+      always @(posedge clk) begin
+        if (rst || wr_clear) ch_pkt_drops <= 16'd0;
+        else if (ch_dropped && ch_pkt_drops != 16'hFFFF) ch_pkt_drops <= ch_pkt_drops + 16'd1;
+      end
+`ifndef SYNTHESIS
+      // The control plane's contracts with the chain: a header only for a
+      // frame whose magnitudes wait and whose tag is queued, and never
+      // over one the chain has not taken; no frame tag lost; magnitudes
+      // read only while they are the frame's; a site only before the
+      // frame's header (the chain checks that no mask write, a clear
+      // included, falls in its taxel phase).
+      always @(posedge clk)
+        if (!rst) begin
+          if (wr_hdr)
+            assert (frame_pending && !hdr_valid)
+            else $error("dtmf_top: the microcode wrote a frame header with no frame waiting for one (or over the last header)");
+          if (cap_pending)
+            assert (tq_n != 4'd8)
+            else $error("dtmf_top: a ninth frame tag with eight waiting for their headers");
+          if (io_re && !io_raddr[9])
+            assert (frame_pending)
+            else $error("dtmf_top: the microcode read magnitude %0d with no frame's magnitudes waiting", io_raddr[KA-1:0]);
+          if (wr_site)  // (clears: at boot, before any frame)
+            assert (frame_pending)
+            else $error("dtmf_top: the microcode wrote a site outside a frame's control step");
+          if (wr_site || wr_site_clr)
+            assert (io_wdata < 32'(T))
+            else $error("dtmf_top: the microcode wrote site %0d of %0d taxels", io_wdata, T);
+        end
+`endif
+    end else begin : g_engine
+      assign frame_pending = cap_pending;
+      assign frame_t = cap_t;
+      assign frame_done = wr_done;
+      assign fifo_valid = eo_valid;
+      assign fifo_data = eo_data;
+      assign eo_ready = fifo_ready;
+      assign mag_q = 16'd0;
+      assign spk_drop = 32'd0;
+      assign nu_busy = 1'b0;
+      always @(posedge clk) ch_pkt_drops <= 16'd0;
+      assign ch_in_ready = 1'b0;
+      wire unused_stream = ^{IO_SITE, IO_SITE_CLR, IO_HEADER, IO_RECIP, IO_GHOST, IO_SPARSE_MIN,
+                             IO_NEURONS, IO_WEIGHT, IO_IZ_CFG1};
+    end
+  endgenerate
   wire [7:0] link_seq;
   wire       link_fire;  // a framed byte goes to the UART (own link only)
   generate
@@ -507,6 +715,13 @@ module dtmf_top #(
       IO_IZ_U[3:0]: io_reg <= iz_u;
       default: io_reg <= {{(31 - NEURON_BITS){1'b0}}, lane_ev_count};  // IO_IZ_EVN: lanes' events
     endcase
+    // STREAM: the chain's registers at 0x210-0x212 (bit 4).
+    if (STREAM != 0 && io_raddr[4])
+      case (io_raddr[1:0])
+        IO_SPK_DROP[1:0]: io_reg <= spk_drop;
+        IO_PKT_DROP[1:0]: io_reg <= {16'd0, ch_pkt_drops};
+        default: io_reg <= {31'd0, nu_busy};  // IO_STREAM_BUSY
+      endcase
   end
   wire unused_io = ^{io_re, io_raddr[15:10], io_raddr[8]};  // partial decode
 
@@ -518,7 +733,7 @@ module dtmf_top #(
   wire p_sd_last /* verilator public_flat_rd */ = sd_last;
   wire p_frame_fire /* verilator public_flat_rd */ = frame_pending;
   wire [31:0] p_frame_t /* verilator public_flat_rd */ = frame_t;
-  wire p_frame_done /* verilator public_flat_rd */ = wr_done;
+  wire p_frame_done /* verilator public_flat_rd */ = frame_done;
   wire p_out_fire /* verilator public_flat_rd */ = wr_out || wr_word;
   wire [15:0] p_out_overflows /* verilator public_flat_rd */ = out_overflows;
   wire p_fr_fire /* verilator public_flat_rd */ = link_fire;

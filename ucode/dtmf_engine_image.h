@@ -107,6 +107,10 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   const int K = p.K, R = p.R, C = p.C, T = p.T;
   const bool demix = p.spec.demix;
   const int ks = p.ks, dim = demix ? 2 * K + 1 : 0;
+  // The streaming datapath (rtl/dtmf_chain.v) keeps the taxels, the sites,
+  // the neurons and the spikes: the engine, its control plane, none of them.
+  const bool stream = p.spec.datapath == DtmfDatapath::Streaming;
+  const int t_words = stream ? 0 : T;
   EngineImage im;
   auto sym = [&im](const std::string& n, int64_t v) { im.symbols.emplace_back(n, v); };
   int at = 0;
@@ -140,17 +144,18 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // ---- state ----
   const int lk = p.lookback * K;
   alloc("PHASE", 2 * K), alloc("HIST", lk), alloc("HEAD", 1), alloc("REM", K);
-  alloc("PL", K), alloc("NPL", 1), alloc("SITE", T), alloc("MAG", K);
-  alloc("ROOT", R), alloc("CRT", C);  // line_roots: rows, then columns for the taxel loop
-  alloc("G", T);
-  if (!p.spec.neuron_lanes) {  // the lanes keep the neurons' state and flags themselves
+  alloc("PL", K), alloc("NPL", 1), alloc("SITE", t_words), alloc("MAG", K);
+  alloc("ROOT", stream ? 0 : R), alloc("CRT", stream ? 0 : C);  // line_roots: rows, then columns
+  alloc("G", t_words);
+  if (!p.spec.neuron_lanes && !stream) {  // the lanes keep the neurons' state and flags themselves
     alloc("X2IN", T);          // layer 1's input: neuron_unit needs X2IN = G + T
     alloc("NV", 2 * T), alloc("NU", 2 * T), alloc("NXP", 2 * T);  // neuron l T + i
     alloc("SZ", C);                  // zero, never written: synapse_weights' row above row 0
     alloc("S0", T), alloc("S1", T);  // and S1 = S0 + T
   }
-  alloc("SWT", 512);  // synapse_weights: the sum for each 3x3 spike pattern (its 9 bits)
-  alloc("BV", dim + 2), alloc("Y", 2 * K), alloc("SPK", 2 * p.max_spikes), alloc("CB", 9);
+  alloc("SWT", stream ? 0 : 512);  // synapse_weights: the sum for each 3x3 spike pattern
+  alloc("BV", dim + 2), alloc("Y", stream ? 0 : 2 * K), alloc("SPK", stream ? 0 : 2 * p.max_spikes);
+  alloc("CB", 9);
   alloc("AMPC", 3), alloc("SEL", 3), alloc("SEND", 3);  // frame counts per stream (amp, tax, status)
   for (const char* n :
        {"VT", "TPASS", "REC", "SPKOPEN", "SPKT0", "SPKN", "SPKDROP", "PKTDROP",
@@ -158,7 +163,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
         "TIDX", "TS", "TC", "TQD", "TOFF", "TV", "TROW", "TACC", "TRI", "TR", "TCL",
         "TBR", "TBC", "TRR", "TRC", "TOK", "TRW", "TB", "TB2", "SEB", "NX", "ND", "NXS",
         "NJ", "NU22", "NW", "NSQ", "NC2", "NVH", "NC3", "NUN", "SWMASK", "SWD", "SWM", "SWI",
-        "NDROP"})
+        "NDROP", "CHG", "PKTSUM"})
     alloc(n, 1);
   im.dend = at;
   sym("DEND", at);
@@ -175,6 +180,9 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   kc("KC_I32MIN", INT32_MIN), kc("KC_I32MAX", INT32_MAX), kc("KC_UMIN", izh::kUMin);
   kc("KC_UMAX", izh::kUMax), kc("KC_VMIN", izh::kVMin), kc("KC_VPEAK", izh::kVPeak);
   kc("KC_WOFF", izh::kWOffset), kc("KC_RECIP", p.taxel.recip), kc("KC_C", C);
+  // The chain's IO_RECIP and IO_GHOST words (stream).
+  kc("KC_RECIPW", int64_t(p.taxel.recip) | int64_t(p.taxel.recip_shift) << 16);
+  kc("KC_GHOSTON", p.spec.ghost ? 1 << 16 : 0), kc("KC_NEURONS", p.spec.spikes ? 1 : 0);
   kc("KC_NCS", kNeuronBlock), kc("KC_LAYER1", 1 << 16), kc("KC_MASKRES", 0xE0);
   kc("KC_NCOEF", dim * dim), kc("KC_STEP", p.step);
   constexpr int kQ = 1 << (10 - 2);  // quarter table of CarrierDemix<..., TW = 10>
@@ -202,8 +210,10 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   const int64_t stat[14] = {io | kIoCrcErr, io | kIoFrmErr, im.symbol("ACC"), im.symbol("REJ"),
                             byte | im.symbol("LRT"), byte | im.symbol("LRR"),
                             byte | im.symbol("LRS"), byte | im.symbol("MASK"),
-                            im.symbol("PKTDROP"), io | kIoAdcOvr,
-                            io | kIoRxErr, io | kIoFrameOvr, im.symbol("SPKDROP"), io | kIoCmdOvf};
+                            // stream: the engine's and the chain's drops (status)
+                            im.symbol(stream ? "PKTSUM" : "PKTDROP"), io | kIoAdcOvr,
+                            io | kIoRxErr, io | kIoFrameOvr,
+                            stream ? io | kIoSpkDrop : im.symbol("SPKDROP"), io | kIoCmdOvf};
   table("KC_STAT", [&stat](int f) { return stat[f]; }, 14);
   kc("KC_BIT15", 0x8000), kc("KC_BIT14", 0x4000), kc("KC_LOW14", 0x3FFF);
   sym("SINE", int64_t(im.krom.size()));
@@ -215,8 +225,10 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // ---- sizes, flags, arithmetic ----
   sym("K", K), sym("KS", ks), sym("R", R), sym("C", C), sym("T", T), sym("DIM", dim);
   sym("STEP", p.step), sym("MAXSPK", p.max_spikes), sym("LK", lk), sym("NCS", kNeuronBlock);
-  sym("DEMIX", demix), sym("GHOST", p.spec.ghost), sym("NEURONS", p.spec.spikes);
+  sym("DEMIX", demix), sym("GHOST", p.spec.ghost), sym("NEURONS", p.spec.spikes && !stream);
+  sym("SPIKES", p.spec.spikes);  // the layers run (NEURONS: on the engine)
   sym("NEURON_UNIT", p.spec.neuron_unit);
+  sym("STREAM", stream);
   sym("NEURON_LANES", p.spec.neuron_lanes);
   sym("CMD_FIRST", kDtmfCommandFirst), sym("NCMD", kDtmfCommandCount);  // KC_CLEN's types
   // Layer 0's spike flags for synapse_weights: S0 in DMEM (SZ, zeros, the
@@ -303,6 +315,12 @@ inline std::vector<VerilogParam> dtmf_top_params(const DtmfTopPlan& p, const Eng
           {"KROM_HEX", "\"" + krom_hex + "\""}};
   if (p.spec.sdft_fifo)  // (without, dtmf_top's default: none)
     v.insert(v.end() - 3, {"SDFT_FIFO", i(p.spec.sdft_fifo)});
+  if (p.spec.datapath == DtmfDatapath::Streaming)  // rtl/dtmf_chain.v's sizes
+    v.insert(v.end() - 3, {{"STREAM", "1"},
+                           {"ROWS", i(p.R)},
+                           {"COLS", i(p.C)},
+                           {"MAG_SHIFT", i(p.mag_shift)},
+                           {"MAX_SPIKES", i(p.max_spikes)}});
   if (p.spec.neuron_lanes)  // (without lanes dtmf_top's defaults, unused)
     v.insert(v.end() - 3, {{"NEURON_LANES", i(p.spec.neuron_lanes)},
                            {"NEURON_BITS", i(std::max(1, clog2(2L * p.T)))},

@@ -17,7 +17,8 @@ namespace eskin::hls {
 // X(enumerator, symbol, address, what): the symbol names the port in the
 // microcode (rtl/ucode/dtmf_chain.fe) and in rtl/dtmf_io_map.vh.
 #define ESKIN_DTMF_IO_PORTS(X)                                                                   \
-  X(kIoFrame, IO_FRAME, 0x000, "r: frame token k: re at 2k, im at 2k + 1 (k = 0..KS-1)")          \
+  X(kIoFrame, IO_FRAME, 0x000,                                                                    \
+    "r: frame token k: re at 2k, im at 2k + 1 (k = 0..KS-1); stream: line magnitude k at k")      \
   X(kIoFrameT, IO_FRAME_T, 0x200, "r: t of the frame's newest sample")                            \
   X(kIoStatus, IO_STATUS, 0x201, "r: bit 0 frame pending, bit 1 command available")               \
   X(kIoCmd, IO_CMD, 0x202, "r: command FIFO head byte")                                           \
@@ -53,7 +54,21 @@ namespace eskin::hls {
   X(kIoIzEvN, IO_IZ_EVN, 0x20F, "r: spike events since the last kIoIzN")                          \
   X(kIoIzFlag, IO_IZ_FLAG, 0x1000,                                                                \
     "r: at 0x1000 + C + n: neuron n's flag (bit 1), n - C's (2), n + C's (0)")                    \
-  X(kIoIzEv, IO_IZ_EV, 0x2000, "r: the neuron of event i at 0x2000 + i")
+  X(kIoIzEv, IO_IZ_EV, 0x2000, "r: the neuron of event i at 0x2000 + i")                        \
+  /* The streaming datapath (STREAM: rtl/dtmf_chain.v; the engine is its control plane): */    \
+  X(kIoSite, IO_SITE, 0x210, "w: stream: make taxel i (row-major) an active site")               \
+  X(kIoSiteClr, IO_SITE_CLR, 0x211, "w: stream: clear taxel i's site (a ghost reset)")           \
+  X(kIoHeader, IO_HEADER, 0x212,                                                                \
+    "w: stream: sites done; the frame's packets: bit 0 dense, 1 sparse, 2 spikes, 3 close")      \
+  X(kIoRecip, IO_RECIP, 0x213, "w: stream: taxel reciprocal, bits 14:0, its shift at 20:16")     \
+  X(kIoGhost, IO_GHOST, 0x214, "w: stream: bit 16 ghost filter on, 15:0 the release level")      \
+  X(kIoSparseMin, IO_SPARSE_MIN, 0x215, "w: stream: TAXELS_SPARSE's least value")                \
+  X(kIoNeurons, IO_NEURONS, 0x216, "w: stream: bit 0 the layers on; bit 1 initialise their state") \
+  X(kIoWeight, IO_WEIGHT, 0x230, "w: stream: synapse weight i (0..8) at 0x230 + i")              \
+  X(kIoIzCfg1, IO_IZ_CFG1, 0x240, "w: stream: layer 1's constant word w at 0x240 + w (layer 0: IO_IZ_CFG)") \
+  X(kIoSpkDrop, IO_SPK_DROP, 0x210, "r: stream: spike events dropped in the window (saturating)") \
+  X(kIoPktDrop, IO_PKT_DROP, 0x211, "r: stream: the chain's packets dropped for room (16-bit, saturating)") \
+  X(kIoStreamBusy, IO_STREAM_BUSY, 0x212, "r: stream: bit 0 the layers initialising")
 
 // Engine events (the `wait` mask bits) of rtl/dtmf_top.v.
 #define ESKIN_DTMF_EVENTS(X)                                       \

@@ -186,6 +186,15 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
     throw std::invalid_argument("sdft_lanes: expected 1.." + std::to_string(std::min(64, ks)) +
                                 " (at most 64, at most the " + std::to_string(ks) +
                                 " DFT channels), got " + std::to_string(s.sdft_lanes));
+  if (s.datapath == DtmfDatapath::Streaming &&
+      (s.demix || s.neuron_unit || s.neuron_lanes != 0 || p.R > 255 || p.C > 255 ||
+       p.T > 16383))
+    throw std::invalid_argument(
+        "datapath: the streaming datapath (rtl/dtmf_chain.v) takes bin-centred carriers (no "
+        "demixing), its own neuron layers (no neuron unit or lanes) and up to 255 rows, 255 "
+        "columns and 16383 taxels; this plan has " +
+        std::string(s.demix ? "demixing" : (s.neuron_unit || s.neuron_lanes) ? "the neuron unit"
+                                                                             : "too many taxels"));
   if (s.sdft_fifo < 0 || s.sdft_fifo > 64 || (s.sdft_fifo & (s.sdft_fifo - 1)) != 0)
     throw std::invalid_argument("sdft_fifo: expected 0 or a power of two up to 64 samples, got " +
                                 std::to_string(s.sdft_fifo));

@@ -84,6 +84,17 @@ dtmf_params_with(dtmf_s32m dtmf_s20m
 eskin_verilate(${exe} Vdtmf_top_s32m ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s32m} --assert
   -GUCODE_HEX=\"${dtmf_dir}/scale_32x32_1msps.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/scale_32x32_1msps.krom.hex\")
+# p3s: scenes/planned3x3.yaml (bin-centred carriers: no demixing) on the
+# streaming datapath (STREAM: rtl/dtmf_chain.v behind the DFT, the engine
+# its control plane) at the UP5K's 18 MHz.
+set(dtmf_p3s -GCLK_HZ=18000000 -GSAMPLE_HZ=35000 -GBAUD=3000000 -GKS=6 -GN=32 -GACC_W=18
+  -GSTEP=35 -GIW=11 -GIMEM_WORDS=1280 -GDW=8 -GKW=8 -GOUT_DEPTH=512 -GENGINE_FAST_SHIFT=0
+  -GSDFT_LANES=1 -GNEURON_UNIT=0 -GADC_CLK_HZ=0 -GSTREAM=1 -GROWS=3 -GCOLS=3 -GMAG_SHIFT=0
+  -GMAX_SPIKES=256)
+eskin_verilate(${exe} Vdtmf_top_p3s ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_p3s} --assert
+  -GUCODE_HEX=\"${dtmf_dir}/planned3x3_stream.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/planned3x3_stream.krom.hex\")
+string(JOIN " " dtmf_p3s_str ${dtmf_p3s})
 string(JOIN " " dtmf_default_str ${dtmf_default})
 string(JOIN " " dtmf_s10_str ${dtmf_s10})
 string(JOIN " " dtmf_s10fast_str ${dtmf_s10fast})
@@ -100,7 +111,8 @@ target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_S16M_PARAMS="${dtmf_s16m_str}" DTMF_TOP_S16M_CLK_HZ=40000000
   DTMF_TOP_S18M_PARAMS="${dtmf_s18m_str}" DTMF_TOP_S18M_CLK_HZ=40000000
   DTMF_TOP_S20M_PARAMS="${dtmf_s20m_str}" DTMF_TOP_S20M_CLK_HZ=40000000
-  DTMF_TOP_S32M_PARAMS="${dtmf_s32m_str}" DTMF_TOP_S32M_CLK_HZ=50000000)
+  DTMF_TOP_S32M_PARAMS="${dtmf_s32m_str}" DTMF_TOP_S32M_CLK_HZ=50000000
+  DTMF_TOP_P3S_PARAMS="${dtmf_p3s_str}" DTMF_TOP_P3S_CLK_HZ=18000000)
 target_link_libraries(${exe} PRIVATE eskin_ucode eskin_fpga)
 # Verilator 5.006 leaves an unused delayed copy of power_on_reset's
 # synchroniser in the code it writes for the two-clock build (s32m):

@@ -40,6 +40,8 @@
 #include "Vdtmf_top_s20m___024root.h"
 #include "Vdtmf_top_s32m.h"
 #include "Vdtmf_top_s32m___024root.h"
+#include "Vdtmf_top_p3s.h"
+#include "Vdtmf_top_p3s___024root.h"
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
 #include "eskin/dtmf_top_plan.h"
@@ -76,6 +78,7 @@ struct Build {
   double scale_fs = 0;       // (fpga::scale_scene of `scene`), no world codes
   long adc_clk_hz = 0;       // the ADC's own clock (ADC_CLK_HZ), 0: clk
   int neuron_lanes = 0;      // the unit's lanes (NEURON_LANES)
+  bool stream = false;       // the streaming datapath (STREAM)
 };
 const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ, 1};
 const Build kS10{"scenes/staggered10x10.yaml", "staggered10x10", DTMF_TOP_S10_PARAMS,
@@ -90,6 +93,8 @@ const Build kS18M{"scenes/neuroskin2.yaml", "scale_18x18_1msps", DTMF_TOP_S18M_P
                   DTMF_TOP_S18M_CLK_HZ, 6, true, true, 18, 1e6, 0, 5};
 const Build kS20M{"scenes/neuroskin2.yaml", "scale_20x20_1msps", DTMF_TOP_S20M_PARAMS,
                   DTMF_TOP_S20M_CLK_HZ, 7, true, true, 20, 1e6, 0, 5};
+const Build kP3S{"scenes/planned3x3.yaml", "planned3x3_stream", DTMF_TOP_P3S_PARAMS,
+                 DTMF_TOP_P3S_CLK_HZ, 1, false, false, 0, 0, 0, 0, true};
 const Build kS32M{"scenes/neuroskin2.yaml", "scale_32x32_1msps", DTMF_TOP_S32M_PARAMS,
                   DTMF_TOP_S32M_CLK_HZ, 10, true, true, 32, 1e6, 40000000, 5};
 
@@ -118,6 +123,7 @@ BuildSetup prepare(const Build& b) {
     spec.sdft_lanes = b.sdft_lanes;
     spec.engine_fast_shift = b.fast_shift;
     spec.neuron_unit = b.neuron_unit;
+    if (b.stream) spec.datapath = eskin::hls::DtmfDatapath::Streaming;
   }
   s.plan = eskin::hls::make_dtmf_top_plan(spec);
   std::filesystem::create_directories(DTMF_TOP_DIR);
@@ -294,6 +300,29 @@ void scene_test(const Build& build, const BuildSetup& s) {
 
 TEST(DtmfTop, DefaultSceneMatchesTheChainAndTheTruth) {
   scene_test<Vdtmf_top, eskin::hls::DtmfChainSizes<3, 3, 32>>(kDefault, prepare(kDefault));
+}
+
+// The streaming datapath (STREAM: rtl/dtmf_chain.v after the DFT, the
+// frame engine its control plane) on scenes/planned3x3.yaml, whose
+// bin-centred carriers need no demixing: a clean run (no sample, frame or
+// packet lost, no link or pin error) and every data packet equal to
+// hls/dtmf_chain.h's on the same samples, byte for byte, as the frame
+// engine's build gives them.
+TEST(DtmfTop, StreamingDatapathOnPlanned3x3MatchesTheChain) {
+  const BuildSetup s = prepare(kP3S);
+  ASSERT_FALSE(s.plan.spec.demix);
+  const size_t n = s.codes12.size();
+  auto padded = s;
+  padded.codes12.resize(n + 1300, 2048);
+  const auto want = run_chain<eskin::hls::DtmfChainSizes<3, 3, 32>>(padded, n + 60);
+  Board<Vdtmf_top_p3s> b(padded.codes12, double(kP3S.clk_hz), s.cpb);
+  eskin::link::LinkEncoder enc;
+  b.run_until_sample(n + 60);
+  expect_clean_run(b, enc);
+  const uint32_t limit = uint32_t(n) - uint32_t(s.plan.decim_tax * s.plan.step);
+  expect_same_packets(want, b.received(), {eskin::link::kAmplitudes, eskin::link::kTaxelsDense},
+                      limit);
+  std::printf("%s: %zu samples, %zu packets\n", kP3S.name.c_str(), n, b.received().size());
 }
 
 // Every command over the UART while a skin runs, then the HLS chain with

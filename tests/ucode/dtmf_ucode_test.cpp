@@ -696,3 +696,36 @@ TEST(DtmfUcode, TaxelLoopTakes16ClocksASiteAfterASite) {
 }
 
 }  // namespace
+
+namespace {
+
+// The streaming build's control plane (STREAM: rtl/dtmf_chain.v does the
+// per-taxel work) assembles for scenes/skin64x64.yaml, its 4096 taxels
+// taking no DMEM word (the engine keeps no taxel, site, neuron or spike),
+// inside the IMEM of every build, and with none of the engine's per-taxel
+// routines in it (taxel_reconstruct, izhikevich_layer, synapse_weights,
+// sw_table: their labels are absent).
+TEST(DtmfUcode, StreamingControlPlaneFitsWithNoTaxelState) {
+  auto spec = eskin::sim::dtmf_top_spec(
+      eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/skin64x64.yaml"));
+  spec.datapath = eskin::hls::DtmfDatapath::Streaming;
+  const auto plan = eskin::hls::make_dtmf_top_plan(spec);
+  ASSERT_EQ(plan.T, 4096);
+  const auto im = eskin::hls::dtmf_engine_image(plan);
+  EXPECT_EQ(im.symbol("STREAM"), 1);
+  EXPECT_LT(im.dend, 2048) << "DMEM words";
+  const auto prog = eskin::hls::dtmf_ucode_program(im);
+  const auto words = eskin::hls::dtmf_ucode_words(im);
+  EXPECT_LE(words.size(), size_t(eskin::hls::kDtmfImemWords));
+  for (const char* l : {"taxel_reconstruct", "izhikevich_layer", "synapse_weights", "sw_table",
+                        "carrier_magnitude", "nrn_init"})
+    EXPECT_EQ(prog.symbols.count(l), 0u) << l;
+  for (const char* l : {"stream_setup", "stream_cfg", "stream_consts", "ghost_filter"})
+    EXPECT_EQ(prog.symbols.count(l), 1u) << l;
+  // The engine build of the same plan keeps them (and would not fit DMEM).
+  spec.datapath = eskin::hls::DtmfDatapath::FrameEngine;
+  EXPECT_EQ(eskin::hls::dtmf_engine_image(eskin::hls::make_dtmf_top_plan(spec)).symbol("STREAM"), 0);
+  std::printf("skin64x64 control plane: %zu IMEM words, %d DMEM words\n", words.size(), im.dend);
+}
+
+}  // namespace
