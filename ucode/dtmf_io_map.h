@@ -64,7 +64,7 @@ namespace eskin::hls {
   X(kIoGhost, IO_GHOST, 0x214, "w: stream: bit 16 ghost filter on, 15:0 the release level")      \
   X(kIoSparseMin, IO_SPARSE_MIN, 0x215, "w: stream: TAXELS_SPARSE's least value")                \
   X(kIoNeurons, IO_NEURONS, 0x216, "w: stream: bit 0 the layers on; bit 1 initialise their state") \
-  X(kIoWeight, IO_WEIGHT, 0x230, "w: stream: synapse weight i (0..8) at 0x230 + i")              \
+  X(kIoWeight, IO_WEIGHT, 0x260, "w: stream: synapse weight i (0..8) at 0x260 + i")              \
   X(kIoIzCfg1, IO_IZ_CFG1, 0x240, "w: stream: layer 1's constant word w at 0x240 + w (layer 0: IO_IZ_CFG)") \
   X(kIoSpkDrop, IO_SPK_DROP, 0x210, "r: stream: spike events dropped in the window (saturating)") \
   X(kIoPktDrop, IO_PKT_DROP, 0x211, "r: stream: the chain's packets dropped for room (16-bit, saturating)") \

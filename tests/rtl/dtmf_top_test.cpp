@@ -79,6 +79,7 @@ struct Build {
   long adc_clk_hz = 0;       // the ADC's own clock (ADC_CLK_HZ), 0: clk
   int neuron_lanes = 0;      // the unit's lanes (NEURON_LANES)
   bool stream = false;       // the streaming datapath (STREAM)
+  bool spikes = false;       // stream: spikes whatever the scene's outputs
 };
 const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ, 1};
 const Build kS10{"scenes/staggered10x10.yaml", "staggered10x10", DTMF_TOP_S10_PARAMS,
@@ -124,6 +125,7 @@ BuildSetup prepare(const Build& b) {
     spec.engine_fast_shift = b.fast_shift;
     spec.neuron_unit = b.neuron_unit;
     if (b.stream) spec.datapath = eskin::hls::DtmfDatapath::Streaming;
+    if (b.spikes) spec.spikes = true;
   }
   s.plan = eskin::hls::make_dtmf_top_plan(spec);
   std::filesystem::create_directories(DTMF_TOP_DIR);
@@ -305,24 +307,52 @@ TEST(DtmfTop, DefaultSceneMatchesTheChainAndTheTruth) {
 // The streaming datapath (STREAM: rtl/dtmf_chain.v after the DFT, the
 // frame engine its control plane) on scenes/planned3x3.yaml, whose
 // bin-centred carriers need no demixing: a clean run (no sample, frame or
-// packet lost, no link or pin error) and every data packet equal to
-// hls/dtmf_chain.h's on the same samples, byte for byte, as the frame
-// engine's build gives them.
+// packet lost, no link or pin error, the status's counts the chain's) and
+// every data packet equal to hls/dtmf_chain.h's on the same samples, byte
+// for byte, as the frame engine's builds give them. Twice on the one
+// build: the scene's outputs (amplitudes, taxels: the chain's layers off),
+// then with spikes (both layers, the synapse and SPIKES; the microcode and
+// constants differ, the parameters do not).
 TEST(DtmfTop, StreamingDatapathOnPlanned3x3MatchesTheChain) {
-  const BuildSetup s = prepare(kP3S);
-  ASSERT_FALSE(s.plan.spec.demix);
-  const size_t n = s.codes12.size();
-  auto padded = s;
-  padded.codes12.resize(n + 1300, 2048);
-  const auto want = run_chain<eskin::hls::DtmfChainSizes<3, 3, 32>>(padded, n + 60);
-  Board<Vdtmf_top_p3s> b(padded.codes12, double(kP3S.clk_hz), s.cpb);
-  eskin::link::LinkEncoder enc;
-  b.run_until_sample(n + 60);
-  expect_clean_run(b, enc);
-  const uint32_t limit = uint32_t(n) - uint32_t(s.plan.decim_tax * s.plan.step);
-  expect_same_packets(want, b.received(), {eskin::link::kAmplitudes, eskin::link::kTaxelsDense},
-                      limit);
-  std::printf("%s: %zu samples, %zu packets\n", kP3S.name.c_str(), n, b.received().size());
+  for (const bool spikes : {false, true}) {
+    SCOPED_TRACE(spikes ? "with spikes" : "the scene's outputs");
+    Build k = kP3S;
+    k.spikes = spikes;
+    const BuildSetup s = prepare(k);
+    ASSERT_FALSE(s.plan.spec.demix);
+    ASSERT_EQ(s.plan.spec.spikes, spikes);
+    const size_t n = s.codes12.size();
+    auto padded = s;
+    padded.codes12.resize(n + 1300, 2048);
+    using S = eskin::hls::DtmfChainSizes<3, 3, 32>;
+    const auto want = run_chain<S>(padded, n + 60);
+    Board<Vdtmf_top_p3s> b(padded.codes12, double(k.clk_hz), s.cpb);
+    eskin::link::LinkEncoder enc;
+    b.run_until_sample(n + 60);
+    expect_clean_run(b, enc, 0, [&](uint32_t t) {
+      uint32_t drops = 0;
+      run_chain<S>(padded, size_t(t) + 1, nullptr, &drops);
+      return drops;
+    });
+    const uint32_t limit = uint32_t(n) - uint32_t(s.plan.decim_tax * s.plan.step);
+    if (spikes) {
+      expect_same_packets(want, b.received(),
+                          {eskin::link::kAmplitudes, eskin::link::kTaxelsDense,
+                           eskin::link::kSpikes},
+                          limit);
+    } else {
+      expect_same_packets(want, b.received(),
+                          {eskin::link::kAmplitudes, eskin::link::kTaxelsDense}, limit);
+    }
+    size_t events = 0;
+    for (const auto& r : b.received())
+      if (r.p.type == eskin::link::kSpikes) events += r.p.payload.size() / 5;
+    if (spikes) {
+      EXPECT_GT(events, 0u);
+    }
+    std::printf("%s%s: %zu samples, %zu packets, %zu spike events\n", k.name.c_str(),
+                spikes ? " (spikes)" : "", n, b.received().size(), events);
+  }
 }
 
 // Every command over the UART while a skin runs, then the HLS chain with

@@ -92,6 +92,23 @@ TEST(DtmfIoMap, NoTwoPortsShareAnAddressInOneDirection) {
   }
 }
 
+// The write ports that take a block of addresses (a base + word: the
+// layers' 32 constant words each, the nine synapse weights) overlap no
+// other write port: a weight at 0x230 once also wrote layer 0's constant
+// words 16..24 (IO_IZ_CFG's block), and layer 1 spiked differently.
+TEST(DtmfIoMap, AddressBlocksOverlapNoOtherWritePort) {
+  const std::map<uint16_t, int> blocks = {{kIoIzCfg, 32}, {kIoIzCfg1, 32}, {kIoWeight, 16}};
+  for (const auto& e : kDtmfIoPorts) {
+    const std::string what = e.what;
+    if (!(what.rfind("w:", 0) == 0 || what.find("; w:") != std::string::npos)) continue;
+    for (const auto& [base, n] : blocks)
+      if (e.value != base) {
+        EXPECT_FALSE(e.value >= base && e.value < base + n)
+            << e.symbol << " at " << e.value << " falls in the block at " << base;
+      }
+  }
+}
+
 // The microcode's symbols for the ports are the map's.
 TEST(DtmfIoMap, MicrocodeSymbolsAreTheMap) {
   const auto sc = eskin::sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/scenes/neuroskin2.yaml");
