@@ -138,6 +138,7 @@ module dtmf_chain #(
     output wire [7:0]        out_data,
     output wire              dropped,          // a packet left out (one clock)
     output wire [31:0]       spikes_dropped,   // events past MAX_SPIKES a window (spike_encoder's)
+    input  wire              drops_clear,      // zero spikes_dropped
     // Each taxel as the packetizer takes it (for status counters and tests).
     output wire              tax_valid,
     output wire              tax_site,
@@ -352,7 +353,7 @@ module dtmf_chain #(
       .clk(clk), .rst(rst), .in_valid(e_valid), .in_ready(e_ready), .in_op(e_op),
       .in_t(hq_head[31:0]), .in_layer(e_layer), .in_neuron(e_neuron), .out_free(out_free),
       .out_valid(en_valid), .out_ready(en_ready), .out_data(en_data), .dropped(en_dropped),
-      .spikes_dropped(spikes_dropped));
+      .spikes_dropped(spikes_dropped), .clear(drops_clear));
 
   // ---- One output port, whole packets (packet_arbiter: round robin).
   packet_arbiter #(.NS(2)) u_arb (

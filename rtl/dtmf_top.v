@@ -490,7 +490,8 @@ module dtmf_top #(
           .hdr_dense(hdr_bits[0]), .hdr_sparse(hdr_bits[1]), .hdr_sparse_min(c_smin),
           .hdr_spikes(hdr_bits[2]), .hdr_close(hdr_bits[3]), .out_free(co_free),
           .out_valid(co_in_valid), .out_ready(co_in_ready), .out_data(co_in_data),
-          .dropped(ch_dropped), .spikes_dropped(spk_drop), .tax_valid(), .tax_site(), .idle());
+          .dropped(ch_dropped), .spikes_dropped(spk_drop), .drops_clear(wr_clear), .tax_valid(),
+          .tax_site(), .idle());
       byte_fifo #(.DEPTH(OUT_DEPTH)) u_chain_out (
           .clk(clk), .rst(rst), .in_valid(co_in_valid), .in_data(co_in_data),
           .out_valid(co_valid), .out_ready(co_ready), .out_data(co_data), .free(co_free),

@@ -44,7 +44,8 @@ module spike_encoder #(
     input  wire        out_ready,
     output reg  [7:0]  out_data,
     output wire        dropped,
-    output reg  [31:0] spikes_dropped
+    output reg  [31:0] spikes_dropped,
+    input  wire        clear   // zero spikes_dropped (the top's CLEAR_COUNTERS)
 );
   generate
     if (MAX < 1 || MAX > 13107) begin : g_bad_params
@@ -118,6 +119,7 @@ module spike_encoder #(
           default: ;
         endcase
       end
+      if (clear) spikes_dropped <= 32'd0;  // (over a drop in the same clock)
     end
   end
 endmodule

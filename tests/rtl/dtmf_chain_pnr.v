@@ -21,14 +21,14 @@ module dtmf_chain_pnr #(
   localparam integer KA = (R + C > 1) ? $clog2(R + C) : 1;
   localparam integer MA = (R * C > 1) ? $clog2(R * C) : 1;
   localparam integer IW = 15 + 5 + 1 + 16 + 1 + 144 + 2 + 5 + 32 + 1 + 1 + 8 + 24 + 24 + 1 + KA + 1 +
-                          MA + 1 + 1 + 1 + 32 + 1 + 1 + 16 + 1 + 1 + 16 + 1;
+                          MA + 1 + 1 + 1 + 32 + 1 + 1 + 16 + 1 + 1 + 16 + 1 + 1;
   reg [IW-1:0] sr;
   always @(posedge clk) sr <= {sr[IW-2:0], din};
 
   wire [14:0] cfg_recip;
   wire [4:0] cfg_recip_shift;
   wire cfg_ghost, cfg_neurons, nu_init, in_valid, in_last, mask_we, mask_din, sites_done;
-  wire hdr_valid, hdr_dense, hdr_sparse, hdr_spikes, hdr_close, out_ready;
+  wire hdr_valid, hdr_dense, hdr_sparse, hdr_spikes, hdr_close, out_ready, drops_clear;
   wire [15:0] cfg_release, hdr_sparse_min, out_free;
   wire [143:0] cfg_w;
   wire [1:0] nu_cfg_we;
@@ -41,7 +41,7 @@ module dtmf_chain_pnr #(
   assign {cfg_recip, cfg_recip_shift, cfg_ghost, cfg_release, cfg_neurons, cfg_w, nu_cfg_we,
           nu_cfg_addr, nu_cfg_data, nu_init, in_valid, in_k, in_re, in_im, in_last, mag_raddr,
           mask_we, mask_addr, mask_din, sites_done, hdr_valid, hdr_t, hdr_dense, hdr_sparse,
-          hdr_sparse_min, hdr_spikes, hdr_close, out_free, out_ready} = sr;
+          hdr_sparse_min, hdr_spikes, hdr_close, out_free, out_ready, drops_clear} = sr;
 
   wire nu_busy, in_ready, mag_ready, hdr_ready, out_valid, dropped, tax_valid, tax_site, idle;
   wire [15:0] mag_rdata;
@@ -59,7 +59,8 @@ module dtmf_chain_pnr #(
       .hdr_sparse(hdr_sparse), .hdr_sparse_min(hdr_sparse_min), .hdr_spikes(hdr_spikes),
       .hdr_close(hdr_close), .out_free(out_free), .out_valid(out_valid),
       .out_ready(out_ready), .out_data(out_data), .dropped(dropped),
-      .spikes_dropped(spikes_dropped), .tax_valid(tax_valid), .tax_site(tax_site),
+      .spikes_dropped(spikes_dropped), .drops_clear(drops_clear), .tax_valid(tax_valid),
+      .tax_site(tax_site),
       .idle(idle));
   always @(posedge clk)
     dout <= ^{nu_busy, in_ready, mag_ready, mag_rdata, hdr_ready, out_valid, out_data, dropped,

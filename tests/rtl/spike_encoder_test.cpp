@@ -201,6 +201,50 @@ TEST(SpikeEncoder, Max256DropCountSaturatesAt65535) {
   b->check_exact();
 }
 
+// `clear` (the top's CLEAR_COUNTERS) zeroes the count, and wins over a
+// drop in its own clock: after 65540 drops (saturated at 65535) a clear
+// gives 0; then a window of 256 + 3 events counts 3 again, the last of
+// them taken in the clear's clock, which leaves 2.
+TEST(SpikeEncoder, ClearZeroesTheDropCount) {
+  auto b = std::make_unique<B256>(12);
+  b->add({kFrame, 1000, 0, 0});
+  for (int k = 0; k < 256 + 65540; ++k) b->add({kSpike, 0, uint8_t(k & 1), uint16_t(k % 9)});
+  b->add({kClose, 0, 0, 0});
+  b->run();
+  b->check_exact();
+  ASSERT_EQ(b->m.spikes_dropped, 65535u);
+  b->m.clear = 1;
+  b->tick();
+  b->m.clear = 0;
+  EXPECT_EQ(b->m.spikes_dropped, 0u);
+  // A new window past MAX, its third drop in a clear's clock.
+  auto op = [&](uint8_t o, uint32_t t, uint16_t n) {
+    b->m.in_valid = 1;
+    b->m.in_op = o;
+    b->m.in_t = t;
+    b->m.in_layer = 0;
+    b->m.in_neuron = n;
+    for (int i = 0; i < 1000 && !b->m.in_ready; ++i) b->tick();
+    ASSERT_TRUE(b->m.in_ready);
+  };
+  op(kFrame, 2000, 0);
+  b->tick();
+  for (int k = 0; k < 256 + 3; ++k) {
+    op(kSpike, 0, uint16_t(k % 9));
+    if (k == 256 + 2) b->m.clear = 1;
+    b->tick();
+    b->m.clear = 0;
+  }
+  b->m.in_valid = 0;
+  b->tick();
+  EXPECT_EQ(b->m.spikes_dropped, 0u) << "the clear's clock drops nothing into the count";
+  op(kSpike, 0, 1);
+  b->tick();
+  b->m.in_valid = 0;
+  b->tick();
+  EXPECT_EQ(b->m.spikes_dropped, 1u);
+}
+
 TEST(SpikeEncoder, Max256RoomRuleAtTheByte) {
   for (int extra : {0, -1}) {
     auto b = std::make_unique<B256>(5);
