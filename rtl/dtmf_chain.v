@@ -142,7 +142,10 @@ module dtmf_chain #(
     // Each taxel as the packetizer takes it (for status counters and tests).
     output wire              tax_valid,
     output wire              tax_site,
-    output wire              idle              // no frame in flight, no packet going out
+    output wire              idle,             // no frame in flight, no packet going out
+    // The layers, the synapse and the events hold no frame's work: their
+    // constants (nu_cfg_*, cfg_w) may change for the next header's frame.
+    output wire              layers_idle
 );
   localparam integer K = R + C;
   localparam integer T = R * C;
@@ -365,6 +368,7 @@ module dtmf_chain #(
   // idle covers the rest (taxel_reconstruct between frames, the layers and
   // the events done, nothing to send).
   assign ev_idle = ev == E_FRAME && hq_n == 3'd0 && e_ready;
+  assign layers_idle = ev_idle;
   assign idle = p_idle && !mag_ready && !m_valid && !t_valid && !p_valid && !en_valid &&
                 (!cfg_neurons || ev_idle);
 

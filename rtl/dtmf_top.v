@@ -389,7 +389,7 @@ module dtmf_top #(
   wire [31:0] spk_drop;       // the chain's spike events dropped (saturating)
   wire        frame_done;     // a frame's work handed back (the header, or IO_FRAME_DONE)
   reg  [15:0] ch_pkt_drops;   // its packets dropped for room (saturating)
-  wire        nu_busy;
+  wire        stream_busy;    // IO_STREAM_BUSY: the layers initialising or holding a frame's work
   generate
     if (STREAM != 0) begin : g_stream
       localparam integer KA = (KS > 1) ? $clog2(KS) : 1;
@@ -461,7 +461,7 @@ module dtmf_top #(
       end
       // A frame waits for the engine from its magnitudes (mag_ready) until
       // its header; mag_ready stays high until the frame's last taxel.
-      wire mag_ready;
+      wire mag_ready, layers_idle, nu_busy;
       reg  mag_ready_q, sites_given;
       always @(posedge clk) begin
         mag_ready_q <= !rst && mag_ready;
@@ -491,7 +491,8 @@ module dtmf_top #(
           .hdr_spikes(hdr_bits[2]), .hdr_close(hdr_bits[3]), .out_free(co_free),
           .out_valid(co_in_valid), .out_ready(co_in_ready), .out_data(co_in_data),
           .dropped(ch_dropped), .spikes_dropped(spk_drop), .drops_clear(wr_clear), .tax_valid(),
-          .tax_site(), .idle());
+          .tax_site(), .idle(), .layers_idle(layers_idle));
+      assign stream_busy = nu_busy || !layers_idle;
       byte_fifo #(.DEPTH(OUT_DEPTH)) u_chain_out (
           .clk(clk), .rst(rst), .in_valid(co_in_valid), .in_data(co_in_data),
           .out_valid(co_valid), .out_ready(co_ready), .out_data(co_data), .free(co_free),
@@ -524,6 +525,9 @@ module dtmf_top #(
           if (io_re && !io_raddr[9])
             assert (frame_pending)
             else $error("dtmf_top: the microcode read magnitude %0d with no frame's magnitudes waiting", io_raddr[KA-1:0]);
+          if (wr_iz_cfg || wr_cfg1 || wr_weight)
+            assert (layers_idle)
+            else $error("dtmf_top: the microcode wrote a neuron constant or a weight while the chain's layers held a frame's work");
           if (wr_site)  // (clears: at boot, before any frame)
             assert (frame_pending)
             else $error("dtmf_top: the microcode wrote a site outside a frame's control step");
@@ -541,7 +545,7 @@ module dtmf_top #(
       assign eo_ready = fifo_ready;
       assign mag_q = 16'd0;
       assign spk_drop = 32'd0;
-      assign nu_busy = 1'b0;
+      assign stream_busy = 1'b0;
       always @(posedge clk) ch_pkt_drops <= 16'd0;
       assign ch_in_ready = 1'b0;
       wire unused_stream = ^{IO_SITE, IO_SITE_CLR, IO_HEADER, IO_RECIP, IO_GHOST, IO_SPARSE_MIN,
@@ -721,7 +725,7 @@ module dtmf_top #(
       case (io_raddr[1:0])
         IO_SPK_DROP[1:0]: io_reg <= spk_drop;
         IO_PKT_DROP[1:0]: io_reg <= {16'd0, ch_pkt_drops};
-        default: io_reg <= {31'd0, nu_busy};  // IO_STREAM_BUSY
+        default: io_reg <= {31'd0, stream_busy};  // IO_STREAM_BUSY
       endcase
   end
   wire unused_io = ^{io_re, io_raddr[15:10], io_raddr[8]};  // partial decode

@@ -276,6 +276,12 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // Whether the plan's mask asks for sparse taxel packets (their two passes
   // over every taxel).
   sym("SPARSE", (p.mask & kMaskSparse) ? 1 : 0);
+  // Streaming: the polls (2 clocks each at least) of stream_cfg's wait for
+  // the chain's layers to finish the last frame once its last taxel is in:
+  // a row of the synapse and both layers' pipelines (C + 40), an event a
+  // clock for every neuron of both layers, and the SPIKES packet a byte a
+  // clock (rtl/dtmf_chain.v), when the FIFO has room.
+  sym("STREAM_TAIL", (C + 40 + 2L * T + 5L * p.max_spikes + 8) / 2);
   int payload = 0;
   for (const auto& c : kDtmfCommands) payload = std::max(payload, c.payload_bytes());
   sym("CMD_PAYLOAD", payload);

@@ -68,7 +68,8 @@ namespace eskin::hls {
   X(kIoIzCfg1, IO_IZ_CFG1, 0x240, "w: stream: layer 1's constant word w at 0x240 + w (layer 0: IO_IZ_CFG)") \
   X(kIoSpkDrop, IO_SPK_DROP, 0x210, "r: stream: spike events dropped in the window (saturating)") \
   X(kIoPktDrop, IO_PKT_DROP, 0x211, "r: stream: the chain's packets dropped for room (16-bit, saturating)") \
-  X(kIoStreamBusy, IO_STREAM_BUSY, 0x212, "r: stream: bit 0 the layers initialising")
+  X(kIoStreamBusy, IO_STREAM_BUSY, 0x212,                                                      \
+    "r: stream: bit 0 the layers initialising or holding a frame's work")
 
 // Engine events (the `wait` mask bits) of rtl/dtmf_top.v.
 #define ESKIN_DTMF_EVENTS(X)                                       \

@@ -44,6 +44,7 @@ module dtmf_chain_pnr #(
           hdr_sparse_min, hdr_spikes, hdr_close, out_free, out_ready, drops_clear} = sr;
 
   wire nu_busy, in_ready, mag_ready, hdr_ready, out_valid, dropped, tax_valid, tax_site, idle;
+  wire layers_idle;
   wire [15:0] mag_rdata;
   wire [7:0] out_data;
   wire [31:0] spikes_dropped;
@@ -60,10 +61,10 @@ module dtmf_chain_pnr #(
       .hdr_close(hdr_close), .out_free(out_free), .out_valid(out_valid),
       .out_ready(out_ready), .out_data(out_data), .dropped(dropped),
       .spikes_dropped(spikes_dropped), .drops_clear(drops_clear), .tax_valid(tax_valid),
-      .tax_site(tax_site),
+      .tax_site(tax_site), .layers_idle(layers_idle),
       .idle(idle));
   always @(posedge clk)
     dout <= ^{nu_busy, in_ready, mag_ready, mag_rdata, hdr_ready, out_valid, out_data, dropped,
-              spikes_dropped, tax_valid, tax_site, idle};
+              spikes_dropped, tax_valid, tax_site, idle, layers_idle};
 endmodule
 `default_nettype wire

@@ -94,6 +94,11 @@ set(dtmf_p3s -GCLK_HZ=18000000 -GSAMPLE_HZ=35000 -GBAUD=3000000 -GKS=6 -GN=32 -G
 eskin_verilate(${exe} Vdtmf_top_p3s ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_p3s} --assert
   -GUCODE_HEX=\"${dtmf_dir}/planned3x3_stream.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/planned3x3_stream.krom.hex\")
+# p3c: the same build for the commands test (its own microcode files: the
+# test writes them with spikes on while p3s's test may run beside it).
+eskin_verilate(${exe} Vdtmf_top_p3c ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_p3s} --assert
+  -GUCODE_HEX=\"${dtmf_dir}/planned3x3_stream_cmd.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/planned3x3_stream_cmd.krom.hex\")
 string(JOIN " " dtmf_p3s_str ${dtmf_p3s})
 string(JOIN " " dtmf_default_str ${dtmf_default})
 string(JOIN " " dtmf_s10_str ${dtmf_s10})

@@ -42,6 +42,8 @@
 #include "Vdtmf_top_s32m___024root.h"
 #include "Vdtmf_top_p3s.h"
 #include "Vdtmf_top_p3s___024root.h"
+#include "Vdtmf_top_p3c.h"
+#include "Vdtmf_top_p3c___024root.h"
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
 #include "eskin/dtmf_top_plan.h"
@@ -609,6 +611,17 @@ TEST(DtmfTop, EveryCommandIsAppliedAtRunTimeWithTheNeuronUnit) {
 }
 TEST(DtmfTop, EveryCommandIsAppliedAtRunTimeWithTheNeuronLanes) {
   every_command_at_run_time<Vdtmf_top_s16m, eskin::hls::DtmfChainSizes<16, 16, 128>>(kS16M);
+}
+
+// The streaming datapath with spikes: every command's change reaches the
+// chain's configuration registers (SET_THRESHOLD's release and sparse
+// minimum every frame, SET_NEURON's and SET_WEIGHT's constants once the
+// layers finish the last frame), each data packet equal to the chain's.
+TEST(DtmfTop, EveryCommandIsAppliedAtRunTimeOnTheStreamingDatapath) {
+  Build k = kP3S;
+  k.name = "planned3x3_stream_cmd";
+  k.spikes = true;
+  every_command_at_run_time<Vdtmf_top_p3c, eskin::hls::DtmfChainSizes<3, 3, 32>>(k);
 }
 
 TEST(DtmfTop, Staggered10x10MatchesTheChainAndTheTruth) {
