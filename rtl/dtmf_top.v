@@ -100,7 +100,8 @@ module dtmf_top #(
     // after the DFT, one element a clock, and the frame engine is its
     // control plane (the microcode built with STREAM: commands, the ghost
     // filter's pairing, AMPLITUDES, headers, status); the large FPGAs'
-    // architecture (host/fpga/flow.h picks it). KS = ROWS + COLS carriers,
+    // architecture (a plan's DtmfTopSpec::datapath; the board flow does not
+    // choose it yet). KS = ROWS + COLS carriers,
     // no demixing (the plan's bin-centred carriers), no neuron unit (the
     // chain has its own layers). MAG_SHIFT and MAX_SPIKES: the chain's
     // (hls::DtmfChainSizes). 0: the frame engine alone.
