@@ -7,6 +7,12 @@
 // engine load of `eskin bitstream` (host/fpga/engine_load.cpp) and the
 // benchmarks' cycle model (host/bench/engine_model.cpp).
 //
+// The streaming build (STREAM: the engine is rtl/dtmf_chain.v's control
+// plane): `frame` holds the chain's K magnitudes instead of the tokens,
+// IO_HEADER releases the frame as IO_FRAME_DONE does (its bits kept in
+// `headers`), IO_SITE writes are kept in `sites`, and the chain's layers
+// are idle (IO_STREAM_BUSY 0; the chain's own clocks are its formulas').
+//
 // What the rest of the top does (the ADC, the DFT, frame capture, the link)
 // stays with the caller: it fills `frame`, sets `pending`, `frame_t`,
 // `adc_t` and `frame_overruns`, queues command bytes in `cmd`, and hears of
@@ -33,7 +39,8 @@ class DtmfTopBus {
   // The plan's frame size (2 KS tokens), OUT_DEPTH, and its neuron unit or
   // lanes (NEURON_UNIT, NEURON_LANES).
   explicit DtmfTopBus(const DtmfTopPlan& p)
-      : frame(size_t(2 * p.ks), 0), inc(size_t(p.ks), 0), out_depth_(p.out_depth) {
+      : frame(size_t(2 * p.ks), 0), inc(size_t(p.ks), 0), out_depth_(p.out_depth),
+        stream_(p.spec.datapath == DtmfDatapath::Streaming) {
     neuron.present = p.spec.neuron_unit && p.spec.neuron_lanes == 0;
     if (p.spec.neuron_lanes) lanes.configure(p.spec.neuron_lanes, 2 * p.T, p.C);
   }
@@ -53,6 +60,10 @@ class DtmfTopBus {
   uint32_t frames_done = 0;    // frames released
   uint64_t done_clock = 0;     // the clock of the last release
   std::vector<uint8_t>* out = nullptr;  // the output FIFO's bytes, when kept
+  std::vector<uint32_t> headers;  // STREAM: each frame's IO_HEADER word
+  std::vector<uint32_t> sites;    // STREAM: each IO_SITE write (a taxel)
+  std::vector<uint32_t> site_clears;  // STREAM: each IO_SITE_CLR write
+  std::vector<size_t> sites_at_header;  // STREAM: sites.size() at each IO_HEADER
 
   // Hooks (each may be empty): a release of the frame buffer; bytes written
   // to the output FIFO (1 or 2, the word port's); a carrier table whose
@@ -86,7 +97,10 @@ class DtmfTopBus {
       if (on_out) on_out(clock, a == kIoOutWord ? 2 : 1);
       return;
     }
-    switch (a) {
+    if (stream_ && a == kIoSite) return sites.push_back(d);
+    if (stream_ && a == kIoSiteClr) return site_clears.push_back(d);
+    if (stream_ && a == kIoHeader) headers.push_back(d), sites_at_header.push_back(sites.size());
+    switch (stream_ && a == kIoHeader ? uint16_t(kIoFrameDone) : a) {
       case kIoFrameDone:
         pending = false;
         done_clock = clock;
@@ -123,6 +137,7 @@ class DtmfTopBus {
 
  private:
   int out_depth_ = 512;
+  bool stream_ = false;
   int cfg_k_ = 0;
   bool cfg_last_ = false;
 };

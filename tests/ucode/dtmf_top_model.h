@@ -78,6 +78,10 @@ class TopModel {
       } else {
         for (int k = 0; k < plan_.ks; ++k)
           io_.frame[size_t(2 * k)] = tok[k].re, io_.frame[size_t(2 * k + 1)] = tok[k].im;
+        if (plan_.spec.datapath == eskin::hls::DtmfDatapath::Streaming)
+          for (int k = 0; k < plan_.ks; ++k)  // the chain's magnitudes (hls/dtmf_chain.h's)
+            io_.frame[size_t(k)] = int32_t(
+                eskin::hls::DtmfChain<S>::Magnitude::magnitude(tok[k].re, tok[k].im));
         if (on_frame) on_frame(io_.frame);
         io_.pending = true;
         io_.frame_t = io_.adc_t;
@@ -129,6 +133,7 @@ class TopModel {
   uint32_t frames_done() const { return io_.frames_done; }  // frames the engine released
   uint32_t frame_overruns() const { return io_.frame_overruns; }
   size_t sdft_loads() const { return io_.sdft_loads; }
+  const eskin::hls::DtmfTopBus& bus() const { return io_; }
   const eskin::hls::EngineImage& image() const { return im_; }
   eskin::hls::FrameEngine<EngineCfg>& engine() { return *eng_; }
 

@@ -729,3 +729,105 @@ TEST(DtmfUcode, StreamingControlPlaneFitsWithNoTaxelState) {
 }
 
 }  // namespace
+
+namespace {
+
+// The streaming build's control plane on the top model (the chain's
+// magnitudes in the frame buffer: tests/ucode/dtmf_top_model.h) against
+// hls/dtmf_chain.h on scenes/planned3x3.yaml with spikes, frame by frame:
+//  - AMPLITUDES: every packet equal to the chain's;
+//  - the header of frame f: dense and sparse on a taxel frame as the mask
+//    asks, spikes recorded, the window's end, from the plan's decimations
+//    counted here (hls/dtmf_chain.h's rule);
+//  - the sites: those the engine writes for frame f, with the sites left
+//    after frame f - 1's release, are exactly the ghost filter's after its
+//    frame() step (hls::GhostFilter on the same magnitudes, its release by
+//    hls::TaxelReconstruct's values): the chain's mask holds that set when
+//    its taxels go.
+TEST(DtmfUcode, StreamingControlPlaneEqualsTheChain) {
+  using S = hls::DtmfChainSizes<3, 3, 32>;
+  const sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/planned3x3.yaml");
+  auto spec = sim::dtmf_top_spec(sc, hls::kDtmfTopClkHz);
+  spec.datapath = hls::DtmfDatapath::Streaming;
+  spec.spikes = true;
+  const auto plan = hls::make_dtmf_top_plan(spec);
+  ASSERT_FALSE(plan.spec.demix);
+  ASSERT_TRUE(plan.spec.ghost);
+  const long period = std::lround(double(hls::kDtmfTopClkHz) / sc.skin.adc.rate_hz);
+  sim::WorldModel world(sc);
+  std::vector<uint16_t> codes;
+  for (int c : world.all_codes()) codes.push_back(uint16_t(c << (12 - sc.skin.adc.bits)));
+
+  dtmf_model::TopModel<S> top(plan, period);
+  auto chain = std::make_unique<hls::DtmfChain<S>>(hls::chain_config<S>(plan));
+  ASSERT_TRUE(chain->ok());
+  auto ghost = std::make_unique<hls::GhostFilter<S::R, S::C, S::L_MAX>>();
+  ASSERT_TRUE(ghost->configure(hls::chain_config<S>(plan).ghost_cfg));
+  auto taxel = std::make_unique<hls::TaxelReconstruct<S::R, S::C>>();
+  ASSERT_TRUE(taxel->configure(hls::chain_config<S>(plan).taxel));
+  // Per frame: the header the chain's counters give, the sites after frame().
+  std::vector<uint32_t> want_hdr;
+  std::vector<std::vector<bool>> want_sites;
+  std::vector<std::vector<bool>> kept;  // after each frame's release
+  std::vector<dtmf_model::Packet> want_amp;
+  typename hls::DtmfChain<S>::Packet pk[hls::DtmfChain<S>::kMaxPackets];
+  uint32_t amp_cnt = 0, tax_cnt = 0, frames = 0;
+  for (size_t n = 0; n < codes.size(); ++n) {
+    top.sample(codes[n]);
+    const int np = chain->push(codes[n], uint32_t(n), pk);
+    for (int i = 0; i < np; ++i)
+      if (pk[i].type == hls::kDtmfAmplitudes)
+        want_amp.push_back({pk[i].type, pk[i].t, {pk[i].payload, pk[i].payload + pk[i].len}});
+    if (chain->frames() == frames) continue;
+    frames = chain->frames();
+    uint16_t mag[S::K];
+    for (int k = 0; k < S::K; ++k) mag[k] = chain->magnitude(k);
+    ghost->frame(mag);
+    std::vector<bool> s(S::T);
+    for (int i = 0; i < S::T; ++i) s[size_t(i)] = ghost->site(i / S::C, i % S::C);
+    want_sites.push_back(s);
+    taxel->lines(mag);
+    ghost->release([&](int i, int j) { return taxel->value(i, j); });
+    for (int i = 0; i < S::T; ++i) s[size_t(i)] = ghost->site(i / S::C, i % S::C);
+    kept.push_back(s);
+    const bool tax_sel = tax_cnt == 0, win_end = tax_cnt + 1 >= plan.decim_tax;
+    tax_cnt = win_end ? 0 : tax_cnt + 1;
+    amp_cnt = amp_cnt + 1 >= plan.decim_amp ? 0 : amp_cnt + 1;
+    want_hdr.push_back((tax_sel && (plan.mask & hls::kMaskTaxels) ? 1u : 0u) |
+                       (tax_sel && (plan.mask & hls::kMaskSparse) ? 2u : 0u) |
+                       ((plan.mask & hls::kMaskSpikes) ? 4u : 0u) | (win_end ? 8u : 0u));
+  }
+  const auto& bus = top.bus();
+  ASSERT_GT(want_hdr.size(), 250u);
+  ASSERT_GE(bus.headers.size() + 2, want_hdr.size());  // the last may still be in the engine
+  const size_t nf = std::min(bus.headers.size(), want_hdr.size());
+  ASSERT_EQ(bus.sites_at_header.size(), bus.headers.size());
+  // Every site of the mask cleared once at boot.
+  EXPECT_EQ(bus.site_clears.size(), size_t(S::T));
+  size_t first = 0, paired = 0;
+  for (size_t f = 0; f < nf; ++f) {
+    EXPECT_EQ(bus.headers[f], want_hdr[f]) << "frame " << f;
+    std::vector<bool> s = f ? kept[f - 1] : std::vector<bool>(S::T);
+    for (size_t w = first; w < bus.sites_at_header[f]; ++w) {
+      ASSERT_LT(bus.sites[w], uint32_t(S::T)) << "frame " << f;
+      s[bus.sites[w]] = true;
+    }
+    paired += bus.sites_at_header[f] - first;
+    first = bus.sites_at_header[f];
+    ASSERT_EQ(s, want_sites[f]) << "frame " << f << ": the sites the chain's mask holds";
+  }
+  EXPECT_GT(paired, 0u) << "no site written: the scene's presses must make some";
+  // AMPLITUDES.
+  std::vector<dtmf_model::Packet> got_amp;
+  for (const auto& p : top.packets())
+    if (p.type == hls::kDtmfAmplitudes) got_amp.push_back(p);
+  ASSERT_GE(got_amp.size() + 2, want_amp.size());
+  for (size_t i = 0; i < std::min(got_amp.size(), want_amp.size()); ++i)
+    ASSERT_EQ(got_amp[i], want_amp[i]) << "AMPLITUDES " << i;
+  EXPECT_EQ(top.frame_overruns(), 0u);
+  std::printf("planned3x3 control plane: %zu frames, %zu site writes, longest frame %llu clocks "
+              "of %ld\n",
+              nf, paired, (unsigned long long)top.max_frame_clocks(), period * plan.step);
+}
+
+}  // namespace
