@@ -76,12 +76,14 @@ class TopModel {
       if (io_.pending) {
         ++io_.frame_overruns;
       } else {
-        for (int k = 0; k < plan_.ks; ++k)
-          io_.frame[size_t(2 * k)] = tok[k].re, io_.frame[size_t(2 * k + 1)] = tok[k].im;
-        if (plan_.spec.datapath == eskin::hls::DtmfDatapath::Streaming)
+        if (plan_.spec.datapath == eskin::hls::DtmfDatapath::Streaming) {
           for (int k = 0; k < plan_.ks; ++k)  // the chain's magnitudes (hls/dtmf_chain.h's)
             io_.frame[size_t(k)] = int32_t(
                 eskin::hls::DtmfChain<S>::Magnitude::magnitude(tok[k].re, tok[k].im));
+        } else {
+          for (int k = 0; k < plan_.ks; ++k)
+            io_.frame[size_t(2 * k)] = tok[k].re, io_.frame[size_t(2 * k + 1)] = tok[k].im;
+        }
         if (on_frame) on_frame(io_.frame);
         io_.pending = true;
         io_.frame_t = io_.adc_t;
