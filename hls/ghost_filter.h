@@ -13,10 +13,15 @@
 //     ring of lookback x K magnitudes); rem_k = rise_k if rise_k > onset
 //     else 0.
 //  2. greedy pairing by matching rises (*): take the largest remaining row
-//     rem and column rem (first index on ties); while both > pair_tol, pair
-//     them as a candidate site and subtract the smaller from both. If
-//     afterwards every line's rem <= pair_tol, all candidates become active
-//     sites; else the thesis step: the first row and the first column with
+//     rem and column rem (first index on ties); while both > pair_tol and
+//     fewer than max_pairs candidates are paired, pair them as a candidate
+//     site and subtract the smaller from both. Each pair empties a line (its
+//     rem reaches 0, and an empty line is never the largest again while the
+//     loop goes on), so a frame takes up to R + C - 1 pairs without the cap;
+//     max_pairs (the onsets one frame may pair) keeps the frame engine's
+//     proven bound independent of the skin's size. If afterwards every
+//     line's rem <= pair_tol, all candidates become active sites; else the
+//     thesis step: the first row and the first column with
 //     the largest rem (both > 0) make an active site (nothing if it already
 //     is). The thesis step alone (golden's simultaneous = false) is not a
 //     mode here: the top has no way to select it (no scene key, plan field
@@ -42,6 +47,7 @@ struct GhostFilterConfig {
   uint16_t onset = 0;           // rise > onset starts a site (magnitude units)
   uint16_t pair_tol = 0;        // max rem a pairing may leave (magnitude units)
   uint16_t release = 0;         // site kept while its taxel value >= release (UQ1.15)
+  uint8_t max_pairs = 8;        // 1..255: candidate pairs a frame may make (step 2)
 };
 
 template <int R_MAX, int C_MAX, int L_MAX>
@@ -59,6 +65,7 @@ class GhostFilter {
     if (c.rows < 1 || c.rows > R_MAX) bad = "rows (expected 1..R_MAX)";
     else if (c.cols < 1 || c.cols > C_MAX) bad = "cols (expected 1..C_MAX)";
     else if (c.lookback < 1 || c.lookback > L_MAX) bad = "lookback (expected 1..L_MAX)";
+    else if (c.max_pairs < 1) bad = "max_pairs (expected 1..255)";
     if (bad) {
       if (bad_field) *bad_field = bad;
       return false;
@@ -97,7 +104,7 @@ class GhostFilter {
     steps_ = 0;
     bool pend[R_MAX][C_MAX] = {};
     int r = br, c = bc;
-    while (rem_[r] > cfg_.pair_tol && rem_[R + c] > cfg_.pair_tol) {
+    while (steps_ < cfg_.max_pairs && rem_[r] > cfg_.pair_tol && rem_[R + c] > cfg_.pair_tol) {
       const uint16_t f = rem_[r] < rem_[R + c] ? rem_[r] : rem_[R + c];
       rem_[r] = uint16_t(rem_[r] - f);
       rem_[R + c] = uint16_t(rem_[R + c] - f);

@@ -140,6 +140,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   sym("NCFG", at);
   const int64_t thr = im.symbol("THR");
   sym("ONSET", thr + 1), sym("RELEASE", thr + 2), sym("PAIRTOL", thr + 3);
+  sym("MAXPAIR", p.ghost.max_pairs);  // ghost_filter's pairs a frame
 
   // ---- state ----
   const int lk = p.lookback * K;
@@ -249,17 +250,41 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // / P + 3) / (1 - F / P) when F < P. L: the loop's clocks besides its
   // polls (10; 16 leaves room for changes). A poll takes 3 clocks (2 at
   // the least): busy / 2 + one more per write. Without F < P, or when
-  // smaller: each write waits a whole sample.
+  // smaller: each write waits for the sample the DFT is on, and no more
+  // (a pending carrier write holds the next sample back: sdft_lanes'
+  // in_ready), which is a frame's (F) only for the frame samples among
+  // them, a skipped one's (S + 2 = dtmf_top_sdft_skip_clocks + 2) for the
+  // rest: a frame's sample starts at most once in any STEP - D - 2
+  // samples (D the FIFO's: those queued may start back to back), each
+  // taking S clocks at least, so over the loop's span, each write's L
+  // clocks and its wait at most, at most span / ((STEP - D - 2) S) + 1.
+  // SDFT_POLLS_CMD: the same for SET_CARRIER_INC's writes besides its
+  // carrier's and the last: the other lanes' highest carriers (KS - L ..
+  // KS - 2), which rtl/sdft_lanes.v sends each lane again with the last
+  // write (its K).
   {
     constexpr long kLoop = 16;
-    const long writes = ks - 1, period = dtmf_top_clock_budget(p, p.spec.clk_hz, 0).period;
-    long polls = writes * ((sdft_busy + 1) / 2);
-    if (period > sdft_busy) {
-      const double busy = double(sdft_busy) * (double(writes * kLoop) / double(period) + 3.0) /
-                          (1.0 - double(sdft_busy) / double(period));
-      polls = std::min(polls, long(std::ceil(busy / 2.0)) + writes);
-    }
-    sym("SDFT_POLLS", polls);
+    const long period = dtmf_top_clock_budget(p, p.spec.clk_hz, 0).period;
+    const long skip_busy = dtmf_top_sdft_skip_clocks(ks, p.spec.sdft_lanes) + 2;
+    auto polls_for = [&](long writes) {
+      long polls = writes * ((sdft_busy + 1) / 2);
+      const long apart = (long(p.step) - p.spec.sdft_fifo - 2) * (skip_busy - 2);
+      if (apart > 0) {
+        const long span = writes * (kLoop + sdft_busy);
+        const long frames = span / apart + 1;
+        polls = std::min(polls, writes * ((skip_busy + 1) / 2) +
+                                    frames * ((sdft_busy - skip_busy + 1) / 2 + 1));
+      }
+      if (period > sdft_busy) {
+        const double busy = double(sdft_busy) * (double(writes * kLoop) / double(period) + 3.0) /
+                            (1.0 - double(sdft_busy) / double(period));
+        polls = std::min(polls, long(std::ceil(busy / 2.0)) + writes);
+      }
+      return polls;
+    };
+    sym("SDFT_POLLS", polls_for(ks - 1));
+    sym("SDFT_LANES", p.spec.sdft_lanes);
+    sym("SDFT_POLLS_CMD", polls_for(std::max(1, p.spec.sdft_lanes - 1)));
   }
   // The static frame bound's assumptions (ucode/dtmf_frame_bound.h): the
   // largest count of each izhikevich_layer shift by a constant word, the
@@ -277,11 +302,12 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // over every taxel).
   sym("SPARSE", (p.mask & kMaskSparse) ? 1 : 0);
   // Streaming: the polls (2 clocks each at least) of stream_cfg's wait for
-  // the chain's layers to finish the last frame once its last taxel is in:
-  // a row of the synapse and both layers' pipelines (C + 40), an event a
-  // clock for every neuron of both layers, and the SPIKES packet a byte a
-  // clock (rtl/dtmf_chain.v), when the FIFO has room.
-  sym("STREAM_TAIL", (C + 40 + 2L * T + 5L * p.max_spikes + 8) / 2);
+  // the chain's layers to finish the last frame once its last taxel is in
+  // (dtmf_chain_spike_tail_clocks), when the FIFO has room. Without spikes
+  // the layers are off: no header enters their event queue (rtl/dtmf_chain.v
+  // hq_push), so layers_idle holds, and their init (nu_busy) is the boot's,
+  // which stream_setup waits out: one poll.
+  sym("STREAM_TAIL", p.spec.spikes ? dtmf_chain_spike_tail_clocks(p) / 2 : 1);
   int payload = 0;
   for (const auto& c : kDtmfCommands) payload = std::max(payload, c.payload_bytes());
   sym("CMD_PAYLOAD", payload);

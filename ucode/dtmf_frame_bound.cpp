@@ -64,6 +64,12 @@ DtmfFrameBound dtmf_frame_bound(const DtmfTopPlan& p) {
     if (name == "SPARSE") value = 1;             // any mask
   }
   std::tie(b.frame_any, b.command_any) = frame_and_command(image, o);
+  if (p.spec.datapath == DtmfDatapath::Streaming) {
+    b.chain = uint64_t(dtmf_chain_frame_clocks(p, p.mask));
+    b.chain_any = uint64_t(dtmf_chain_frame_clocks(p, 0xFF));
+    b.frame += b.chain;
+    b.frame_any += b.chain_any;
+  }
   return b;
 }
 

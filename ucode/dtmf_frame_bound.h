@@ -24,7 +24,8 @@ namespace eskin::hls {
 struct DtmfFrameBound {
   // From `main`'s wait taking EV_FRAME_PENDING (its one clock with the
   // event there) through the frame's work back to that wait (the frame's
-  // release, IO_FRAME_DONE, comes before it).
+  // release, IO_FRAME_DONE, comes before it); on the streaming datapath
+  // (its release is the header, IO_HEADER) with the chain's clocks added.
   uint64_t frame = 0;
   // From the same wait taking EV_CMD_AVAIL through the longest command
   // (docs/protocol.md §5, any type and length the command FIFO can hold,
@@ -43,6 +44,12 @@ struct DtmfFrameBound {
   // what a build is checked against; what a host can make of it.
   uint64_t frame_any = 0, command_any = 0;
   uint64_t total_any() const { return frame_any + command_any; }
+  // The streaming datapath (DtmfDatapath::Streaming): the chain's own
+  // clocks a frame (dtmf_chain_frame_clocks, at the plan's mask and at any),
+  // included in frame and frame_any: the control plane's step and the
+  // chain's are added, as if none overlapped (the chain's taxels run while
+  // the engine sends AMPLITUDES and status). 0 on the frame engine.
+  uint64_t chain = 0, chain_any = 0;
 };
 
 // rtl/dtmf_top.v's command FIFO (cmd_decoder DEPTH): a committed frame,

@@ -34,8 +34,9 @@ namespace eskin::hls {
 constexpr long kDtmfTopClkHz = 18000000;
 
 // The datapath that does a frame's work after the DFT: the frame engine's
-// microprogram (rtl/dtmf_top.v), or a streaming datapath for large FPGAs
-// (none is built yet). It sets how much of a frame the proven worst case
+// microprogram (rtl/dtmf_top.v), or the streaming datapath for large FPGAs
+// (rtl/dtmf_chain.v in dtmf_top STREAM = 1, the engine its control plane;
+// host/fpga/flow.h choose_core_clock picks it). It sets how much of a frame the proven worst case
 // may take (dtmf_frame_bound_limit_percent).
 enum class DtmfDatapath { FrameEngine, Streaming };
 
@@ -147,6 +148,32 @@ inline int longest_packet_bytes(const DtmfTopPlan& p) {
   return 7 + int(std::max({2L * p.K, 2L + 2L * p.T, 4L * p.T, 5 * spikes, 28L}));
 }
 
+// The streaming datapath (DtmfDatapath::Streaming, rtl/dtmf_chain.v) after
+// a frame's last taxel with its layers on and the spikes recorded: a row
+// of the synapse and both layers' pipelines (C + 40), an event a clock for
+// every neuron of both layers, and the SPIKES packet (8 + 5 n clocks, n up
+// to MAX_SPIKES) before the next frame's header is taken.
+inline long dtmf_chain_spike_tail_clocks(const DtmfTopPlan& p) {
+  return p.C + 40 + 2L * p.T + 5L * p.max_spikes + 8;
+}
+
+// rtl/dtmf_chain.v's own clocks a frame, its control plane's step (the
+// frame engine's, ucode/dtmf_frame_bound.h) aside, from the blocks' stated
+// latencies (tests/rtl/dtmf_chain_test.cpp FrameClocks* checks them with
+// nothing stalling): a frame's first token to its first taxel K + 45, then
+// a taxel a clock (two with a dense packet: its two bytes), after the last
+// taxel the dense packet's last bytes (3) or the sparse packet (12 + 4 n
+// clocks, n = T: every taxel lit), and with the layers on and spikes
+// recorded the spike tail. `mask`: the output mask the frames may have
+// (the plan's, or 0xFF for any SET_OUTPUT_MASK).
+inline long dtmf_chain_frame_clocks(const DtmfTopPlan& p, uint8_t mask) {
+  const bool dense = mask & kMaskTaxels, sparse = mask & kMaskSparse;
+  long c = p.K + 45 + (dense || sparse ? 2L : 1L) * (p.T - 1);
+  c += sparse ? 12 + 4L * p.T : dense ? 3 : 1;
+  if (p.spec.spikes && (mask & kMaskSpikes)) c += dtmf_chain_spike_tail_clocks(p);
+  return c;
+}
+
 constexpr int kSynapseFrac = 8;  // synapse weights: int16, 8 fraction bits
 
 namespace dtmf_top_detail {
@@ -251,6 +278,11 @@ inline DtmfTopPlan make_dtmf_top_plan(const DtmfTopSpec& s) {
   p.ghost.onset = mag_units(s.ghost_onset_g, "decoder.ghost_onset");
   p.ghost.pair_tol = mag_units(s.ghost_pair_tol_g, "decoder.ghost_pair_tol");
   p.ghost.release = uint16_t(std::min(65535.0, std::ceil(s.ghost_release_g * 32768.0)));
+  // The onsets one frame may pair (hls/ghost_filter.h max_pairs): a frame
+  // pairs at most R + C - 1 anyway; beyond 8 simultaneous new contacts the
+  // thesis step takes over, and the frame engine's bound (its pairing loop,
+  // O(K) a pair) stays independent of the skin's size.
+  p.ghost.max_pairs = uint8_t(std::min(8, p.R + p.C - 1));
   // Neurons: one step per frame.
   const double lsb = s.neuron_input_scale / 32768.0 / (s.neuron_change ? frame_ms : 1.0);
   p.neuron[0] = make_izhikevich_config(izhikevich_fixed_preset(s.neuron_preset), frame_ms, lsb, 1);
@@ -506,7 +538,11 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
       !dft.empty())
     b.problems.push_back(dft);
   if (engine_clocks > b.frame_clocks)
-    b.problems.push_back("frame_engine: its longest frame and command take " + n(engine_clocks) +
+    b.problems.push_back(std::string(p.spec.datapath == DtmfDatapath::Streaming
+                                         ? "streaming datapath: the control plane's longest "
+                                           "frame and command and the chain's own clocks take "
+                                         : "frame_engine: its longest frame and command take ") +
+                         n(engine_clocks) +
                          " clocks, a frame is " +
                          (p.spec.adc_clk_hz > 0
                               ? "STEP samples of the ADC's clock = " + n(b.frame_clocks) +
@@ -595,9 +631,12 @@ inline std::string dtmf_top_min_clock_reason(const DtmfTopPlan& p, long engine_c
     std::snprintf(adc, sizeof adc, "the AD7476A's acquisition time %.1f MHz", n.adc_hz / 1e6);
   char s[400];
   std::snprintf(s, sizeof s,
-                "%s, the frame engine's %ld clocks a frame of %d samples %.1f MHz, the DFT's %ld "
+                "%s, the %s %ld clocks a frame of %d samples %.1f MHz, the DFT's %ld "
                 "clocks a sample in %d lane%s %.1f MHz",
-                adc, engine_clocks, p.step, n.engine_hz / 1e6, n.dft_period, p.spec.sdft_lanes,
+                adc,
+                p.spec.datapath == DtmfDatapath::Streaming ? "streaming datapath's"
+                                                           : "frame engine's",
+                engine_clocks, p.step, n.engine_hz / 1e6, n.dft_period, p.spec.sdft_lanes,
                 p.spec.sdft_lanes == 1 ? "" : "s", n.dft_hz / 1e6);
   return s;
 }

@@ -1,5 +1,6 @@
 // `eskin bitstream --board icebreaker|ulx3s [--scene SCENE.yaml] [--out DIR]
-//  [--seed N] [--seeds N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]`:
+//  [--seed N] [--seeds N] [--device 25k|45k|85k] [--clk-mhz F] [--engine-load scene|stress]
+//  [--engine-shifter serial|barrel] [--neurons engine|unit|lanes] [--datapath engine|streaming]`:
 // builds the core the scene needs (host/fpga/flow.h): its DTMF skin's
 // (parameters from common/eskin/dtmf_top_plan.h, microcode and constants from
 // ucode/dtmf_ucode.h), its Hall sensors' (sim/hall_top_spec.h, with their I2C
@@ -51,6 +52,7 @@ struct BitstreamArgs {
   bool engine_load_given = false;  // a Hall-only scene has no engine to load
   std::string engine_shifter;      // "serial", "barrel"; empty: the board's
   std::string neurons;             // "engine", "unit", "lanes"; empty: the board's
+  std::string datapath;            // "engine", "streaming"; empty: the board's choice
   bool scale_table = false;
   eskin::fpga::ScaleSelection scale;  // --targets, --rates, --sizes
 };
@@ -111,7 +113,8 @@ void check_mode_options(const BitstreamArgs& a) {
     const std::pair<bool, const char*> single[] = {
         {!a.board.empty(), "--board"},          {!a.device.empty(), "--device"},
         {a.clk_mhz > 0, "--clk-mhz"},           {a.engine_load_given, "--engine-load"},
-        {!a.engine_shifter.empty(), "--engine-shifter"}, {!a.neurons.empty(), "--neurons"}};
+        {!a.engine_shifter.empty(), "--engine-shifter"}, {!a.neurons.empty(), "--neurons"},
+        {!a.datapath.empty(), "--datapath"}};
     for (const auto& [given, name] : single)
       if (given)
         throw std::invalid_argument(
@@ -145,6 +148,12 @@ int run_bitstream(const BitstreamArgs& a) {
   if (!a.neurons.empty() && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
     throw std::invalid_argument("--neurons: " + scene_path +
                                 " has no skin, so no neuron layers to build");
+  if (!a.datapath.empty() && eskin::fpga::scene_core(scene) != eskin::fpga::Core::Dtmf)
+    throw std::invalid_argument("--datapath: " + scene_path + " has " +
+                                (scene.has_skin ? "Hall sensors beside its skin (rtl/mixed_top.v "
+                                                  "builds the frame engine alone)"
+                                                : "no skin") +
+                                ", so no datapath to choose");
   eskin::fpga::FlowOptions opt;
   opt.source_dir = source_dir();
   opt.out_dir = a.out.empty() ? "build/bitstream/" + board.name : a.out;
@@ -156,6 +165,7 @@ int run_bitstream(const BitstreamArgs& a) {
                                        : eskin::fpga::LoadPolicy::Scene;
   opt.fast_shift = a.engine_shifter.empty() ? -1 : a.engine_shifter == "barrel" ? 1 : 0;
   opt.neuron_unit = a.neurons.empty() ? -1 : a.neurons == "lanes" ? 2 : a.neurons == "unit" ? 1 : 0;
+  opt.datapath = a.datapath.empty() ? -1 : a.datapath == "streaming" ? 1 : 0;
   // A clock the board cannot make is named before anything runs.
   if (opt.clk_hz > 0 && eskin::fpga::scene_core(scene) == eskin::fpga::Core::Hall)
     eskin::fpga::choose_hall_clock(board, opt.clk_hz);
@@ -180,7 +190,7 @@ int run_bitstream(const BitstreamArgs& a) {
   // the user left the engine and the clock to the board).
   const std::string engine_hint =
       r.core == eskin::fpga::Core::Dtmf && opt.fast_shift < 0 && opt.neuron_unit < 0 &&
-              opt.clk_hz == 0
+              opt.datapath < 0 && opt.clk_hz == 0
           ? eskin::fpga::slower_engine_hint(board, scene, r)
           : "";
   std::cerr << "eskin bitstream: " << board.name << " (" << board.device << "): " << r.failure
@@ -243,6 +253,13 @@ std::function<int()> setup_bitstream(CLI::App& app) {
                   "barrel, serial + unit, barrel + unit that keeps up at 18 MHz, else the "
                   "fastest)")
       ->check(CLI::IsMember({"engine", "unit", "lanes"}));
+  sub->add_option("--datapath", args->datapath,
+                  "What does each frame's work after the DFT: engine (the frame engine's "
+                  "microcode alone) or streaming (rtl/dtmf_chain.v, one taxel a clock, the "
+                  "engine its control plane; bin-centred carriers only, its own neuron layers: "
+                  "not with --neurons unit or lanes); default: the board's (ulx3s the engine "
+                  "where it keeps up with its static bound, else streaming; icebreaker engine)")
+      ->check(CLI::IsMember({"engine", "streaming"}));
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");
   sub->add_option("--sizes", args->scale.sizes,

@@ -16,7 +16,7 @@ const std::vector<Board>& boards() {
        "constraints/icebreaker.pcf", 12000000, hls::kDtmfTopClkHz, "ICESTORM_LC",
        "board_icebreaker_hall", true, false, 1, false, 0, true},
       {"ulx3s", Family::Ecp5, "85k", "CABGA381", "board_ulx3s", "constraints/ulx3s.lpf",
-       25000000, 30000000, "TRELLIS_COMB", "board_ulx3s_hall", false, true, 32, true, 5},
+       25000000, 30000000, "TRELLIS_COMB", "board_ulx3s_hall", false, true, 32, true, 5, false, true},
   };
   return b;
 }

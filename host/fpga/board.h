@@ -67,6 +67,12 @@ struct Board {
   // frame: 18 MHz; 5229 / 5280 LC), which its PLL's clocks above 18 MHz
   // could not replace (the fabric reaches about 21).
   bool engine_when_needed = false;
+  // The streaming datapath (DtmfDatapath::Streaming: rtl/dtmf_chain.v
+  // beside the engine, its control plane) when the frame engine alone
+  // does not keep up (choose_core_clock): where its logic, multipliers and
+  // block RAM are cheap (the ECP5s: a 64x64 skin's chain with its
+  // 32 KB FIFO); not on the UP5K, whose skins the engine keeps up with.
+  bool streaming = false;
 };
 
 // "icebreaker" or "ulx3s"; device_override ("25k", "85k"; empty: the

@@ -17,6 +17,7 @@
 #include "ucode/dtmf_top_bus.h"
 #include "ucode/dtmf_ucode.h"
 #include "ucode/frame_engine.h"
+#include "hls/carrier_magnitude.h"
 #include "hls/sdft_bank.h"
 
 namespace eskin::fpga {
@@ -34,6 +35,19 @@ struct EngineMax {
 // sdft_bank's arithmetic (dtmf_top: XW 12, CW 16, TW 10, FB 0); its static
 // helpers do not depend on K_MAX, N or ACC_W.
 using Bank = hls::SdftBank<1, 2, 12, 16, 10, 14>;
+
+// The streaming chain's magnitude of a window sum (hls/dtmf_chain.h:
+// CarrierMagnitude<24, 16, MAG_SHIFT>) at the plan's shift (N up to 4096:
+// at most 7).
+template <int SHIFT = 0>
+uint32_t chain_magnitude(int shift, int32_t re, int32_t im) {
+  if constexpr (SHIFT < 8) {
+    if (shift != SHIFT) return chain_magnitude<SHIFT + 1>(shift, re, im);
+    return hls::CarrierMagnitude<24, 16, SHIFT>::magnitude(re, im);
+  } else {
+    throw std::logic_error("chain_magnitude: shift " + std::to_string(shift) + " beyond 7");
+  }
+}
 
 // The engine booted on the plan's microcode (configuration copied, state
 // cleared, carriers to the DFT), fed frames and commands.
@@ -77,7 +91,10 @@ class LoadRun {
         re += Bank::term(x[m], Bank::cosine(idx));
         im += Bank::term(x[m], -Bank::sine(idx));
       }
-      io_.frame[size_t(2 * j)] = int32_t(re), io_.frame[size_t(2 * j + 1)] = int32_t(im);
+      if (stream_)
+        io_.frame[size_t(j)] = int32_t(chain_magnitude(p_.mag_shift, int32_t(re), int32_t(im)));
+      else
+        io_.frame[size_t(2 * j)] = int32_t(re), io_.frame[size_t(2 * j + 1)] = int32_t(im);
     }
     io_.frame_t = io_.adc_t = t;
     io_.pending = true;
@@ -144,6 +161,7 @@ class LoadRun {
   // that is always empty, counters at 0, a DFT that takes carrier writes
   // at once, the neuron unit or lanes when the plan has them.
   hls::DtmfTopBus io_;
+  const bool stream_ = p_.spec.datapath == hls::DtmfDatapath::Streaming;
   bool done_ = false;  // the frame was released
   uint64_t limit_ = 0;
 };
@@ -203,7 +221,7 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
   };
   std::vector<Run> runs;
   for (const auto& [name, levels] : signals) runs.push_back({name, &levels, false});
-  if (p.spec.ghost)
+  if (p.spec.ghost && p.spec.datapath != hls::DtmfDatapath::Streaming)
     for (const auto& [name, levels] : signals)
       runs.push_back({std::string(name) + ", every taxel a site", &levels, true});
   // Which routine each instruction address belongs to: a frame's packets.
@@ -277,6 +295,8 @@ EngineLoad measure(const hls::DtmfTopPlan& p, const std::vector<int32_t>& scene_
   for (const auto& r : by) load.stress_routines.push_back(r);
   std::stable_sort(load.stress_routines.begin(), load.stress_routines.end(),
                    [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (p.spec.datapath == hls::DtmfDatapath::Streaming)
+    load.chain_clocks = uint64_t(hls::dtmf_chain_frame_clocks(p, p.mask));
   return load;
 }
 

@@ -21,6 +21,10 @@
 //  - command: the longest command of docs/protocol.md §5, each accepted and
 //    each reason of rejection, which delays the frame after it (commands
 //    run between frames).
+// On the streaming datapath the frame buffer holds the chain's magnitudes
+// (hls/carrier_magnitude.h of the same window sums), and the ghost filter's
+// sites live in the chain's mask, which no path of the control plane reads:
+// no run with every taxel a site.
 // The output FIFO always has room (every packet is written, none dropped:
 // the slow case). tests/fpga/engine_load_test.cpp checks the scene figure
 // against the clocked top model of tests/hls.
@@ -60,7 +64,14 @@ struct EngineLoad {
   uint64_t stress_bound() const {
     return std::max(stress_clocks, stress_other_clocks + stress_packet_clocks);
   }
-  uint64_t stress_total() const { return stress_bound() + command_clocks; }
+  // The streaming datapath (DtmfDatapath::Streaming): the engine is the
+  // chain's control plane, and the chain's own clocks a frame
+  // (dtmf_chain_frame_clocks at the plan's mask: fixed latencies, not
+  // measured) come on top of its step, as ucode/dtmf_frame_bound.h adds
+  // them. 0 on the frame engine.
+  uint64_t chain_clocks = 0;
+  uint64_t stress_total() const { return stress_bound() + command_clocks + chain_clocks; }
+  uint64_t scene_total() const { return scene_clocks + chain_clocks; }
 };
 
 // Throws std::invalid_argument when the plan's engine image does not fit

@@ -162,7 +162,7 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
     c.plan = hls::make_dtmf_top_plan(s);
     c.load = measure_engine_load(c.plan, x);
     c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
-                               ? c.load.stress_total() : c.load.scene_clocks);
+                               ? c.load.stress_total() : c.load.scene_total());
     return hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
   };
   long need = load_with(spec);
@@ -201,17 +201,31 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
     c.plan.spec.baud = k.baud;
     return hls::dtmf_top_clock_budget(c.plan, k.clk_hz, c.engine_clocks);
   };
-  // k, or k with an ADC clock of its own when only that keeps up.
-  auto keeps_up = [&](const Clocking& k) -> std::optional<Clocking> {
-    if (budget_at(k).ok()) return k;
+  // The measured load, and on the streaming datapath, where it keeps up,
+  // the static bound too (at the clock: the carrier load's polls depend on
+  // the sample period), so that the clock chosen is one run_flow accepts.
+  // The frame engine's clock is the measured load's (its bound is then
+  // checked by run_flow, which names it: the UP5K's larger skins would
+  // otherwise get clocks its fabric does not reach).
+  auto bounded_at = [&](const Clocking& k) {
+    const hls::DtmfTopClockBudget measured = budget_at(k);
+    if (!measured.ok() || c.plan.spec.datapath != hls::DtmfDatapath::Streaming) return measured;
+    return hls::dtmf_top_clock_budget(c.plan, k.clk_hz, c.engine_clocks,
+                                      long(hls::dtmf_frame_bound(c.plan).total()));
+  };
+  // k, or k with an ADC clock of its own when only that keeps up (with
+  // the bound, or the measured load alone).
+  auto keeps_up = [&](const Clocking& k, bool bound = true) -> std::optional<Clocking> {
+    auto ok = [&](const Clocking& q) { return bound ? bounded_at(q).ok() : budget_at(q).ok(); };
+    if (ok(k)) return k;
     if (own_adc_clock)
-      if (const auto a = with_adc_clock(b, k, c.plan.spec.sample_hz); a && budget_at(*a).ok())
-        return a;
+      if (const auto a = with_adc_clock(b, k, c.plan.spec.sample_hz); a && ok(*a)) return a;
     return std::nullopt;
   };
   c.clocking = choose_clock(b, 0, clk_hz);  // the asked-for or the board's default
-  if (clk_hz > 0) {
+  if (clk_hz > 0) {  // (run_flow then names the bound when only the measurement keeps up)
     if (const auto k = keeps_up(c.clocking)) c.clocking = *k;
+    else if (const auto m = keeps_up(c.clocking, false)) c.clocking = *m;
   } else {
     for (const auto& k : board_clocks(b))
       if (k.clk_hz >= std::max(c.core_min_hz, b.default_clk_hz) && k.baud >= min_baud)
@@ -229,15 +243,12 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
 
 }  // namespace
 
-CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
-                            long clk_hz, int fast_shift, int neuron_unit, bool own_adc_clock) {
-  hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
-  // Before the load: the shifter and the neuron unit set the engine's clocks.
-  apply_engine_options(b, fast_shift, neuron_unit, spec);
-  // The scene's samples as the top takes them: 12-bit codes minus 2048.
-  std::vector<int32_t> x;
-  sim::WorldModel world(scene);
-  for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
+namespace {
+
+// choose_core_clock for one datapath (spec's).
+CoreClock choose_core_clock_for(const Board& b, hls::DtmfTopSpec spec,
+                                const std::vector<int32_t>& x, LoadPolicy policy, long clk_hz,
+                                int fast_shift, int neuron_unit, bool own_adc_clock) {
   // The plan paces the packets for its baud rate (make_dtmf_top_plan: the
   // decimation that lets the link carry them), and the clock sets the baud
   // rate (the fastest exact one): when the chosen clock's differs, plan
@@ -263,11 +274,85 @@ CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy 
   return c;
 }
 
+// The measured load keeps up at the chosen clock and the static bound
+// holds there (run_flow's two checks).
+bool keeps_up_with_bound(const CoreClock& c) {
+  return c.budget.ok() && hls::dtmf_top_clock_budget(c.plan, c.clocking.clk_hz, c.engine_clocks,
+                                                     long(c.bound.total()))
+                              .ok();
+}
+
+}  // namespace
+
+const char* datapath_name(hls::DtmfDatapath d) {
+  return d == hls::DtmfDatapath::Streaming ? "streaming" : "engine";
+}
+
+bool streaming_possible(const hls::DtmfTopSpec& spec) {
+  return !spec.demix && spec.rows <= 255 && spec.cols <= 255;
+}
+
+CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
+                            long clk_hz, int fast_shift, int neuron_unit, bool own_adc_clock,
+                            int datapath) {
+  hls::DtmfTopSpec spec = sim::dtmf_top_spec(scene);
+  // Before the load: the shifter and the neuron unit set the engine's clocks.
+  apply_engine_options(b, fast_shift, neuron_unit, spec);
+  // The scene's samples as the top takes them: 12-bit codes minus 2048.
+  std::vector<int32_t> x;
+  sim::WorldModel world(scene);
+  for (int code : world.all_codes()) x.push_back((code << (12 - scene.skin.adc.bits)) - 2048);
+  // The streaming datapath: the chain has its own layers (no neuron unit
+  // or lanes); the engine keeps the board's (or the asked-for) shifter.
+  hls::DtmfTopSpec stream = spec;
+  stream.datapath = hls::DtmfDatapath::Streaming;
+  stream.neuron_unit = false;
+  stream.neuron_lanes = 0;
+  if (datapath == 1) {
+    if (neuron_unit > 0)
+      throw std::invalid_argument(
+          "--neurons: the streaming datapath runs the neurons in its own layers (rtl/dtmf_chain.v); "
+          "leave --neurons to the board or say engine");
+    return choose_core_clock_for(b, stream, x, policy, clk_hz, fast_shift, 0, own_adc_clock);
+  }
+  // The neuron unit or its lanes, asked for, are the frame engine's.
+  if (datapath == 0 || neuron_unit > 0 || !b.streaming || !streaming_possible(spec))
+    return choose_core_clock_for(b, spec, x, policy, clk_hz, fast_shift, neuron_unit,
+                                 own_adc_clock);
+  // The board's choice: of the two that keep up (the measured load at a
+  // board clock and the static bound there), the one at the slower clock
+  // (more timing slack), the frame engine alone on a tie (fewer cells);
+  // the one that keeps up when only one does; when neither does, the
+  // streaming one's report (the larger skins' architecture, whose limits
+  // are the ones to read). A skin the engine cannot hold at all (its DMEM)
+  // goes to the chain.
+  std::optional<CoreClock> engine, chain;
+  try {
+    engine = choose_core_clock_for(b, spec, x, policy, clk_hz, fast_shift, neuron_unit,
+                                   own_adc_clock);
+  } catch (const std::invalid_argument&) {
+    // The engine cannot hold the skin (its DMEM, its lanes' neurons).
+  }
+  try {
+    chain = choose_core_clock_for(b, stream, x, policy, clk_hz, fast_shift, 0, own_adc_clock);
+  } catch (const std::invalid_argument&) {
+    if (!engine) throw;
+  }
+  if (!engine) return *chain;
+  if (!chain) return *engine;
+  const bool e = keeps_up_with_bound(*engine), c = keeps_up_with_bound(*chain);
+  if (e && c) return chain->clocking.clk_hz < engine->clocking.clk_hz ? *chain : *engine;
+  return e ? *engine : *chain;
+}
+
 bool plan_dtmf_core(const Board& b, const sim::Scene& scene, const FlowOptions& opt,
                     FlowReport& r, Clocking& clk, std::vector<hls::VerilogParam>& params,
                     bool own_adc_clock) {
+  // rtl/mixed_top.v (one clock: own_adc_clock false) builds dtmf_top's
+  // frame engine alone.
   CoreClock cc = choose_core_clock(b, scene, opt.load, opt.clk_hz, opt.fast_shift,
-                                   opt.neuron_unit, own_adc_clock);
+                                   opt.neuron_unit, own_adc_clock,
+                                   own_adc_clock ? opt.datapath : 0);
   const hls::DtmfTopPlan& plan = cc.plan;
   clk = cc.clocking;
   r.step = plan.step;

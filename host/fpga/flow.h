@@ -41,6 +41,8 @@ struct FlowOptions {
                            // default) at which the core keeps up
   int fast_shift = -1;     // the engine's barrel shifter: 1 on, 0 off, -1 the board's
   int neuron_unit = -1;    // the hardware neuron unit: 1 on, 2 with its lanes, 0 off, -1 the board's
+  int datapath = -1;       // 0 the frame engine alone, 1 the streaming datapath, -1 the board's
+                           // choice (choose_core_clock)
 };
 
 struct Resource {
@@ -160,9 +162,29 @@ void apply_engine_options(const Board& b, int fast_shift, int neuron_unit,
 // SCLK bands) may give the ADC a clock of its own (with_adc_clock; the
 // plan's spec.adc_clk_hz and the clocking say so); dtmf_top builds only,
 // mixed_top has one clock.
+// datapath: 0 the frame engine alone (DtmfDatapath::FrameEngine); 1 the
+// streaming datapath (DtmfDatapath::Streaming: rtl/dtmf_chain.v, the engine
+// its control plane, no neuron unit: neuron_unit 1 or 2 is refused with
+// std::invalid_argument); -1 the board's choice: on a board with
+// Board::streaming, a plan the chain can build (streaming_possible) and no
+// neuron unit asked for (neuron_unit 1 or 2: the engine's), of
+// the two whose measured load and static bound keep up at a board clock the
+// one at the slower clock (the engine on a tie), the one that keeps up when
+// only one does, the streaming one when neither does, and the streaming one
+// when the engine cannot hold the skin at all; elsewhere the frame engine. The plan's
+// spec.datapath says which. The clock chosen is the slowest at which the
+// measured load keeps up, on the streaming datapath also the static bound
+// within its 70 % of the frame (the frame engine's bound is checked by
+// run_flow at the clock its measured load chose).
 CoreClock choose_core_clock(const Board& b, const sim::Scene& scene, LoadPolicy policy,
                             long clk_hz = 0, int fast_shift = -1, int neuron_unit = -1,
-                            bool own_adc_clock = true);
+                            bool own_adc_clock = true, int datapath = -1);
+// "engine" or "streaming": `eskin bitstream --datapath`'s values, the
+// report's and the scale table's.
+const char* datapath_name(hls::DtmfDatapath d);
+// Whether rtl/dtmf_chain.v can do a spec's frames: bin-centred carriers
+// (no demixing), at most 255 rows and 255 columns.
+bool streaming_possible(const hls::DtmfTopSpec& spec);
 
 // Throws ConfigError("--out", ...) naming the path when the tools cannot be
 // given it: the core wrapper names its $readmemh files in Verilog strings

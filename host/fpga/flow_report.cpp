@@ -22,6 +22,7 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
                {"window", r.spec.window},
                {"sample_hz", r.spec.sample_hz},
                {"spikes", r.spec.spikes}};
+  j["datapath"] = datapath_name(r.spec.datapath);
   j["clock"]["step"] = r.step;
   j["clock"]["sample_period_clocks"] = r.budget.period;
   j["clock"]["frame_clocks"] = r.budget.frame_clocks;
@@ -55,12 +56,14 @@ void dtmf_json(const FlowReport& r, nlohmann::json& j) {
                  {"stress_packet_clocks", r.load.stress_packet_clocks},
                  {"stress_bound_clocks", r.load.stress_bound()},
                  {"longest_command_clocks", r.load.command_clocks},
+                 {"chain_clocks", r.load.chain_clocks},
                  {"longest_command", r.load.command_case},
                  {"cases", cases},
                  {"stress_longest_frame_by_routine", routines}};
   // The static bound (ucode/dtmf_frame_bound.h) and its limit.
   j["engine"]["bound"] = {{"frame_clocks", r.bound.frame},
                           {"command_clocks", r.bound.command},
+                          {"chain_clocks", r.bound.chain},
                           {"total_clocks", r.bound.total()},
                           {"limit_percent", hls::dtmf_frame_bound_limit_percent(r.spec.datapath)},
                           {"limit_clocks", r.budget.bound_limit_clocks},
@@ -84,15 +87,17 @@ void hall_json(const FlowReport& r, nlohmann::json& j) {
 
 std::string dtmf_table(const FlowReport& r) {
   const double frame = double(std::max(1L, r.budget.frame_clocks));
+  const bool streaming = r.spec.datapath == hls::DtmfDatapath::Streaming;
   std::string t = fmt::format(
       "skin {}x{}, {} carriers, window {}, {:g} S/s, step {}\n"
       "clock {} MHz{} (the skin's core needs at least {} MHz: {}), UART {:g} Mbaud\n"
       "DFT: {} lane{}, a frame's sample {} clocks, the others {}: a period of {} or more, "
       "the sample's is {}\n"
+      "{}"
       "frame engine ({} shifter, neurons on {}), clocks of the {} a frame has ({}):\n"
       "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
       "  stress longest frame  {:>9} ({:.0f} %, {}){}\n"
-      "  + longest command     {:>9} ({:.0f} %, {})\n"
+      "  + longest command     {:>9} ({:.0f} %, {})\n{}"
       "  static bound          {:>9} ({:.0f} %: frame {} + command {}; at most {} % of a frame)\n"
       "  the clock carries the {}\n",
       r.spec.rows, r.spec.cols, r.spec.rows + r.spec.cols, r.spec.window, r.spec.sample_hz,
@@ -103,6 +108,11 @@ std::string dtmf_table(const FlowReport& r) {
       mhz(double(r.core_min_hz)), r.core_min_reason,
       double(r.spec.baud) / 1e6, r.spec.sdft_lanes, r.spec.sdft_lanes == 1 ? "" : "s",
       r.budget.sdft_clocks, r.budget.sdft_skip_clocks, r.budget.sdft_min_period, r.budget.period,
+      streaming ? fmt::format("datapath: streaming (rtl/dtmf_chain.v, a taxel a clock; the frame "
+                              "engine is its control plane): the chain's own {} clocks a frame "
+                              "add to the engine's below\n",
+                              r.load.chain_clocks)
+                : std::string("datapath: the frame engine alone\n"),
       r.spec.engine_fast_shift ? "barrel" : "bit-serial",
       r.spec.neuron_lanes ? fmt::format("{} neuron lanes", r.spec.neuron_lanes)
       : r.spec.neuron_unit ? std::string("the neuron unit") : std::string("the engine"),
@@ -119,8 +129,11 @@ std::string dtmf_table(const FlowReport& r) {
                         r.load.stress_bound(), 100.0 * double(r.load.stress_bound()) / frame,
                         r.load.stress_other_clocks, r.load.stress_packet_clocks)
           : std::string(),
-      r.load.stress_total(),
-      100.0 * double(r.load.stress_total()) / frame, r.load.command_case,
+      r.load.stress_total() - r.load.chain_clocks,
+      100.0 * double(r.load.stress_total() - r.load.chain_clocks) / frame, r.load.command_case,
+      streaming ? fmt::format("  + the chain           {:>9} ({:.0f} %)\n", r.load.stress_total(),
+                              100.0 * double(r.load.stress_total()) / frame)
+                : std::string(),
       r.bound.total(), 100.0 * double(r.bound.total()) / frame, r.bound.frame, r.bound.command,
       hls::dtmf_frame_bound_limit_percent(r.spec.datapath),
       r.policy == LoadPolicy::Scene && r.load.scene_frames > 0
@@ -161,9 +174,11 @@ std::vector<std::string> flow_warnings(const FlowReport& r) {
   std::vector<std::string> w;
   if (r.budget.frame_clocks > 0 && long(r.load.stress_total()) > r.budget.frame_clocks)
     w.push_back(fmt::format(
-        "under the stress signals the engine needs {} + {} = {} clocks of the {} a frame has: "
+        "under the stress signals the engine needs {} + {}{} = {} clocks of the {} a frame has: "
         "frames are lost (STATUS frame_overruns) while input like '{}' lasts",
-        r.load.stress_bound(), r.load.command_clocks, r.load.stress_total(),
+        r.load.stress_bound(), r.load.command_clocks,
+        r.load.chain_clocks ? fmt::format(" + the chain's {}", r.load.chain_clocks) : std::string(),
+        r.load.stress_total(),
         r.budget.frame_clocks, r.load.stress_case));
   return w;
 }

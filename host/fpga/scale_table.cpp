@@ -51,7 +51,12 @@ std::optional<SlowerClock> slower_clock_variant(const Board& b, const sim::Scene
   for (const EngineVariant v : {EngineVariant{false, false}, EngineVariant{true, false},
                                 EngineVariant{false, true}, EngineVariant{true, true}}) {
     if (v == failed) continue;
-    const CoreClock c = choose_core_clock(b, scene, policy, 0, v.barrel, v.unit ? 1 : 0);
+    CoreClock c;
+    try {
+      c = choose_core_clock(b, scene, policy, 0, v.barrel, v.unit ? 1 : 0, true, 0);
+    } catch (const std::invalid_argument&) {
+      continue;  // the engine cannot hold the skin with this variant
+    }
     if (c.budget.ok() && (failed_clk_hz == 0 || c.clocking.clk_hz < failed_clk_hz))
       return SlowerClock{v, c.clocking.clk_hz, c.engine_clocks};
   }
@@ -70,7 +75,8 @@ std::optional<SlowerClock> slower_clock_after(const Board& b, const sim::Scene& 
                                               const FlowReport& r) {
   const bool too_slow =
       r.ran_tools ? r.fits && !r.meets_timing : r.core_min_hz > 0 && !r.budget.ok();
-  if (r.ok() || !too_slow) return std::nullopt;
+  // (the streaming datapath's engine is its control plane: no variant)
+  if (r.ok() || !too_slow || r.spec.datapath == hls::DtmfDatapath::Streaming) return std::nullopt;
   return slower_clock_variant(b, scene,
                               {r.spec.engine_fast_shift, r.spec.neuron_unit, r.spec.neuron_lanes > 0},
                               r.budget.ok() ? r.clk_hz : 0, r.policy);
@@ -121,6 +127,7 @@ ScaleRow scale_row(const ScaleTarget& t, const FlowReport& r) {
   row.frame_clocks = r.budget.frame_clocks;
   row.engine_clocks = r.engine_clocks;
   row.bound_clocks = long(r.bound.total());
+  row.streaming = r.spec.datapath == hls::DtmfDatapath::Streaming;
   row.seconds = r.seconds;
   row.failure = r.failure;
   return row;
@@ -203,8 +210,14 @@ const char* kHeader =
     "target,board,device,sample_hz,rows,cols,window,step,clk_hz,adc_clk_hz,shifter,neurons,fits,"
     "meets_timing,"
     "logic_used,logic_available,dsp_used,dsp_available,ram_used,ram_available,spram_used,seed,"
+    "fmax_mhz,seconds,frame_clocks,engine_clocks,bound_clocks,datapath,failure";
+// The headers before the datapath column (its rows read as the frame
+// engine's) and before the engine's clock columns (those read as 0).
+const char* kHeaderWithoutDatapath =
+    "target,board,device,sample_hz,rows,cols,window,step,clk_hz,adc_clk_hz,shifter,neurons,fits,"
+    "meets_timing,"
+    "logic_used,logic_available,dsp_used,dsp_available,ram_used,ram_available,spram_used,seed,"
     "fmax_mhz,seconds,frame_clocks,engine_clocks,bound_clocks,failure";
-// The header before the engine's clock columns: its rows read with those 0.
 const char* kHeaderWithoutClocks =
     "target,board,device,sample_hz,rows,cols,window,step,clk_hz,adc_clk_hz,shifter,neurons,fits,"
     "meets_timing,"
@@ -238,6 +251,14 @@ std::vector<std::string> split_csv(const std::string& line) {
   return f;
 }
 
+// The markdown's engine column: the frame engine's variant, or the
+// streaming datapath with its control plane's shifter.
+std::string row_engine(const ScaleRow& r) {
+  return r.streaming ? fmt::format("streaming datapath ({} shifter control plane)",
+                                   shifter_name(r.engine))
+                     : variant_name(r.engine);
+}
+
 std::string khz(double fs) { return fs >= 1e6 ? fmt::format("{:g} MS/s", fs / 1e6) : fmt::format("{:g} kS/s", fs / 1e3); }
 }  // namespace
 
@@ -246,12 +267,14 @@ std::string scale_csv(const std::vector<ScaleRow>& rows) {
   for (const auto& r : rows)
     s += fmt::format(
         "{},{},{},{:g},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.0f},{},{},{},"
-        "{}\n",
+        "{},{}\n",
         r.target, r.board, r.device, r.sample_hz, r.rows, r.cols, r.window, r.step, r.clk_hz,
         r.adc_clk_hz, shifter_name(r.engine), neurons_name(r.engine), int(r.fits),
         int(r.meets_timing), r.logic_used, r.logic_available, r.dsp_used, r.dsp_available,
         r.ram_used, r.ram_available, r.spram_used, r.seed, r.fmax_mhz, r.seconds, r.frame_clocks,
-        r.engine_clocks, r.bound_clocks, csv_field(r.failure));
+        r.engine_clocks, r.bound_clocks,
+        datapath_name(r.streaming ? hls::DtmfDatapath::Streaming : hls::DtmfDatapath::FrameEngine),
+        csv_field(r.failure));
   return s;
 }
 
@@ -260,11 +283,12 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
   std::stringstream ss(text);
   std::string line;
   int lineno = 0;
-  size_t fields = 28;
+  size_t fields = 29;
   while (std::getline(ss, line)) {
     ++lineno;
     if (lineno == 1) {
       if (line == kHeaderWithoutClocks) fields = 25;
+      else if (line == kHeaderWithoutDatapath) fields = 28;
       else if (line != kHeader)
         throw std::runtime_error("scale table line 1: expected the header '" + std::string(kHeader) + "'");
       continue;
@@ -275,6 +299,10 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
       throw std::runtime_error(
           fmt::format("scale table line {}: expected {} fields, got {}", lineno, fields, f.size()));
     if (fields == 25) f.insert(f.begin() + 24, {"0", "0", "0"});
+    if (fields <= 28) f.insert(f.begin() + 27, "engine");
+    if (f[27] != "engine" && f[27] != "streaming")
+      throw std::runtime_error(fmt::format(
+          "scale table line {}: expected datapath engine|streaming, got {}", lineno, f[27]));
     if ((f[10] != "serial" && f[10] != "barrel") ||
         (f[11] != "engine" && f[11] != "unit" && f[11] != "lanes"))
       throw std::runtime_error(fmt::format(
@@ -309,7 +337,8 @@ std::vector<ScaleRow> parse_scale_csv(const std::string& text) {
       r.frame_clocks = std::stol(f[24]);
       r.engine_clocks = std::stol(f[25]);
       r.bound_clocks = std::stol(f[26]);
-      r.failure = f[27];
+      r.streaming = f[27] == "streaming";
+      r.failure = f[28];
       rows.push_back(r);
     } catch (const std::logic_error&) {
       throw std::runtime_error(fmt::format("scale table line {}: a number field is not a number", lineno));
@@ -344,7 +373,7 @@ std::string scale_markdown(const std::vector<ScaleRow>& rows) {
         const auto& builds = sizes[fail];
         for (size_t i = 0; i < builds.size(); ++i)
           why += (i ? "; " : "") +
-                 (builds.size() > 1 ? variant_name(builds[i]->engine) + ": " : "") +
+                 (builds.size() > 1 ? row_engine(*builds[i]) + ": " : "") +
                  builds[i]->failure;
       }
       if (!best) {
@@ -361,7 +390,7 @@ std::string scale_markdown(const std::vector<ScaleRow>& rows) {
       t += fmt::format(
           "| {} | {} | {}x{} | {} | {} | {} | {:g} MHz{} | {}/{} | {}/{} | {}/{} | {:.1f} MHz{} | {} | {} |\n",
                        tg.label, khz(fs), best->rows, best->cols, best->rows + best->cols,
-                       best->window, variant_name(best->engine), best->clk_hz / 1e6,
+                       best->window, row_engine(*best), best->clk_hz / 1e6,
                        best->adc_clk_hz > 0 ? fmt::format(" (ADC {:g})", best->adc_clk_hz / 1e6)
                                             : std::string(),
                        best->logic_used, best->logic_available, best->dsp_used,

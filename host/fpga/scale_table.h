@@ -86,6 +86,10 @@ struct ScaleRow {
   // carries (FlowReport::engine_clocks) and its static bound (frame +
   // command, FlowReport::bound), which must stay within 90 % of the frame.
   long frame_clocks = 0, engine_clocks = 0, bound_clocks = 0;
+  // The datapath the flow picked (choose_core_clock; CSV "engine" or
+  // "streaming", datapath_name): with streaming the clocks above are the
+  // control plane's and the chain's, the bound's limit 70 %.
+  bool streaming = false;
   std::string failure;
   bool ok() const { return fits && meets_timing; }
 };

@@ -286,7 +286,7 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   EXPECT_LE(v->engine_clocks, 18000);  // 35 samples of 514 clocks at 18 MHz: 17 990
   const Board ulx = find_board("ulx3s", "85k");
   const auto sc24 = scale_scene(base, 24, 35000.0);
-  const CoreClock lanes24 = choose_core_clock(ulx, sc24, LoadPolicy::Stress);
+  const CoreClock lanes24 = choose_core_clock(ulx, sc24, LoadPolicy::Stress, 0, -1, -1, true, 0);
   EXPECT_GT(lanes24.plan.spec.neuron_lanes, 0);
   EXPECT_FALSE(
       slower_clock_variant(ulx, sc24, {true, true, true}, lanes24.clocking.clk_hz).has_value());
@@ -303,28 +303,30 @@ TEST(ScaleTable, SlowerClockVariantIsTheSmallestThatKeepsUp) {
   r.fits = false;
   EXPECT_EQ(slower_engine_hint(ice, sc, r), "");
 }
-// The packets are paced for the link the chosen clock gives. A 24x24 skin
+// The packets are paced for the link the chosen clock gives. A 26x26 skin
 // at 35 kS/s on the ULX3S (its engine with the neuron lanes fits a frame
 // at 35 MHz) runs at 35 MHz, whose exact UART rate
 // is 1 Mbaud (35 MHz is no multiple of 2 or 3 MHz); the plan thins the
 // amplitude and taxel packets so that 1.5 x their bytes per frame fit the
-// link (common/eskin/dtmf_top_plan.h): 1.5 x ((10 + 2 x 48 + 2) + (10 + 2 + 2 x
-// 576 + 2)) = 1911 bytes against 100 a 1 ms frame at 1 Mbaud (10 bits a
-// byte): every 20th frame (ceil 19.1); planned for 3 Mbaud (300 bytes) it
-// would be every 7th, which would overrun the 1 Mbaud line. (Until then
-// the 18x18 skin showed it, engine 30 772 clocks.) The 16x16 1 MS/s build of
+// link (common/eskin/dtmf_top_plan.h): 1.5 x ((10 + 2 x 52 + 2) + (10 + 2 + 2 x
+// 676 + 2)) = 2223 bytes against 100 a 1 ms frame at 1 Mbaud (10 bits a
+// byte): every 23rd frame (ceil 22.2); planned for 3 Mbaud (300 bytes) it
+// would be every 8th, which would overrun the 1 Mbaud line. (Before it the
+// 24x24 and the 18x18 skins showed it, until their engines got faster.) The 16x16 1 MS/s build of
 // tests/rtl/dtmf_top_test.cpp is planned at its clock's 2 Mbaud (40 MHz),
-// so it is this flow's build.
+// so it is this flow's build. (The frame engine asked for, datapath 0: left
+// to the board, these skins take the streaming datapath, whose control
+// plane keeps up at 30 MHz.)
 TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
-  const CoreClock c = choose_core_clock(find_board("ulx3s"), scale_scene(base, 24, 35000.0),
-                                        LoadPolicy::Stress);
+  const CoreClock c = choose_core_clock(find_board("ulx3s"), scale_scene(base, 26, 35000.0),
+                                        LoadPolicy::Stress, 0, -1, -1, true, 0);
   ASSERT_TRUE(c.budget.ok()) << c.budget.problems.front();
   EXPECT_EQ(c.clocking.clk_hz, 35000000);
   EXPECT_EQ(c.clocking.baud, 1000000);
   EXPECT_EQ(c.plan.spec.baud, 1000000);
-  EXPECT_EQ(c.plan.decim_tax, 20);
-  EXPECT_EQ(c.plan.decim_amp, 20);
+  EXPECT_EQ(c.plan.decim_tax, 23);
+  EXPECT_EQ(c.plan.decim_amp, 23);
   const auto params =
       eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", "");
   EXPECT_EQ(param(params, "BAUD"), "1000000");
@@ -332,7 +334,7 @@ TEST(CoreClock, PacketsArePlannedForTheChosenClocksBaudRate) {
   // 35-sample frame of 1 ms: 50 MHz, far above the ADC's 1 MHz and the
   // DFT's), and the flow's messages give that figure.
   const CoreClock big = choose_core_clock(find_board("ulx3s"), scale_scene(base, 30, 35000.0),
-                                          LoadPolicy::Stress);
+                                          LoadPolicy::Stress, 0, -1, -1, true, 0);
   EXPECT_GT(big.engine_clocks, 40000);
   EXPECT_EQ(big.core_min_hz, big.engine_clocks * 1000);
   const std::string why = eskin::hls::dtmf_top_min_clock_reason(big.plan, big.engine_clocks);
@@ -416,12 +418,13 @@ TEST(CoreClock, BarrelShifterOnTheUlx3sAndOnTheUp5kWhenNeeded) {
 // loop take at least 104 clocks a neuron and the unit's loop at most 28
 // (tests/ucode/dtmf_ucode_test.cpp), so the unit saves at least 128 x 76 =
 // 9 728 clocks a frame; with the unit the ULX3S's 30 MHz default carries
-// it (30 000 clocks a frame).
+// it (30 000 clocks a frame). (The frame engine asked for: datapath 0.)
 TEST(CoreClock, Ulx3sHasTheNeuronUnit) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const auto sc = scale_scene(base, 8, 35000.0);
-  const CoreClock engine = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress, 0, -1, 0);
-  const CoreClock unit = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress);
+  const CoreClock engine =
+      choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress, 0, -1, 0, true, 0);
+  const CoreClock unit = choose_core_clock(find_board("ulx3s"), sc, LoadPolicy::Stress, 0, -1, -1, true, 0);
   EXPECT_FALSE(engine.plan.spec.neuron_unit);
   EXPECT_TRUE(unit.plan.spec.neuron_unit);
   std::printf("8x8 at 35 kS/s, barrel shifter, longest stress frame: neurons on the engine %llu "
@@ -535,17 +538,19 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
 // 74.7-80: SCLK = a / (2 H) <= 20 MHz with A - 28 H clocks of acquisition
 // >= 250 ns). A 20x20 skin's engine fits the 40 MHz frame (about 23 400
 // of 40 000 clocks with the neuron lanes): one clock. A 32x32 skin's
-// (about 48 000) does not, and 75 MHz is beyond the ECP5 build's
+// (about 44 800) does not, and 75 MHz is beyond the ECP5 build's
 // Fmax (about 50): the ULX3S gives the ADC a clock of its own from the
 // same PLL (VCO / CLKOS_DIV, 40 MHz, the fastest that converts) and the
 // core the slowest clock whose frame, floor(STEP clk A / a) - 1 clocks,
-// holds the engine and whose sample period holds the DFT's lanes: 50 MHz
-// (49 999 >= 48 021; 45 MHz's 44 999 does not). The iCE40 has no such
-// clock; mixed_top (own_adc_clock false) neither.
+// holds the engine and whose sample period holds the DFT's lanes: 45 MHz
+// (44 999 >= 44 792; 40 MHz's 39 999 does not). The iCE40 has no such
+// clock; mixed_top (own_adc_clock false) neither. (The frame engine asked
+// for: datapath 0; left to the board, the 32x32 takes the streaming one.)
 TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const Board ulx = find_board("ulx3s", "85k");
-  const CoreClock s20 = choose_core_clock(ulx, scale_scene(base, 20, 1e6), LoadPolicy::Stress);
+  const CoreClock s20 =
+      choose_core_clock(ulx, scale_scene(base, 20, 1e6), LoadPolicy::Stress, 0, -1, -1, true, 0);
   ASSERT_TRUE(s20.budget.ok());
   EXPECT_EQ(s20.clocking.clk_hz, 40000000);
   EXPECT_EQ(s20.clocking.adc_clk_hz, 0);
@@ -553,10 +558,11 @@ TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {
                                               "", ""),
                   "ADC_CLK_HZ"),
             "0");
-  const CoreClock s32 = choose_core_clock(ulx, scale_scene(base, 32, 1e6), LoadPolicy::Stress);
+  const CoreClock s32 =
+      choose_core_clock(ulx, scale_scene(base, 32, 1e6), LoadPolicy::Stress, 0, -1, -1, true, 0);
   ASSERT_TRUE(s32.budget.ok()) << s32.budget.problems.front();
-  EXPECT_GT(s32.engine_clocks, 45000);
-  EXPECT_EQ(s32.clocking.clk_hz, 50000000);
+  EXPECT_GT(s32.engine_clocks, 40000);
+  EXPECT_EQ(s32.clocking.clk_hz, 45000000);
   EXPECT_EQ(s32.clocking.adc_clk_hz, 40000000);
   EXPECT_EQ(s32.plan.spec.adc_clk_hz, 40000000);
   EXPECT_LT(s32.clocking.clk_hz, 74700000);
@@ -577,10 +583,78 @@ TEST(CoreClock, AOneMegasampleSkinBeyondTheAdcBandGetsTheAdcItsOwnClock) {
   EXPECT_EQ(s32.clocking.clk_hz, 25000000L * wp("CLKFB_DIV") / wp("CLKI_DIV"));
   // mixed_top's one clock: the 75 MHz band, or none.
   const CoreClock one = choose_core_clock(ulx, scale_scene(base, 32, 1e6), LoadPolicy::Stress, 0,
-                                          -1, -1, false);
+                                          -1, -1, false, 0);
   EXPECT_EQ(one.clocking.adc_clk_hz, 0);
   EXPECT_GE(one.clocking.clk_hz, 74700000);
   const CoreClock ice =
       choose_core_clock(find_board("icebreaker"), scale_scene(base, 4, 1e6), LoadPolicy::Stress);
   EXPECT_EQ(ice.clocking.adc_clk_hz, 0);
+}
+
+namespace {
+// The scale table's scenes on the ECP5 with the board's choice of datapath,
+// printed with the figures that chose it.
+CoreClock board_choice(const Board& b, const eskin::sim::Scene& sc) {
+  const CoreClock c = choose_core_clock(b, sc, LoadPolicy::Stress);
+  std::printf("%s %s %dx%d at %g S/s: %s at %g MHz, %ld clocks measured (chain %llu), bound "
+              "%llu (frame %llu + command %llu), frame %ld\n",
+              b.name.c_str(), b.device.c_str(), c.plan.R, c.plan.C, c.plan.spec.sample_hz,
+              datapath_name(c.plan.spec.datapath), c.clocking.clk_hz / 1e6, c.engine_clocks,
+              (unsigned long long)c.load.chain_clocks, (unsigned long long)c.bound.total(),
+              (unsigned long long)c.bound.frame, (unsigned long long)c.bound.command,
+              c.budget.frame_clocks);
+  return c;
+}
+}  // namespace
+
+// The board's choice of datapath (choose_core_clock): the 64x64 skin at 1
+// MS/s, which the frame engine cannot hold (47 817 DMEM words of its
+// 32 768), gets the streaming datapath on the ECP5-85F, at a clock whose
+// frame holds the control plane and the chain measured and 70 % of it the
+// static bound; the default scene keeps the frame engine (both keep up at
+// 30 MHz: the engine on a tie); asked for, each datapath is built.
+TEST(CoreClock, TheBoardPicksTheStreamingDatapathWhereTheEngineDoesNotKeepUp) {
+  const Board ulx = find_board("ulx3s", "85k");
+  const auto sc64 = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/skin64x64.yaml");
+  const CoreClock c = board_choice(ulx, sc64);
+  ASSERT_EQ(c.plan.spec.datapath, eskin::hls::DtmfDatapath::Streaming);
+  ASSERT_TRUE(c.budget.ok()) << c.budget.problems.front();
+  EXPECT_FALSE(c.plan.spec.neuron_unit);
+  EXPECT_EQ(c.plan.spec.neuron_lanes, 0);
+  // The chain's own clocks: K + 45 + 2 (T - 1) + 3 with the dense packets
+  // (the scene's outputs: amplitudes and taxels, no sparse, no spikes).
+  EXPECT_EQ(c.load.chain_clocks, uint64_t(128 + 45 + 2 * 4095 + 3));
+  EXPECT_EQ(c.bound.chain, c.load.chain_clocks);
+  EXPECT_LE(uint64_t(c.engine_clocks), c.bound.total());
+  EXPECT_LE(long(c.bound.total()) * 100, 70L * c.budget.frame_clocks);
+  EXPECT_EQ(param(eskin::hls::dtmf_top_params(c.plan, eskin::hls::dtmf_engine_image(c.plan), "", ""),
+                  "STREAM"),
+            "1");
+  // Asked for the engine, the skin is refused naming its memory.
+  try {
+    choose_core_clock(ulx, sc64, LoadPolicy::Stress, 0, -1, -1, true, 0);
+    ADD_FAILURE() << "the frame engine was planned for a 64x64 skin";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("needs 47817 DMEM words"), std::string::npos) << e.what();
+  }
+  const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  const CoreClock d = board_choice(ulx, base);
+  EXPECT_EQ(d.plan.spec.datapath, eskin::hls::DtmfDatapath::FrameEngine);  // demixed carriers
+  const auto planned = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/planned3x3.yaml");
+  const CoreClock p = board_choice(ulx, planned);
+  EXPECT_EQ(p.plan.spec.datapath, eskin::hls::DtmfDatapath::FrameEngine);
+  EXPECT_EQ(p.clocking.clk_hz, ulx.default_clk_hz);
+  const CoreClock ps = choose_core_clock(ulx, planned, LoadPolicy::Stress, 0, -1, -1, true, 1);
+  EXPECT_EQ(ps.plan.spec.datapath, eskin::hls::DtmfDatapath::Streaming);
+  EXPECT_TRUE(ps.budget.ok()) << ps.budget.problems.front();
+  // Not with the neuron unit, and not on the UP5K.
+  try {
+    choose_core_clock(ulx, planned, LoadPolicy::Stress, 0, -1, 1, true, 1);
+    ADD_FAILURE() << "the streaming datapath was planned with the neuron unit";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--neurons"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(find_board("icebreaker").streaming);
+  for (int n : {16, 32})
+    board_choice(ulx, scale_scene(base, n, 1e6));
 }

@@ -133,24 +133,31 @@ namespace {
 
 // Builds whose measured load keeps up but whose bound exceeds 90 % of the
 // frame are refused by the flow before any tool runs, naming the bound, its
-// share, the frame and the limit: the scale table's 32x32 ECP5 builds
-// (docs/scale_table.csv: 50 MHz, barrel shifter and neuron lanes; at 1 MS/s
-// the ADC on its own 40 MHz clock; measured 49 778 and 48 021 of 50 015 and
-// 49 999 clocks a frame) and its UP5K 8x8 (18 MHz, bit-serial with the
-// neuron unit; 11 959 of 17 990): each bound printed with the failure.
+// share, the frame and the limit: the frame engine asked for at the clocks
+// the scale table's measured loads once chose (docs/scale_table.csv before
+// the bound: the 32x32 ECP5 builds at 50 MHz, barrel shifter and neuron
+// lanes, measured 49 778 and 48 021 of 50 015 and 49 999 clocks a frame;
+// the UP5K 8x8 at 18 MHz, bit-serial with the neuron unit, 11 959 of
+// 17 990): each bound printed with the failure. Left to the board, the
+// clock (and on the ECP5 the datapath) is one at which the bound holds
+// (tests/fpga/bitstream_flow_test.cpp CoreClock).
 TEST(FrameBound, ScaleTableBuildsBeyondTheLimitAreRefused) {
   struct Probe {
     const char* board;
     const char* device;
     int n;
     double fs;
+    long clk_hz;
   };
-  for (const Probe& p : {Probe{"ulx3s", "85k", 32, 35000.0}, Probe{"ulx3s", "85k", 32, 1e6},
-                         Probe{"icebreaker", "up5k", 8, 35000.0}}) {
+  for (const Probe& p : {Probe{"ulx3s", "85k", 32, 35000.0, 50000000},
+                         Probe{"ulx3s", "85k", 32, 1e6, 50000000},
+                         Probe{"icebreaker", "up5k", 8, 35000.0, 18000000}}) {
     fpga::FlowOptions o;
     o.source_dir = ESKIN_SOURCE_DIR;
     o.out_dir = testing::TempDir() + "/frame_bound_refused";
     o.load = fpga::LoadPolicy::Stress;
+    o.clk_hz = p.clk_hz;
+    o.datapath = 0;
     const fpga::FlowReport r =
         fpga::run_flow(fpga::find_board(p.board, p.device), fpga::scale_scene(base(), p.n, p.fs), o);
     std::printf("%s %dx%d at %g S/s, %ld Hz: measured %ld, bound %llu (frame %llu + command "
@@ -197,7 +204,7 @@ TEST(FrameBound, ScaleTableCarriesTheBound) {
   a.engine_clocks = 17625;
   a.bound_clocks = 36878;
   const std::string csv = fpga::scale_csv({a});
-  EXPECT_NE(csv.find(",50015,17625,36878,\"\""), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",50015,17625,36878,engine,\"\""), std::string::npos) << csv;
   const auto rows = fpga::parse_scale_csv(csv);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].frame_clocks, 50015);
@@ -219,6 +226,33 @@ TEST(FrameBound, ScaleTableCarriesTheBound) {
   EXPECT_EQ(before[0].seconds, 9);
   EXPECT_NE(fpga::scale_markdown(before).find("| 50.0 MHz | - |"), std::string::npos)
       << fpga::scale_markdown(before);
+  EXPECT_FALSE(before[0].streaming);
+  // The streaming datapath's rows name it (CSV datapath, the table's engine
+  // column); the header before that column reads as the frame engine's, and
+  // an unknown datapath is refused naming the line.
+  a.streaming = true;
+  a.engine = {true, false, false};
+  const auto s = fpga::parse_scale_csv(fpga::scale_csv({a}));
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_TRUE(s[0].streaming);
+  EXPECT_NE(fpga::scale_markdown(s).find("| streaming datapath (barrel shifter control plane) |"),
+            std::string::npos)
+      << fpga::scale_markdown(s);
+  std::string no_dp = fpga::scale_csv({a});
+  no_dp.replace(no_dp.find("bound_clocks,datapath,"), 22, "bound_clocks,");
+  no_dp.replace(no_dp.find(",streaming,"), 11, ",");
+  const auto e = fpga::parse_scale_csv(no_dp);
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_FALSE(e[0].streaming);
+  std::string bad = fpga::scale_csv({a});
+  bad.replace(bad.find(",streaming,"), 11, ",chain,");
+  try {
+    fpga::parse_scale_csv(bad);
+    ADD_FAILURE() << "datapath 'chain' accepted";
+  } catch (const std::runtime_error& x) {
+    EXPECT_NE(std::string(x.what()).find("line 2: expected datapath engine|streaming, got chain"),
+              std::string::npos) << x.what();
+  }
 }
 
 }  // namespace

@@ -187,6 +187,38 @@ TEST(GhostFilterHls, ConfigErrorsNameTheField) {
   EXPECT_STREQ(bad, "cols (expected 1..C_MAX)");
 }
 
+// A frame's pairing takes up to R + C - 1 pairs, not min(R, C): each pair
+// empties one line only (the smaller rem), so rises of 6, 6 on two rows and
+// 4, 4, 4 on three columns (pair_tol 0) pair (r0, c0), (r1, c1), (r0, c2),
+// (r1, c2): 4 pairs on a 2x3 skin, every line emptied, all four sites.
+// With max_pairs 3 the fourth pair is not taken: lines stay unpaired and
+// the thesis step gives the one site (r0, c0) instead.
+TEST(GhostFilterHls, PairingTakesUpToRPlusCMinusOnePairsAndStopsAtMaxPairs) {
+  for (int cap : {8, 4, 3}) {
+    hls::GhostFilter<2, 3, 1> gf;
+    hls::GhostFilterConfig g;
+    g.rows = 2, g.cols = 3, g.lookback = 1, g.onset = 0, g.pair_tol = 0, g.max_pairs = uint8_t(cap);
+    ASSERT_TRUE(gf.configure(g));
+    const uint16_t mag[5] = {6, 6, 4, 4, 4};
+    gf.frame(mag);
+    EXPECT_EQ(gf.pair_steps(), std::min(cap, 4)) << "max_pairs " << cap;
+    std::set<Site> got;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (gf.site(i, j)) got.insert({i, j});
+    if (cap >= 4)
+      EXPECT_EQ(got, (std::set<Site>{{0, 0}, {0, 2}, {1, 1}, {1, 2}})) << "max_pairs " << cap;
+    else
+      EXPECT_EQ(got, (std::set<Site>{{0, 0}})) << "max_pairs " << cap;
+  }
+  hls::GhostFilter<2, 3, 1> gf;
+  hls::GhostFilterConfig g;
+  g.rows = 2, g.cols = 3, g.max_pairs = 0;
+  const char* bad = nullptr;
+  EXPECT_FALSE(gf.configure(g, &bad));
+  EXPECT_STREQ(bad, "max_pairs (expected 1..255)");
+}
+
 // The spec holds only what the microcode's ghost_filter routine runs: the
 // greedy pairing, the thesis step its fallback. The thesis step alone (a
 // former `improved = false`) had no scene key, plan field or command to

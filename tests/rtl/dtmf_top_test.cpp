@@ -82,6 +82,7 @@ struct Build {
   int neuron_lanes = 0;      // the unit's lanes (NEURON_LANES)
   bool stream = false;       // the streaming datapath (STREAM)
   bool spikes = false;       // stream: spikes whatever the scene's outputs
+  bool ask_clk = false;      // scale builds: the flow at clk_hz (--clk-mhz), not its own clock
 };
 const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ, 1};
 const Build kS10{"scenes/staggered10x10.yaml", "staggered10x10", DTMF_TOP_S10_PARAMS,
@@ -99,7 +100,7 @@ const Build kS20M{"scenes/neuroskin2.yaml", "scale_20x20_1msps", DTMF_TOP_S20M_P
 const Build kP3S{"scenes/planned3x3.yaml", "planned3x3_stream", DTMF_TOP_P3S_PARAMS,
                  DTMF_TOP_P3S_CLK_HZ, 1, false, false, 0, 0, 0, 0, true};
 const Build kS32M{"scenes/neuroskin2.yaml", "scale_32x32_1msps", DTMF_TOP_S32M_PARAMS,
-                  DTMF_TOP_S32M_CLK_HZ, 10, true, true, 32, 1e6, 40000000, 5};
+                  DTMF_TOP_S32M_CLK_HZ, 10, true, true, 32, 1e6, 40000000, 5, false, false, true};
 
 struct BuildSetup {
   eskin::sim::Scene scene;
@@ -118,8 +119,12 @@ BuildSetup prepare(const Build& b) {
   if (b.scale_n > 0) s.scene = eskin::fpga::scale_scene(s.scene, b.scale_n, b.scale_fs);
   eskin::hls::DtmfTopSpec spec;
   if (b.scale_n > 0) {  // as the scale table builds it: the ULX3S flow's plan (clock, baud, ...)
+    // (with the datapath the build has: the board would take the
+    // streaming one for some of these skins)
     s.chosen = eskin::fpga::choose_core_clock(eskin::fpga::find_board("ulx3s", "85k"), s.scene,
-                                              eskin::fpga::LoadPolicy::Stress);
+                                              eskin::fpga::LoadPolicy::Stress,
+                                              b.ask_clk ? b.clk_hz : 0, -1, -1, true,
+                                              b.stream ? 1 : 0);
     spec = s.chosen.plan.spec;
   } else {
     spec = eskin::sim::dtmf_top_spec(s.scene, b.clk_hz);
@@ -792,10 +797,12 @@ TEST(DtmfTop, ScaleTable20x20AtOneMegasampleOnTheEcp5Core) {
                                                                                         38, 40);
 }
 
-// 32x32 at 1 MS/s, the ECP5-85F target: its engine (48 021 clocks
-// a frame, stress load, with the neuron lanes; 77 725 with the unit alone)
-// does not fit the 40 MHz frame of the ADC's band, so the ULX3S flow gives
-// the ADC its own 40 MHz clock (the PLL's CLKOS) and the core 50 MHz:
+// 32x32 at 1 MS/s on the frame engine (the board now gives it the
+// streaming datapath): its engine (about 44 800 clocks a frame, stress
+// load, with the neuron lanes) does not fit the 40 MHz frame of the ADC's
+// band, so the ULX3S flow gives the ADC its own 40 MHz clock (the PLL's
+// CLKOS) and the core, asked for 50 MHz (--clk-mhz 50; left to itself the
+// flow takes 45 MHz and more lanes), 50 MHz:
 // samples cross in rtl/stream_cdc.v, a sample every 50 clocks give or take
 // one (P = 49 in the budget), a frame at least 49 999 clocks. 64 DFT
 // channels in 10 lanes: a frame's sample takes KS + 8 = 72 clocks, any
