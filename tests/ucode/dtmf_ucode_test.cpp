@@ -19,6 +19,7 @@
 #include "random_carriers.h"
 #include "hls/dtmf_chain.h"
 #include "eskin/dtmf_top_plan.h"
+#include "ucode/dtmf_frame_bound.h"
 #include "ucode/dtmf_ucode.h"
 #include "ucode/frame_engine.h"
 #include "ucode/frame_engine_asm.h"
@@ -845,3 +846,84 @@ TEST(DtmfUcode, StreamingControlPlaneEqualsTheChain) {
 }
 
 }  // namespace
+
+namespace {
+
+// The ghost filter's pairing at its most: every line rising at once, by
+// random amounts far above the onset and the pairing tolerance, on every
+// other frame (the others quiet, so the next rises are the whole
+// magnitudes again). Each pair empties one line only, so a frame pairs up
+// to R + C - 1 times (3x3: 5, where the loop's old bound counted min(R, C)
+// = 3), capped at max_pairs (8x8: 8 of 15; hls/ghost_filter.h). The
+// streaming build's control plane on the instruction-set model, the
+// magnitudes injected where the chain puts them: per frame the sites it
+// adds are the kernel's (GhostFilter::frame on the same magnitudes), the
+// kernel's pair count reaches the most the plan allows, and the engine's
+// longest frame stays within the control plane's static bound (the bound's
+// frame less the chain's clocks).
+template <class S>
+void pairing_at_its_most(int want_pairs) {
+  sim::Scene sc = sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
+  sc.skin.rows = S::R, sc.skin.cols = S::C;  // bin-centred carriers in the window S::N
+  sc.decoder.window = S::N;
+  const auto f = plan_carriers(S::K, sc.skin.adc.rate_hz, S::N);
+  sc.skin.row_freq_hz.assign(f.begin(), f.begin() + S::R);
+  sc.skin.col_freq_hz.assign(f.begin() + S::R, f.end());
+  sc.skin.freq_error.clear();
+  auto spec = sim::dtmf_top_spec(sc, hls::kDtmfTopClkHz);
+  spec.datapath = hls::DtmfDatapath::Streaming;
+  spec.neuron_unit = false;
+  spec.neuron_lanes = 0;
+  spec.engine_fast_shift = false;  // TopModel's engine
+  const auto plan = hls::make_dtmf_top_plan(spec);
+  ASSERT_FALSE(plan.spec.demix);
+  ASSERT_EQ(plan.ghost.max_pairs, std::min(8, S::R + S::C - 1));
+  const long period = std::lround(double(hls::kDtmfTopClkHz) / spec.sample_hz);
+  dtmf_model::TopModel<S> top(plan, period);
+  auto ghost = std::make_unique<hls::GhostFilter<S::R, S::C, S::L_MAX>>();
+  ASSERT_TRUE(ghost->configure(hls::chain_config<S>(plan).ghost_cfg));
+  std::mt19937 rng(77);
+  std::uniform_int_distribution<int> level(int(plan.ghost.onset) + 4 * int(plan.ghost.pair_tol) + 50,
+                                           int(plan.ghost.onset) + 4 * int(plan.ghost.pair_tol) + 4000);
+  std::vector<std::vector<bool>> want_sites;
+  std::vector<bool> prev(S::T, false);
+  int frames = 0, most = 0;
+  top.on_frame = [&](std::vector<int32_t>& mags) {
+    uint16_t mag[S::K];
+    for (int k = 0; k < S::K; ++k) mag[k] = uint16_t(frames % 2 ? level(rng) : 0);
+    for (int k = 0; k < S::K; ++k) mags[size_t(k)] = mag[k];
+    ghost->frame(mag);
+    most = std::max(most, ghost->pair_steps());
+    std::vector<bool> s(S::T);
+    for (int i = 0; i < S::T; ++i) s[size_t(i)] = ghost->site(i / S::C, i % S::C);
+    want_sites.push_back(s);
+    ghost->release([](int, int) { return 0; });  // every site released: each frame's own
+    ++frames;
+  };
+  const size_t n = size_t(plan.N + 41 * plan.step);
+  for (size_t i = 0; i < n; ++i) top.sample(uint16_t(2048));
+  const auto& bus = top.bus();
+  ASSERT_GE(bus.headers.size(), 40u);
+  size_t first = 0;
+  for (size_t f = 0; f < bus.headers.size(); ++f) {
+    std::vector<bool> s(S::T, false);  // the chain's mask: released, then this frame's adds
+    for (size_t w = first; w < bus.sites_at_header[f]; ++w) s[bus.sites[w]] = true;
+    first = bus.sites_at_header[f];
+    ASSERT_EQ(s, want_sites[f]) << "frame " << f;
+  }
+  EXPECT_EQ(most, want_pairs);
+  const auto bound = hls::dtmf_frame_bound(plan);
+  std::printf("%dx%d pairing: at most %d pairs a frame; longest control-plane frame %llu clocks, "
+              "its bound %llu\n",
+              S::R, S::C, most, (unsigned long long)top.max_frame_clocks(),
+              (unsigned long long)(bound.frame - bound.chain));
+  EXPECT_LE(top.max_frame_clocks(), bound.frame - bound.chain);
+  EXPECT_EQ(top.frame_overruns(), 0u);
+}
+
+}  // namespace
+
+TEST(DtmfUcode, GhostPairingTakesUpToRPlusCMinusOnePairsAndMaxPairsAtMost) {
+  pairing_at_its_most<hls::DtmfChainSizes<3, 3, 32>>(5);
+  pairing_at_its_most<hls::DtmfChainSizes<8, 8, 64>>(8);
+}
