@@ -22,7 +22,8 @@
 #  s18m:    the same for 18x18: 36 channels in 6 lanes, a frame's sample
 #           44 clocks;
 #  s20m:    the same for 20x20: 40 channels in 7 lanes, 48 clocks;
-#  s32m:    32x32, the issue's ECP5-85F target, with the ADC on its own
+#  s64:     scenes/skin64x64.yaml on the streaming datapath (below);
+#  s32m:    32x32 on the frame engine, with the ADC on its own
 #           40 MHz clock (ADC_CLK_HZ, rtl/stream_cdc.v) and the core at
 #           50 MHz: 64 channels in 10 lanes, N 256, 2 Mbaud.
 # ${out} = the list ${base} with each NAME=VALUE given replacing its
@@ -99,6 +100,17 @@ eskin_verilate(${exe} Vdtmf_top_p3s ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top 
 eskin_verilate(${exe} Vdtmf_top_p3c ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_p3s} --assert
   -GUCODE_HEX=\"${dtmf_dir}/planned3x3_stream_cmd.ucode.hex\"
   -GKROM_HEX=\"${dtmf_dir}/planned3x3_stream_cmd.krom.hex\")
+# s64: scenes/skin64x64.yaml (4096 taxels, 128 carriers at 1 MS/s) on the
+# streaming datapath as the ULX3S flow builds it (40 MHz, 22 DFT lanes
+# behind a 4-sample FIFO, the barrel shifter in the control plane).
+set(dtmf_s64 -GCLK_HZ=40000000 -GSAMPLE_HZ=1000000 -GBAUD=2000000 -GKS=128 -GN=512 -GACC_W=22
+  -GSTEP=1000 -GIW=11 -GIMEM_WORDS=1280 -GDW=11 -GKW=10 -GOUT_DEPTH=32768 -GENGINE_FAST_SHIFT=1
+  -GSDFT_LANES=22 -GNEURON_UNIT=0 -GSDFT_FIFO=4 -GSTREAM=1 -GROWS=64 -GCOLS=64 -GMAG_SHIFT=4
+  -GMAX_SPIKES=256 -GADC_CLK_HZ=0)
+eskin_verilate(${exe} Vdtmf_top_s64 ${CMAKE_SOURCE_DIR}/rtl/dtmf_top.v dtmf_top ${dtmf_s64} --assert
+  -GUCODE_HEX=\"${dtmf_dir}/skin64x64_stream.ucode.hex\"
+  -GKROM_HEX=\"${dtmf_dir}/skin64x64_stream.krom.hex\")
+string(JOIN " " dtmf_s64_str ${dtmf_s64})
 string(JOIN " " dtmf_p3s_str ${dtmf_p3s})
 string(JOIN " " dtmf_default_str ${dtmf_default})
 string(JOIN " " dtmf_s10_str ${dtmf_s10})
@@ -117,7 +129,8 @@ target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_S18M_PARAMS="${dtmf_s18m_str}" DTMF_TOP_S18M_CLK_HZ=40000000
   DTMF_TOP_S20M_PARAMS="${dtmf_s20m_str}" DTMF_TOP_S20M_CLK_HZ=40000000
   DTMF_TOP_S32M_PARAMS="${dtmf_s32m_str}" DTMF_TOP_S32M_CLK_HZ=50000000
-  DTMF_TOP_P3S_PARAMS="${dtmf_p3s_str}" DTMF_TOP_P3S_CLK_HZ=18000000)
+  DTMF_TOP_P3S_PARAMS="${dtmf_p3s_str}" DTMF_TOP_P3S_CLK_HZ=18000000
+  DTMF_TOP_S64_PARAMS="${dtmf_s64_str}" DTMF_TOP_S64_CLK_HZ=40000000)
 target_link_libraries(${exe} PRIVATE eskin_ucode eskin_fpga)
 # Verilator 5.006 leaves an unused delayed copy of power_on_reset's
 # synchroniser in the code it writes for the two-clock build (s32m):

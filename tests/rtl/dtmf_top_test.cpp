@@ -43,6 +43,8 @@
 #include "Vdtmf_top_p3s.h"
 #include "Vdtmf_top_p3s___024root.h"
 #include "Vdtmf_top_p3c.h"
+#include "Vdtmf_top_s64.h"
+#include "Vdtmf_top_s64___024root.h"
 #include "Vdtmf_top_p3c___024root.h"
 #include "dtmf_top_board.h"
 #include "hls/dtmf_chain.h"
@@ -83,6 +85,7 @@ struct Build {
   bool stream = false;       // the streaming datapath (STREAM)
   bool spikes = false;       // stream: spikes whatever the scene's outputs
   bool ask_clk = false;      // scale builds: the flow at clk_hz (--clk-mhz), not its own clock
+  bool flow = false;         // the scene's own skin as the ULX3S flow builds it (its choice)
 };
 const Build kDefault{"scenes/neuroskin2.yaml", "neuroskin2", DTMF_TOP_PARAMS, DTMF_TOP_CLK_HZ, 1};
 const Build kS10{"scenes/staggered10x10.yaml", "staggered10x10", DTMF_TOP_S10_PARAMS,
@@ -99,6 +102,8 @@ const Build kS20M{"scenes/neuroskin2.yaml", "scale_20x20_1msps", DTMF_TOP_S20M_P
                   DTMF_TOP_S20M_CLK_HZ, 7, true, true, 20, 1e6, 0, 5};
 const Build kP3S{"scenes/planned3x3.yaml", "planned3x3_stream", DTMF_TOP_P3S_PARAMS,
                  DTMF_TOP_P3S_CLK_HZ, 1, false, false, 0, 0, 0, 0, true};
+const Build kS64{"scenes/skin64x64.yaml", "skin64x64_stream", DTMF_TOP_S64_PARAMS,
+                 DTMF_TOP_S64_CLK_HZ, 22, true, false, 0, 0, 0, 0, true, false, false, true};
 const Build kS32M{"scenes/neuroskin2.yaml", "scale_32x32_1msps", DTMF_TOP_S32M_PARAMS,
                   DTMF_TOP_S32M_CLK_HZ, 10, true, true, 32, 1e6, 40000000, 5, false, false, true};
 
@@ -125,6 +130,10 @@ BuildSetup prepare(const Build& b) {
                                               eskin::fpga::LoadPolicy::Stress,
                                               b.ask_clk ? b.clk_hz : 0, -1, -1, true,
                                               b.stream ? 1 : 0);
+    spec = s.chosen.plan.spec;
+  } else if (b.flow) {  // the board's choice for the scene itself
+    s.chosen = eskin::fpga::choose_core_clock(eskin::fpga::find_board("ulx3s", "85k"), s.scene,
+                                              eskin::fpga::LoadPolicy::Stress);
     spec = s.chosen.plan.spec;
   } else {
     spec = eskin::sim::dtmf_top_spec(s.scene, b.clk_hz);
@@ -360,6 +369,52 @@ TEST(DtmfTop, StreamingDatapathOnPlanned3x3MatchesTheChain) {
     std::printf("%s%s: %zu samples, %zu packets, %zu spike events\n", k.name.c_str(),
                 spikes ? " (spikes)" : "", n, b.received().size(), events);
   }
+}
+
+// The 64x64 skin at 1 MS/s (scenes/skin64x64.yaml: two presses and a
+// slide) on the streaming datapath as the ULX3S flow chooses it (the
+// datapath, 40 MHz, 22 lanes, the FIFO: prepare() checks every parameter
+// against the flow's plan): the whole Verilated top, the ADC model's pins,
+// the UART. Dense taxels (8 KB a frame) go out every 64th frame at 2
+// Mbaud, so the host asks once the board is up (its carriers loaded, the
+// first frame a window away) for sparse taxels every frame instead
+// (SET_OUTPUT_MASK, SET_DECIMATION, SET_THRESHOLD 0: taxels from 0.05 of
+// full scale, a few dozen a frame), and the HLS chain runs with the same
+// settings: every TAXELS_SPARSE packet, each frame's reconstructed taxels
+// with the ghost filter's sites, equals the chain's, byte for byte, and the
+// run is clean (no sample, frame, byte or packet lost).
+TEST(DtmfTop, StreamingDatapath64x64AtOneMegasampleMatchesTheChain) {
+  using S = eskin::hls::DtmfChainSizes<64, 64, 512>;
+  BuildSetup s = prepare(kS64);
+  ASSERT_EQ(s.chosen.plan.spec.datapath, eskin::hls::DtmfDatapath::Streaming);
+  ASSERT_TRUE(s.chosen.budget.ok()) << s.chosen.budget.problems.front();
+  const uint16_t sparse_min = 1638;  // 0.05 in UQ1.15
+  const size_t n = s.codes12.size();
+  auto padded = s;
+  padded.codes12.resize(n + 40000, 2048);
+  padded.plan.mask = eskin::hls::kMaskSparse;
+  padded.plan.decim_tax = 1;
+  padded.plan.sparse_min = sparse_min;
+  const auto want = run_chain<S>(padded, n + 60);
+  Board<Vdtmf_top_s64> b(padded.codes12, double(kS64.clk_hz), s.cpb);
+  eskin::link::LinkEncoder enc;
+  std::vector<uint8_t> cmds;
+  for (const auto& c : {enc.set_output_mask(eskin::hls::kMaskSparse), enc.set_decimation(1, 1),
+                        enc.set_threshold(0, sparse_min)})
+    cmds.insert(cmds.end(), c.begin(), c.end());
+  while (b.carrier_loads.empty()) b.tick();  // booted (the ADC runs): the first frame 512 samples on
+  b.send(cmds);
+  b.run_until_sample(n + 60);
+  ASSERT_GT(b.adc().samples_taken(), size_t(s.plan.N));
+  expect_clean_run(b, enc, 3);
+  const uint32_t limit = uint32_t(n) - 2 * uint32_t(s.plan.step);
+  size_t lit = 0, packets = 0;
+  for (const auto& k : want)
+    if (k.type == eskin::link::kTaxelsSparse && k.t < limit) lit += k.payload.size() / 4, ++packets;
+  expect_same_packets(want, b.received(), {eskin::link::kTaxelsSparse}, limit, 20);
+  EXPECT_GT(lit, 100u) << "the presses and the slide light taxels";
+  std::printf("%s: %zu samples, %zu TAXELS_SPARSE packets (%zu taxels lit), %zu packets in all\n",
+              kS64.name.c_str(), n, packets, lit, b.received().size());
 }
 
 // Every command over the UART while a skin runs, then the HLS chain with
