@@ -29,10 +29,24 @@
 #include <vector>
 
 #include "eskin/dtmf_top_plan.h"
+#include "hls/carrier_magnitude.h"
 #include "ucode/dtmf_io_map.h"
 #include "ucode/engine_ports.h"
 
 namespace eskin::hls {
+
+// The streaming chain's magnitude of a window sum, as the frame buffer of a
+// streaming build holds it (hls/dtmf_chain.h: CarrierMagnitude<24, 16,
+// MAG_SHIFT>), at a plan's shift (N up to 4096: at most 7).
+template <int SHIFT = 0>
+uint32_t stream_magnitude(int shift, int32_t re, int32_t im) {
+  if constexpr (SHIFT < 8) {
+    if (shift != SHIFT) return stream_magnitude<SHIFT + 1>(shift, re, im);
+    return CarrierMagnitude<24, 16, SHIFT>::magnitude(re, im);
+  } else {
+    throw std::logic_error("stream_magnitude: shift " + std::to_string(shift) + " beyond 7");
+  }
+}
 
 class DtmfTopBus {
  public:

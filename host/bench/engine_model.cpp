@@ -73,8 +73,12 @@ struct EngineCycleModel::Impl {
         ++io.frame_overruns;
       } else {
         for (int k = 0; k < plan.ks; ++k)
-          io.frame[size_t(2 * k)] = sums[size_t(k)],
-                      io.frame[size_t(2 * k + 1)] = sums[size_t(plan.ks + k)];
+          if (plan.spec.datapath == hls::DtmfDatapath::Streaming)  // the chain's magnitudes
+            io.frame[size_t(k)] = int32_t(
+                hls::stream_magnitude(plan.mag_shift, sums[size_t(k)], sums[size_t(plan.ks + k)]));
+          else
+            io.frame[size_t(2 * k)] = sums[size_t(k)],
+                        io.frame[size_t(2 * k + 1)] = sums[size_t(plan.ks + k)];
         io.pending = pending_log = true;
         io.frame_t = io.adc_t;
         frame_start = eng.clocks();

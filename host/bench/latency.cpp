@@ -55,6 +55,11 @@ const std::vector<LatencyConfig>& latency_configs() {
       // (checked by measure_latency). No board here reaches it; Verilator
       // runs any clock.
       {"16x16", "scenes/neuroskin2.yaml", 228000000, Top::Dtmf, 16, false, true},
+      // The 64x64 skin at 1 MS/s on the streaming datapath (rtl/dtmf_chain.v,
+      // the frame engine its control plane) as the ULX3S flow builds it at
+      // 40 MHz (22 DFT lanes, a 4-sample FIFO), with sparse taxels (a dense
+      // packet, 8 KB, takes 41 ms at 2 Mbaud).
+      {"64x64", "scenes/skin64x64.yaml", 40000000, Top::Dtmf, 0, false, true, true},
       // The seed-000 Hall skin (16 MLX90393 on 4 buses) in hall_top as
       // sim/hall_top_spec.h generates it, from the 12 MHz oscillator.
       {"hall000", "scenes/hall_000_skin.yaml", 12000000, Top::Hall},
@@ -246,7 +251,12 @@ LatencyRun measure_latency(const LatencyConfig& c, const std::string& cache_dir,
   run.config = c;
   sim::Scene scene = sim::load_scene(eskin::source_dir() + "/" + c.scene);
   if (c.scale_n > 0) scene = fpga::scale_scene(scene, c.scale_n, 35000.0);
-  run.plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, c.clk_hz));
+  if (c.streaming)
+    run.plan = fpga::choose_core_clock(fpga::find_board("ulx3s", "85k"), scene,
+                                       fpga::LoadPolicy::Stress, c.clk_hz, 0, -1, true, 1)
+                   .plan;
+  else
+    run.plan = hls::make_dtmf_top_plan(sim::dtmf_top_spec(scene, c.clk_hz));
   if (c.sparse_taxels) run.plan.mask = uint8_t((run.plan.mask & ~hls::kMaskTaxels) | hls::kMaskSparse);
   const auto& p = run.plan;
   // The first frame that sends every stream (frame count a multiple of

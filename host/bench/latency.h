@@ -49,6 +49,10 @@ struct LatencyConfig {
   // (12 + 2 x 256 = 524 bytes) never fits dtmf_top's 512-byte output FIFO, which takes a
   // packet whole or drops it.
   bool sparse_taxels = false;
+  // The scene as the ULX3S flow builds it on the streaming datapath
+  // (host/fpga/flow.h choose_core_clock, datapath 1, at clk_hz; the
+  // bit-serial shifter, which the instruction-set model counts).
+  bool streaming = false;
 };
 // The reference builds (the table to extend when a new top exists).
 const std::vector<LatencyConfig>& latency_configs();

@@ -250,8 +250,8 @@ std::function<int()> setup(CLI::App& app) {
   lat->add_flag("--update-baseline", l->update, "write the measured latencies as the new baseline");
   lat->add_option("--baseline", l->baseline, "baseline CSV (config,stage,cycles)");
   lat->add_option("--cache", l->cache, "directory of the cached Verilator builds");
-  lat->add_option("--config", l->configs, "only these reference builds (3x3, 10x10, 16x16, hall000)");
-  lat->add_flag("--ci", l->ci, "only the builds CI measures (all but 16x16: its simulation is long)");
+  lat->add_option("--config", l->configs, "only these reference builds (3x3, 10x10, 16x16, 64x64, hall000)");
+  lat->add_flag("--ci", l->ci, "only the builds CI measures (all but 16x16 and 64x64: their simulations are long)");
   auto d = std::make_shared<TradeArgs>();
   d->o.out_dir = "tradeoff";
   d->o.threads = int(std::max(1u, std::thread::hardware_concurrency()));

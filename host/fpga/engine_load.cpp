@@ -17,7 +17,6 @@
 #include "ucode/dtmf_top_bus.h"
 #include "ucode/dtmf_ucode.h"
 #include "ucode/frame_engine.h"
-#include "hls/carrier_magnitude.h"
 #include "hls/sdft_bank.h"
 
 namespace eskin::fpga {
@@ -35,19 +34,6 @@ struct EngineMax {
 // sdft_bank's arithmetic (dtmf_top: XW 12, CW 16, TW 10, FB 0); its static
 // helpers do not depend on K_MAX, N or ACC_W.
 using Bank = hls::SdftBank<1, 2, 12, 16, 10, 14>;
-
-// The streaming chain's magnitude of a window sum (hls/dtmf_chain.h:
-// CarrierMagnitude<24, 16, MAG_SHIFT>) at the plan's shift (N up to 4096:
-// at most 7).
-template <int SHIFT = 0>
-uint32_t chain_magnitude(int shift, int32_t re, int32_t im) {
-  if constexpr (SHIFT < 8) {
-    if (shift != SHIFT) return chain_magnitude<SHIFT + 1>(shift, re, im);
-    return hls::CarrierMagnitude<24, 16, SHIFT>::magnitude(re, im);
-  } else {
-    throw std::logic_error("chain_magnitude: shift " + std::to_string(shift) + " beyond 7");
-  }
-}
 
 // The engine booted on the plan's microcode (configuration copied, state
 // cleared, carriers to the DFT), fed frames and commands.
@@ -92,7 +78,7 @@ class LoadRun {
         im += Bank::term(x[m], -Bank::sine(idx));
       }
       if (stream_)
-        io_.frame[size_t(j)] = int32_t(chain_magnitude(p_.mag_shift, int32_t(re), int32_t(im)));
+        io_.frame[size_t(j)] = int32_t(hls::stream_magnitude(p_.mag_shift, int32_t(re), int32_t(im)));
       else
         io_.frame[size_t(2 * j)] = int32_t(re), io_.frame[size_t(2 * j + 1)] = int32_t(im);
     }
