@@ -40,8 +40,7 @@ sim::Scene base() { return sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.
 // 1.20 (3x3), 1.53 (8x8), 1.76 (10x10), 1.46 (16x16), 1.21 (64x64
 // streaming), 1.98 (3x3 streaming with spikes: the spike tail's events for
 // every neuron of both layers and a full SPIKES packet, which no stress
-// frame of the model reaches, in both figures alike); the frame alone 1.11
-// to 2.3. The bound must stay within 2x of the measurement: looser than
+// frame of the model reaches, in both figures alike). The bound must stay within 2x of the measurement: looser than
 // that it would refuse builds that keep up with half their frame to spare.
 TEST(FrameBound, MeasuredWorstCaseIsBelowTheBound) {
   struct Case {
