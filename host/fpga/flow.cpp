@@ -163,12 +163,20 @@ CoreClock choose_core_clock_at(const Board& b, const hls::DtmfTopSpec& spec,
     c.load = measure_engine_load(c.plan, x);
     c.engine_clocks = long(policy == LoadPolicy::Stress || c.load.scene_frames == 0
                                ? c.load.stress_total() : c.load.scene_total());
-    return hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
+    if (!b.engine_when_needed) return hls::dtmf_top_min_clock_hz(c.plan, c.engine_clocks);
+    // Choosing among engines: the clock the measured load and the static
+    // bound (at most its datapath's share of the frame, which run_flow
+    // checks) need, so that the engine chosen is one the plan accepts.
+    const long bound = long(hls::dtmf_frame_bound(c.plan).total());
+    const long pct = hls::dtmf_frame_bound_limit_percent(c.plan.spec.datapath);
+    return hls::dtmf_top_min_clock_hz(c.plan,
+                                      std::max(c.engine_clocks, (bound * 100 + pct - 1) / pct));
   };
   long need = load_with(spec);
   // The board's engine when needed (Board::engine_when_needed): the first
   // engine, fewest cells first, whose core keeps up at the asked-for clock
-  // or the board's default, else the one that needs the slowest clock (when
+  // or the board's default (its measured load, and its static bound within
+  // the limit), else the one that needs the slowest clock (when
   // the ADC or the DFT sets the need, no engine lowers it).
   const long keep_up_at = clk_hz > 0 ? clk_hz : b.default_clk_hz;
   if (b.engine_when_needed && need > keep_up_at) {

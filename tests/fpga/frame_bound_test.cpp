@@ -182,6 +182,7 @@ TEST(FrameBound, ScaleTableBuildsBeyondTheLimitAreRefused) {
     o.load = fpga::LoadPolicy::Stress;
     o.clk_hz = p.clk_hz;
     o.datapath = 0;
+    if (std::string(p.board) == "icebreaker") o.fast_shift = 0, o.neuron_unit = 1;  // as then built
     const fpga::FlowReport r =
         fpga::run_flow(fpga::find_board(p.board, p.device), fpga::scale_scene(base(), p.n, p.fs), o);
     std::printf("%s %dx%d at %g S/s, %ld Hz: measured %ld, bound %llu (frame %llu + command "
