@@ -94,7 +94,7 @@ std::string dtmf_table(const FlowReport& r) {
       "DFT: {} lane{}, a frame's sample {} clocks, the others {}: a period of {} or more, "
       "the sample's is {}\n"
       "{}"
-      "frame engine ({} shifter, neurons on {}), clocks of the {} a frame has ({}):\n"
+      "{} ({} shifter, neurons on {}), clocks of the {} a frame has ({}):\n"
       "  scene's longest frame {:>9} ({:.0f} %, {} frames)\n"
       "  stress longest frame  {:>9} ({:.0f} %, {}){}\n"
       "  + longest command     {:>9} ({:.0f} %, {})\n{}"
@@ -113,8 +113,10 @@ std::string dtmf_table(const FlowReport& r) {
                               "add to the engine's below\n",
                               r.load.chain_clocks)
                 : std::string("datapath: the frame engine alone\n"),
+      streaming ? "the control plane's frame engine" : "frame engine",
       r.spec.engine_fast_shift ? "barrel" : "bit-serial",
-      r.spec.neuron_lanes ? fmt::format("{} neuron lanes", r.spec.neuron_lanes)
+      streaming ? std::string("the chain's layers")
+      : r.spec.neuron_lanes ? fmt::format("{} neuron lanes", r.spec.neuron_lanes)
       : r.spec.neuron_unit ? std::string("the neuron unit") : std::string("the engine"),
       r.budget.frame_clocks,
       r.spec.adc_clk_hz > 0
