@@ -36,8 +36,8 @@ constexpr long kDtmfTopClkHz = 18000000;
 // The datapath that does a frame's work after the DFT: the frame engine's
 // microprogram (rtl/dtmf_top.v), or the streaming datapath for large FPGAs
 // (rtl/dtmf_chain.v in dtmf_top STREAM = 1, the engine its control plane;
-// host/fpga/flow.h choose_core_clock picks it). It sets how much of a frame the proven worst case
-// may take (dtmf_frame_bound_limit_percent).
+// host/fpga/flow.h choose_core_clock picks it). It sets how much of a
+// frame the proven worst case may take (dtmf_frame_bound_limit_percent).
 enum class DtmfDatapath { FrameEngine, Streaming };
 
 // The most of a frame's clocks the static worst-case bound of a frame and

@@ -257,8 +257,9 @@ std::function<int()> setup_bitstream(CLI::App& app) {
                   "What does each frame's work after the DFT: engine (the frame engine's "
                   "microcode alone) or streaming (rtl/dtmf_chain.v, one taxel a clock, the "
                   "engine its control plane; bin-centred carriers only, its own neuron layers: "
-                  "not with --neurons unit or lanes); default: the board's (ulx3s the engine "
-                  "where it keeps up with its static bound, else streaming; icebreaker engine)")
+                  "not with --neurons unit or lanes); default: the board's (ulx3s: of the two "
+                  "that keep up with their static bound, the one at the slower clock, the engine "
+                  "on a tie; icebreaker engine)")
       ->check(CLI::IsMember({"engine", "streaming"}));
   sub->add_flag("--scale-table", args->scale_table,
                 "Measure the scale table (all boards; hours) into docs/scale_table.csv");
