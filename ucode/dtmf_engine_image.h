@@ -176,15 +176,16 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   };
   kc("KC_ZERO", 0), kc("KC_MINUS1", -1), kc("KC_ONE", 1), kc("KC_TWO", 2), kc("KC_THREE", 3), kc("KC_FOUR", 4);
   kc("KC_EIGHT", 8), kc("KC_FIFTEEN", 15), kc("KC_SIXTEEN", 16), kc("KC_U16", 65535);
-  kc("KC_M32", 0xFFFFFFFFll), kc("KC_2P31", 0x80000000ll), kc("KC_S16MIN", -32768);
+  kc("KC_S16MIN", -32768);
   kc("KC_S16MAX", 32767), kc("KC_S24MIN", -(1 << 23)), kc("KC_S24MAX", (1 << 23) - 1);
   kc("KC_I32MIN", INT32_MIN), kc("KC_I32MAX", INT32_MAX), kc("KC_UMIN", izh::kUMin);
   kc("KC_UMAX", izh::kUMax), kc("KC_VMIN", izh::kVMin), kc("KC_VPEAK", izh::kVPeak);
   kc("KC_WOFF", izh::kWOffset), kc("KC_RECIP", p.taxel.recip), kc("KC_C", C);
+  kc("KC_H29", 0), put(1 << 29);  // line_roots: mag.h15 2^29, by mag.h15 (0, 1)
   // The chain's IO_RECIP and IO_GHOST words (stream).
   kc("KC_RECIPW", int64_t(p.taxel.recip) | int64_t(p.taxel.recip_shift) << 16);
   kc("KC_GHOSTON", p.spec.ghost ? 1 << 16 : 0), kc("KC_NEURONS", p.spec.spikes ? 1 : 0);
-  kc("KC_NCS", kNeuronBlock), kc("KC_LAYER1", 1 << 16), kc("KC_MASKRES", 0xE0);
+  kc("KC_MASKRES", 0xE0);
   kc("KC_NCOEF", dim * dim), kc("KC_STEP", p.step);
   constexpr int kQ = 1 << (10 - 2);  // quarter table of CarrierDemix<..., TW = 10>
   kc("KC_QM1", kQ - 1);
@@ -229,6 +230,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   sym("DEMIX", demix), sym("GHOST", p.spec.ghost), sym("NEURONS", p.spec.spikes && !stream);
   sym("SPIKES", p.spec.spikes);  // the layers run (NEURONS: on the engine)
   sym("NEURON_UNIT", p.spec.neuron_unit);
+  sym("FAST_SHIFT", p.spec.engine_fast_shift);  // the barrel shifter: a shift is a clock
   sym("STREAM", stream);
   sym("NEURON_LANES", p.spec.neuron_lanes);
   sym("CMD_FIRST", kDtmfCommandFirst), sym("NCMD", kDtmfCommandCount);  // KC_CLEN's types
@@ -301,13 +303,18 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   // Whether the plan's mask asks for sparse taxel packets (their two passes
   // over every taxel).
   sym("SPARSE", (p.mask & kMaskSparse) ? 1 : 0);
-  // Streaming: the polls (2 clocks each at least) of stream_cfg's wait for
-  // the chain's layers to finish the last frame once its last taxel is in
-  // (dtmf_chain_spike_tail_clocks), when the FIFO has room. Without spikes
-  // the layers are off: no header enters their event queue (rtl/dtmf_chain.v
-  // hq_push), so layers_idle holds, and their init (nu_busy) is the boot's,
-  // which stream_setup waits out: one poll.
-  sym("STREAM_TAIL", p.spec.spikes ? dtmf_chain_spike_tail_clocks(p) / 2 : 1);
+  // Streaming: the polls of stream_cfg's wait for the chain's layers to
+  // finish the last frame (its spike tail, dtmf_chain_spike_tail_clocks)
+  // before new constants go in: one. The frame bound that admits a build
+  // (ucode/dtmf_frame_bound.h: the control plane's bound, a command and the
+  // chain's own clocks, tail included, within 70 % of the frame) holds each
+  // frame's chain work inside its period, so by induction over the frames
+  // the chain is idle when the next frame's setup reads it; the loop stays
+  // for builds run slower than that. Without spikes the layers are off: no
+  // header enters their event queue (rtl/dtmf_chain.v hq_push), so
+  // layers_idle holds, and their init (nu_busy) is the boot's, which
+  // stream_setup waits out.
+  sym("STREAM_TAIL", 1);
   int payload = 0;
   for (const auto& c : kDtmfCommands) payload = std::max(payload, c.payload_bytes());
   sym("CMD_PAYLOAD", payload);

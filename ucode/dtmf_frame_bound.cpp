@@ -17,10 +17,16 @@ fe_bound::Options dtmf_frame_bound_options(const DtmfTopPlan& p) {
   o.fast_shift = p.spec.engine_fast_shift;
   o.file = "rtl/ucode/dtmf_chain.fe";
   o.wait_clocks[uint16_t(kEvFramePending | kEvCmdAvail)] = 1;
-  if (p.spec.neuron_lanes)
+  // The latest start is the one EV_IZ_DONE reports: the unit's (a start
+  // while busy is a contract violation) or the lanes' last x write (each
+  // starts at once on its lane, so the last written back is the last).
+  if (p.spec.neuron_lanes) {
     o.wait_clocks[uint16_t(kEvIzDone)] = IzhikevichLanesPort::kLaneWriteBack + 1;
-  else if (p.spec.neuron_unit)
+    o.wait_starts[uint16_t(kEvIzDone)] = {uint16_t(kIoIzXGo)};
+  } else if (p.spec.neuron_unit) {
     o.wait_clocks[uint16_t(kEvIzDone)] = kIzhikevichUnitClocks + 2;
+    o.wait_starts[uint16_t(kEvIzDone)] = {uint16_t(kIoIzGo), uint16_t(kIoIzUGo)};
+  }
   return o;
 }
 

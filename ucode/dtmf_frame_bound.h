@@ -60,7 +60,9 @@ constexpr int kDtmfCmdFifoBytes = 512;
 // main wait 1 (the analysis starts when the event is there); EV_IZ_DONE the
 // neuron unit's (its start registered from the U write: kIzhikevichUnitClocks
 // + 2 B clocks after the starting `out` at most) or the lanes' (the last
-// start's write-back, IzhikevichLanesPort::kLaneWriteBack + 1).
+// start's write-back, IzhikevichLanesPort::kLaneWriteBack + 1), each less
+// the clocks since the latest start (wait_starts: the unit's x_prev and U
+// writes, the lanes' x writes).
 fe_bound::Options dtmf_frame_bound_options(const DtmfTopPlan& plan);
 
 // Throws fe_bound::BoundError naming the source line of a loop it cannot

@@ -8,6 +8,8 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <queue>
+#include <utility>
 #include <vector>
 
 #include "ucode/frame_engine.h"
@@ -424,7 +426,11 @@ class Analyzer {
       const auto it = opt_.wait_clocks.find(uint16_t(addr_of(w)));
       if (it == opt_.wait_clocks.end())
         fail(a, "wait: no bound is known for its events (mask " + std::to_string(addr_of(w)) + ")");
-      return bubble + it->second;
+      const uint64_t most = it->second;
+      const auto st = opt_.wait_starts.find(uint16_t(addr_of(w)));
+      if (st == opt_.wait_starts.end()) return bubble + most;
+      const uint64_t e = since_start(a, st->second);
+      return std::max<uint64_t>(bubble + 1, most > e ? most - e : 0);
     }
     if (cls_of(w) == kCtl && fn_of(w) == kCall)
       return bubble + b_clocks(w, 0, opt_.fast_shift) + routine(addr_of(w), a);
@@ -434,6 +440,78 @@ class Analyzer {
       n = it == prog_.bounds.end() ? 63u : uint32_t(std::min<int64_t>(63, it->second.count));
     }
     return bubble + b_clocks(w, n, opt_.fast_shift);
+  }
+
+  // The fewest clocks an instruction can take (no bubble, a loaded shift
+  // count of 0, a wait's one clock, a call's own clock without its callee).
+  uint64_t min_clocks(uint32_t a) const {
+    const uint32_t w = prog_.words[a];
+    if (cls_of(w) == kCtl && fn_of(w) == kWait) return 1;
+    return b_clocks(w, worst_count(a), opt_.fast_shift);
+  }
+  // Whether the instruction at a may start what `starts` names: an `out` to
+  // one of those IO addresses, or to any indexed by x.
+  bool starts_at(uint32_t a, const std::set<uint16_t>& starts) const {
+    const uint32_t w = prog_.words[a];
+    return cls_of(w) == kMem && fn_of(w) == kOut && space_of(w) == kIo &&
+           (x_of(w) != 0 || starts.count(uint16_t(addr_of(w))));
+  }
+  bool routine_starts(uint32_t entry, const std::set<uint16_t>& starts) {
+    std::vector<bool> seen(n_, false);
+    std::vector<uint32_t> work = {entry};
+    seen[entry] = true;
+    while (!work.empty()) {
+      const uint32_t a = work.back();
+      work.pop_back();
+      if (starts_at(a, starts)) return true;
+      const uint32_t w = prog_.words[a];
+      std::vector<uint32_t> next;
+      for (const Succ& s : succ(a)) next.push_back(s.to);
+      if (cls_of(w) == kCtl && fn_of(w) == kCall) next.push_back(addr_of(w));
+      for (uint32_t t : next)
+        if (t < n_ && !seen[t]) seen[t] = true, work.push_back(t);
+    }
+    return false;
+  }
+  // The fewest clocks any path spends between the latest start (`starts`)
+  // and the wait at `wait`, neither counted: shortest paths backwards over
+  // the instructions' fewest clocks (a callee passed on the way back: none,
+  // or the end of the walk when it may start; a routine's entry: back to
+  // each of its calls).
+  uint64_t since_start(uint32_t wait, const std::set<uint16_t>& starts) {
+    const auto key = std::make_pair(wait, starts);
+    if (const auto it = since_.find(key); it != since_.end()) return it->second;
+    constexpr uint64_t kInf = std::numeric_limits<uint64_t>::max();
+    std::vector<uint64_t> d(n_, kInf);  // clocks between the end of a and the wait
+    using Item = std::pair<uint64_t, uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+    uint64_t best = kInf;
+    auto reach = [&](uint32_t p, uint64_t dist) {
+      if (dist >= d[p] || dist >= best) return;
+      d[p] = dist;
+      if (starts_at(p, starts)) best = std::min(best, dist);
+      else q.push({dist, p});
+    };
+    auto back = [&](uint32_t v, uint64_t dist) {  // the instructions before v
+      if (preds(v).empty()) best = std::min(best, dist);  // reset: as if a start
+      for (uint32_t p : preds(v)) {
+        const uint32_t w = prog_.words[p];
+        const bool call = cls_of(w) == kCtl && fn_of(w) == kCall;
+        if (call && p + 1 == v && routine_starts(addr_of(w), starts)) {
+          best = std::min(best, dist);  // its callee may start last
+          if (addr_of(w) != v) continue;
+        }
+        reach(p, dist);
+      }
+    };
+    back(wait, 0);
+    while (!q.empty()) {
+      const auto [dist, v] = q.top();
+      q.pop();
+      if (dist != d[v]) continue;
+      back(v, sat_add(dist, min_clocks(v)));
+    }
+    return since_[key] = best == kInf ? 0 : best;
   }
 
   uint64_t routine(uint32_t entry, uint32_t caller) {
@@ -613,6 +691,7 @@ class Analyzer {
   std::map<uint32_t, std::optional<uint64_t>> routines_;
   std::map<uint32_t, unsigned> writes_;
   std::vector<std::vector<uint32_t>> preds_;
+  std::map<std::pair<uint32_t, std::set<uint16_t>>, uint64_t> since_;
 };
 
 }  // namespace

@@ -11,8 +11,9 @@
 // their largest value: a shift by a memory / P count its `.bound` (else 63,
 // the hardware's largest), and the next instruction a bubble (a loaded count
 // of 0 ends B in the loading clock); a `wait` the most B clocks its events
-// can take (Options::wait_clocks, from the units' fixed latencies), and the
-// next instruction a bubble.
+// can take (Options::wait_clocks, from the units' fixed latencies; less the
+// clocks every path spends since the unit's start, Options::wait_starts),
+// and the next instruction a bubble.
 //
 // Loops. Every cycle of the control flow must pass a counted branch:
 //  - a `djnz xi` (i = 1..3) whose counter holds a constant N on every entry
@@ -55,6 +56,16 @@ class BoundError : public std::runtime_error {
 struct Options {
   bool fast_shift = false;                   // the engine's FAST_SHIFT
   std::map<uint16_t, uint32_t> wait_clocks;  // a wait's most B clocks, by its event mask
+  // The IO writes that start what a wait's event mask waits for, where its
+  // wait_clocks are counted from the start: the event comes at most that
+  // many B clocks after a wait that follows the starting `out` directly,
+  // and the latest start is the one the event reports. A wait of such a
+  // mask then costs max(its bubble + 1, wait_clocks - e), e the fewest
+  // clocks any path can spend between the latest start and the wait (every
+  // instruction at its fewest clocks, a callee at none; an `out` indexed by
+  // x, a callee that may start, or a path back to reset ends the path as a
+  // start).
+  std::map<uint16_t, std::set<uint16_t>> wait_starts;
   std::string file = "program";              // the source's name in errors
 };
 

@@ -150,11 +150,18 @@ inline int longest_packet_bytes(const DtmfTopPlan& p) {
 
 // The streaming datapath (DtmfDatapath::Streaming, rtl/dtmf_chain.v) after
 // a frame's last taxel with its layers on and the spikes recorded: a row
-// of the synapse and both layers' pipelines (C + 40), an event a clock for
-// every neuron of both layers, and the SPIKES packet (8 + 5 n clocks, n up
-// to MAX_SPIKES) before the next frame's header is taken.
+// of the synapse and both layers' pipelines (C + 40), layer 1's events a
+// clock each (n1 of them, every spike recorded, dropped or not; layer 0's
+// go to the encoder as its taxels pass, a clock each beside them), and
+// the SPIKES packet (8 + 5 n clocks, n events in it) before the next
+// frame's header is taken. tests/rtl/dtmf_chain_test.cpp FrameClocks*
+// checks it against the RTL's periods. A plan's worst: n1 = T, n =
+// MAX_SPIKES.
+inline long dtmf_chain_spike_tail_clocks(int cols, long layer1_events, long events) {
+  return cols + 40 + layer1_events + 5 * events + 8;
+}
 inline long dtmf_chain_spike_tail_clocks(const DtmfTopPlan& p) {
-  return p.C + 40 + 2L * p.T + 5L * p.max_spikes + 8;
+  return dtmf_chain_spike_tail_clocks(p.C, p.T, p.max_spikes);
 }
 
 // rtl/dtmf_chain.v's own clocks a frame, its control plane's step (the

@@ -471,10 +471,11 @@ TEST(CoreClock, NeuronLanesUpTo1024Taxels) {
 // own minimum clocks, measured here by the same instruction-set model,
 // and their bounds (ucode/dtmf_frame_bound.h): an 8x8 skin at 35 kS/s
 // needs more than 18 MHz with the barrel shifter alone; the bit-serial
-// shifter with the unit keeps up with its measured load at 18 MHz but its
-// bound (every neuron spiking, the longest SET_WEIGHT) exceeds 90 % of the
-// frame, so the board takes barrel + unit, whose bound fits, at its 18 MHz
-// clock.
+// shifter with the unit keeps up at 18 MHz with its measured load and
+// with its bound (every neuron spiking, the longest SET_WEIGHT) within
+// 90 % of the frame, so the board takes it, the smaller engine, at its
+// 18 MHz clock. A 9x9 skin's serial + unit keeps up by measurement but
+// not by its bound: the board takes barrel + unit.
 TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
   const auto base = eskin::sim::load_scene(ESKIN_SOURCE_DIR "/scenes/neuroskin2.yaml");
   const Board ice = find_board("icebreaker");
@@ -487,12 +488,21 @@ TEST(CoreClock, IcebreakerTakesTheEngineItNeeds) {
   const auto within = [](const CoreClock& c) {
     return long(c.bound.total()) * 10 <= 9L * c.budget.frame_clocks;
   };
-  EXPECT_FALSE(within(serial_unit));
-  EXPECT_TRUE(chosen.plan.spec.engine_fast_shift);
+  EXPECT_TRUE(within(serial_unit));
+  EXPECT_FALSE(chosen.plan.spec.engine_fast_shift);
   EXPECT_TRUE(chosen.plan.spec.neuron_unit);
   EXPECT_TRUE(within(chosen));
   EXPECT_EQ(chosen.clocking.clk_hz, ice.default_clk_hz);
   EXPECT_TRUE(chosen.budget.ok());
+  const auto sc9 = scale_scene(base, 9, 35000.0);
+  const CoreClock serial_unit9 = choose_core_clock(ice, sc9, LoadPolicy::Stress, 0, 0, 1);
+  EXPECT_LE(serial_unit9.core_min_hz, ice.default_clk_hz);
+  EXPECT_FALSE(within(serial_unit9));
+  const CoreClock chosen9 = choose_core_clock(ice, sc9, LoadPolicy::Stress);
+  EXPECT_TRUE(chosen9.plan.spec.engine_fast_shift);
+  EXPECT_TRUE(chosen9.plan.spec.neuron_unit);
+  EXPECT_TRUE(within(chosen9));
+  EXPECT_EQ(chosen9.clocking.clk_hz, ice.default_clk_hz);
   // --neurons engine stays: then the barrel shifter, the fastest left, at
   // the clock it needs.
   const CoreClock no_unit = choose_core_clock(ice, sc8, LoadPolicy::Stress, 0, -1, 0);

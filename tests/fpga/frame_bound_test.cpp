@@ -161,8 +161,9 @@ namespace {
 // the scale table's measured loads once chose (docs/scale_table.csv before
 // the bound: the 32x32 ECP5 builds at 50 MHz, barrel shifter and neuron
 // lanes, measured 49 778 and 48 021 of 50 015 and 49 999 clocks a frame;
-// the UP5K 8x8 at 18 MHz, bit-serial with the neuron unit, 11 959 of
-// 17 990): each bound printed with the failure. Left to the board, the
+// on the UP5K at 18 MHz, bit-serial with the neuron unit, a 9x9 skin,
+// whose measured load fits 17 990 clocks): each bound printed with the
+// failure. Left to the board, the
 // clock (and on the ECP5 the datapath) is one at which the bound holds
 // (tests/fpga/bitstream_flow_test.cpp CoreClock).
 TEST(FrameBound, ScaleTableBuildsBeyondTheLimitAreRefused) {
@@ -175,7 +176,7 @@ TEST(FrameBound, ScaleTableBuildsBeyondTheLimitAreRefused) {
   };
   for (const Probe& p : {Probe{"ulx3s", "85k", 32, 35000.0, 50000000},
                          Probe{"ulx3s", "85k", 32, 1e6, 50000000},
-                         Probe{"icebreaker", "up5k", 8, 35000.0, 18000000}}) {
+                         Probe{"icebreaker", "up5k", 9, 35000.0, 18000000}}) {
     fpga::FlowOptions o;
     o.source_dir = ESKIN_SOURCE_DIR;
     o.out_dir = testing::TempDir() + "/frame_bound_refused";

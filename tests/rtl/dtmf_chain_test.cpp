@@ -674,20 +674,34 @@ TEST(DtmfChain, Skin64x64BytesExactUnderRandomStalls) {
 //   neurons, no packet, spikes not recorded: as with no packet: the
 //                  layers, the synapse and the event sequencer finish the
 //                  frame before the next frame's taxels come (K + 25 clocks
-//                  after L), so they add nothing to the period.
-template <class V, int R, int C, int SHIFT>
+//                  after L), so they add nothing to the period;
+//   neurons, spikes recorded, a window a frame (n events in the SPIKES
+//                  packet, n1 layer-1 spikes): layer 0's events go to the
+//                  encoder beside the taxels; after L come the synapse's
+//                  last row and the layers' pipelines, layer 1's events a
+//                  clock each and the SPIKES packet, then the next header.
+//                  dtmf_chain_frame_clocks charges such a frame K + 45 +
+//                  T - 1 + 1 + dtmf_chain_spike_tail_clocks (C + 40 + n1 +
+//                  8 + 5n), the fixed parts as if nothing overlapped: the
+//                  period is at most that with n1 = T (the bound's worst,
+//                  which holds whatever n1 was, dropped events included),
+//                  and, where no event was dropped (n1 read from the
+//                  packet), above the period by no more than those fixed
+//                  parts (K + 45 + C + 40 - 1): the n1 and 5n terms are
+//                  clocks the chain spends, not overlapped ones.
+template <class V, int R, int C, int SHIFT, int S_MAX>
 void timing_run(int mode, uint32_t seed) {
   constexpr int K = R + C, T = R * C;
   std::mt19937 rng(seed);
   hls::TaxelReconstructConfig tc;
   tc.rows = R, tc.cols = C, tc.recip = 1, tc.recip_shift = 0;  // g = sqrt(m_i m_j)
-  auto comp = std::make_unique<ChainFrame<R, C, 256>>();
+  auto comp = std::make_unique<ChainFrame<R, C, S_MAX>>();
   ASSERT_TRUE(comp->taxel.configure(tc));
   comp->ghost_on = false;
   auto b = std::make_unique<Bench<V, R, C>>(seed);
   b->ghost = false;
   b->static_sites = true;
-  if (mode == 3) {  // the layers on, spikes not recorded
+  if (mode >= 3) {  // the layers on; 4: spikes recorded
     const auto plan = hls::make_dtmf_top_plan(eskin::sim::dtmf_top_spec(
         eskin::sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/scenes/neuroskin2.yaml")));
     b->neurons = true;
@@ -697,26 +711,34 @@ void timing_run(int mode, uint32_t seed) {
     comp->set_neurons(b->neuron[0], b->neuron[1], b->synapse);
   }
   std::vector<std::vector<Bytes>> want;
-  std::vector<int> lit;
+  std::vector<int> lit, events, events1;
   size_t expect_bytes = 0;
-  const int frames = 6;
+  const int frames = mode == 4 ? 16 : 6;  // 4: enough frames for both layers to spike
   for (int f = 0; f < frames; ++f) {
     FrameIn fr;
     fr.t = uint32_t(rng());
     fr.dense = mode == 1 || mode == 2;
     fr.sparse = mode == 2;
     fr.sparse_min = uint16_t(f < 3 ? 1 : 3000);  // many lit, then fewer
+    fr.spikes = fr.close = mode == 4;
     for (int k = 0; k < K; ++k) {
-      const int32_t a = int32_t(rng() % 4000);  // magnitudes 0 .. 5657 (shift 0)
+      // magnitudes 0 .. 5657 (shift 0); 4: 0 .. 42426, a strong drive
+      const int32_t a = int32_t(rng() % (mode == 4 ? 30000 : 4000));
       fr.tok.push_back(Token{uint8_t(k), a >> SHIFT << SHIFT, int32_t(rng() % 4000) - 2000, k == K - 1});
     }
     const auto ps = comp->template frame<SHIFT>(fr);
-    int n = 0;
+    int n = 0, ev = 0, ev1 = 0;
     for (const auto& p : ps) {
       expect_bytes += p.size();
       if (p[0] == hls::kDtmfTaxelsSparse) n = (p[5] | p[6] << 8) / 4;
+      if (p[0] == hls::kSpikesPacketType) {
+        ev = (p[5] | p[6] << 8) / hls::kSpikeEventBytes;
+        for (int e = 0; e < ev; ++e) ev1 += p[7 + 5 * size_t(e) + 2];  // the event's layer byte
+      }
     }
     lit.push_back(n);
+    events.push_back(ev);
+    events1.push_back(ev1);
     want.push_back(ps);
     b->frames.push_back(fr);
   }
@@ -732,6 +754,33 @@ void timing_run(int mode, uint32_t seed) {
     EXPECT_LT(by_sparse, frames - 1);
   }
   EXPECT_EQ(int64_t(b->last_taxel_edge[0] - b->first_token_edge[0]), K + 45 + per_taxel * (T - 1));
+  if (mode == 4) {  // the spike tail, against the formula the bound takes
+    hls::DtmfTopPlan plan;
+    plan.C = C, plan.T = T, plan.K = K;
+    plan.spec.spikes = true;
+    const int64_t fixed = K + 45 + T;  // the frame's part: first token to last taxel, + 1
+    int with1 = 0, full = 0;
+    for (int f = 1; f < frames; ++f) {
+      const int64_t d = int64_t(b->last_taxel_edge[size_t(f)] - b->last_taxel_edge[size_t(f - 1)]);
+      const int n = events[size_t(f - 1)], n1 = events1[size_t(f - 1)];
+      plan.max_spikes = n;
+      const int64_t most = hls::dtmf_chain_frame_clocks(plan, hls::kMaskSpikes);
+      EXPECT_EQ(most, fixed + hls::dtmf_chain_spike_tail_clocks(C, T, n));
+      EXPECT_LE(d, most) << "frame " << f << " events " << n;
+      if (n < S_MAX) {  // none dropped: the packet holds every layer-1 spike
+        const int64_t exact = fixed + hls::dtmf_chain_spike_tail_clocks(C, n1, n);
+        EXPECT_LE(d, exact) << "frame " << f << " events " << n << " layer 1 " << n1;
+        EXPECT_GE(d, exact - (K + 45 + C + 40 - 1)) << "frame " << f << " events " << n;
+      }
+      with1 += n1 > 0;
+      full += n == S_MAX;
+      std::printf("frame %d: %d events (%d of layer 1), period %lld, the bound's %lld\n", f, n,
+                  n1, (long long)d, (long long)most);
+    }
+    EXPECT_GT(with1, 0);  // layer 1's events were in the tail
+    if (T > S_MAX) EXPECT_GT(full, 0);  // and, on the large skin, windows with drops
+    return;
+  }
   for (int f = 1; f < frames; ++f) {
     const int64_t L = int64_t(b->last_taxel_edge[size_t(f - 1)]);
     int64_t want_d = mode == 0 || mode == 3 ? K + T + 24 : mode == 1 ? K + 2 * T + 23
@@ -742,11 +791,11 @@ void timing_run(int mode, uint32_t seed) {
 }
 
 TEST(DtmfChain, FrameClocks3x3) {
-  for (int mode = 0; mode < 4; ++mode) timing_run<Vdtmf_chain, 3, 3, 0>(mode, 10 + uint32_t(mode));
+  for (int mode = 0; mode < 5; ++mode) timing_run<Vdtmf_chain, 3, 3, 0, 256>(mode, 10 + uint32_t(mode));
 }
 
 TEST(DtmfChain, FrameClocks64x64) {
-  for (int mode = 0; mode < 4; ++mode) timing_run<Vdtmf_chain_64, 64, 64, 4>(mode, 20 + uint32_t(mode));
+  for (int mode = 0; mode < 5; ++mode) timing_run<Vdtmf_chain_64, 64, 64, 4, 1024>(mode, 20 + uint32_t(mode));
 }
 
 }  // namespace

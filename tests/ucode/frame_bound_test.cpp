@@ -5,6 +5,7 @@
 // the DTMF microprogram's bound for the default plan (every loop bounded).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <deque>
 #include <string>
@@ -37,17 +38,26 @@ uint64_t bound_to_end(const fe_asm::Program& p, bool fast = false,
   return r.at(uint32_t(p.symbols.at("end")));
 }
 
-// IO reads answer from a queue (then 0); no events.
+// IO reads answer from a queue (then 0); no events, except with a unit:
+// a write to io[1] in clock c starts it, and its event 4 shows from clock
+// c + kUnitDone on (the neuron unit's timing started by its U write, as
+// ucode/engine_ports.h gives it: a wait right after the start then takes
+// kUnitDone B clocks).
+constexpr uint32_t kUnitDone = 15;
 struct QueueIo {
   std::deque<uint32_t> reads;
+  bool unit = false;
+  uint64_t done = ~uint64_t(0);
   uint32_t io_read(uint16_t, uint64_t) {
     if (reads.empty()) return 0;
     const uint32_t v = reads.front();
     reads.pop_front();
     return v;
   }
-  void io_write(uint16_t, uint32_t, uint64_t) {}
-  uint16_t events(uint64_t) { return 0; }
+  void io_write(uint16_t a, uint32_t, uint64_t clock) {
+    if (unit && a == 1) done = clock + kUnitDone;
+  }
+  uint16_t events(uint64_t clock) { return unit && clock >= done ? 4 : 0; }
 };
 
 template <bool FAST>
@@ -211,6 +221,82 @@ TEST(FrameBound, WaitAndSqrt) {
   EXPECT_EQ(bound_to_end(r, true), 2u + 1u + 14u);
   EXPECT_EQ(model_to_end(r), 54u);
   EXPECT_EQ(model_to_end<true>(r), 17u);
+}
+
+// A wait for a unit's event counts from the unit's latest start
+// (Options::wait_starts): kUnitDone B clocks right after the starting
+// `out`, less the fewest clocks any path spends in between, at least one.
+uint64_t unit_bound(const fe_asm::Program& p) {
+  fe_bound::Options o;
+  o.file = "prog.fe";
+  o.wait_clocks = {{4, kUnitDone}};
+  o.wait_starts = {{4, {1}}};
+  const auto r = fe_bound::longest_clocks(p, 0, {uint32_t(p.symbols.at("end"))}, o);
+  return r.at(uint32_t(p.symbols.at("end")));
+}
+uint64_t unit_model(const fe_asm::Program& p, std::deque<uint32_t> reads = {}) {
+  QueueIo io;
+  io.unit = true;
+  io.reads = std::move(reads);
+  return model_to_end(p, io);
+}
+
+// Straight code: the start's cycle A (a clock of its own) and B, n nops,
+// the wait: 2 + n + max(1, kUnitDone - n), exactly the model's clocks,
+// for every n from a wait right after the start to one after the event.
+TEST(FrameBound, UnitWaitCountsFromItsStart) {
+  for (uint32_t n = 0; n <= kUnitDone + 2; ++n) {
+    std::string src = "        out   io[1]\n";
+    for (uint32_t i = 0; i < n; ++i) src += "        nop\n";
+    src += "        wait  4\nend:    nop\n";
+    const auto p = asm_of(src);
+    const uint64_t hand = 2 + n + std::max<uint64_t>(1, kUnitDone > n ? kUnitDone - n : 0);
+    EXPECT_EQ(unit_bound(p), hand) << n << " nops";
+    EXPECT_EQ(unit_model(p), hand) << n << " nops";
+  }
+}
+
+// Which start counts and which paths: the latest start on each path back
+// (a start 20 nops earlier does not shorten the wait after a second one);
+// two paths from the start (j.eq skips 10 nops), the wait charged by the
+// shorter (the j.eq's clock: 14) on the longer path: 2 + 1 + 1 + 10 + 14
+// = 28, above the model's 18 on either path; a callee that starts: the
+// start may be its last instruction, so the wait counts from the return
+// (call 2, out nop ret 3, wait 15 = 20; the model: 18); an `out` indexed
+// by x may write any address, so it counts as a start (15, the model 1).
+TEST(FrameBound, UnitWaitTakesTheLatestStartOnEveryPath) {
+  std::string twice = "        out   io[1]\n";
+  for (int i = 0; i < 20; ++i) twice += "        nop\n";
+  twice += "        out   io[1]\n        wait  4\nend:    nop\n";
+  const auto p = asm_of(twice);
+  EXPECT_EQ(unit_bound(p), 2u + 20u + 1u + kUnitDone);
+  EXPECT_EQ(unit_model(p), 2u + 20u + 1u + kUnitDone);
+
+  std::string branch = "        ld    io[0]\n        out   io[1]\n        j.eq  skip\n";
+  for (int i = 0; i < 10; ++i) branch += "        nop\n";
+  branch += "skip:   wait  4\nend:    nop\n";
+  const auto q = asm_of(branch);
+  EXPECT_EQ(unit_bound(q), 28u);
+  EXPECT_EQ(unit_model(q, {0}), 18u);  // j.eq taken: 14 B clocks of wait
+  EXPECT_EQ(unit_model(q, {1}), 18u);  // through the nops: 4
+  EXPECT_LE(unit_model(q, {1}), unit_bound(q));
+
+  const auto r = asm_of(
+      "        call  st\n"
+      "        wait  4\n"
+      "end:    nop\n"
+      "st:     out   io[1]\n"
+      "        nop\n"
+      "        ret\n");
+  EXPECT_EQ(unit_bound(r), 20u);
+  EXPECT_EQ(unit_model(r), 18u);
+
+  std::string indexed = "        out   io[1]\n";
+  for (int i = 0; i < 20; ++i) indexed += "        nop\n";
+  indexed += "        out   io[5 + x1]\n        wait  4\nend:    nop\n";
+  const auto s = asm_of(indexed);
+  EXPECT_EQ(unit_bound(s), 2u + 20u + 1u + kUnitDone);
+  EXPECT_EQ(unit_model(s), 2u + 20u + 1u + 1u);
 }
 
 // The shared counter of a loop with two back edges on one register (the
