@@ -456,22 +456,20 @@ class Analyzer {
     return cls_of(w) == kMem && fn_of(w) == kOut && space_of(w) == kIo &&
            (x_of(w) != 0 || starts.count(uint16_t(addr_of(w))));
   }
+  // Whether the routine at `entry` (or one it calls) may start what
+  // `starts` names.
   bool routine_starts(uint32_t entry, const std::set<uint16_t>& starts) {
-    std::vector<bool> seen(n_, false);
-    std::vector<uint32_t> work = {entry};
-    seen[entry] = true;
-    while (!work.empty()) {
-      const uint32_t a = work.back();
-      work.pop_back();
-      if (starts_at(a, starts)) return true;
+    const auto key = std::make_pair(entry, starts);
+    if (const auto it = starts_.find(key); it != starts_.end()) return it->second;
+    starts_[key] = false;  // (a recursive call adds nothing new)
+    bool s = false;
+    for (uint32_t a : routine_body(entry)) {
       const uint32_t w = prog_.words[a];
-      std::vector<uint32_t> next;
-      for (const Succ& s : succ(a)) next.push_back(s.to);
-      if (cls_of(w) == kCtl && fn_of(w) == kCall) next.push_back(addr_of(w));
-      for (uint32_t t : next)
-        if (t < n_ && !seen[t]) seen[t] = true, work.push_back(t);
+      s = s || starts_at(a, starts) ||
+          (cls_of(w) == kCtl && fn_of(w) == kCall && addr_of(w) < n_ &&
+           routine_starts(addr_of(w), starts));
     }
-    return false;
+    return starts_[key] = s;
   }
   // The fewest clocks any path spends between the latest start (`starts`)
   // and the wait at `wait`, neither counted: shortest paths backwards over
@@ -543,17 +541,23 @@ class Analyzer {
     if (const auto it = writes_.find(entry); it != writes_.end()) return it->second;
     writes_[entry] = 0;  // (a recursive call adds nothing new)
     unsigned m = 0;
+    for (uint32_t a : routine_body(entry)) m |= writes(a);
+    return writes_[entry] = m;
+  }
+  // The addresses the routine at `entry` reaches without entering its
+  // callees (a call goes on after its callee).
+  std::vector<uint32_t> routine_body(uint32_t entry) const {
     std::vector<bool> seen(n_, false);
-    std::vector<uint32_t> work = {entry};
+    std::vector<uint32_t> work = {entry}, body;
     seen[entry] = true;
     while (!work.empty()) {
       const uint32_t a = work.back();
       work.pop_back();
-      m |= writes(a);
+      body.push_back(a);
       for (const Succ& s : succ(a))
         if (s.to < n_ && !seen[s.to]) seen[s.to] = true, work.push_back(s.to);
     }
-    return writes_[entry] = m;
+    return body;
   }
 
   // The value of x`reg` after the instruction at `a` when every path to
@@ -692,6 +696,7 @@ class Analyzer {
   std::map<uint32_t, unsigned> writes_;
   std::vector<std::vector<uint32_t>> preds_;
   std::map<std::pair<uint32_t, std::set<uint16_t>>, uint64_t> since_;
+  std::map<std::pair<uint32_t, std::set<uint16_t>>, bool> starts_;
 };
 
 }  // namespace
