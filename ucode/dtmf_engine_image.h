@@ -125,7 +125,7 @@ inline EngineImage dtmf_engine_image(const DtmfTopPlan& p) {
   for (int l = 0; l < 2; ++l)
     for (int64_t v : neuron_block(p.neuron[l])) put(v);
   alloc("MASK", 1), put(p.mask);
-  alloc("DECIM", 3), put(p.decim_amp), put(p.decim_tax), put(1000);
+  alloc("DECIM", 3), put(p.decim_amp), put(p.decim_tax), put(kDtmfStatusDecimReset);
   alloc("THR", 4), put(p.sparse_min), put(p.ghost.onset), put(p.ghost.release),
       put(p.ghost.pair_tol);
   alloc("W", 9);

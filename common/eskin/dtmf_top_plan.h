@@ -102,6 +102,10 @@ struct DtmfTopSpec {
   int neuron_lanes = 0;
 };
 
+// The periodic STATUS packet's decimation at reset (docs/protocol.md §6):
+// every this many frames, counted from frame 0.
+constexpr int kDtmfStatusDecimReset = 1000;
+
 // A Verilog parameter override: value in Verilog syntax (e.g. "16'd35").
 struct VerilogParam {
   std::string name, value;

@@ -35,12 +35,19 @@ std::function<int()> setup(CLI::App& app) {
                   "line faults: AT_MS:FOR_MS, the cable out for FOR_MS from AT_MS of simulated "
                   "time (repeatable)");
   sub->add_option("--fault-seed", line->seed, "line faults: the seed of every fault (default 1)");
+  auto fidelity = std::make_shared<std::string>("rtl");
+  sub->add_option("--fidelity", *fidelity,
+                  "how much of the board to model: rtl (the Verilated FPGA top, clock by clock, "
+                  "behind a pty; the default) or packet (the FPGA's integer chain's packets, timed "
+                  "per packet: DTMF skins; docs/vboard.md, \"Fidelity levels\")")
+      ->capture_default_str();
   auto faults = std::make_shared<std::vector<std::string>>();
   sub->add_option("--fault", *faults,
                   "board fault KIND@AT_MS[:FOR_MS]: reset, reset-in-frame, reset-in-command, "
                   "adc-stuck-low, adc-stuck-high, carrier-off=K, sda-low=B (repeatable; "
                   "docs/vboard.md, \"Board faults\")");
-  return [a, line, faults] {
+  return [a, line, faults, fidelity] {
+    a->fidelity = simulate::parse_fidelity(*fidelity);
     a->line = vboard::parse_line_faults(*line);  // std::invalid_argument: exit 2
     a->faults = vboard::parse_board_faults(*faults);
     return simulate::run_simulate(*a);

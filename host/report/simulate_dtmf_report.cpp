@@ -35,6 +35,7 @@ struct DtmfRun {
   const GoldenRun& gold;
   double fs;
   int R, C, T, K;
+  std::string level;  // the board's fidelity level (its done line's "fidelity")
 };
 
 // The FPGA's packets scored: against the golden model and the truth, the
@@ -275,7 +276,9 @@ void run_rows(const DtmfRun& d, const stream::BoardRun& run, size_t packets, con
               const DtmfRunFigures& r, SimulateReport& rep) {
   const link::DecoderStats& ls = run.link;
   const link::StatusBlock& st = s.last_status;
+  const std::string& level = d.level;
   rep.run_rows = {
+      {"fidelity level (eskin simulate --fidelity)", level},
       {"FPGA build", d.build.key},
       {"simulated time (s)", fmt::format("{:.4f}", r.sim_s)},
       {"FPGA cycles", fmt::format("{:.0f}", r.cyc)},
@@ -285,7 +288,10 @@ void run_rows(const DtmfRun& d, const stream::BoardRun& run, size_t packets, con
       {"packets received", std::to_string(packets)},
       {"link: bytes / CRC errors / framing errors / lost packets",
        fmt::format("{} / {} / {} / {}", ls.bytes, ls.crc_errors, ls.framing_errors, ls.lost_packets)},
-      {"ADC timing violations", std::to_string(run.done.at("adc_violations").get<uint64_t>())},
+      {"ADC timing violations",
+       run.done.contains("adc_violations")
+           ? std::to_string(run.done.at("adc_violations").get<uint64_t>())
+           : "not modelled at the " + level + " level"},
       {"FPGA status: ADC overruns / frame overruns / dropped packets / spikes dropped / UART rx "
        "errors / commands accepted",
        s.status_n ? fmt::format("{} / {} / {} / {} / {} / {}", st.adc_overruns, st.frame_overruns,
@@ -319,7 +325,7 @@ nlohmann::json summary(const DtmfRun& d, const std::string& scene_file, size_t p
                        const golden::DecodeScore& fs_, const DtmfScores& s, const DtmfRunFigures& r) {
   const vboard::FpgaBuild& b = d.build;
   const link::StatusBlock& st = s.last_status;
-  return {{"scene", scene_file}, {"fpga_build", b.key},
+  return {{"scene", scene_file}, {"fidelity", d.level}, {"fpga_build", b.key},
           {"fpga_clk_hz", b.clk_hz()},
           {"fpga_engine_shifter", fpga::shifter_name(engine_of(b))},
           {"fpga_neurons", fpga::neurons_name(engine_of(b))}, {"sim_s", r.sim_s},
@@ -343,9 +349,9 @@ nlohmann::json summary(const DtmfRun& d, const std::string& scene_file, size_t p
 void print_summary(const DtmfRun& d, size_t packets, const golden::DecodeScore& fs_,
                    const DtmfScores& s, const DtmfRunFigures& r, const std::string& html) {
   const golden::DecodeScore& gs = d.gold.score;
-  fmt::print("scene {}: {}x{} skin, {:.3f} s simulated on the virtual board (FPGA build {}) in "
-             "{:.1f} s ({:.2f} simulated s per CPU s)\n",
-             d.scene.name, d.R, d.C, r.sim_s, d.build.key, r.wall_s, r.sim_s / r.cpu_s);
+  fmt::print("scene {}: {}x{} skin, {:.3f} s simulated on the virtual board (FPGA build {}, {} "
+             "level) in {:.1f} s ({:.2f} simulated s per CPU s)\n",
+             d.scene.name, d.R, d.C, r.sim_s, d.build.key, d.level, r.wall_s, r.sim_s / r.cpu_s);
   fmt::print("FPGA: {} packets, {} link errors; worst taxel RMS error {:.3f} kPa; spikes {} "
              "receptor, {} layer 2\n",
              packets, r.link_errors, fs_.worst_rms_error_kpa(), s.fspk.t_ms.size(), s.fspk2);
@@ -375,7 +381,7 @@ nlohmann::json report_dtmf(const sim::Scene& scene, const std::string& scene_fil
   fs::create_directories(out_dir);
   const SkinConfig& skin = scene.skin;
   const DtmfRun d{scene, skin, build, gold, skin.adc.rate_hz, skin.rows, skin.cols,
-                  skin.rows * skin.cols, skin.carriers()};
+                  skin.rows * skin.cols, skin.carriers(), run.done.at("fidelity")};
   std::vector<FpgaFrame> rx;
   for (size_t i = 0; i < run.rx.size(); ++i)
     if (!link::is_hall_packet(run.rx[i].type)) rx.push_back({run.rx[i], run.arrival_us[i]});

@@ -512,6 +512,7 @@ void run_table(Page& page, const vboard::HallBuild& build, const hall::HallFpgaS
   const link::DecoderStats& ls = run.link;
   page.heading("Run");
   std::vector<std::vector<std::string>> run_rows{
+      {"fidelity level (eskin simulate --fidelity)", run.done.at("fidelity").get<std::string>()},
       {"FPGA build", build.key},
       {"simulated time (s)", fmt::format("{:.4f}", r.sim_s)},
       {"FPGA cycles", fmt::format("{:.0f}", r.cyc)},
@@ -572,7 +573,8 @@ nlohmann::json mean_list(const std::array<Mean, 6>& w) {
 nlohmann::json summary(const HallChain& c, const std::string& scene_file,
                        const vboard::HallBuild& build, const stream::BoardRun& run,
                        const HallRx& hr, const HallScores& s, const HallRunFigures& r) {
-  nlohmann::json sum = {{"scene", scene_file},      {"top", "hall_top"},
+  nlohmann::json sum = {{"scene", scene_file},      {"fidelity", run.done.at("fidelity")},
+                        {"top", "hall_top"},
                         {"fpga_build", build.key},  {"fpga_clk_hz", build.clk_hz},
                         {"sim_s", r.sim_s},         {"cpu_s", r.cpu_s},
                         {"wall_s", r.wall_s},       {"cycles", r.cyc},
@@ -608,8 +610,9 @@ void print_summary(const HallChain& c, const vboard::HallBuild& build, const str
                    const HallRx& hr, const HallScores& s, const HallRunFigures& r,
                    const std::string& html) {
   fmt::print("scene {}: {} Hall sensors on {} bus(es), {:.3f} s simulated on the virtual board (Hall "
-             "build {}) in {:.1f} s ({:.2f} simulated s per CPU s)\n",
-             c.scene.name, c.h.sensors.size(), c.spec.nb, r.sim_s, build.key, r.wall_s, r.sim_s / r.cpu_s);
+             "build {}, {} level) in {:.1f} s ({:.2f} simulated s per CPU s)\n",
+             c.scene.name, c.h.sensors.size(), c.spec.nb, r.sim_s, build.key,
+             run.done.at("fidelity").get<std::string>(), r.wall_s, r.sim_s / r.cpu_s);
   fmt::print("FPGA: {} frames ({} incomplete), {} packets, {} link errors, {} I2C violations; "
              "{} commands sent\n",
              hr.frames.size(), s.incomplete, hr.packets.size(), r.link_errors,

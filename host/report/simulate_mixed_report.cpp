@@ -80,7 +80,8 @@ nlohmann::json report_mixed(const sim::Scene& scene, const std::string& scene_fi
   const MixedLink m = mixed_link(run);
   const link::DecoderStats& ls = run.link;
   nlohmann::json sum = {
-      {"scene", scene_file}, {"top", "mixed_top"}, {"fpga_build", build.key},
+      {"scene", scene_file}, {"fidelity", run.done.at("fidelity")}, {"top", "mixed_top"},
+      {"fpga_build", build.key},
       {"fpga_clk_hz", dtmf.clk_hz()}, {"fpga_engine_shifter", fpga::shifter_name(engine_of(dtmf))},
       {"fpga_neurons", fpga::neurons_name(engine_of(dtmf))}, {"packets", m.packets},
       {"dtmf_packets", m.packets - m.hall}, {"hall_packets", m.hall},

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <thread>
 
 #include "eskin/skin_config.h"
 #include "host/fpga/board.h"
@@ -21,6 +22,7 @@
 #include "host/report/simulate_mixed_report.h"
 #include "host/simulate/golden_run.h"
 #include "host/simulate/line_report.h"
+#include "host/simulate/packet_board.h"
 #include "host/stream/board_link.h"
 #include "sim/hall_world.h"
 #include "sim/scene.h"
@@ -62,6 +64,20 @@ vboard::FpgaBuild board_build(const sim::Scene& scene) {
 }
 
 void note(const std::string& m) { fmt::print(stderr, "eskin simulate: {}\n", m); }
+
+// Every packet the host received, raw, in order (fpga_link.csv): what two
+// fidelity levels of one scene are compared by (docs/vboard.md).
+void write_link_log(const std::string& out, const stream::BoardRun& run) {
+  auto f = fmt::output_file((std::filesystem::path(out) / "fpga_link.csv").string());
+  f.print("seq,type,t,arrival_us,payload_hex\n");
+  for (size_t i = 0; i < run.rx.size(); ++i) {
+    const Packet& p = run.rx[i];
+    std::string hex;
+    hex.reserve(2 * p.payload.size());
+    for (uint8_t b : p.payload) hex += fmt::format("{:02x}", b);
+    f.print("{},{},{},{:.3f},{}\n", p.seq, p.type, p.t, run.arrival_us[i], hex);
+  }
+}
 
 // With line faults: the FPGA's bytes as sent, tapped at its pin by the board.
 std::string tap_file(const SimulateOptions& o) {
@@ -150,6 +166,8 @@ int run_simulate_hall(const sim::Scene& scene, const SimulateOptions& o) {
   stream::BoardRun run = stream::run_board(
       board, int(build.baud), {setup.commands}, size_t(scene.duration_s * 1e6),
       [](const Packet& p) { return p.type == link::kHallSamples ? long(p.t) : -1L; });
+  run.done["fidelity"] = "rtl";
+  write_link_log(o.out, run);
   judge_line(o, run);
   note_board_faults(o, run);
   report::report_hall(scene, o.scene, build, setup, run, o.out);
@@ -176,6 +194,8 @@ int run_simulate_mixed(const sim::Scene& scene, const SimulateOptions& o) {
       board, int(dtmf.baud()), commands, total,
       [](const Packet& p) { return link::is_hall_packet(p.type) ? -1L : long(p.t); },
       [&] { gold = run_golden(scene, dtmf.plan.step); });
+  run.done["fidelity"] = "rtl";
+  write_link_log(o.out, run);
   judge_line(o, run);
   note_board_faults(o, run);
   report::report_mixed(scene, o.scene, build, dtmf, gold, setup, run, total, o.out);
@@ -188,11 +208,27 @@ int run_simulate_mixed(const sim::Scene& scene, const SimulateOptions& o) {
 // periodic status (its counters go into the report).
 int run_simulate_dtmf(const sim::Scene& scene, const SimulateOptions& o) {
   const vboard::FpgaBuild build = board_build(scene);
+  link::LinkEncoder enc;
+  const std::vector<std::vector<uint8_t>> commands = {output_mask_command(scene, enc)};
+  if (o.fidelity == Fidelity::packet) {  // no board process: the packets on this thread
+    std::filesystem::create_directories(o.out);
+    report::GoldenRun gold;
+    std::thread side([&] { gold = run_golden(scene, build.plan.step); });
+    stream::BoardRun run;
+    try {
+      run = run_packet_board(scene, build.plan, commands);
+    } catch (...) {
+      side.join();
+      throw;
+    }
+    side.join();
+    write_link_log(o.out, run);
+    report::report_dtmf(scene, o.scene, build, gold, run, run.done.at("scene_samples"), o.out);
+    return 0;
+  }
   const std::string exe = vboard::board_executable(build, note);
   std::filesystem::create_directories(o.out);
 
-  link::LinkEncoder enc;
-  const std::vector<std::vector<uint8_t>> commands = {output_mask_command(scene, enc)};
   vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, commands, line_args(o)));
   const size_t total = board.ready().at("scene_samples");
   report::GoldenRun gold;
@@ -200,6 +236,8 @@ int run_simulate_dtmf(const sim::Scene& scene, const SimulateOptions& o) {
       board, int(build.baud()), commands, total,
       [](const Packet& p) { return long(p.t); },
       [&] { gold = run_golden(scene, build.plan.step); });
+  run.done["fidelity"] = "rtl";
+  write_link_log(o.out, run);
   judge_line(o, run);
   note_board_faults(o, run);
   report::report_dtmf(scene, o.scene, build, gold, run, total, o.out);
@@ -226,6 +264,14 @@ void check_out_dir(const std::string& out) {
   ::unlink(probe.c_str());
 }
 
+const char* fidelity_name(Fidelity f) { return f == Fidelity::packet ? "packet" : "rtl"; }
+
+Fidelity parse_fidelity(const std::string& s) {
+  if (s == "rtl") return Fidelity::rtl;
+  if (s == "packet") return Fidelity::packet;
+  throw ConfigError("--fidelity", "'" + s + "': expected rtl or packet");
+}
+
 int run_simulate(const SimulateOptions& o) {
   const sim::Scene scene = sim::load_scene(o.scene);  // a bad scene fails here, before anything runs
   for (const vboard::CablePull& p : o.line.pulls)
@@ -239,6 +285,20 @@ int run_simulate(const SimulateOptions& o) {
     if (f.at_ms >= scene.duration_s * 1e3)
       throw std::invalid_argument(fmt::format("--fault {}: the scene ends at {} ms, before it",
                                               vboard::board_fault_text(f), scene.duration_s * 1e3));
+  if (o.fidelity != Fidelity::rtl) {  // what the packet level does not model is refused
+    if (scene.has_hall)
+      throw ConfigError("--fidelity", fmt::format("{}: the {} level models DTMF skins; this scene "
+                                                  "has Hall sensors: use --fidelity rtl",
+                                                  o.scene, fidelity_name(o.fidelity)));
+    const char* opt = !o.trace.empty() ? "--trace"
+                      : o.line.any()   ? "line faults (--ber, --drop-rate, --insert-rate, --pull-cable)"
+                      : !o.faults.empty() ? "--fault"
+                                          : nullptr;
+    if (opt)
+      throw ConfigError("--fidelity", fmt::format("{} needs the Verilated board (--fidelity rtl); "
+                                                  "the {} level has no pins to fault or trace",
+                                                  opt, fidelity_name(o.fidelity)));
+  }
   check_out_dir(o.out);
   if (scene.has_hall && scene.has_skin) return run_simulate_mixed(scene, o);
   if (scene.has_hall) return run_simulate_hall(scene, o);

@@ -13,6 +13,15 @@
 
 namespace eskin::simulate {
 
+// How much of the board a run models (docs/vboard.md, "Fidelity levels"):
+// rtl, the Verilated FPGA top clock by clock behind a pty; packet, the
+// FPGA's integer chain's packets timed per packet (host/simulate/packet_board.h).
+enum class Fidelity { rtl, packet };
+// "rtl" / "packet"; parse_fidelity throws ConfigError("--fidelity", ...) for
+// any other word.
+const char* fidelity_name(Fidelity f);
+Fidelity parse_fidelity(const std::string& s);
+
 struct SimulateOptions {
   std::string scene;             // scene file (YAML)
   std::string out = "eskin-out"; // output directory (created)
@@ -24,6 +33,7 @@ struct SimulateOptions {
   // Faults of the board itself (docs/vboard.md, "Board faults"), passed to
   // the board, which times them (its done line's "board_faults").
   std::vector<vboard::BoardFault> faults;
+  Fidelity fidelity = Fidelity::rtl;
 };
 
 // Loads the scene (a bad scene throws before anything runs), runs it on

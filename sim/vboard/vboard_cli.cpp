@@ -1,7 +1,5 @@
 #include "sim/vboard/vboard_cli.h"
 
-#include "sim/world_model.h"
-
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -156,25 +154,11 @@ void require_build(const std::string& scene_file, const std::string& kind,
 }
 
 size_t load_skin_samples(BoardConfig& cfg, const sim::Scene& scene, int adc_shift, double tail_s) {
-  sim::WorldModel world(scene);
-  const double fs = scene.skin.adc.rate_hz;
-  cfg.sample_hz = fs;
-  for (const BoardFault& f : cfg.faults)
-    if (f.kind == BoardFaultKind::carrier_off)
-      world.carrier_off(f.index, f.first_sample(fs), f.end_sample(fs));
-  for (int c : world.all_codes()) cfg.codes.push_back(uint16_t(c << adc_shift));
-  for (const BoardFault& f : cfg.faults) {
-    if (f.kind != BoardFaultKind::adc_stuck_low && f.kind != BoardFaultKind::adc_stuck_high)
-      continue;
-    const uint16_t rail = f.kind == BoardFaultKind::adc_stuck_low ? 0 : 0x0FFF;
-    for (size_t n = f.first_sample(fs); n < std::min(f.end_sample(fs), cfg.codes.size()); ++n)
-      cfg.codes[n] = rail;
-  }
-  const size_t tail = size_t(std::ceil(tail_s * scene.skin.adc.rate_hz));
-  cfg.codes.resize(cfg.codes.size() + tail, uint16_t(1u << 11));
-  cfg.samples = cfg.codes.size();
-  cfg.codes.resize(cfg.codes.size() + 64, uint16_t(1u << 11));  // a batch may end past it
-  return world.total_samples();
+  SkinSamples s = skin_samples(scene, adc_shift, tail_s, cfg.faults);
+  cfg.sample_hz = s.sample_hz;
+  cfg.codes = std::move(s.codes);
+  cfg.samples = s.samples;
+  return s.scene_samples;
 }
 
 nlohmann::json drdy_times_ns(const sim::HallSensorArray& sensors) {

@@ -14,6 +14,7 @@
 #include "sim/hall_sensor_array.h"
 #include "sim/scene.h"
 #include "sim/vboard/board_faults.h"
+#include "sim/vboard/skin_samples.h"
 #include "sim/vboard/line_faults.h"
 #include "sim/vboard/pty_port.h"
 #include "sim/vboard/virtual_board.h"
@@ -25,7 +26,7 @@ struct VboardArgs {
   bool no_wait = false;
   double reader_timeout_s = 60;
   uint64_t hold_for_host_bytes = 0;  // start only once the host has sent this many bytes
-  double tail_s = 0.002;  // idle time after the scene, to let the last frames out
+  double tail_s = kSkinTailS;  // idle time after the scene, to let the last frames out
   LineFaultArgs line_args;  // --ber, --drop-rate, ... as given
   LineFaultOptions line;    // ... parsed (docs/vboard.md, "Line faults")
   std::string tap_to_host;  // the FPGA's bytes before the line's faults, to this file

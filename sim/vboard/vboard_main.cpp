@@ -122,5 +122,5 @@ int sc_main(int argc, char** argv) {
       argc, argv,
       "eskin-vboard: a scene on the SystemC virtual board (FPGA build " VBOARD_PARAMS_KEY
       "); its serial port is a pseudo-terminal",
-      0.002, run);
+      eskin::vboard::kSkinTailS, run);
 }

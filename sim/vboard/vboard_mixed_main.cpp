@@ -141,5 +141,5 @@ int sc_main(int argc, char** argv) {
       argc, argv,
       "eskin-vboard: a scene with a DTMF skin and Hall sensors on the SystemC virtual board "
       "(mixed build " VBOARD_PARAMS_KEY "); its serial port is a pseudo-terminal",
-      0.002, run);
+      eskin::vboard::kSkinTailS, run);
 }

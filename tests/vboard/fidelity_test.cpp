@@ -1,0 +1,194 @@
+// The fidelity levels of `eskin simulate` against each other, on the
+// example scenes the virtual board runs (docs/vboard.md, "Fidelity
+// levels"): the packet level (host/simulate/packet_board.h) must deliver
+// the Verilated board's packets, byte for byte, each arriving within a
+// bound derived here from the build, not from the model's own figures.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_command.h"
+#include "sim/scene.h"
+#include "sim/vboard/fpga_params.h"
+#include "ucode/dtmf_frame_bound.h"
+
+namespace fs = std::filesystem;
+using vboard_test::run_argv;
+using vboard_test::slurp;
+
+namespace {
+
+struct LinkPacket {
+  int seq = 0, type = 0;
+  uint64_t t = 0;
+  double arrival_us = 0;
+  std::string payload;  // hex
+};
+
+std::vector<LinkPacket> read_link_log(const fs::path& p) {
+  std::istringstream in(slurp(p));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "seq,type,t,arrival_us,payload_hex") << p;
+  std::vector<LinkPacket> v;
+  while (std::getline(in, line)) {
+    LinkPacket k;
+    std::istringstream f(line);
+    std::string cell;
+    std::getline(f, cell, ','), k.seq = std::stoi(cell);
+    std::getline(f, cell, ','), k.type = std::stoi(cell);
+    std::getline(f, cell, ','), k.t = std::stoull(cell);
+    std::getline(f, cell, ','), k.arrival_us = std::stod(cell);
+    std::getline(f, k.payload);
+    v.push_back(k);
+  }
+  return v;
+}
+
+struct Run {
+  nlohmann::json summary;
+  std::vector<LinkPacket> link;
+};
+
+Run simulate(const std::string& scene, const std::string& level) {
+  const fs::path out = fs::path(testing::TempDir()) / ("fidelity_" + scene + "_" + level);
+  fs::remove_all(out);
+  std::string log;
+  const int rc = run_argv({ESKIN_BIN, "simulate", std::string(ESKIN_SOURCE_DIR) + "/scenes/" + scene + ".yaml",
+                           "--fidelity", level, "--out", out.string()},
+                          &log);
+  EXPECT_EQ(rc, 0) << log;
+  Run r;
+  if (rc != 0) return r;
+  EXPECT_NE(log.find(level + " level"), std::string::npos) << log;
+  r.summary = nlohmann::json::parse(slurp(out / "summary.json"));
+  EXPECT_EQ(r.summary.at("fidelity"), level);
+  r.link = read_link_log(out / "fpga_link.csv");
+  return r;
+}
+
+constexpr int kStatusType = 0x05;
+constexpr size_t kStatusSamplesHex = 2 * 24;  // STATUS's samples u32 at byte 24 (docs/protocol.md)
+
+// The packet level's arrival error bound for the scene's build, in clocks:
+// the RTL writes a frame's packets in [pending, pending + B] (B the static
+// frame + command bound), the model at pending + B/2 with pending placed
+// within one sample period P; the UART's departures are a max-plus function
+// of the writes (no departure moves more than the largest write move); the
+// framer and the USB bridge's byte sampling add at most one byte time each.
+// So |arrival - arrival_rtl| <= P + B/2 + 2 bytes (+1 clock of rounding).
+struct Bound {
+  double clocks = 0, clk_hz = 0;
+  uint64_t period = 0;
+  double us() const { return clocks / clk_hz * 1e6; }
+};
+
+Bound arrival_bound(const std::string& scene_name, const nlohmann::json& sum) {
+  const eskin::sim::Scene scene =
+      eskin::sim::load_scene(std::string(ESKIN_SOURCE_DIR) + "/scenes/" + scene_name + ".yaml");
+  const double clk = sum.at("fpga_clk_hz");
+  const eskin::vboard::EngineOptions engine{sum.at("fpga_engine_shifter") == "barrel",
+                                            sum.at("fpga_neurons") == "unit"};
+  const eskin::vboard::FpgaBuild b =
+      eskin::vboard::fpga_build_for(scene, "", long(clk), 3000000, engine);
+  EXPECT_EQ(b.key, sum.at("fpga_build").get<std::string>()) << "the test derived another build";
+  Bound r;
+  r.clk_hz = clk;
+  r.period = uint64_t(std::llround(clk / scene.skin.adc.rate_hz));
+  const double total = double(eskin::hls::dtmf_frame_bound(b.plan).total());
+  const double byte = 10.0 * double(std::llround(clk / b.baud()));
+  r.clocks = double(r.period) + total / 2 + 2 * byte + 1;
+  return r;
+}
+
+void expect_same_packets(const std::string& scene) {
+  const Run rtl = simulate(scene, "rtl");
+  const Run pkt = simulate(scene, "packet");
+  ASSERT_FALSE(rtl.link.empty());
+  ASSERT_FALSE(pkt.link.empty());
+  const Bound bound = arrival_bound(scene, rtl.summary);
+  // At the end of the run the two may cut a packet differently: only the
+  // packets arriving within the bound of the end may be missing from one.
+  const double end_us = rtl.summary.at("sim_s").get<double>() * 1e6;
+  const size_t n = std::min(rtl.link.size(), pkt.link.size());
+  for (const auto* longer : {&rtl.link, &pkt.link})
+    for (size_t i = n; i < longer->size(); ++i)
+      EXPECT_GT((*longer)[i].arrival_us, end_us - 2 * bound.us()) << scene << " packet " << i;
+  double worst = 0;
+  size_t status = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const LinkPacket& a = rtl.link[i];
+    const LinkPacket& b = pkt.link[i];
+    ASSERT_EQ(a.seq, b.seq) << scene << " packet " << i;
+    ASSERT_EQ(a.type, b.type) << scene << " packet " << i;
+    if (a.type == kStatusType) {  // its t and samples: the ADC counter when the engine read it
+      ++status;
+      EXPECT_LE(std::fabs(double(a.t) - double(b.t)), bound.clocks / double(bound.period) + 1)
+          << scene << " status " << i;
+      ASSERT_EQ(a.payload.size(), b.payload.size());
+      EXPECT_EQ(a.payload.substr(0, kStatusSamplesHex), b.payload.substr(0, kStatusSamplesHex))
+          << scene << " status " << i;
+    } else {
+      ASSERT_EQ(a.t, b.t) << scene << " packet " << i;
+      ASSERT_EQ(a.payload, b.payload) << scene << " packet " << i << " type " << a.type;
+    }
+    const double d = std::fabs(a.arrival_us - b.arrival_us);
+    worst = std::max(worst, d);
+    EXPECT_LE(d, bound.us()) << scene << " packet " << i << " arrives at " << a.arrival_us
+                             << " us on the RTL board, " << b.arrival_us << " us at packet level";
+  }
+  EXPECT_GT(status, 0u) << scene << ": no STATUS packet compared";
+  std::printf("%s: %zu packets equal (%zu STATUS); arrival |packet - rtl| <= %.1f us, bound %.1f us\n",
+              scene.c_str(), n, status, worst, bound.us());
+  // The packet level is the faster one (its speed line names it).
+  EXPECT_GT(pkt.summary.at("sim_s").get<double>() / pkt.summary.at("cpu_s").get<double>(),
+            rtl.summary.at("sim_s").get<double>() / rtl.summary.at("cpu_s").get<double>());
+}
+
+}  // namespace
+
+TEST(Fidelity, PacketLevelDeliversTheRtlPacketsOnTheDefaultScene) { expect_same_packets("neuroskin2"); }
+
+TEST(Fidelity, PacketLevelDeliversTheRtlPacketsOnPlanned3x3) { expect_same_packets("planned3x3"); }
+
+TEST(Fidelity, PacketLevelDeliversTheRtlPacketsOnStaggered10x10) {
+  expect_same_packets("staggered10x10");
+}
+
+// What the packet level does not model is refused, naming why, exit 2.
+TEST(Fidelity, PacketLevelRefusesWhatItDoesNotModel) {
+  const std::string dir = std::string(ESKIN_SOURCE_DIR) + "/scenes/";
+  const fs::path out = fs::path(testing::TempDir()) / "fidelity_refused";
+  struct Case {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {{dir + "hall_000_skin.yaml"}, "Hall sensors"},
+      {{dir + "mixed_neuroskin_split.yaml"}, "Hall sensors"},
+      {{dir + "neuroskin2.yaml", "--trace", (out / "t.fst").string()}, "--trace"},
+      {{dir + "neuroskin2.yaml", "--ber", "1e-4"}, "line faults"},
+      {{dir + "neuroskin2.yaml", "--fault", "reset@10"}, "--fault"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> argv{ESKIN_BIN, "simulate", "--fidelity", "packet", "--out",
+                                  out.string()};
+    argv.insert(argv.end(), c.args.begin(), c.args.end());
+    std::string log;
+    EXPECT_EQ(run_argv(argv, &log), 2) << log;
+    EXPECT_NE(log.find(c.says), std::string::npos) << log;
+    EXPECT_NE(log.find("--fidelity"), std::string::npos) << log;
+  }
+  std::string log;
+  EXPECT_EQ(run_argv({ESKIN_BIN, "simulate", dir + "neuroskin2.yaml", "--fidelity", "gate", "--out",
+                      out.string()},
+                     &log),
+            2);
+  EXPECT_NE(log.find("expected rtl or packet"), std::string::npos) << log;
+}
