@@ -6,6 +6,7 @@
 //   scale       golden and engine from 3x3 to 256x256 skins
 //   soak        10^6 packets through the virtual board's faulty serial line
 //   memory      eskin stream's RSS over 10^7 packets from a pty
+//   sim-speed   the virtual board's fidelity levels, simulated s per CPU s
 #include <fmt/format.h>
 #include <fmt/os.h>
 
@@ -28,7 +29,9 @@
 #include "eskin/exit_codes.h"
 #include "eskin/skin_config.h"
 #include "host/engine/engine_setup.h"
+#include "host/simulate/sim_speed.h"
 #include "host/simulate/soak.h"
+#include "sim/vboard/vboard_build.h"
 #include "host/stream/stream_memory.h"
 #include "sim/scene.h"
 
@@ -239,6 +242,51 @@ int run_soak(SoakArgs a) {
   return ok ? 0 : eskin::exit_code(eskin::Exit::failure);
 }
 
+struct SimSpeedArgs {
+  std::vector<std::string> scenes;
+  std::vector<std::string> levels{"rtl", "packet"};
+  std::string out = "eskin-out/sim-speed";
+  bool verilator = false;
+  std::string csv;
+};
+
+// The targets, on the rows that carry them (the default scene's).
+int run_sim_speed(const SimSpeedArgs& a) {
+  std::vector<std::string> scenes = a.scenes;
+  if (scenes.empty())
+    for (const char* s : {"neuroskin2", "staggered10x10", "hall_000_skin", "mixed_neuroskin_split"})
+      scenes.push_back(eskin::source_dir() + "/scenes/" + s + ".yaml");
+  std::vector<simulate::SimSpeedConfig> configs;
+  for (const std::string& l : a.levels) {
+    const simulate::Fidelity f = simulate::parse_fidelity(l);
+    configs.push_back({simulate::fidelity_name(f), f, {}});
+    if (a.verilator && f == simulate::Fidelity::rtl)  // beside the product's board
+      for (const std::string& v : vboard::verilator_variants())
+        configs.push_back({"rtl/" + v, f,
+                           {"--board", vboard::variant_executable(v, [](const std::string& m) {
+                              std::cerr << "eskin bench sim-speed: " << m << "\n";
+                            })},
+                           true});
+  }
+  const std::string self = std::filesystem::canonical("/proc/self/exe").string();
+  const auto rows = simulate::measure_sim_speed(self, scenes, configs, a.out);
+  std::cout << "sim-speed: each row one `eskin simulate --fidelity LEVEL`, in this one run; CPU s "
+               "of the board's own work (summary.json's cpu_s)\n\n"
+            << simulate::format_sim_speed(rows);
+  if (!a.csv.empty()) {
+    std::string cmd = "eskin bench sim-speed";
+    if (a.verilator) cmd += " --verilator";
+    for (const auto& s : a.scenes) cmd += " " + std::filesystem::path(s).filename().string();
+    fmt::output_file(a.csv).print("{}", simulate::sim_speed_csv(rows, cmd));
+    std::cout << "table: " << a.csv << "\n";
+  }
+  for (const auto& r : rows)
+    if (r.ran && r.scene == "neuroskin2" && r.level == "packet")
+      std::cout << fmt::format("target: packet level >= 20x real time on the default scene: {:.1f}x ({})\n",
+                               r.x_real_time(), r.x_real_time() >= 20 ? "met" : "MISSED");
+  return 0;
+}
+
 std::function<int()> setup(CLI::App& app) {
   CLI::App* bench = app.add_subcommand(
       "bench",
@@ -331,7 +379,24 @@ std::function<int()> setup(CLI::App& app) {
   memory->add_option("--max-growth-kib", mem->max_growth_kib,
                      "fail if RSS grows by more than K KiB from the first sample to the end")
       ->check(CLI::NonNegativeNumber);
+  auto ss = std::make_shared<SimSpeedArgs>();
+  CLI::App* speed = bench->add_subcommand(
+      "sim-speed", "simulated s per CPU s of each fidelity level of eskin simulate on each scene, "
+                   "side by side in one run");
+  speed->add_option("scenes", ss->scenes,
+                    "scene files (default: neuroskin2, staggered10x10, hall_000_skin, "
+                    "mixed_neuroskin_split)")
+      ->check(CLI::ExistingFile);
+  speed->add_option("--levels", ss->levels, "fidelity levels, in this order (default: rtl packet)")
+      ->delimiter(',');
+  speed->add_option("--out", ss->out, "output directory (one eskin simulate output per row)")
+      ->capture_default_str();
+  speed->add_option("--csv", ss->csv, "write the figures here (docs/sim_speed.csv)");
+  speed->add_flag("--verilator", ss->verilator,
+                  "also the default board built with each Verilator variant (sim/vboard/"
+                  "CMakeLists.txt: built when out of date), on the scenes of the default build");
   return [=]() -> int {
+    if (speed->parsed()) return run_sim_speed(*ss);
     if (soak->parsed()) return run_soak(*so);
     if (memory->parsed()) return run_memory(*mem);
     if (lat->parsed()) return run_latency(*l);

@@ -35,6 +35,11 @@ std::function<int()> setup(CLI::App& app) {
                   "line faults: AT_MS:FOR_MS, the cable out for FOR_MS from AT_MS of simulated "
                   "time (repeatable)");
   sub->add_option("--fault-seed", line->seed, "line faults: the seed of every fault (default 1)");
+  sub->add_option("--board", a->board,
+                  "run this virtual board executable instead of the one the scene's build needs "
+                  "(a Verilator variant: eskin bench sim-speed --verilator); it refuses a scene "
+                  "of another build")
+      ->check(CLI::ExistingFile);
   auto fidelity = std::make_shared<std::string>("rtl");
   sub->add_option("--fidelity", *fidelity,
                   "how much of the board to model: rtl (the Verilated FPGA top, clock by clock, "

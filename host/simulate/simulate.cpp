@@ -158,7 +158,7 @@ hall::HallFpgaSetup hall_simulation_setup(const sim::Scene& scene, const sim::Ha
 int run_simulate_hall(const sim::Scene& scene, const SimulateOptions& o) {
   const vboard::HallBuild build = vboard::hall_build_for(scene);  // names a bad field
   const hall::HallFpgaSetup setup = hall_simulation_setup(scene, build.spec);
-  const std::string exe = vboard::board_executable(build, note);
+  const std::string exe = o.board.empty() ? vboard::board_executable(build, note) : o.board;
   std::filesystem::create_directories(o.out);
 
   vboard::VboardProcess board(exe,
@@ -181,7 +181,7 @@ int run_simulate_mixed(const sim::Scene& scene, const SimulateOptions& o) {
   const vboard::FpgaBuild dtmf = board_build(scene);
   const vboard::MixedBuild build = vboard::mixed_build_for(scene, dtmf);  // names a bad field
   const hall::HallFpgaSetup setup = hall_simulation_setup(scene, build.hall.spec);
-  const std::string exe = vboard::board_executable(build, note);
+  const std::string exe = o.board.empty() ? vboard::board_executable(build, note) : o.board;
   std::filesystem::create_directories(o.out);
 
   link::LinkEncoder enc;
@@ -226,7 +226,7 @@ int run_simulate_dtmf(const sim::Scene& scene, const SimulateOptions& o) {
     report::report_dtmf(scene, o.scene, build, gold, run, run.done.at("scene_samples"), o.out);
     return 0;
   }
-  const std::string exe = vboard::board_executable(build, note);
+  const std::string exe = o.board.empty() ? vboard::board_executable(build, note) : o.board;
   std::filesystem::create_directories(o.out);
 
   vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, commands, line_args(o)));
@@ -290,7 +290,8 @@ int run_simulate(const SimulateOptions& o) {
       throw ConfigError("--fidelity", fmt::format("{}: the {} level models DTMF skins; this scene "
                                                   "has Hall sensors: use --fidelity rtl",
                                                   o.scene, fidelity_name(o.fidelity)));
-    const char* opt = !o.trace.empty() ? "--trace"
+    const char* opt = !o.board.empty()   ? "--board"
+                      : !o.trace.empty() ? "--trace"
                       : o.line.any()   ? "line faults (--ber, --drop-rate, --insert-rate, --pull-cable)"
                       : !o.faults.empty() ? "--fault"
                                           : nullptr;

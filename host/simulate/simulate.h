@@ -34,6 +34,11 @@ struct SimulateOptions {
   // the board, which times them (its done line's "board_faults").
   std::vector<vboard::BoardFault> faults;
   Fidelity fidelity = Fidelity::rtl;
+  // The board executable to run instead of the one the scene's build
+  // needs ("": that one), e.g. a Verilator variant of the default board
+  // (eskin bench sim-speed --verilator); the board refuses a scene of
+  // another build.
+  std::string board;
 };
 
 // Loads the scene (a bad scene throws before anything runs), runs it on

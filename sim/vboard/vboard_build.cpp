@@ -6,6 +6,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
@@ -13,6 +14,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#if !defined(ESKIN_VBOARD_VARIANTS)
+#error "sim/vboard/CMakeLists.txt lists the default board's Verilator variants"
+#endif
 #if !defined(ESKIN_BINARY_DIR) || !defined(ESKIN_CMAKE_COMMAND) || !defined(ESKIN_VBOARD_DIR) || \
     !defined(ESKIN_VBOARD_BIN_DIR)
 #error "sim/vboard/CMakeLists.txt defines where the build tree, cmake and the boards are"
@@ -76,6 +80,34 @@ std::string ensure_board(const std::string& target, const std::string& key,
 }
 
 }  // namespace
+
+std::vector<std::string> verilator_variants() {
+  std::vector<std::string> v;
+  std::stringstream ss(ESKIN_VBOARD_VARIANTS);
+  for (std::string name; std::getline(ss, name, ',');) v.push_back(name);
+  return v;
+}
+
+std::string variant_executable(const std::string& name,
+                               const std::function<void(const std::string&)>& note) {
+  const std::vector<std::string> all = verilator_variants();
+  if (std::find(all.begin(), all.end(), name) == all.end()) {
+    std::string names;
+    for (const auto& n : all) names += (names.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("'" + name + "' is not a Verilator variant of the board (" +
+                                names + ")");
+  }
+  const std::string target = "eskin-vboard-variant-" + name;
+  const std::string dir = in_build_dir(ESKIN_VBOARD_DIR), log = dir + "/" + target + ".build.log";
+  std::filesystem::create_directories(dir);
+  BuildLock lock(dir, "builds");
+  note("building " + target + " (Verilator and C++, a few minutes when out of date; log " + log +
+       ")");
+  std::ofstream(log, std::ios::trunc);
+  run_step({ESKIN_CMAKE_COMMAND, "--build", in_build_dir(ESKIN_BINARY_DIR), "--target", target},
+           log, "building " + target);
+  return in_build_dir(ESKIN_VBOARD_BIN_DIR) + "/" + target;
+}
 
 std::string board_executable(const FpgaBuild& b,
                              const std::function<void(const std::string&)>& note) {

@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "sim/vboard/fpga_params.h"
 #include "sim/vboard/hall_build.h"
@@ -29,5 +30,13 @@ std::string board_executable(const HallBuild& b,
 // The same for a scene with both (rtl/mixed_top.v, vboard_mixed_main.cpp).
 std::string board_executable(const MixedBuild& b,
                              const std::function<void(const std::string&)>& note);
+
+// The default scene's board built with other Verilator options
+// (sim/vboard/CMakeLists.txt's vboard_variants, for `eskin bench sim-speed
+// --verilator`): their names, and a variant's executable, built first
+// when needed (std::invalid_argument for a name that is not one).
+std::vector<std::string> verilator_variants();
+std::string variant_executable(const std::string& name,
+                               const std::function<void(const std::string&)>& note);
 
 }  // namespace eskin::vboard
