@@ -49,7 +49,8 @@ int run_throughput(const ThroughputArgs& a) {
   std::vector<std::string> scenes = a.scenes;
   if (scenes.empty())
     scenes = {eskin::source_dir() + "/scenes/neuroskin2.yaml",
-              eskin::source_dir() + "/scenes/skin32x32.yaml"};
+              eskin::source_dir() + "/scenes/skin32x32.yaml",
+              eskin::source_dir() + "/scenes/skin64x64.yaml"};
   std::cout << fmt::format(
       "throughput: best pass of >= {:.1f} s; single-thread rows by thread CPU time, threaded rows "
       "by wall clock beside the same engine on 1 thread\n\n", a.min_seconds);
@@ -57,13 +58,14 @@ int run_throughput(const ThroughputArgs& a) {
     const auto r = bench::measure_throughput(path, a.min_seconds, a.threads);
     std::cout << bench::format_throughput(r);
     const auto& amp = r.row("engine-amplitudes");
+    const auto& chain = r.row("engine-chain");
     if (r.carriers <= 8)
-      std::cout << fmt::format("target: engine amplitudes >= 5x FFTW: {:.2f}x ({})\n", amp.vs_fftw,
-                               amp.vs_fftw >= 5 ? "met" : "MISSED");
+      std::cout << fmt::format("target: engine amplitudes >= 20x FFTW: {:.2f}x ({})\n", amp.vs_fftw,
+                               amp.vs_fftw >= 20 ? "met" : "MISSED");
     std::cout << fmt::format("target: real time on one core at {:.0f} S/s: amplitudes {:.1f}x, "
                              "chain {:.1f}x ({})\n\n", r.fs, amp.samples_per_s / r.fs,
-                             r.row("engine-chain").samples_per_s / r.fs,
-                             amp.samples_per_s >= r.fs ? "met" : "MISSED");
+                             chain.samples_per_s / r.fs,
+                             std::min(amp.samples_per_s, chain.samples_per_s) >= r.fs ? "met" : "MISSED");
   }
   return 0;
 }
@@ -340,7 +342,7 @@ std::function<int()> setup(CLI::App& app) {
   auto t = std::make_shared<ThroughputArgs>();
   CLI::App* tp = bench->add_subcommand(
       "throughput", "samples/s and ns/sample of golden, the fast engine and FFTW, in one run");
-  tp->add_option("scenes", t->scenes, "scene files (default: neuroskin2 and skin32x32)")
+  tp->add_option("scenes", t->scenes, "scene files (default: neuroskin2, skin32x32, skin64x64)")
       ->check(CLI::ExistingFile);
   tp->add_option("--min-seconds", t->min_seconds, "measure each row for at least this long")
       ->check(CLI::PositiveNumber);
@@ -391,7 +393,7 @@ std::function<int()> setup(CLI::App& app) {
       ->delimiter(',');
   speed->add_option("--out", ss->out, "output directory (one eskin simulate output per row)")
       ->capture_default_str();
-  speed->add_option("--csv", ss->csv, "write the figures here (docs/sim_speed.csv)");
+  speed->add_option("--csv", ss->csv, "write the rows here as CSV");
   speed->add_flag("--verilator", ss->verilator,
                   "also the default board built with each Verilator variant (sim/vboard/"
                   "CMakeLists.txt: built when out of date), on the scenes of the default build");

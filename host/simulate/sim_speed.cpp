@@ -101,8 +101,8 @@ std::string format_sim_speed(const std::vector<SimSpeedRow>& rows) {
 std::string sim_speed_csv(const std::vector<SimSpeedRow>& rows, const std::string& command) {
   std::string s =
       "# The virtual board's fidelity levels (docs/bench.md, \"Simulation speed\"), written by\n"
-      "# `eskin bench sim-speed --csv` (host/simulate/sim_speed.h); cited as\n"
-      "# <!--fig:sim_speed/NAME-->. CPU s: the board's own work, side by side in one run.\n"
+      "# `eskin bench sim-speed --csv` (host/simulate/sim_speed.h). CPU s: the board's own\n"
+      "# work; the rows ran side by side in one run on one machine.\n"
       "name,value,unit,source\n";
   for (const SimSpeedRow& r : rows) {
     if (!r.ran) continue;

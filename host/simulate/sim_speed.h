@@ -44,8 +44,8 @@ std::vector<SimSpeedRow> measure_sim_speed(const std::string& eskin_bin,
 // against the first's on the same scene.
 std::string format_sim_speed(const std::vector<SimSpeedRow>& rows);
 
-// The rows as docs/sim_speed.csv (name,value,unit,source; cited as
-// <!--fig:sim_speed/SCENE/LABEL/x_real_time-->): `command` is the source.
+// The rows as CSV (name,value,unit,source; names SCENE/LABEL/sim_s,
+// cpu_s, x_real_time): `command` is the source.
 std::string sim_speed_csv(const std::vector<SimSpeedRow>& rows, const std::string& command);
 
 }  // namespace eskin::simulate

@@ -330,9 +330,6 @@ std::map<std::string, std::string> known_figures() {
   // bench soak --csv`; checked by tests/vboard/line_faults_test.cpp,
   // LineSoak.TheDocsTableHoldsTogether).
   add_named_rows(m, "soak", "docs/soak.csv");
-  // sim_speed/SCENE/LEVEL/NAME: the virtual board's fidelity levels side by
-  // side (`eskin bench sim-speed --verilator --csv`, host/simulate/sim_speed.h).
-  add_named_rows(m, "sim_speed", "docs/sim_speed.csv");
   // stream_memory/NAME, stream_memory_hdf5/NAME: eskin stream's memory over
   // a long stream, without and with an HDF5 recording (`eskin bench memory
   // --csv`, host/stream/stream_memory.h; tests/stream/stream_memory_test.cpp
