@@ -161,6 +161,31 @@ TEST(Fidelity, PacketLevelDeliversTheRtlPacketsOnStaggered10x10) {
   expect_same_packets("staggered10x10");
 }
 
+// The example scenes no iCEBreaker build keeps up with are refused alike at
+// both levels, before anything runs: the level does not change the build.
+// (scenes/soak.yaml, the one example DTMF scene not compared above, is the
+// default build's for 180 s: ten minutes of the RTL; its packets are the
+// soak's, tests/vboard/line_faults_test.cpp.)
+TEST(Fidelity, BothLevelsRefuseTheScenesTheBoardCannotBuild) {
+  for (const char* scene : {"skin32x32", "skin64x64"}) {
+    std::string said[2];
+    int i = 0;
+    for (const char* level : {"rtl", "packet"}) {
+      const fs::path out = fs::path(testing::TempDir()) / (std::string("fidelity_") + scene);
+      std::string log;
+      EXPECT_EQ(run_argv({ESKIN_BIN, "simulate",
+                          std::string(ESKIN_SOURCE_DIR) + "/scenes/" + scene + ".yaml", "--fidelity",
+                          level, "--out", out.string()},
+                         &log),
+                2)
+          << log;
+      said[i++] = log;
+    }
+    EXPECT_EQ(said[0], said[1]) << scene;
+    EXPECT_NE(said[0].find("error: skin: "), std::string::npos) << said[0];
+  }
+}
+
 // What the packet level does not model is refused, naming why, exit 2.
 TEST(Fidelity, PacketLevelRefusesWhatItDoesNotModel) {
   const std::string dir = std::string(ESKIN_SOURCE_DIR) + "/scenes/";
