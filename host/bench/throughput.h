@@ -5,7 +5,8 @@
 // engine's amplitudes (host/engine/exact_sdft.h: push, then every carrier's
 // exact carrier_magnitude: the same workload), and the whole decoders: the
 // golden decoder (taxels, ghost correction, spikes) and the engine's FPGA
-// chain (packets) on one thread and on `threads` threads (wall clock).
+// chain (packets) on one thread, on `threads` threads (wall clock), and
+// `threads` skins decoded at once, one a thread (wall clock, all samples).
 #pragma once
 
 #include <string>

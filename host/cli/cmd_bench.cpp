@@ -60,8 +60,11 @@ int run_throughput(const ThroughputArgs& a) {
     const auto& amp = r.row("engine-amplitudes");
     const auto& chain = r.row("engine-chain");
     if (r.carriers <= 8)
-      std::cout << fmt::format("target: engine amplitudes >= 20x FFTW: {:.2f}x ({})\n", amp.vs_fftw,
-                               amp.vs_fftw >= 20 ? "met" : "MISSED");
+      std::cout << fmt::format(
+          "target: engine amplitudes >= 20x FFTW: {:.2f}x ({}); against fftw-stft-hypot, the "
+          "row the first ratios were measured against: {:.2f}x\n",
+          amp.vs_fftw, amp.vs_fftw >= 20 ? "met" : "MISSED",
+          amp.samples_per_s / r.row("fftw-stft-hypot").samples_per_s);
     std::cout << fmt::format("target: real time on one core at {:.0f} S/s: amplitudes {:.1f}x, "
                              "chain {:.1f}x ({})\n\n", r.fs, amp.samples_per_s / r.fs,
                              chain.samples_per_s / r.fs,

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <variant>
 
 #include "hls/carrier_demix.h"
 #include "hls/dtmf_chain.h"
@@ -30,8 +31,31 @@ void parallel(int n, F&& f) {
 // N and ACC_W only bound its static checks, the arithmetic does not use them.
 constexpr int kDemixKMax = 64, kDemixW = 24;
 using Demix = hls::CarrierDemix<kDemixKMax, 4, 32, kDemixW>;
-// The chain's ghost filter at run-time sizes (plans: K <= 127).
-using Ghost = hls::GhostFilter<127, 127, DtmfEngine::kMaxLookback>;
+// The chain's ghost filter at run-time sizes. Its results depend on the
+// configured rows, columns and lookback only, not on the template's
+// maxima; but its arrays are the maxima's size and it clears them (the
+// history on configure, an R_MAX x C_MAX pairing table every frame), so the
+// engine takes the smallest instance that holds the skin.
+using GhostSmall = hls::GhostFilter<16, 16, 64>;
+using GhostMid = hls::GhostFilter<64, 64, 256>;
+using GhostLarge = hls::GhostFilter<127, 127, DtmfEngine::kMaxLookback>;
+using GhostAny = std::variant<std::unique_ptr<GhostSmall>, std::unique_ptr<GhostMid>,
+                              std::unique_ptr<GhostLarge>>;
+
+GhostAny make_ghost(const hls::GhostFilterConfig& g) {
+  const auto fits = [&g](int r, int c, int l) {
+    return g.rows <= r && g.cols <= c && g.lookback <= l;
+  };
+  GhostAny out;
+  const auto set = [&g, &out](auto p) {
+    p->configure(g);
+    out = std::move(p);
+  };
+  if (fits(16, 16, 64)) set(std::make_unique<GhostSmall>());
+  else if (fits(64, 64, 256)) set(std::make_unique<GhostMid>());
+  else set(std::make_unique<GhostLarge>());
+  return out;
+}
 
 struct SpikeEvent {
   uint32_t frame;  // within the chunk
@@ -50,7 +74,7 @@ struct DtmfEngine::Chunk {
 
 // What carries from one chunk to the next.
 struct DtmfEngine::State {
-  std::unique_ptr<Ghost> ghost = std::make_unique<Ghost>();
+  GhostAny ghost;  // when the chain filters ghosts
   std::vector<int32_t> v[2], u[2], x_prev[2];
   bool win_open = false;  // the spike window (hls/spike_encoder.h)
   uint32_t win_t = 0;
@@ -59,8 +83,10 @@ struct DtmfEngine::State {
 
 DtmfEngine::DtmfEngine(EngineConfig cfg) : cfg_(std::move(cfg)) {
   const EngineConfig& c = cfg_;
-  require(c.rows >= 1 && c.cols >= 1 && c.rows <= 127 && c.cols <= 127 && c.carriers() <= 127,
-          "rows/cols", "1..127 carriers in all");
+  // The top's limit (common/eskin/dtmf_top_plan.h): 128 DFT channels.
+  require(c.rows >= 1 && c.cols >= 1 && c.rows <= 127 && c.cols <= 127 &&
+              c.carriers() + (c.demix ? 1 : 0) <= 128,
+          "rows/cols", "1..128 DFT channels (carriers, + DC when demixing)");
   require(c.taxels() <= 65536, "rows/cols", "rows * cols <= 65536 neurons");
   require(int(c.inc.size()) == c.carriers() + (c.demix ? 1 : 0), "inc",
           "one phase increment per carrier (+ the DC channel when demixing)");
@@ -115,6 +141,7 @@ void DtmfEngine::stage_frames(const uint16_t* codes, uint64_t f0, uint64_t f1, C
     demix->configure(*d);
   }
   std::vector<int32_t> x(4096), sums, re(static_cast<size_t>(k)), im(static_cast<size_t>(k));
+  Demix::Token out[kDemixKMax];  // the demixer's output (cleared once, not every frame)
   const FrameClock clock{f0 * step + n - 1, cfg_.step};  // frame f0 first: its window is full
   const uint64_t end = (f1 - 1) * step + n;  // after frame f1 - 1's newest sample
   size_t frame = size_t(f0 - chunk_f0);
@@ -133,7 +160,6 @@ void DtmfEngine::stage_frames(const uint16_t* codes, uint64_t f0, uint64_t f1, C
       uint16_t* root = c.roots.data() + frame * size_t(k);
       if (demix) {
         const int32_t* s = sums.data() + j * 2 * size_t(ks);
-        Demix::Token out[kDemixKMax];
         for (int i = 0; i <= k; ++i) demix->push({uint8_t(i), s[i], s[ks + i], i == k}, out);
         for (int i = 0; i < k; ++i) re[size_t(i)] = out[i].re, im[size_t(i)] = out[i].im;
         magnitudes(re.data(), im.data(), k, mw_, mag);
@@ -151,22 +177,29 @@ void DtmfEngine::stage_frames(const uint16_t* codes, uint64_t f0, uint64_t f1, C
 // active site, else 0 (hls/dtmf_chain.h).
 void DtmfEngine::stage_ghost(State& st, Chunk& c, size_t frames) const {
   const int k = cfg_.carriers(), r = cfg_.rows, cols = cfg_.cols, t = cfg_.taxels();
-  for (size_t f = 0; f < frames; ++f) {
-    const uint16_t* root = c.roots.data() + f * size_t(k);
-    const auto value = [&](int i, int j) { return hls::taxel_value(root[i], root[r + j], cfg_.taxel); };
-    st.ghost->frame(c.mags.data() + f * size_t(k));
-    st.ghost->release(value);
-    if (c.g.empty()) continue;
-    uint16_t* g = c.g.data() + f * size_t(t);
-    for (int i = 0; i < r; ++i)
-      for (int j = 0; j < cols; ++j) g[i * cols + j] = st.ghost->site(i, j) ? value(i, j) : 0;
-  }
+  std::visit([&](auto& ghost) {
+    for (size_t f = 0; f < frames; ++f) {
+      const uint16_t* root = c.roots.data() + f * size_t(k);
+      const auto value = [&](int i, int j) {
+        return hls::taxel_value(root[i], root[r + j], cfg_.taxel);
+      };
+      ghost->frame(c.mags.data() + f * size_t(k));
+      ghost->release(value);
+      if (c.g.empty()) continue;
+      uint16_t* g = c.g.data() + f * size_t(t);
+      for (int i = 0; i < r; ++i)
+        for (int j = 0; j < cols; ++j) g[i * cols + j] = ghost->site(i, j) ? value(i, j) : 0;
+    }
+  }, st.ghost);
 }
 
 // Both neuron layers, each split by neuron over the threads.
-void DtmfEngine::stage_neurons(State& st, Chunk& c, size_t frames, int threads) const {
+void DtmfEngine::stage_neurons(State& st, Chunk& c, size_t frames, int threads,
+                               uint64_t work) const {
   const int t = cfg_.taxels(), cols = cfg_.cols;
-  const int sl = std::min(threads, t);
+  // A slice per thread, each at least `work` updates (RunOptions).
+  const int sl = int(std::max<uint64_t>(
+      1, std::min<uint64_t>(uint64_t(std::min(threads, t)), frames * uint64_t(t) / work)));
   hls::SynapseWeights<127, 127> syn;
   syn.configure(cfg_.synapse);
   for (int layer = 0; layer < 2; ++layer) {
@@ -273,7 +306,7 @@ PacketStream DtmfEngine::run(const uint16_t* codes, size_t n, const RunOptions& 
   PacketStream ps;
   ps.frames = total;
   State st;
-  if (cf.ghost) st.ghost->configure(cf.ghost_cfg);
+  if (cf.ghost) st.ghost = make_ghost(cf.ghost_cfg);
   for (int l = 0; l < 2; ++l) {
     st.v[l].assign(size_t(t), cf.neuron[l].v_init);
     st.u[l].assign(size_t(t), cf.neuron[l].u_init);
@@ -295,7 +328,7 @@ PacketStream DtmfEngine::run(const uint16_t* codes, size_t n, const RunOptions& 
     if (cf.ghost) stage_ghost(st, c, frames);
     if (cf.neurons) {
       c.s0.reset(new bool[frames * size_t(t)]);
-      stage_neurons(st, c, frames, threads);
+      stage_neurons(st, c, frames, threads, opt.neuron_work > 0 ? opt.neuron_work : 4096);
     } else {
       c.spikes[0].clear(), c.spikes[1].clear();
     }

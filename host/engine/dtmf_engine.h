@@ -86,6 +86,10 @@ struct PacketStream {
 struct RunOptions {
   int threads = 1;
   size_t chunk_frames = 0;  // frames per chunk (0: about 64 MB of buffers)
+  // Neuron updates (frames x neurons of a chunk) per thread at least: a
+  // smaller layer runs on fewer threads (0: 4096 updates, of the order of
+  // what starting a thread costs).
+  uint64_t neuron_work = 0;
 };
 
 class DtmfEngine {
@@ -108,7 +112,7 @@ class DtmfEngine {
   void stage_frames(const uint16_t* codes, uint64_t f0, uint64_t f1, Chunk& c,
                     uint64_t chunk_f0) const;
   void stage_ghost(State& st, Chunk& c, size_t frames) const;
-  void stage_neurons(State& st, Chunk& c, size_t frames, int threads) const;
+  void stage_neurons(State& st, Chunk& c, size_t frames, int threads, uint64_t work) const;
   void stage_packets(State& st, const Chunk& c, uint64_t chunk_f0, size_t frames,
                      PacketStream& ps) const;
 

@@ -5,8 +5,9 @@
 // CLK_HZ): the engine by engine_config(), the chain by hls::chain_config().
 // Scenes: the default (3x3, thesis carriers off bin centres: demixing, ghost
 // filter, two neuron layers), the staggered 10x10 (bin-centred carriers,
-// rectified-change receptors, three touches) and the 32x32 skin (64
-// carriers, N 256, 12-bit ADC, no neurons). Each on one thread and on
+// rectified-change receptors, three touches), the 32x32 skin (64 carriers,
+// N 256, 12-bit ADC, no neurons) and the 64x64 one (128 carriers, N 512,
+// 1 MS/s). Each on one thread and on
 // several with small chunks, so run, slice and chunk boundaries fall inside
 // the recordings. Bound: exact equality (integer arithmetic on both sides).
 #include <gtest/gtest.h>
@@ -55,10 +56,11 @@ std::vector<Pk> run_chain(const DtmfTopPlan& plan, const std::vector<uint16_t>& 
   return r;
 }
 
+// neuron_work 1: every layer split over the threads, however small.
 std::vector<Pk> run_engine(const EngineConfig& e, const std::vector<uint16_t>& codes, int threads,
-                           size_t chunk, uint32_t* dropped = nullptr) {
+                           size_t chunk, uint32_t* dropped = nullptr, uint64_t neuron_work = 0) {
   DtmfEngine eng(e);
-  const auto ps = eng.run(codes.data(), codes.size(), {threads, chunk});
+  const auto ps = eng.run(codes.data(), codes.size(), {threads, chunk, neuron_work});
   std::vector<Pk> r;
   for (const auto& p : ps.packets)
     r.push_back({p.type, p.t, {ps.payload(p), ps.payload(p) + p.len}});
@@ -95,7 +97,8 @@ SceneRun load(const std::string& file) {
 }
 
 // The chain's packets for the plan, and the engine's on 1, 2, 3 and 8
-// threads with chunks of several sizes.
+// threads with chunks of several sizes (the neuron layers split by the
+// engine's own rule, and over every thread).
 template <class S>
 std::vector<Pk> check_plan(const DtmfTopPlan& plan, const std::vector<uint16_t>& codes,
                            const std::string& what) {
@@ -104,7 +107,11 @@ std::vector<Pk> check_plan(const DtmfTopPlan& plan, const std::vector<uint16_t>&
   expect_same(want, run_engine(e, codes, 1, 0), what + ", 1 thread");
   expect_same(want, run_engine(e, codes, 2, 100), what + ", 2 threads, 100-frame chunks");
   expect_same(want, run_engine(e, codes, 3, 77), what + ", 3 threads, 77-frame chunks");
+  expect_same(want, run_engine(e, codes, 3, 77, nullptr, 1),
+              what + ", 3 threads, 77-frame chunks, neurons on every thread");
   expect_same(want, run_engine(e, codes, 8, 500), what + ", 8 threads, 500-frame chunks");
+  expect_same(want, run_engine(e, codes, 8, 500, nullptr, 1),
+              what + ", 8 threads, 500-frame chunks, neurons on every thread");
   return want;
 }
 
@@ -131,6 +138,21 @@ TEST(DtmfEngine, Skin32x32EqualsChain) {
   ASSERT_EQ(s.plan.K, 64);
   const auto want = check_plan<DtmfChainSizes<32, 32, 256>>(s.plan, s.codes, "32x32");
   EXPECT_GE(count(want, eskin::hls::kDtmfTaxelsDense), 5u);
+}
+
+// The 64x64 skin at 1 MS/s: 128 carriers (the top's most DFT channels), N
+// 512, a frame every 1000 samples (the engine computes each frame's sums
+// directly from its window), every frame's amplitudes, dense and sparse
+// taxels sent.
+TEST(DtmfEngine, Skin64x64EqualsChain) {
+  const auto s = load("skin64x64.yaml");
+  ASSERT_EQ(s.plan.K, 128);
+  ASSERT_FALSE(s.plan.spec.demix);
+  DtmfTopPlan p = eskin::engine::with_step(s.plan, s.plan.step, 1);
+  p.mask |= eskin::hls::kMaskAmplitudes | eskin::hls::kMaskTaxels | eskin::hls::kMaskSparse;
+  const auto want = check_plan<DtmfChainSizes<64, 64, 512>>(p, s.codes, "64x64");
+  EXPECT_GE(count(want, eskin::hls::kDtmfTaxelsDense), 20u);
+  EXPECT_GE(count(want, eskin::hls::kDtmfTaxelsSparse), 20u);
 }
 
 // Sparse taxels with a threshold, the ghost filter off, another step (the

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "hls/carrier_magnitude.h"
@@ -18,6 +19,7 @@
 namespace {
 
 using eskin::engine::ExactSdft;
+using eskin::engine::FrameMode;
 using eskin::engine::MagnitudeWidths;
 using eskin::engine::SdftWidthsRt;
 
@@ -44,62 +46,105 @@ void expect_bank_equal(const std::vector<double>& freqs, double fs, size_t sampl
   auto hls = std::make_unique<Bank>();
   hls->configure(cfg);
   std::vector<uint32_t> inc(cfg.inc, cfg.inc + cfg.carriers);
-  ExactSdft fast(SdftWidthsRt{N, XW, CW, TW, ACC_W, FB}, inc);
+  const SdftWidthsRt w{N, XW, CW, TW, ACC_W, FB};
+  const int kc = cfg.carriers;
+  ExactSdft fast(w, inc), portable(w, inc, false);
   const auto x = stimulus(XW, samples, 7 + N + CW);
   eskin::hls::SdftBankToken tok[K];
-  // Frames (sums out of push_block) at samples N-1 + 7 m, fed in blocks.
-  const eskin::engine::FrameClock clock{N - 1, 7};
-  std::vector<int32_t> want_frames;
+  // The kernel's sums after every sample; the engine fed one sample at a
+  // time (sliding) equals them throughout.
+  std::vector<int32_t> want_re, want_im;
   for (size_t i = 0; i < x.size(); ++i) {
     hls->push(x[i], tok);
     fast.push_block(&x[i], 1);
-    for (int k = 0; k < cfg.carriers; ++k) {
+    portable.push_block(&x[i], 1);
+    for (int k = 0; k < kc; ++k) {
       ASSERT_EQ(fast.re(k), tok[k].re) << "sample " << i << " carrier " << k;
       ASSERT_EQ(fast.im(k), tok[k].im) << "sample " << i << " carrier " << k;
-    }
-    if (i + 1 >= size_t(N) && (i + 1 - N) % 7 == 0) {
-      for (int k = 0; k < cfg.carriers; ++k) want_frames.push_back(tok[k].re);
-      for (int k = 0; k < cfg.carriers; ++k) want_frames.push_back(tok[k].im);
+      ASSERT_EQ(portable.re(k), tok[k].re) << "portable, sample " << i << " carrier " << k;
+      ASSERT_EQ(portable.im(k), tok[k].im) << "portable, sample " << i << " carrier " << k;
+      want_re.push_back(tok[k].re), want_im.push_back(tok[k].im);
     }
   }
-  ExactSdft framed(SdftWidthsRt{N, XW, CW, TW, ACC_W, FB}, inc);
-  std::vector<int32_t> got(want_frames.size() + 2 * size_t(cfg.carriers) * 200);
-  size_t frames = 0;
-  for (size_t a = 0; a < x.size(); a += 999)
-    frames += framed.push_block(&x[a], std::min<size_t>(999, x.size() - a), clock,
-                                got.data() + frames * 2 * size_t(cfg.carriers));
-  got.resize(frames * 2 * size_t(cfg.carriers));
-  ASSERT_EQ(got, want_frames) << "frame sums";
-  // The fused path: each frame's magnitudes straight out of the sample
-  // loop equal carrier_magnitude's of its sums (magnitude_exact, checked
-  // against the kernel below).
-  const int kc = cfg.carriers;
-  const MagnitudeWidths mw{ACC_W, 16, ACC_W > 16 ? ACC_W - 16 : 0};
-  ExactSdft fused(SdftWidthsRt{N, XW, CW, TW, ACC_W, FB}, inc);
-  std::vector<uint16_t> mags(frames * size_t(kc) + size_t(kc) * 200);
-  size_t mframes = 0;
-  for (size_t a = 0; a < x.size(); a += 999)
-    mframes += fused.push_block(&x[a], std::min<size_t>(999, x.size() - a), clock, mw,
-                                mags.data() + mframes * size_t(kc));
-  ASSERT_EQ(mframes, frames);
-  for (size_t f = 0; f < frames; ++f)
-    for (int k = 0; k < kc; ++k)
-      ASSERT_EQ(mags[f * size_t(kc) + size_t(k)],
-                eskin::engine::magnitude_exact(want_frames[2 * size_t(kc) * f + size_t(k)],
-                                               want_frames[2 * size_t(kc) * f + size_t(kc + k)], mw))
-          << "frame " << f << " carrier " << k;
+  // Frames out of push_block, sums and magnitudes (the kernel's
+  // carrier_magnitude of the kernel's sums), fed in blocks of 999 samples:
+  // sliding, direct and the automatic choice; steps below, near and above
+  // N (the choice goes both ways); a first frame before the window is full
+  // (zero samples before the start), at it and later.
+  constexpr int kShift = ACC_W > 16 ? ACC_W - 16 : 0;
+  using Mag = eskin::hls::CarrierMagnitude<ACC_W, 16, kShift>;
+  const MagnitudeWidths mw{ACC_W, 16, kShift};
+  for (const bool pairs : {true, false})
+    for (const FrameMode mode : {FrameMode::Sliding, FrameMode::Direct, FrameMode::Auto})
+      for (const int step : {1, 7, N - 1, N + 3, 3 * N})
+        for (const uint64_t first : {uint64_t(N - 1), uint64_t(N / 2), uint64_t(2 * N + 5)}) {
+          const std::string what = std::string(pairs ? "pair kernels" : "portable kernels") +
+                                   ", mode " + std::to_string(int(mode)) + " step " +
+                                   std::to_string(step) + " first " + std::to_string(first);
+          const eskin::engine::FrameClock clock{first, step};
+          ExactSdft framed(w, inc, pairs), fused(w, inc, pairs);
+          framed.set_frame_mode(mode), fused.set_frame_mode(mode);
+          const size_t cap = x.size() / size_t(step) + 2;
+          std::vector<int32_t> sums(cap * 2 * size_t(kc));
+          std::vector<uint16_t> mags(cap * size_t(kc));
+          size_t frames = 0, mframes = 0;
+          for (size_t a = 0; a < x.size(); a += 999) {
+            const size_t len = std::min<size_t>(999, x.size() - a);
+            frames += framed.push_block(&x[a], len, clock, sums.data() + frames * 2 * size_t(kc));
+            mframes += fused.push_block(&x[a], len, clock, mw, mags.data() + mframes * size_t(kc));
+          }
+          ASSERT_EQ(frames, (x.size() - 1 - first) / size_t(step) + 1) << what;
+          ASSERT_EQ(mframes, frames) << what;
+          for (size_t f = 0; f < frames; ++f) {
+            const size_t s = first + f * size_t(step);
+            for (int k = 0; k < kc; ++k) {
+              const int32_t re = want_re[s * size_t(kc) + size_t(k)];
+              const int32_t im = want_im[s * size_t(kc) + size_t(k)];
+              const int32_t* got = sums.data() + f * 2 * size_t(kc);
+              ASSERT_EQ(got[k], re) << what << " frame " << f << " carrier " << k;
+              ASSERT_EQ(got[kc + k], im) << what << " frame " << f << " carrier " << k;
+              ASSERT_EQ(mags[f * size_t(kc) + size_t(k)], Mag::magnitude(re, im))
+                  << what << " frame " << f << " carrier " << k;
+            }
+          }
+        }
+  // Direct frames, then the sums read between frames (recomputed from the
+  // last N samples), then sliding again (the ring rebuilt from them), with
+  // either kernels (their rings differ).
+  for (const bool pairs : {true, false}) {
+    ExactSdft mixed(w, inc, pairs);
+    mixed.set_frame_mode(FrameMode::Direct);
+    const size_t half = x.size() / 2;
+    std::vector<int32_t> scratch((half / size_t(N) + 2) * 2 * size_t(kc));
+    mixed.push_block(x.data(), half, {uint64_t(N - 1), N}, scratch.data());
+    for (int k = 0; k < kc; ++k) {
+      const size_t at = (half - 1) * size_t(kc) + size_t(k);
+      ASSERT_EQ(mixed.re(k), want_re[at]) << "after direct, carrier " << k;
+      ASSERT_EQ(mixed.im(k), want_im[at]) << "after direct, carrier " << k;
+    }
+    mixed.set_frame_mode(FrameMode::Sliding);
+    for (size_t i = half; i < std::min(x.size(), half + 3 * size_t(N)); ++i) {
+      mixed.push_block(&x[i], 1);
+      for (int k = 0; k < kc; ++k) {
+        const size_t at = i * size_t(kc) + size_t(k);
+        ASSERT_EQ(mixed.re(k), want_re[at]) << "sliding again, sample " << i;
+        ASSERT_EQ(mixed.im(k), want_im[at]) << "sliding again, sample " << i;
+      }
+    }
+  }
   // Warm-up: a bank started N samples before sample s equals the kernel
-  // from s on (zero samples add zero terms).
-  ExactSdft late(SdftWidthsRt{N, XW, CW, TW, ACC_W, FB}, inc);
+  // from s on (zero samples add zero terms), sliding or keeping only the
+  // samples (direct, no frames: the sums computed when read).
   const size_t s = x.size() / 2;
-  late.start_at(s - N);
-  late.push_block(&x[s - N], N);
-  auto hls2 = std::make_unique<Bank>();
-  hls2->configure(cfg);
-  for (size_t i = 0; i < s; ++i) hls2->push(x[i], tok);
-  for (int k = 0; k < cfg.carriers; ++k) {
-    ASSERT_EQ(late.re(k), tok[k].re) << "warm-up, carrier " << k;
-    ASSERT_EQ(late.im(k), tok[k].im) << "warm-up, carrier " << k;
+  for (const FrameMode mode : {FrameMode::Sliding, FrameMode::Direct}) {
+    ExactSdft late(w, inc);
+    late.set_frame_mode(mode);
+    late.start_at(s - N);
+    late.push_block(&x[s - N], N);
+    for (int k = 0; k < kc; ++k) {
+      ASSERT_EQ(late.re(k), want_re[(s - 1) * size_t(kc) + size_t(k)]) << "warm-up, carrier " << k;
+      ASSERT_EQ(late.im(k), want_im[(s - 1) * size_t(kc) + size_t(k)]) << "warm-up, carrier " << k;
+    }
   }
 }
 
@@ -117,6 +162,14 @@ TEST(ExactSdft, EqualsKernelWithWideCoefficients) {  // CW > 16: two tables
 TEST(ExactSdft, EqualsKernelWith64BitProducts) {     // XW + CW > 32
   expect_bank_equal<6, 16, 12, 24, 14, 25, 8>({2500, 4800, 7100, 9400, 11700, 14000}, 35000,
                                               8000);
+}
+// One block of 8 lanes with 1, 3 and 8 carriers (the table reads skip the
+// padding lanes: 2, 4 and 8 live ones).
+TEST(ExactSdft, EqualsKernelOneThreeAndEightCarriers) {
+  expect_bank_equal<1, 32, 12, 16, 10, 18, 0>({5000}, 35000, 6000);
+  expect_bank_equal<3, 64, 12, 16, 10, 19, 0>({2000, 6100, 9900}, 35000, 6000);
+  expect_bank_equal<8, 32, 12, 16, 10, 18, 0>(
+      {1900, 3300, 5000, 7140, 8300, 10000, 11500, 13000}, 35000, 6000);
 }
 TEST(ExactSdft, EqualsKernelManyCarriers) {  // 40 carriers: more than two vector blocks
   std::vector<double> f;
@@ -137,6 +190,11 @@ void expect_magnitude_equal() {
   for (int32_t v : {0, 1, -1, lim, -lim - 1}) re.push_back(v), im.push_back(v);
   for (int64_t r = 1; r < lim && re.size() < 260000; r = r * 9 / 8 + 1)
     for (int d = -1; d <= 1; ++d) re.push_back(int32_t(r)), im.push_back(d);
+  // Q = floor(P / 4^(SHIFT-1)) exactly an odd square b^2 and just either
+  // side (where the rounded magnitude steps), over the whole range.
+  const int64_t unit = SHIFT > 1 ? int64_t(1) << (SHIFT - 1) : 1;
+  for (int64_t b = 1; b * unit < lim && re.size() < 400000; b = b * 17 / 16 + 2 - (b * 17 / 16) % 2)
+    for (int d = -1; d <= 1; ++d) re.push_back(int32_t(b * unit + d)), im.push_back(0);
   std::vector<uint16_t> got(re.size());
   eskin::engine::magnitudes(re.data(), im.data(), int(re.size()), mw, got.data());
   using M = eskin::hls::CarrierMagnitude<ACC_W, MAG_W, SHIFT>;
