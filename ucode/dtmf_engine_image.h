@@ -29,6 +29,16 @@ constexpr int kNeuronBlock = 20;  // words of constants per layer (NCS)
 constexpr int kDtmfImemBits = 11;     // microcode address bits
 constexpr int kDtmfImemWords = 1280;  // microcode words: 10 EBRs (256 x 16 each)
 
+// The largest frame engine rtl/frame_engine.v builds (its DW and KW
+// limits), with or without the barrel shifter: the configuration the C++
+// models of the top run the microcode on (ucode/frame_engine.h), any
+// plan's image fitting it.
+template <bool FAST>
+struct DtmfEngineMax {
+  static constexpr int IW = kDtmfImemBits, DW = 15, KW = 12;
+  static constexpr bool FAST_SHIFT = FAST;
+};
+
 // SET_NEURON parameter p (id & 15): its word in the layer block, its range.
 struct NeuronParam {
   const char* name;

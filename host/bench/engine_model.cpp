@@ -12,12 +12,8 @@
 namespace eskin::bench {
 namespace {
 
-// The largest memories any plan's build asks for (dtmf_top_params: DW, KW);
-// the UP5K build's bit-serial shifter (the benches' builds).
-struct Widest {
-  static constexpr int IW = hls::kDtmfImemBits, DW = 15, KW = 12;
-  static constexpr bool FAST_SHIFT = false;
-};
+// The UP5K build's bit-serial shifter (the benches' builds).
+using Widest = hls::DtmfEngineMax<false>;
 
 }  // namespace
 

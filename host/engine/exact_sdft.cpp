@@ -110,6 +110,27 @@ int32_t term1(const Tab& t, int32_t x, uint32_t th, bool imag) {
   return int32_t((int64_t(sample(x, t.xs)) * c + (int64_t(1) << (t.sh - 1))) >> t.sh);
 }
 
+// After sample i of a slide: the block's sums to the next frame's place
+// (fre/fim + j * stride) when the sample is a frame sample (until 0, then
+// `step` samples to the next; step 0: no frames). EVERY: every sample is
+// frame i, without the bookkeeping.
+template <bool EVERY>
+__attribute__((always_inline)) inline void frame_out(const VI& r, const VI& m, size_t i, size_t& j,
+                                                     uint64_t& until, int step, int32_t* fre,
+                                                     int32_t* fim, size_t stride) {
+  if constexpr (EVERY) {
+    store(fre + i * stride, r), store(fim + i * stride, m);
+    return;
+  }
+  if (step <= 0) return;
+  if (until == 0) {
+    store(fre + j * stride, r), store(fim + j * stride, m);
+    ++j;
+    until = uint64_t(step);
+  }
+  --until;
+}
+
 // One block of 8 carriers slides over samples x[0..n): its phases and sums
 // (in registers for the whole run) and its ring of `slots` slots (from
 // `slot`). until: samples before the next frame sample (0: this one; step
@@ -140,17 +161,7 @@ void slide_block(const Tab& tab, const int32_t* __restrict x, size_t n, uint32_t
     store(rs, tr), store(rs + kLanes, ti);
     ph += dph;
     slot = slot + 1 == slots ? 0 : slot + 1;
-    if constexpr (EVERY) {
-      store(fre + i * stride, r), store(fim + i * stride, m);
-      continue;
-    }
-    if (step <= 0) continue;
-    if (until == 0) {
-      store(fre + j * stride, r), store(fim + j * stride, m);
-      ++j;
-      until = uint64_t(step);
-    }
-    --until;
+    frame_out<EVERY>(r, m, i, j, until, step, fre, fim, stride);
   }
   ph -= t.half_step;
   store(phase, ph), store(re, r), store(im, m);
@@ -221,17 +232,7 @@ void slide_pairs(const Tab& tab, const int32_t* __restrict x, size_t n, uint32_t
     m = VI(VU(m) + VU(VI(VU(d) << 16) >> 16));
     ph += dph;
     slot = slot + 1 == slots ? 0 : slot + 1;
-    if constexpr (EVERY) {
-      store(fre + i * stride, r), store(fim + i * stride, m);
-      continue;
-    }
-    if (step <= 0) continue;
-    if (until == 0) {
-      store(fre + j * stride, r), store(fim + j * stride, m);
-      ++j;
-      until = uint64_t(step);
-    }
-    --until;
+    frame_out<EVERY>(r, m, i, j, until, step, fre, fim, stride);
   }
   ph -= t.half_step;
   store(phase, ph), store(re, r), store(im, m);

@@ -23,14 +23,6 @@ namespace eskin::fpga {
 
 namespace {
 
-// The largest engine rtl/frame_engine.v builds (its DW and KW limits),
-// with or without the barrel shifter (the plan's engine_fast_shift).
-template <bool FAST>
-struct EngineMax {
-  static constexpr int IW = hls::kDtmfImemBits, DW = 15, KW = 12;
-  static constexpr bool FAST_SHIFT = FAST;
-};
-
 // sdft_bank's arithmetic (dtmf_top: XW 12, CW 16, TW 10, FB 0); its static
 // helpers do not depend on K_MAX, N or ACC_W.
 using Bank = hls::SdftBank<1, 2, 12, 16, 10, 14>;
@@ -39,7 +31,7 @@ using Bank = hls::SdftBank<1, 2, 12, 16, 10, 14>;
 // cleared, carriers to the DFT), fed frames and commands.
 template <bool FAST>
 class LoadRun {
-  using Engine = hls::FrameEngine<EngineMax<FAST>>;
+  using Engine = hls::FrameEngine<hls::DtmfEngineMax<FAST>>;
 
  public:
   explicit LoadRun(const hls::DtmfTopPlan& p) : p_(p), im_(hls::dtmf_engine_image(p)), io_(p) {

@@ -24,21 +24,14 @@
 namespace eskin::simulate {
 namespace {
 
-// The engine's memories at the largest any plan's build asks for; the
-// shifter as the build has it (its clocks differ).
-template <bool FAST>
-struct BootEngine {
-  static constexpr int IW = hls::kDtmfImemBits, DW = 15, KW = 12;
-  static constexpr bool FAST_SHIFT = FAST;
-};
-
 // Clocks from reset until the microcode's boot hands the first carrier
-// table to the DFT, which starts the ADC (rtl/dtmf_top.v).
+// table to the DFT, which starts the ADC (rtl/dtmf_top.v); on the build's
+// shifter (its clocks differ).
 template <bool FAST>
 uint64_t boot_clocks(const hls::DtmfTopPlan& plan) {
   const hls::EngineImage im = hls::dtmf_engine_image(plan);
   const std::vector<uint32_t> words = hls::dtmf_ucode_words(im);
-  auto eng = std::make_unique<hls::FrameEngine<BootEngine<FAST>>>();
+  auto eng = std::make_unique<hls::FrameEngine<hls::DtmfEngineMax<FAST>>>();
   eng->load_program(words.data(), uint32_t(words.size()));
   eng->load_krom(im.krom.data(), uint32_t(im.krom.size()));
   eng->reset();

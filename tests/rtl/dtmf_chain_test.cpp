@@ -778,7 +778,9 @@ void timing_run(int mode, uint32_t seed) {
                   n1, (long long)d, (long long)most);
     }
     EXPECT_GT(with1, 0);  // layer 1's events were in the tail
-    if (T > S_MAX) EXPECT_GT(full, 0);  // and, on the large skin, windows with drops
+    if (T > S_MAX) {  // and, on the large skin, windows with drops
+      EXPECT_GT(full, 0);
+    }
     return;
   }
   for (int f = 1; f < frames; ++f) {
