@@ -91,6 +91,7 @@ struct Queued {
   uint32_t t;
   uint64_t write;  // clock it enters the FIFO
   std::vector<uint8_t> payload;
+  uint64_t frame_t = 0;  // STATUS: the newest sample of the frame it follows
 };
 
 }  // namespace
@@ -137,7 +138,7 @@ stream::BoardRun run_packet_board(const sim::Scene& scene, const hls::DtmfTopPla
   uint64_t next_status = first;  // frame 0, then every decim[2] frames
   const auto status_until = [&](uint64_t frame_t) {
     for (; status_on && next_status <= frame_t; next_status += step * cmd.decim[2]) {
-      Queued s{link::kStatus, 0, tm.write_clock(next_status), {}};
+      Queued s{link::kStatus, 0, tm.write_clock(next_status), {}, next_status};
       // t: the ADC's newest sample when the block is read (samples taken - 1).
       s.t = uint32_t((s.write - tm.adc_start) / tm.period);
       q.push_back(std::move(s));
@@ -154,11 +155,11 @@ stream::BoardRun run_packet_board(const sim::Scene& scene, const hls::DtmfTopPla
   std::stable_sort(q.begin(), q.end(),
                    [](const Queued& a, const Queued& b) { return a.write < b.write; });
 
-  // Spike events dropped by the end of each STATUS's frame: the engine over
-  // that prefix of the recording (only when any were dropped at all).
-  const auto spikes_dropped_by = [&](uint64_t t) -> uint16_t {
+  // Spike events dropped up to a STATUS's frame (newest sample frame_t): the
+  // engine over that prefix of the recording (only when any were dropped).
+  const auto spikes_dropped_by = [&](uint64_t frame_t) -> uint16_t {
     if (ps.spikes_dropped == 0) return 0;
-    return uint16_t(eng.run(bc.codes.data(), size_t(t + 1)).spikes_dropped);
+    return uint16_t(eng.run(bc.codes.data(), size_t(frame_t + 1)).spikes_dropped);
   };
 
   // FIFO and UART, packet by packet; the run ends when the ADC has taken
@@ -171,7 +172,10 @@ stream::BoardRun run_packet_board(const sim::Scene& scene, const hls::DtmfTopPla
   std::vector<uint8_t> wire;
   std::vector<double> ends_ns;
   for (Queued& p : q) {
-    while (!fifo.empty() && fifo.front().first <= p.write) level -= fifo.front().second, fifo.pop_front();
+    while (!fifo.empty() && fifo.front().first <= p.write) {
+      level -= fifo.front().second;
+      fifo.pop_front();
+    }
     if (p.write >= end) break;
     const int raw = 7 + int(p.type == link::kStatus ? link::kStatusBytes : p.payload.size());
     if (level + raw > tm.out_depth) {
@@ -184,7 +188,7 @@ stream::BoardRun run_packet_board(const sim::Scene& scene, const hls::DtmfTopPla
       s.cmd_accepted = cmd.accepted;
       s.output_mask = cmd.mask;
       s.dropped_frames = uint16_t(std::min<uint64_t>(dropped, 0xFFFF));
-      s.spikes_dropped = spikes_dropped_by(p.t);
+      s.spikes_dropped = spikes_dropped_by(p.frame_t);
       s.samples = p.t + 1;
       frame = enc.status(p.t, s);
     } else {
