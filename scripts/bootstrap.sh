@@ -5,9 +5,6 @@ set -euo pipefail
 pkgs=(
   build-essential cmake ninja-build pkg-config git
   verilator libsystemc-dev
-  # tests/formal: the SMT solver of the SymbiYosys proofs (yowasp-sby, in
-  # build/venv from bootstrap_yowasp.sh)
-  z3
   libeigen3-dev libgtest-dev libgmock-dev googletest
   libyaml-cpp-dev libcli11-dev libfmt-dev
   libfftw3-dev libsndfile1-dev

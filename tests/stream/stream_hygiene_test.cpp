@@ -253,10 +253,11 @@ TEST(StreamHygiene, LiveViewStaysOnLoopbackUnlessPublic) {
     std::vector<std::string> args = {ESKIN_BIN, "stream", "--port", pty.slave_path(), "--quiet"};
     args.insert(args.end(), live.begin(), live.end());
     Process p(args, (dir / "out").string(), (dir / "err").string());
-    ASSERT_TRUE(p.wait_output([](const std::string& e) { return e.find("live view at") != e.npos; },
+    // Waits for the whole line: stderr may arrive in pieces.
+    static const std::regex re(R"(live view at (http://([^/]*):(\d+)/)\n)");
+    ASSERT_TRUE(p.wait_output([](const std::string& e) { return std::regex_search(e, re); },
                               true, 10s))
         << p.err();
-    static const std::regex re(R"(live view at (http://([^/]*):(\d+)/))");
     std::smatch m;
     const std::string err = p.err();
     ASSERT_TRUE(std::regex_search(err, m, re)) << err;
