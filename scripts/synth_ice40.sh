@@ -86,6 +86,13 @@ if ! plain_word "$out"; then
   ys_out=$(mktemp -d /tmp/eskin-yosys.XXXXXX)
   trap 'rm -rf "$ys_out"' EXIT
 fi
+# Elaboration alone first, with hierarchy -check (the iCE40 cells known as
+# black boxes): an illegal parameter set stops here, at its module's
+# `MODULE_illegal_parameters` cell, in a fraction of a second instead of
+# after the minutes a large design's synthesis takes (synth_ice40 checks the
+# hierarchy only after its own passes). A separate run, so that the
+# synthesis below sees exactly the design it always did.
+yosys -q -l "$out/elaborate.log" -p "read_verilog -lib +/ice40/cells_sim.v; verilog_defaults -add -sv; read_verilog$defines$files; $chparam hierarchy -check -libdir $root/rtl -top $top" >/dev/null
 yosys -q -l "$out/yosys.log" -p "verilog_defaults -add -sv; read_verilog$defines$files; $chparam hierarchy -libdir $root/rtl -top $top; verilog_defaults -clear; \
   synth_ice40 -dsp -spram -abc9 -top $top -json $ys_out/$top.json; tee -o $ys_out/stat.txt stat" >/dev/null
 if [ "$ys_out" != "$out" ]; then mv "$ys_out/$top.json" "$ys_out/stat.txt" "$out/"; fi

@@ -33,9 +33,10 @@ foreach(tag 16s mux8 deltas 002 001 003)
   eskin_verilate(${exe} Vhall_top_${tag} ${CMAKE_SOURCE_DIR}/rtl/hall_top.v hall_top ${hall_${tag}})
 endforeach()
 # The decoding's modules are read by Yosys as submodules (plain Verilog, no
-# casts): synthesise the seed-002 build, which has them all, and place and
-# route it on the UP5K at 12 MHz, which it fits since hall_baseline keeps its
-# state in block RAM (about 1.5 min; fails on a no-fit or Fmax < 12 MHz).
+# casts): synthesise the seed-002 build, which has them all. Its place and
+# route on the UP5K at 12 MHz (it fits since hall_baseline keeps its state
+# in block RAM) is bitstream.icebreaker_hall_002's, the same core in the
+# iCEBreaker's wrapper (tests/fpga/CMakeLists.txt).
 set(hall_002_synth "")
 foreach(p ${hall_002})
   string(REGEX REPLACE "^-G" "" p ${p})
@@ -43,7 +44,7 @@ foreach(p ${hall_002})
 endforeach()
 add_test(NAME synth.hall_top_002
   COMMAND ${CMAKE_SOURCE_DIR}/scripts/synth_ice40.sh hall_top ${hall_002_synth}
-    --pnr --freq 12 --out ${CMAKE_BINARY_DIR}/synth/hall_top_002)
+    --out ${CMAKE_BINARY_DIR}/synth/hall_top_002)
 set_tests_properties(synth.hall_top_002 PROPERTIES LABELS synth TIMEOUT 600)
 # Every Hall module stops an illegal parameter set at elaboration, naming
 # the rule it broke (one set per module; module|parameters|the stop's name).

@@ -54,9 +54,17 @@ class SlurmCluster {
         << "SlurmdPidFile=" << d << "/slurmd.pid\nSlurmctldLogFile=" << d << "/slurmctld.log\n"
         << "SlurmdLogFile=" << d << "/slurmd.log\nProctrackType=proctrack/linuxproc\n"
         << "TaskPlugin=task/none\nSelectType=select/cons_tres\nSelectTypeParameters=CR_Core\n"
-        << "SchedulerType=sched/builtin\nJobCompType=jobcomp/none\n"
+        // Array tasks start as a CPU frees, not on the scheduler's default
+        // 3 s cadence for batch jobs (batch_sched_delay).
+        << "SchedulerType=sched/builtin\nSchedulerParameters=batch_sched_delay=0\n"
+        << "JobCompType=jobcomp/none\n"
         << "JobAcctGatherType=jobacct_gather/none\nAccountingStorageType=accounting_storage/none\n"
         << "MpiDefault=none\nReturnToService=2\n"
+        // sbatch --wait polls every 2 s while that is under a third of
+        // MinJobAge, and otherwise backs off to 8 and 32 s (the default 300
+        // s age): most of a short array's run would be sbatch asleep. A
+        // finished job stays listed 6 s, three polls.
+        << "MinJobAge=6\n"
         << "NodeName=localhost NodeHostname=localhost CPUs=2 State=UNKNOWN\n"
         << "PartitionName=eskin Nodes=localhost Default=YES MaxTime=INFINITE State=UP\n";
     conf_ = d + "/slurm.conf";
