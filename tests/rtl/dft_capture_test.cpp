@@ -27,10 +27,17 @@
 // inside the 40 clocks of a 40 MHz core); l1: one lane, KS 7,
 // N 32, ACC_W 18 (the default 3x3 top's DFT). STEP 3 in both. s32: the
 // ADC's pace at a 32x32 skin's 1 MS/s (its test states its bounds).
+// The cycle level's C++ models (sim/cycle/sdft_bank.h into
+// sim/cycle/frame_capture.h) give the same ready signals, token valid and
+// last, pending, frame_t, overruns and engine reads as the l1 build at
+// every clock, under random samples, carrier tables (reloaded mid-stream,
+// and written with samples between their writes), reads, releases and
+// clears (bound: exact).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -38,6 +45,8 @@
 #include "Vdft_capture_tb_l1.h"
 #include "Vdft_capture_tb_s32.h"
 #include "dft_capture_bench.h"
+#include "sim/cycle/frame_capture.h"
+#include "sim/cycle/sdft_bank.h"
 #include "frame_rule.h"
 #include "eskin/dtmf_top_plan.h"
 #include "hls/sdft_bank.h"
@@ -193,6 +202,84 @@ TEST(DftCapture, ThirtyTwoByThirtyTwoAtOneMegasampleInElevenLanesLosesNoSample) 
   EXPECT_EQ(r.tokens, 3u * k);
   EXPECT_EQ(r.tokens_refused, 0u);
   EXPECT_EQ(r.overruns, 0u);
+}
+
+// The l1 build against the cycle models, clock by clock. Random traffic:
+// samples offered 70 % of clocks, carrier tables of 1..7 carriers written
+// now and then (every few thousand clocks, with gaps between their writes
+// in which samples go in), the engine's read address random below 2 KS,
+// releases and counter clears at random.
+TEST(DftCapture, CycleModelsEqualTheRtlEveryClock) {
+  dft_capture_bench::Bench<Vdft_capture_tb_l1> b;
+  auto& m = *b.m;
+  m.in_valid = 0;
+  b.reset();
+  eskin::cycle::SdftBank<7, 32, 18> sdft;
+  eskin::cycle::FrameCapture cap(7, 18, 32, 3);
+  sdft.reset();
+  cap.reset();
+  std::mt19937_64 rng(77);
+  uint32_t t = 0;
+  int cfg_left = 0, cfg_k = 0, cfg_n = 0;  // a table being written: carriers left, next, its K
+  long frames = 0, tokens = 0, compared_reads = 0;
+  bool both_banks = false;
+  for (long c = 0; c < 400000; ++c) {
+    // A new carrier table now and then, first at once.
+    if (cfg_left == 0 && (c == 0 || rng() % 6000 == 0)) {
+      cfg_n = 1 + int(rng() % 7);
+      if (c == 0) cfg_n = 7;  // both banks hold every word before reads count
+      cfg_left = cfg_n, cfg_k = 0;
+    }
+    const bool cfg_valid = cfg_left > 0 && rng() % 4 == 0;
+    const bool cfg_last = cfg_left == 1;
+    const uint32_t cfg_inc = uint32_t(rng());
+    const bool in_valid = rng() % 10 < 7;
+    const int32_t x = int32_t(rng() % 4096) - 2048;
+    const uint8_t rd_addr = uint8_t(rng() % 14);
+    const bool done = rng() % 40 == 0;
+    const bool clear = rng() % 5000 == 0;
+    m.cfg_valid = cfg_valid;
+    m.cfg_k = uint8_t(cfg_k);
+    m.cfg_inc = cfg_inc;
+    m.cfg_last = cfg_last;
+    m.in_valid = in_valid;
+    m.in_x = uint16_t(x & 0xFFF);
+    m.rd_addr = rd_addr;
+    m.done = done;
+    m.clear = clear;
+    m.clk = 0;
+    m.eval();
+    const bool ir = sdft.in_ready(cfg_valid);
+    ASSERT_EQ(bool(m.in_ready), ir) << "clock " << c;
+    ASSERT_EQ(bool(m.cfg_ready), sdft.cfg_ready()) << "clock " << c;
+    ASSERT_EQ(bool(m.tok_valid), sdft.out_valid()) << "clock " << c;
+    if (sdft.out_valid()) {
+      ASSERT_EQ(bool(m.tok_last), sdft.out_last()) << "clock " << c;
+    }
+    ASSERT_EQ(bool(m.pending), cap.pending()) << "clock " << c;
+    ASSERT_EQ(m.frame_t, cap.frame_t()) << "clock " << c;
+    ASSERT_EQ(m.overruns, cap.overruns()) << "clock " << c;
+    if (both_banks) {
+      ASSERT_EQ(m.rd_data, cap.rd_data()) << "clock " << c;
+      ++compared_reads;
+    }
+    const bool fire = in_valid && ir;
+    const bool skip = !cap.smp_frame();  // from the capture's registers before the edge
+    const bool cfg_fire = cfg_valid && sdft.cfg_ready();
+    tokens += sdft.out_valid();
+    frames += done && cap.pending();
+    if (frames >= 2 && cap.pending()) both_banks = true;
+    cap.clock(cfg_fire && cfg_last, fire, t, sdft.out_valid(), sdft.out_last(), sdft.out_re(),
+              sdft.out_im(), rd_addr, done, clear);
+    sdft.clock(in_valid, x, skip, cfg_valid, uint8_t(cfg_k), cfg_inc, cfg_last,
+               true);
+    if (fire) ++t;
+    if (cfg_fire) --cfg_left, ++cfg_k;
+    b.tick();
+  }
+  EXPECT_GT(frames, 1000);
+  EXPECT_GT(tokens, 7000);
+  EXPECT_GT(compared_reads, 300000);
 }
 
 }  // namespace
