@@ -14,18 +14,28 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "hls/sdft_bank.h"
 
 namespace eskin::cycle {
 
-// CONFIG_T as the RTL's parameters (XW, CW, TW, FB at the top's values).
-template <int K_MAX, int N, int ACC_W, int XW = 12, int CW = 16, int TW = 10, int FB = 0>
+// Sizes at run time (K_MAX, N, ACC_W: a top's plan); the formats are the
+// top's (XW 12, CW 16, TW 10, FB 0), whose sine table and rounding are
+// hls::SdftBank's.
 class SdftBank {
-  using Hls = hls::SdftBank<K_MAX, N, XW, CW, TW, ACC_W, FB>;
+  // The kernel's table, index and rounding depend on XW, CW, TW and FB only.
+  using Hls = hls::SdftBank<1, 2, 12, 16, 10, 32, 0>;
 
  public:
+  SdftBank(int k_max, int n, int acc_w)
+      : n_(n), acc_w_(acc_w), kd_(depth(k_max)), inc_(size_t(kd_)), ph_(size_t(kd_)),
+        re_(size_t(kd_)), im_(size_t(kd_)), win_(size_t(n)) {
+    if (k_max < 1 || k_max > 256 || n < 2 || acc_w < 14 || acc_w > 32)
+      throw std::invalid_argument("SdftBank: K_MAX 1..256, N >= 2, ACC_W 14..32");
+  }
+
   // in_ready depends on this clock's cfg_valid (a carrier write goes first).
   bool in_ready(bool cfg_valid) const { return state_ == kIdle && configured_ && !cfg_valid; }
   bool cfg_ready() const { return state_ == kIdle; }
@@ -61,11 +71,11 @@ class SdftBank {
     } else if (out_ready) {
       out_valid_ = false;
     }
-    if (cfg_fire) inc_[cfg_k & (kKd - 1)] = cfg_inc;  // the RAM's KB address bits
+    if (cfg_fire) inc_[size_t(cfg_k & (kd_ - 1))] = cfg_inc;  // the RAM's KB address bits
     switch (state_) {
       case kIdle:
         if (cfg_fire && cfg_last) {
-          klast_ = cfg_k & (kKd - 1);
+          klast_ = cfg_k & (kd_ - 1);
           configured_ = true;
           clear();
         } else if (in_fire) {
@@ -89,15 +99,18 @@ class SdftBank {
 
  private:
   enum State : uint8_t { kIdle, kOld, kC1, kC2, kC3, kC4, kC5, kC6 };
-  static constexpr int kKd = [] {  // the RTL's carrier RAM depth, 2^clog2(K_MAX)
+  static int depth(int k_max) {  // the RTL's carrier RAM depth, 2^clog2(K_MAX), at least 2
     int d = 2;
-    while (d < K_MAX) d *= 2;
+    while (d < k_max) d *= 2;
     return d;
-  }();
+  }
+  int32_t wrap_acc(int64_t v) const {  // modulo 2^ACC_W, sign-extended
+    return int32_t(int64_t(uint64_t(v) << (64 - acc_w_)) >> (64 - acc_w_));
+  }
 
   void clear() {  // cfg_last: window, phases and sums read as 0 from now on
-    for (int i = 0; i < N; ++i) win_[size_t(i)] = 0;
-    for (int k = 0; k < kKd; ++k) re_[size_t(k)] = im_[size_t(k)] = 0, ph_[size_t(k)] = 0;
+    for (auto& w : win_) w = 0;
+    for (int k = 0; k < kd_; ++k) re_[size_t(k)] = im_[size_t(k)] = 0, ph_[size_t(k)] = 0;
     wp_ = 0;
   }
   // The sample's new sums and phases for carriers 0..klast, as C1..C6 write them.
@@ -105,13 +118,13 @@ class SdftBank {
     const int32_t x = Hls::wrap_sample(x_in);
     const int32_t x_old = win_[size_t(wp_)];
     win_[size_t(wp_)] = x;
-    wp_ = wp_ + 1 == N ? 0 : wp_ + 1;
+    wp_ = wp_ + 1 == n_ ? 0 : wp_ + 1;
     for (int k = 0; k <= klast_; ++k) {
       const uint32_t th = ph_[size_t(k)], inc = inc_[size_t(k)];
-      const uint32_t in = Hls::index(th), io = Hls::index(th - inc * uint32_t(N));
-      re_[size_t(k)] = Hls::wrap_acc(int64_t(re_[size_t(k)]) + Hls::term(x, Hls::cosine(in)) -
+      const uint32_t in = Hls::index(th), io = Hls::index(th - inc * uint32_t(n_));
+      re_[size_t(k)] = wrap_acc(int64_t(re_[size_t(k)]) + Hls::term(x, Hls::cosine(in)) -
                                      Hls::term(x_old, Hls::cosine(io)));
-      im_[size_t(k)] = Hls::wrap_acc(int64_t(im_[size_t(k)]) + Hls::term(x, -Hls::sine(in)) -
+      im_[size_t(k)] = wrap_acc(int64_t(im_[size_t(k)]) + Hls::term(x, -Hls::sine(in)) -
                                      Hls::term(x_old, -Hls::sine(io)));
       ph_[size_t(k)] = th + inc;
     }
@@ -120,9 +133,9 @@ class SdftBank {
   State state_ = kIdle;
   bool configured_ = false, skip_ = false;
   int klast_ = 0, k_ = 0;
-  uint32_t inc_[kKd] = {}, ph_[kKd] = {};
-  int32_t re_[kKd] = {}, im_[kKd] = {};
-  int32_t win_[N] = {};
+  int n_, acc_w_, kd_;
+  std::vector<uint32_t> inc_, ph_;
+  std::vector<int32_t> re_, im_, win_;
   int wp_ = 0;
   bool out_valid_ = false, out_last_ = false;
   uint8_t out_k_ = 0;

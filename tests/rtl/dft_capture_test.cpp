@@ -214,7 +214,7 @@ TEST(DftCapture, CycleModelsEqualTheRtlEveryClock) {
   auto& m = *b.m;
   m.in_valid = 0;
   b.reset();
-  eskin::cycle::SdftBank<7, 32, 18> sdft;
+  eskin::cycle::SdftBank sdft(7, 32, 18);
   eskin::cycle::FrameCapture cap(7, 18, 32, 3);
   sdft.reset();
   cap.reset();
