@@ -131,7 +131,7 @@ target_compile_definitions(${exe} PRIVATE DTMF_TOP_DIR="${dtmf_dir}"
   DTMF_TOP_S32M_PARAMS="${dtmf_s32m_str}" DTMF_TOP_S32M_CLK_HZ=50000000
   DTMF_TOP_P3S_PARAMS="${dtmf_p3s_str}" DTMF_TOP_P3S_CLK_HZ=18000000
   DTMF_TOP_S64_PARAMS="${dtmf_s64_str}" DTMF_TOP_S64_CLK_HZ=40000000)
-target_link_libraries(${exe} PRIVATE eskin_ucode eskin_fpga)
+target_link_libraries(${exe} PRIVATE eskin_ucode eskin_fpga eskin_cycle)
 # Verilator 5.006 leaves an unused delayed copy of power_on_reset's
 # synchroniser in the code it writes for the two-clock build (s32m):
 # GCC's -Wunused-but-set-variable on generated code, not ours.

@@ -47,6 +47,7 @@
 #include "Vdtmf_top_s64___024root.h"
 #include "Vdtmf_top_p3c___024root.h"
 #include "dtmf_top_board.h"
+#include "sim/cycle/dtmf_top.h"
 #include "hls/dtmf_chain.h"
 #include "eskin/dtmf_top_plan.h"
 #include "ucode/dtmf_io_map.h"
@@ -1122,6 +1123,103 @@ TEST(DtmfTopContracts, NoThirdNestedCall) {
                              "two:    ret\n",
                              "frame_engine: return stack overflow: the call at PC 3 is a third "
                              "nested call");
+}
+
+// ---------------------------------------------------------------------------
+// The cycle level's FPGA (sim/cycle/dtmf_top.h: the blocks' C++ models
+// around the frame engine's instruction-set model) against the Verilated
+// default top, pin for pin at every clock. Both get the same inputs: SDATA
+// from the AD7476A pin model driven by the RTL's pins (which the model's
+// must equal), a UART line carrying commands (accepted ones of every
+// kind, rejections, a corrupted frame, a carrier reload, CLEAR_COUNTERS,
+// REQUEST_STATUS), and a one-clock press of the reset button late in the
+// run. Bound: exact (CS, SCLK and TXD equal at every clock); the run must
+// carry packets (the host decodes them from TXD) so that equality is not
+// that of an idle line. The engine's timing before its first wait (the
+// boot) reaches the pins only through the clock the ADC starts, a period's
+// grain: the clocks of each carrier table's load (the RTL's probe
+// p_cfg_done) must be equal too.
+TEST(DtmfTopCycle, TheCycleLevelsPinsEqualTheRtlsEveryClock) {
+  const BuildSetup s = prepare(kDefault);
+  ASSERT_EQ(eskin::cycle::DtmfTop::unsupported(s.plan), "");
+  auto m = std::make_unique<Vdtmf_top>();
+  eskin::cycle::DtmfTop top(s.plan);
+  auto codes = s.codes12;
+  codes.resize(codes.size() + 20000, 2048);
+  eskin::sim::Ad7476Model adc(codes);
+  eskin::link::LinkEncoder enc;
+  using namespace eskin::link;
+  const int K = s.plan.K;
+  // (clock to start sending, bytes)
+  std::vector<std::pair<uint64_t, std::vector<uint8_t>>> cmds = {
+      {300000, enc.set_output_mask(0x1F)},
+      {400000, enc.set_decimation(2, 25)},
+      {500000, enc.set_threshold(9, 1)},  // rejected: index
+      {600000, enc.frame(0x90, 0, {})},   // rejected: type
+      {700000, enc.set_decimation(1, 2)},
+      {800000, enc.set_carrier_inc(uint8_t(K - 1), s.plan.inc[size_t(K - 1)] + 100000)},
+      {900000, enc.set_neuron(0x03, s.plan.neuron[0].gain_shift + 1)},
+      {1000000, enc.request_status()},
+      {1100000, enc.clear_counters()},
+  };
+  auto bad = enc.set_threshold(0, 1);
+  bad[3] ^= 0x04;  // the CRC catches it
+  cmds.push_back({1200000, bad});
+  cmds.push_back({1300000, enc.request_status()});
+  const uint64_t reset_at = 2000000, clocks = 2600000;
+  std::vector<int> line;  // the UART's level at each clock
+  for (const auto& [at, bytes] : cmds) {
+    if (line.size() < at) line.resize(at, 1);
+    for (uint8_t b : bytes)
+      for (int slot = 0; slot < 10; ++slot)
+        line.insert(line.end(), size_t(s.cpb),
+                    slot == 0 ? 0 : slot == 9 ? 1 : (b >> (slot - 1)) & 1);
+  }
+  line.resize(clocks, 1);
+  LinkDecoder host;
+  size_t packets = 0;
+  host.on_packet([&packets](const Packet&) { ++packets; });
+  int host_bit = -1;  // the host's 8N1 receiver on TXD: clocks into the frame, -1 idle
+  uint8_t byte = 0;
+  const double clk_hz = double(kDefault.clk_hz);
+  std::vector<uint64_t> rtl_loads;  // clocks in which cfg_done is high
+  m->clk = 0; m->rst_n = 1; m->uart_rxd = 1; m->adc_sdata = 0; m->adc_clk = 0;
+  m->eval();
+  for (uint64_t c = 0; c < clocks; ++c) {
+    const double t_ns = double(c + 1) * 1e9 / clk_hz;
+    eskin::vboard::FpgaInputs in;
+    in.reset = c == reset_at;
+    in.adc_sdata = adc.sdata(t_ns);
+    in.uart_rxd = line[c] != 0;
+    m->rst_n = !in.reset;
+    m->adc_sdata = in.adc_sdata;
+    m->uart_rxd = in.uart_rxd;
+    if (m->rootp->dtmf_top__DOT__p_cfg_done) rtl_loads.push_back(c);  // during clock c
+    m->clk = 1;
+    m->eval();
+    const eskin::vboard::FpgaOutputs o = top.cycle(in, uint64_t(t_ns * 1000));
+    ASSERT_EQ(o.adc_cs_n, bool(m->adc_cs_n)) << "clock " << c;
+    ASSERT_EQ(o.adc_sclk, bool(m->adc_sclk)) << "clock " << c;
+    ASSERT_EQ(o.uart_txd, bool(m->uart_txd)) << "clock " << c;
+    adc.drive(t_ns, m->adc_cs_n, m->adc_sclk);
+    m->clk = 0;
+    m->eval();
+    // The host's receiver: a start bit's middle, then each bit's.
+    const bool txd = m->uart_txd;
+    if (host_bit < 0) {
+      if (!txd) host_bit = 0, byte = 0;
+    } else if (++host_bit % s.cpb == s.cpb / 2) {
+      const int j = host_bit / s.cpb;
+      if (j >= 1 && j <= 8) byte = uint8_t(byte | (int(txd) << (j - 1)));
+      if (j == 9) host.feed(&byte, 1), host_bit = -1;
+    }
+  }
+  EXPECT_EQ(top.clocks(), clocks);
+  EXPECT_EQ(top.carrier_loads(), rtl_loads);
+  EXPECT_EQ(rtl_loads.size(), 3u) << "the boot's, the reload's and the boot's after the reset";
+  EXPECT_GT(packets, 150u) << "the line must carry packets";
+  // The reset may cut the frame that is on the line; nothing else is lost.
+  EXPECT_LE(host.stats().crc_errors + host.stats().framing_errors, 1u);
 }
 
 }  // namespace
