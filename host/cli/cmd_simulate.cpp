@@ -43,8 +43,10 @@ std::function<int()> setup(CLI::App& app) {
   auto fidelity = std::make_shared<std::string>("rtl");
   sub->add_option("--fidelity", *fidelity,
                   "how much of the board to model: rtl (the Verilated FPGA top, clock by clock, "
-                  "behind a pty; the default) or packet (the FPGA's integer chain's packets, timed "
-                  "per packet: DTMF skins; docs/vboard.md, \"Fidelity levels\")")
+                  "behind a pty; the default), cycle (the same board with the FPGA's clock-exact "
+                  "C++ models: the same bytes at the same clocks, DTMF skins of the builds it "
+                  "models) or packet (the FPGA's integer chain's packets, timed per packet: DTMF "
+                  "skins; docs/vboard.md, \"Fidelity levels\")")
       ->capture_default_str();
   auto faults = std::make_shared<std::vector<std::string>>();
   sub->add_option("--fault", *faults,

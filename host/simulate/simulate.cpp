@@ -23,6 +23,7 @@
 #include "host/simulate/golden_run.h"
 #include "host/simulate/line_report.h"
 #include "host/simulate/packet_board.h"
+#include "sim/cycle/dtmf_top.h"
 #include "host/stream/board_link.h"
 #include "sim/hall_world.h"
 #include "sim/scene.h"
@@ -226,17 +227,32 @@ int run_simulate_dtmf(const sim::Scene& scene, const SimulateOptions& o) {
     report::report_dtmf(scene, o.scene, build, gold, run, run.done.at("scene_samples"), o.out);
     return 0;
   }
-  const std::string exe = o.board.empty() ? vboard::board_executable(build, note) : o.board;
+  std::vector<std::string> args = stream::board_args(o.scene, o.trace, commands, line_args(o));
+  std::string exe;
+  if (o.fidelity == Fidelity::cycle) {  // one board for every build it models: the build as options
+    const std::string why = cycle::DtmfTop::unsupported(build.plan);
+    if (!why.empty())
+      throw ConfigError("--fidelity", fmt::format("{}: the cycle level does not model this scene's "
+                                                  "build ({}): use --fidelity rtl",
+                                                  o.scene, why));
+    exe = vboard::cycle_board_executable();
+    const hls::DtmfTopSpec& sp = build.plan.spec;
+    args.insert(args.end(), {"--clk-hz", std::to_string(sp.clk_hz), "--baud", std::to_string(sp.baud),
+                             "--engine-shifter", sp.engine_fast_shift ? "barrel" : "bit-serial",
+                             "--neurons", sp.neuron_unit ? "unit" : "microcode"});
+  } else {
+    exe = o.board.empty() ? vboard::board_executable(build, note) : o.board;
+  }
   std::filesystem::create_directories(o.out);
 
-  vboard::VboardProcess board(exe, stream::board_args(o.scene, o.trace, commands, line_args(o)));
+  vboard::VboardProcess board(exe, args);
   const size_t total = board.ready().at("scene_samples");
   report::GoldenRun gold;
   stream::BoardRun run = stream::run_board(
       board, int(build.baud()), commands, total,
       [](const Packet& p) { return long(p.t); },
       [&] { gold = run_golden(scene, build.plan.step); });
-  run.done["fidelity"] = "rtl";
+  run.done["fidelity"] = fidelity_name(o.fidelity);
   write_link_log(o.out, run);
   judge_line(o, run);
   note_board_faults(o, run);
@@ -264,12 +280,15 @@ void check_out_dir(const std::string& out) {
   ::unlink(probe.c_str());
 }
 
-const char* fidelity_name(Fidelity f) { return f == Fidelity::packet ? "packet" : "rtl"; }
+const char* fidelity_name(Fidelity f) {
+  return f == Fidelity::packet ? "packet" : f == Fidelity::cycle ? "cycle" : "rtl";
+}
 
 Fidelity parse_fidelity(const std::string& s) {
   if (s == "rtl") return Fidelity::rtl;
+  if (s == "cycle") return Fidelity::cycle;
   if (s == "packet") return Fidelity::packet;
-  throw ConfigError("--fidelity", "'" + s + "': expected rtl or packet");
+  throw ConfigError("--fidelity", "'" + s + "': expected rtl, cycle or packet");
 }
 
 int run_simulate(const SimulateOptions& o) {
@@ -285,20 +304,25 @@ int run_simulate(const SimulateOptions& o) {
     if (f.at_ms >= scene.duration_s * 1e3)
       throw std::invalid_argument(fmt::format("--fault {}: the scene ends at {} ms, before it",
                                               vboard::board_fault_text(f), scene.duration_s * 1e3));
-  if (o.fidelity != Fidelity::rtl) {  // what the packet level does not model is refused
+  if (o.fidelity != Fidelity::rtl) {  // what the faster levels do not model is refused
     if (scene.has_hall)
       throw ConfigError("--fidelity", fmt::format("{}: the {} level models DTMF skins; this scene "
                                                   "has Hall sensors: use --fidelity rtl",
                                                   o.scene, fidelity_name(o.fidelity)));
+    // The cycle level has the board and the FPGA's pins (faults act there)
+    // but no waveforms, and is one board executable of its own.
+    const bool packet = o.fidelity == Fidelity::packet;
     const char* opt = !o.board.empty()   ? "--board"
                       : !o.trace.empty() ? "--trace"
-                      : o.line.any()   ? "line faults (--ber, --drop-rate, --insert-rate, --pull-cable)"
-                      : !o.faults.empty() ? "--fault"
-                                          : nullptr;
+                      : packet && o.line.any() ? "line faults (--ber, --drop-rate, --insert-rate, --pull-cable)"
+                      : packet && !o.faults.empty() ? "--fault"
+                                                    : nullptr;
     if (opt)
       throw ConfigError("--fidelity", fmt::format("{} needs the Verilated board (--fidelity rtl); "
-                                                  "the {} level has no pins to fault or trace",
-                                                  opt, fidelity_name(o.fidelity)));
+                                                  "the {} level has {}",
+                                                  opt, fidelity_name(o.fidelity),
+                                                  packet ? "no pins to fault or trace"
+                                                         : "no waveforms and one board of its own"));
   }
   check_out_dir(o.out);
   if (scene.has_hall && scene.has_skin) return run_simulate_mixed(scene, o);

@@ -14,11 +14,13 @@
 namespace eskin::simulate {
 
 // How much of the board a run models (docs/vboard.md, "Fidelity levels"):
-// rtl, the Verilated FPGA top clock by clock behind a pty; packet, the
-// FPGA's integer chain's packets timed per packet (host/simulate/packet_board.h).
-enum class Fidelity { rtl, packet };
-// "rtl" / "packet"; parse_fidelity throws ConfigError("--fidelity", ...) for
-// any other word.
+// rtl, the Verilated FPGA top clock by clock behind a pty; cycle, the same
+// board with the FPGA's clock-exact C++ models (sim/cycle/dtmf_top.h);
+// packet, the FPGA's integer chain's packets timed per packet
+// (host/simulate/packet_board.h).
+enum class Fidelity { rtl, cycle, packet };
+// "rtl" / "cycle" / "packet"; parse_fidelity throws
+// ConfigError("--fidelity", ...) for any other word.
 const char* fidelity_name(Fidelity f);
 Fidelity parse_fidelity(const std::string& s);
 

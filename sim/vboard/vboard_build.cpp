@@ -109,6 +109,10 @@ std::string variant_executable(const std::string& name,
   return in_build_dir(ESKIN_VBOARD_BIN_DIR) + "/" + target;
 }
 
+std::string cycle_board_executable() {
+  return in_build_dir(ESKIN_VBOARD_BIN_DIR) + "/eskin-vboard-cycle";
+}
+
 std::string board_executable(const FpgaBuild& b,
                              const std::function<void(const std::string&)>& note) {
   if (b.key == "default") return in_build_dir(ESKIN_VBOARD_BIN_DIR) + "/eskin-vboard";

@@ -31,6 +31,10 @@ std::string board_executable(const HallBuild& b,
 std::string board_executable(const MixedBuild& b,
                              const std::function<void(const std::string&)>& note);
 
+// The cycle level's board (vboard_cycle_main.cpp): one executable for
+// every build it models, built with the project.
+std::string cycle_board_executable();
+
 // The default scene's board built with other Verilator options
 // (sim/vboard/CMakeLists.txt's vboard_variants, for `eskin bench sim-speed
 // --verilator`): their names, and a variant's executable, built first

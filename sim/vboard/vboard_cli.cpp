@@ -12,7 +12,8 @@
 namespace eskin::vboard {
 
 int vboard_cli_main(int argc, char** argv, const std::string& title, double default_tail_s,
-                    const std::function<int(const VboardArgs&, FILE* json)>& run) {
+                    const std::function<int(const VboardArgs&, FILE* json)>& run,
+                    bool build_options) {
   // stdout is for the JSON lines only: keep it on its own stream and send
   // everything else written to fd 1 (SystemC's banner) to stderr.
   FILE* json = fdopen(dup(1), "w");
@@ -54,8 +55,21 @@ int vboard_cli_main(int argc, char** argv, const std::string& title, double defa
                  "docs/vboard.md, \"Board faults\")");
   app.add_option("--tap-to-host", a.tap_to_host,
                  "write the FPGA's bytes on uart_txd, before the line's faults, to this file");
+  std::string shifter = "bit-serial", neurons = "microcode";
+  if (build_options) {
+    app.add_option("--clk-hz", a.build.clk_hz, "the FPGA build's clock, Hz")->required()
+        ->check(CLI::PositiveNumber);
+    app.add_option("--baud", a.build.baud, "the FPGA build's UART rate")->required()
+        ->check(CLI::PositiveNumber);
+    app.add_option("--engine-shifter", shifter, "the frame engine's shifter: bit-serial or barrel")
+        ->check(CLI::IsMember({"bit-serial", "barrel"}))->capture_default_str();
+    app.add_option("--neurons", neurons, "the neurons: microcode or unit")
+        ->check(CLI::IsMember({"microcode", "unit"}))->capture_default_str();
+  }
   try {
     app.parse(argc, argv);
+    a.build.fast_shift = shifter == "barrel";
+    a.build.neuron_unit = neurons == "unit";
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }

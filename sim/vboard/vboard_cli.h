@@ -32,13 +32,23 @@ struct VboardArgs {
   std::string tap_to_host;  // the FPGA's bytes before the line's faults, to this file
   std::vector<std::string> fault_args;  // --fault values as given
   std::vector<BoardFault> faults;       // ... parsed (docs/vboard.md, "Board faults")
+  // The cycle level's board (vboard_cycle_main.cpp) is one executable for
+  // every build: the build it models is given at run time (--clk-hz,
+  // --baud, --engine-shifter, --neurons). Boards compiled for one build
+  // have no such options.
+  struct Build {
+    long clk_hz = 0, baud = 0;
+    bool fast_shift = false, neuron_unit = false;
+  } build;
 };
 
 // sc_main's body: stdout kept for the JSON lines (`json` in `run`),
+// (build_options: the board takes its build's options, VboardArgs::Build),
 // everything else written to fd 1 (SystemC's banner) sent to stderr; the
 // arguments parsed; `run` called; errors printed as "eskin-vboard: error:".
 int vboard_cli_main(int argc, char** argv, const std::string& title, double default_tail_s,
-                    const std::function<int(const VboardArgs&, FILE* json)>& run);
+                    const std::function<int(const VboardArgs&, FILE* json)>& run,
+                    bool build_options = false);
 
 // The start, trace and fault options into the board's configuration;
 // throws std::invalid_argument for a board fault this board cannot have
