@@ -1,8 +1,12 @@
 // The fidelity levels of `eskin simulate` against each other, on the
 // example scenes the virtual board runs (docs/vboard.md, "Fidelity
-// levels"): the packet level (host/simulate/packet_board.h) must deliver
-// the Verilated board's packets, byte for byte, each arriving within a
-// bound derived here from the build, not from the model's own figures.
+// levels"): the cycle level (sim/cycle/dtmf_top.h) must give the Verilated
+// board's host-side record exactly (every packet's bytes and its arrival
+// to the nanosecond: the same bytes at the same clocks), with line and
+// board faults too; the packet level (host/simulate/packet_board.h) must
+// deliver the Verilated board's packets, byte for byte, each arriving
+// within a bound derived here from the build, not from the model's own
+// figures.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,26 +55,49 @@ std::vector<LinkPacket> read_link_log(const fs::path& p) {
   return v;
 }
 
-struct Run {
+struct LevelRun {
   nlohmann::json summary;
   std::vector<LinkPacket> link;
+  std::string link_text;  // fpga_link.csv as written
 };
 
-Run simulate(const std::string& scene, const std::string& level) {
-  const fs::path out = fs::path(testing::TempDir()) / ("fidelity_" + scene + "_" + level);
+LevelRun simulate(const std::string& scene, const std::string& level,
+             const std::vector<std::string>& extra = {}) {
+  const fs::path out = fs::path(testing::TempDir()) / ("fidelity_" + scene + "_" + level +
+                                                       std::to_string(extra.size()));
   fs::remove_all(out);
   std::string log;
-  const int rc = run_argv({ESKIN_BIN, "simulate", std::string(ESKIN_SOURCE_DIR) + "/scenes/" + scene + ".yaml",
-                           "--fidelity", level, "--out", out.string()},
-                          &log);
+  std::vector<std::string> argv{ESKIN_BIN, "simulate",
+                                std::string(ESKIN_SOURCE_DIR) + "/scenes/" + scene + ".yaml",
+                                "--fidelity", level, "--out", out.string()};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  const int rc = run_argv(argv, &log);
   EXPECT_EQ(rc, 0) << log;
-  Run r;
+  LevelRun r;
   if (rc != 0) return r;
   EXPECT_NE(log.find(level + " level"), std::string::npos) << log;
   r.summary = nlohmann::json::parse(slurp(out / "summary.json"));
   EXPECT_EQ(r.summary.at("fidelity"), level);
   r.link = read_link_log(out / "fpga_link.csv");
+  r.link_text = slurp(out / "fpga_link.csv");
   return r;
+}
+
+// The cycle level against the RTL's run: the host's whole record equal,
+// byte for byte (seq, type, t, arrival in us to 2 decimals, payload), and
+// the board's figures that do not measure the simulator itself.
+void expect_same_record(const std::string& scene, const LevelRun& rtl, const LevelRun& cyc) {
+  ASSERT_FALSE(rtl.link.empty()) << scene;
+  EXPECT_EQ(cyc.link_text, rtl.link_text) << scene << ": the cycle level's fpga_link.csv differs";
+  for (const char* key : {"cycles", "sim_s", "packets", "status_packets", "dropped_packets",
+                          "link_errors", "fpga_spikes", "fpga_spikes_layer2", "frame_overruns",
+                          "adc_overruns"})
+    EXPECT_EQ(cyc.summary.at(key), rtl.summary.at(key)) << scene << ": " << key;
+  std::printf("%s: cycle level = rtl level, %zu packets and their arrivals; %.2f vs %.2f simulated s "
+              "per CPU s\n",
+              scene.c_str(), rtl.link.size(),
+              cyc.summary.at("sim_s").get<double>() / cyc.summary.at("cpu_s").get<double>(),
+              rtl.summary.at("sim_s").get<double>() / rtl.summary.at("cpu_s").get<double>());
 }
 
 constexpr int kStatusType = 0x05;
@@ -107,9 +134,8 @@ Bound arrival_bound(const std::string& scene_name, const nlohmann::json& sum) {
   return r;
 }
 
-void expect_same_packets(const std::string& scene) {
-  const Run rtl = simulate(scene, "rtl");
-  const Run pkt = simulate(scene, "packet");
+void expect_same_packets(const std::string& scene, const LevelRun& rtl) {
+  const LevelRun pkt = simulate(scene, "packet");
   ASSERT_FALSE(rtl.link.empty());
   ASSERT_FALSE(pkt.link.empty());
   const Bound bound = arrival_bound(scene, rtl.summary);
@@ -153,24 +179,57 @@ void expect_same_packets(const std::string& scene) {
 
 }  // namespace
 
-TEST(Fidelity, PacketLevelDeliversTheRtlPacketsOnTheDefaultScene) { expect_same_packets("neuroskin2"); }
+TEST(Fidelity, CycleAndPacketLevelsOnTheDefaultScene) {
+  const LevelRun rtl = simulate("neuroskin2", "rtl");
+  expect_same_record("neuroskin2", rtl, simulate("neuroskin2", "cycle"));
+  expect_same_packets("neuroskin2", rtl);
+}
 
-TEST(Fidelity, PacketLevelDeliversTheRtlPacketsOnPlanned3x3) { expect_same_packets("planned3x3"); }
+TEST(Fidelity, CycleAndPacketLevelsOnPlanned3x3) {
+  const LevelRun rtl = simulate("planned3x3", "rtl");
+  expect_same_record("planned3x3", rtl, simulate("planned3x3", "cycle"));
+  expect_same_packets("planned3x3", rtl);
+}
 
-TEST(Fidelity, PacketLevelDeliversTheRtlPacketsOnStaggered10x10) {
-  expect_same_packets("staggered10x10");
+// The cycle level has the board's pins: its line faults (the same seed)
+// and board faults act there as on the Verilated board, and the host's
+// record is the same, recoveries included.
+TEST(Fidelity, CycleLevelUnderLineAndBoardFaults) {
+  const std::vector<std::string> faults = {"--ber",   "2e-5",          "--fault", "reset@150",
+                                           "--fault", "carrier-off=2@300:40", "--fault",
+                                           "adc-stuck-high@450:10"};
+  const LevelRun rtl = simulate("neuroskin2", "rtl", faults);
+  const LevelRun cyc = simulate("neuroskin2", "cycle", faults);
+  expect_same_record("neuroskin2 with faults", rtl, cyc);
+  EXPECT_GT(rtl.summary.at("link_errors").get<double>(), 0) << "the line faults must show";
+}
+
+// The one example scene whose build the cycle level does not model (the
+// neuron unit): refused before anything runs, naming the parameter; the
+// packet level against the RTL there.
+TEST(Fidelity, PacketLevelOnStaggered10x10AndTheCycleLevelRefusesItsBuild) {
+  const fs::path out = fs::path(testing::TempDir()) / "fidelity_s10_cycle";
+  std::string log;
+  EXPECT_EQ(run_argv({ESKIN_BIN, "simulate", std::string(ESKIN_SOURCE_DIR) + "/scenes/staggered10x10.yaml",
+                      "--fidelity", "cycle", "--out", out.string()},
+                     &log),
+            2)
+      << log;
+  EXPECT_NE(log.find("NEURON_UNIT"), std::string::npos) << log;
+  EXPECT_NE(log.find("--fidelity rtl"), std::string::npos) << log;
+  expect_same_packets("staggered10x10", simulate("staggered10x10", "rtl"));
 }
 
 // The example scenes no iCEBreaker build keeps up with are refused alike at
-// both levels, before anything runs: the level does not change the build.
+// every level, before anything runs: the level does not change the build.
 // (scenes/soak.yaml, the one example DTMF scene not compared above, is the
 // default build's for 180 s: ten minutes of the RTL; its packets are the
 // soak's, tests/vboard/line_faults_test.cpp.)
 TEST(Fidelity, BothLevelsRefuseTheScenesTheBoardCannotBuild) {
   for (const char* scene : {"skin32x32", "skin64x64"}) {
-    std::string said[2];
+    std::string said[3];
     int i = 0;
-    for (const char* level : {"rtl", "packet"}) {
+    for (const char* level : {"rtl", "cycle", "packet"}) {
       const fs::path out = fs::path(testing::TempDir()) / (std::string("fidelity_") + scene);
       std::string log;
       EXPECT_EQ(run_argv({ESKIN_BIN, "simulate",
@@ -182,12 +241,13 @@ TEST(Fidelity, BothLevelsRefuseTheScenesTheBoardCannotBuild) {
       said[i++] = log;
     }
     EXPECT_EQ(said[0], said[1]) << scene;
+    EXPECT_EQ(said[0], said[2]) << scene;
     EXPECT_NE(said[0].find("error: skin: "), std::string::npos) << said[0];
   }
 }
 
-// What the packet level does not model is refused, naming why, exit 2.
-TEST(Fidelity, PacketLevelRefusesWhatItDoesNotModel) {
+// What the faster levels do not model is refused, naming why, exit 2.
+TEST(Fidelity, TheFasterLevelsRefuseWhatTheyDoNotModel) {
   const std::string dir = std::string(ESKIN_SOURCE_DIR) + "/scenes/";
   const fs::path out = fs::path(testing::TempDir()) / "fidelity_refused";
   struct Case {
@@ -210,10 +270,26 @@ TEST(Fidelity, PacketLevelRefusesWhatItDoesNotModel) {
     EXPECT_NE(log.find(c.says), std::string::npos) << log;
     EXPECT_NE(log.find("--fidelity"), std::string::npos) << log;
   }
+  // The cycle level: the board's pins are there (faults run, above), but no
+  // Hall model, no waveforms, and its own board executable.
+  const std::vector<Case> cycle_cases = {
+      {{dir + "hall_000_skin.yaml"}, "Hall sensors"},
+      {{dir + "mixed_neuroskin_split.yaml"}, "Hall sensors"},
+      {{dir + "neuroskin2.yaml", "--trace", (out / "t.fst").string()}, "--trace"},
+      {{dir + "neuroskin2.yaml", "--board", ESKIN_BIN}, "--board"},
+  };
+  for (const Case& c : cycle_cases) {
+    std::vector<std::string> argv{ESKIN_BIN, "simulate", "--fidelity", "cycle", "--out", out.string()};
+    argv.insert(argv.end(), c.args.begin(), c.args.end());
+    std::string log;
+    EXPECT_EQ(run_argv(argv, &log), 2) << log;
+    EXPECT_NE(log.find(c.says), std::string::npos) << log;
+    EXPECT_NE(log.find("--fidelity"), std::string::npos) << log;
+  }
   std::string log;
   EXPECT_EQ(run_argv({ESKIN_BIN, "simulate", dir + "neuroskin2.yaml", "--fidelity", "gate", "--out",
                       out.string()},
                      &log),
             2);
-  EXPECT_NE(log.find("expected rtl or packet"), std::string::npos) << log;
+  EXPECT_NE(log.find("expected rtl, cycle or packet"), std::string::npos) << log;
 }
