@@ -2,7 +2,7 @@
 // runs each scene, side by side in one run (docs/bench.md). Each row is one
 // `eskin simulate SCENE --fidelity LEVEL` as a child process; its figures
 // are the ones its summary.json reports: simulated seconds, and the CPU
-// seconds of the board's own work (the Verilated board process at rtl, the
+// seconds of the board's own work (the board process at rtl and cycle, the
 // packet model's thread at packet; the golden model and the report are
 // not counted), so "x real time" is simulated s per CPU s.
 #pragma once

@@ -81,7 +81,8 @@ class Top final : public DtmfTop::Impl {
 
   vboard::FpgaOutputs cycle(const vboard::FpgaInputs& in) override {
     const uint64_t T = known_;  // this call gives clock T's inputs
-    inputs_.push_back(in);
+    if (known_ - now_ >= kInputs) throw std::logic_error("cycle::DtmfTop: inputs ahead of the top");
+    inputs_[known_ % kInputs] = Pins{in.reset, in.adc_sdata, in.uart_rxd};
     ++known_;
     // The engine: once out of reset, every instruction whose bus accesses
     // fall in clocks whose inputs are known (its cycle A at clocks - 1 or
@@ -185,7 +186,7 @@ class Top final : public DtmfTop::Impl {
   // Clock now_'s edge: every block with this clock's inputs (the board's,
   // the engine's write) and the registers as they were before it.
   void edge() {
-    const vboard::FpgaInputs& in = inputs_.front();
+    const Pins in = inputs_[now_ % kInputs];
     // The engine's write in this clock, if any.
     bool we = false;
     uint16_t wa = 0;
@@ -263,7 +264,6 @@ class Top final : public DtmfTop::Impl {
     else if (por_cnt_ != 15) ++por_cnt_;
     por_rst_ = por != 15 || !sync1;
 
-    inputs_.pop_front();
     ++now_;
   }
 
@@ -295,7 +295,12 @@ class Top final : public DtmfTop::Impl {
   // known_ counts the clocks whose board inputs are in (inputs_ holds those
   // from now_ on).
   uint64_t now_ = 0, known_ = 0;
-  std::deque<vboard::FpgaInputs> inputs_;
+  // The board's pins of the clocks from now_ to known_ - 1 (at most two).
+  struct Pins {
+    bool reset, adc_sdata, uart_rxd;
+  };
+  static constexpr uint64_t kInputs = 4;
+  Pins inputs_[kInputs] = {};
   std::deque<Write> writes_;
   bool running_ = false;  // the engine is out of reset
   uint64_t r0_ = 0;       // the top's clock of the engine's clock 0
