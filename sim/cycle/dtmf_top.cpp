@@ -1,5 +1,6 @@
 #include "sim/cycle/dtmf_top.h"
 
+#include <algorithm>
 #include <deque>
 #include <stdexcept>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "ucode/dtmf_engine_image.h"
 #include "ucode/dtmf_io_map.h"
 #include "ucode/dtmf_ucode.h"
+#include "ucode/engine_ports.h"
 #include "ucode/frame_engine.h"
 
 namespace eskin::cycle {
@@ -35,7 +37,7 @@ std::string DtmfTop::unsupported(const hls::DtmfTopPlan& p) {
   if (s.sdft_lanes != 1) return "SDFT_LANES " + std::to_string(s.sdft_lanes) + ": more than one DFT lane";
   if (s.sdft_fifo != 0) return "SDFT_FIFO " + std::to_string(s.sdft_fifo) + ": a sample FIFO";
   if (s.adc_clk_hz != 0) return "ADC_CLK_HZ: the ADC on a clock of its own";
-  if (s.neuron_unit || s.neuron_lanes != 0) return "NEURON_UNIT: the hardware neuron unit";
+  if (s.neuron_lanes != 0) return "NEURON_LANES " + std::to_string(s.neuron_lanes) + ": the neuron unit's lanes";
   try {
     const AdcAd7476 adc(s.clk_hz, std::llround(s.sample_hz), sclk_div(s.clk_hz));
     if (adc.lag() != 0) return "CLK_HZ " + std::to_string(s.clk_hz) + ": the ADC's SDATA taken at a falling edge";
@@ -69,12 +71,14 @@ class Top final : public DtmfTop::Impl {
         out_(p.out_depth),
         tx_(uint64_t(p.spec.clk_hz), uint64_t(p.spec.baud)),
         eng_(std::make_unique<Engine>()),
-        io_{this} {
+        io_{this},
+        unit_present_(p.spec.neuron_unit) {
     const hls::EngineImage im = hls::dtmf_engine_image(p);
     const std::vector<uint32_t> words = hls::dtmf_ucode_words(im);
     eng_->load_program(words.data(), uint32_t(words.size()));
     eng_->load_krom(im.krom.data(), uint32_t(im.krom.size()));
     reset_blocks();
+    reset_unit();
   }
 
   uint64_t clocks() const override { return now_; }
@@ -94,6 +98,7 @@ class Top final : public DtmfTop::Impl {
           running_ = true;
           r0_ = now_;
           eng_->reset();
+          reset_unit();  // its clocks are the engine's, from 0 again
           continue;
         }
         if (now_ == T + 1) break;
@@ -144,6 +149,16 @@ class Top final : public DtmfTop::Impl {
     word_held_ = false;
   }
 
+  // The unit's port as after a reset: no update in flight (its constant
+  // words stay: the boot writes them again).
+  void reset_unit() {
+    uint32_t cfg[32];
+    std::copy(std::begin(unit_.cfg), std::end(unit_.cfg), cfg);
+    unit_ = hls::IzhikevichUnitPort{};
+    unit_.present = unit_present_;
+    std::copy(std::begin(cfg), std::end(cfg), unit_.cfg);
+  }
+
   void advance_to(uint64_t c) {
     if (c < now_) throw std::logic_error("cycle::DtmfTop: the engine accessed a clock already past");
     while (now_ < c) edge();
@@ -156,6 +171,7 @@ class Top final : public DtmfTop::Impl {
     if (!running_) return 0;  // a reset came in the middle of this instruction
     advance_to(c);
     if (!(a & 0x200)) return cap_.read_now(uint8_t(a & 0xFF));
+    if (uint32_t d = 0; unit_.read(a, d, c - r0_)) return d;
     switch (a & 0xF) {
       case hls::kIoFrameT & 0xF: return cap_.frame_t();
       case hls::kIoStatus & 0xF: return (cmd_.avail() ? 2u : 0u) | (cap_.pending() ? 1u : 0u);
@@ -169,18 +185,20 @@ class Top final : public DtmfTop::Impl {
       case hls::kIoFrameOvr & 0xF: return cap_.overruns();
       case hls::kIoSdftBusy & 0xF: return cfg_valid_ ? 1u : 0u;
       case hls::kIoCmdOvf & 0xF: return cmd_.overflows();
-      default: return 0;  // the neuron unit's and lanes' registers: none in this build
+      default: return 0;  // IO_IZ_EVN: the lanes' events, none in this build
     }
   }
   void write(uint16_t a, uint32_t d, uint64_t c) {
     if (!running_) return;  // the engine was reset: it writes nothing
     if (c < now_) throw std::logic_error("cycle::DtmfTop: the engine wrote in a clock already past");
+    if (unit_.write(a, d, c - r0_)) return;  // the unit's port keeps its own clocks
     writes_.push_back({c, a, d});
   }
   uint16_t events(uint64_t c) {
     if (!running_) return 0;
     advance_to(c);
-    return uint16_t((cap_.pending() ? hls::kEvFramePending : 0) | (cmd_.avail() ? hls::kEvCmdAvail : 0));
+    return uint16_t((cap_.pending() ? hls::kEvFramePending : 0) | (cmd_.avail() ? hls::kEvCmdAvail : 0) |
+                    unit_.events(c - r0_));
   }
 
   // Clock now_'s edge: every block with this clock's inputs (the board's,
@@ -277,6 +295,10 @@ class Top final : public DtmfTop::Impl {
   UartTx tx_;
   std::unique_ptr<Engine> eng_;
   Bus io_;
+  // The neuron unit (NEURON_UNIT): its port's clock-exact model, in the
+  // engine's clocks (ucode/engine_ports.h, as the microcode tests use it).
+  hls::IzhikevichUnitPort unit_;
+  bool unit_present_ = false;
 
   // The top's own registers.
   uint8_t cfg_k_ = 0;

@@ -23,8 +23,9 @@
 // The builds it models: the frame engine's datapath (not STREAM), one DFT
 // lane without a sample FIFO, the ADC on the core clock sampling at the
 // rising edge (below 35 MHz: adc_ad7476's LAG 0), the microcode's neurons
-// (no neuron unit or lanes), the top's own link. Any other build is refused
-// at construction, naming the parameter.
+// or the neuron unit (its port's clock-exact model, ucode/engine_ports.h;
+// not the unit's lanes), the top's own link. Any other build is refused at
+// construction, naming the parameter.
 #pragma once
 
 #include <cstdint>

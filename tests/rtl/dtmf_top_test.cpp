@@ -1222,4 +1222,31 @@ TEST(DtmfTopCycle, TheCycleLevelsPinsEqualTheRtlsEveryClock) {
   EXPECT_LE(host.stats().crc_errors + host.stats().framing_errors, 1u);
 }
 
+// The builds the cycle level does not model are named, and refused by its
+// constructor (eskin simulate --fidelity cycle says it, exit 2).
+TEST(DtmfTopCycle, TheBuildsItDoesNotModelAreNamed) {
+  const auto plan_of = [](const Build& b) {
+    auto spec = eskin::sim::dtmf_top_spec(eskin::sim::load_scene(ESKIN_SOURCE_DIR "/" + b.scene), b.clk_hz);
+    spec.sdft_lanes = b.sdft_lanes;
+    spec.engine_fast_shift = b.fast_shift;
+    spec.neuron_unit = b.neuron_unit;
+    if (b.stream) spec.datapath = eskin::hls::DtmfDatapath::Streaming;
+    return eskin::hls::make_dtmf_top_plan(spec);
+  };
+  EXPECT_EQ(eskin::cycle::DtmfTop::unsupported(plan_of(kDefault)), "");
+  EXPECT_EQ(eskin::cycle::DtmfTop::unsupported(plan_of(kS10Unit)).rfind("SDFT_LANES 3", 0), 0u);
+  EXPECT_EQ(eskin::cycle::DtmfTop::unsupported(plan_of(kP3S)).rfind("STREAM", 0), 0u);
+  auto lanes = plan_of(kDefault);
+  lanes.spec.neuron_unit = true, lanes.spec.neuron_lanes = 5;
+  EXPECT_EQ(eskin::cycle::DtmfTop::unsupported(lanes).rfind("NEURON_LANES 5", 0), 0u);
+  auto fast = plan_of(kDefault);
+  fast.spec.clk_hz = 40000000;  // SDATA taken at the falling edge there
+  EXPECT_NE(eskin::cycle::DtmfTop::unsupported(fast).find("falling edge"), std::string::npos)
+      << eskin::cycle::DtmfTop::unsupported(fast);
+  auto own_adc_clock = plan_of(kDefault);
+  own_adc_clock.spec.adc_clk_hz = 40000000;
+  EXPECT_EQ(eskin::cycle::DtmfTop::unsupported(own_adc_clock).rfind("ADC_CLK_HZ", 0), 0u);
+  EXPECT_THROW(eskin::cycle::DtmfTop{plan_of(kP3S)}, std::invalid_argument);
+}
+
 }  // namespace

@@ -204,20 +204,11 @@ TEST(Fidelity, CycleLevelUnderLineAndBoardFaults) {
   EXPECT_GT(rtl.summary.at("link_errors").get<double>(), 0) << "the line faults must show";
 }
 
-// The one example scene whose build the cycle level does not model (the
-// neuron unit): refused before anything runs, naming the parameter; the
-// packet level against the RTL there.
-TEST(Fidelity, PacketLevelOnStaggered10x10AndTheCycleLevelRefusesItsBuild) {
-  const fs::path out = fs::path(testing::TempDir()) / "fidelity_s10_cycle";
-  std::string log;
-  EXPECT_EQ(run_argv({ESKIN_BIN, "simulate", std::string(ESKIN_SOURCE_DIR) + "/scenes/staggered10x10.yaml",
-                      "--fidelity", "cycle", "--out", out.string()},
-                     &log),
-            2)
-      << log;
-  EXPECT_NE(log.find("NEURON_UNIT"), std::string::npos) << log;
-  EXPECT_NE(log.find("--fidelity rtl"), std::string::npos) << log;
-  expect_same_packets("staggered10x10", simulate("staggered10x10", "rtl"));
+// staggered10x10's build has the neuron unit and the barrel shifter.
+TEST(Fidelity, CycleAndPacketLevelsOnStaggered10x10) {
+  const LevelRun rtl = simulate("staggered10x10", "rtl");
+  expect_same_record("staggered10x10", rtl, simulate("staggered10x10", "cycle"));
+  expect_same_packets("staggered10x10", rtl);
 }
 
 // The example scenes no iCEBreaker build keeps up with are refused alike at
