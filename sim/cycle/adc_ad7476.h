@@ -9,7 +9,6 @@
 
 #include <cstdint>
 #include <stdexcept>
-#include <vector>
 
 namespace eskin::cycle {
 
@@ -17,8 +16,8 @@ class AdcAd7476 {
  public:
   AdcAd7476(int64_t clk_hz, int64_t sample_hz, int sclk_div, int nch = 1,
             int rt_min_ns = 5, int rt_max_ns = 15, int margin_ps = 1000)
-      : h_(sclk_div), nch_(nch), shreg_(size_t(nch), 0), codes_(size_t(nch), 0),
-        sd_neg_(size_t(nch), false) {
+      : h_(sclk_div), nch_(nch) {
+    if (nch > kMaxCh) throw std::invalid_argument("AdcAd7476: at most 4 channels");
     period_ = (clk_hz + sample_hz / 2) / sample_hz;
     const int64_t clk_khz = clk_hz / 1000;
     const auto clamp = [](int64_t v) { return v > 2000 ? 2000 : v; };
@@ -45,7 +44,7 @@ class AdcAd7476 {
   bool sclk() const { return sclk_; }
   bool m_valid() const { return m_valid_; }
   // Channel c's 12-bit code (m_data[12c +: 12]).
-  uint16_t m_code(int c = 0) const { return codes_[size_t(c)]; }
+  uint16_t m_code(int c = 0) const { return codes_[c]; }
   uint32_t m_t() const { return m_t_; }
   uint16_t overruns() const { return overruns_; }
 
@@ -66,7 +65,7 @@ class AdcAd7476 {
 
   // LAG 1: SDATA at the falling clock edge before the next rising one.
   void falling_edge(uint32_t sdata) {
-    for (int c = 0; c < nch_; ++c) sd_neg_[size_t(c)] = (sdata >> c) & 1u;
+    for (int c = 0; c < nch_; ++c) sd_neg_[c] = (sdata >> c) & 1u;
   }
   // One rising edge; sdata: bit c is channel c's SDATA at this edge.
   void clock(bool en, uint32_t sdata, bool m_ready, bool clear) {
@@ -86,11 +85,13 @@ class AdcAd7476 {
     fall_q_ = fall_now;
     last_q_ = last_now;
     const bool deliver = take16 && !(valid && !m_ready);
-    for (int c = 0; c < nch_; ++c) {  // shifted = {shreg[14:0], the bit}
-      const bool bit = lag_ == 1 ? sd_neg_[size_t(c)] : ((sdata >> c) & 1u) != 0;
-      const uint16_t shifted = uint16_t((uint32_t(shreg_[size_t(c)]) << 1) | (bit ? 1u : 0u));
-      if (deliver) codes_[size_t(c)] = uint16_t(shifted & 0x0FFF);
-      if (take) shreg_[size_t(c)] = shifted;
+    if (take || deliver) {  // a bit taken: shifted = {shreg[14:0], the bit}
+      for (int c = 0; c < nch_; ++c) {
+        const bool bit = lag_ == 1 ? sd_neg_[c] : ((sdata >> c) & 1u) != 0;
+        const uint16_t shifted = uint16_t((uint32_t(shreg_[c]) << 1) | (bit ? 1u : 0u));
+        if (deliver) codes_[c] = uint16_t(shifted & 0x0FFF);
+        if (take) shreg_[c] = shifted;
+      }
     }
     if (take16) {  // the 16th bit is in
       count_ = count + 1;
@@ -131,8 +132,9 @@ class AdcAd7476 {
   int64_t pcnt_ = 0;
   bool busy_ = false, cs_n_ = true, sclk_ = true;
   int hcnt_ = 0, half_ = 0;
-  std::vector<uint16_t> shreg_, codes_;
-  std::vector<bool> sd_neg_;
+  static constexpr int kMaxCh = 4;
+  uint16_t shreg_[kMaxCh] = {}, codes_[kMaxCh] = {};
+  bool sd_neg_[kMaxCh] = {};
   uint32_t count_ = 0;
   bool m_valid_ = false;
   uint32_t m_t_ = 0;

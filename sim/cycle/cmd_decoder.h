@@ -43,6 +43,11 @@ class CmdDecoder {
   }
 
   void clock(bool s_valid, uint8_t s_data, bool rx_error, bool pop, bool clear) {
+    if (!s_valid && !rx_error && !pop && !clear) {  // most clocks: only the head's read
+      head_ = mem_[rp_ & (depth_ - 1)];
+      fresh_ = false;
+      return;
+    }
     const uint32_t mask = 2 * depth_ - 1;
     // This clock's combinational values, from the registers before the edge.
     const bool delim = s_valid && s_data == 0;

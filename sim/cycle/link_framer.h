@@ -39,6 +39,10 @@ class LinkFramer {
   }
 
   void clock(bool s_valid, uint8_t s_data, bool m_ready) {
+    if (!s_valid && from_input() && rstate_ == kIdle && !full_[size_t(rbank_)]) {
+      rdata_ = mem_[size_t(rbank_) * 256 + ridx_];  // idle: only the RAM's read register moves
+      return;
+    }
     // This clock's combinational values, from the registers before the edge.
     const bool raw_valid = from_input() ? s_valid : true;
     const bool raw_eop = astate_ == kEop;
