@@ -185,4 +185,16 @@ nlohmann::json drdy_times_ns(const sim::HallSensorArray& sensors) {
   return drdy;
 }
 
+int run_to_end(const VboardArgs& a, FILE* json, FpgaModel& fpga, PtyPort& pty,
+               const BoardConfig& cfg, const std::string& key, const nlohmann::json& ready_extra,
+               const std::function<nlohmann::json()>& done_extra) {
+  VirtualBoard board("board", fpga, pty, cfg);
+  print_ready(json, pty, key, cfg.clk_hz, cfg.baud, ready_extra);
+  sc_core::sc_start();
+  fpga.close_trace();
+  print_done(json, board.stats(), done_extra ? done_extra() : nlohmann::json::object());
+  hang_up_when_read(pty, board.stats(), a.reader_timeout_s);
+  return 0;
+}
+
 }  // namespace eskin::vboard

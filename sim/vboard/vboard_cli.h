@@ -89,4 +89,13 @@ void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra);
 // `timeout_s` (then it says so on stderr).
 void hang_up_when_read(PtyPort& pty, const BoardStats& s, double timeout_s);
 
+// Every board's run from its ready line to its hang-up: the board on `fpga`
+// and `pty` with `cfg`, the ready line (build `key`, ready_extra), the
+// simulation, the FPGA's trace closed, the done line (done_extra(), read
+// once the board has finished: nullptr for none) and the hang-up once the
+// reader has read every byte. Returns the board's exit code (0).
+int run_to_end(const VboardArgs& a, FILE* json, FpgaModel& fpga, PtyPort& pty,
+               const BoardConfig& cfg, const std::string& key, const nlohmann::json& ready_extra,
+               const std::function<nlohmann::json()>& done_extra = nullptr);
+
 }  // namespace eskin::vboard

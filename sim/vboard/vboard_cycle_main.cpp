@@ -37,17 +37,13 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);
-  eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
-  eskin::vboard::print_ready(json, pty, params.key, params.clk_hz(), params.baud(),
-                             {{"top", "dtmf_top"},
-                              {"fidelity", "cycle"},
-                              {"sample_hz", scene.skin.adc.rate_hz},
-                              {"samples", cfg.samples},
-                              {"scene_samples", scene_samples}});
-  sc_core::sc_start();
-  eskin::vboard::print_done(json, board.stats(), {{"fidelity", "cycle"}});
-  eskin::vboard::hang_up_when_read(pty, board.stats(), a.reader_timeout_s);
-  return 0;
+  return eskin::vboard::run_to_end(a, json, fpga, pty, cfg, params.key,
+                                   {{"top", "dtmf_top"},
+                                    {"fidelity", "cycle"},
+                                    {"sample_hz", scene.skin.adc.rate_hz},
+                                    {"samples", cfg.samples},
+                                    {"scene_samples", scene_samples}},
+                                   [] { return nlohmann::json{{"fidelity", "cycle"}}; });
 }
 
 }  // namespace

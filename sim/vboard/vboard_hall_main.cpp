@@ -111,19 +111,14 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   if (!a.pty_link.empty()) pty.link(a.pty_link);
   VerilatedHallFpga fpga;
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / cfg.clk_hz)));
-  eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
-
-  eskin::vboard::print_ready(json, pty, VBOARD_PARAMS_KEY, cfg.clk_hz, cfg.baud,
-                             {{"top", "hall_top"},
-                              {"sensors", sensors.size()},
-                              {"buses", sensors.bus_count()},
-                              {"duration_s", scene.duration_s},
-                              {"cycles", cfg.cycles}});
-  sc_core::sc_start();
-  fpga.close_trace();
-  eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", eskin::vboard::drdy_times_ns(sensors)}});
-  eskin::vboard::hang_up_when_read(pty, board.stats(), a.reader_timeout_s);
-  return 0;
+  return eskin::vboard::run_to_end(
+      a, json, fpga, pty, cfg, VBOARD_PARAMS_KEY,
+      {{"top", "hall_top"},
+       {"sensors", sensors.size()},
+       {"buses", sensors.bus_count()},
+       {"duration_s", scene.duration_s},
+       {"cycles", cfg.cycles}},
+      [&sensors] { return nlohmann::json{{"drdy_ns", eskin::vboard::drdy_times_ns(sensors)}}; });
 }
 
 }  // namespace

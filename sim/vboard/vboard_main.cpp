@@ -101,18 +101,11 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   add_plusargs(files);
   VerilatedFpga fpga;
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz())));
-  eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
-
-  eskin::vboard::print_ready(json, pty, VBOARD_PARAMS_KEY, params.clk_hz(), params.baud(),
-                             {{"top", "dtmf_top"},
-                              {"sample_hz", scene.skin.adc.rate_hz},
-                              {"samples", cfg.samples},
-                              {"scene_samples", scene_samples}});
-  sc_core::sc_start();
-  fpga.close_trace();
-  eskin::vboard::print_done(json, board.stats(), nlohmann::json::object());
-  eskin::vboard::hang_up_when_read(pty, board.stats(), a.reader_timeout_s);
-  return 0;
+  return eskin::vboard::run_to_end(a, json, fpga, pty, cfg, VBOARD_PARAMS_KEY,
+                                   {{"top", "dtmf_top"},
+                                    {"sample_hz", scene.skin.adc.rate_hz},
+                                    {"samples", cfg.samples},
+                                    {"scene_samples", scene_samples}});
 }
 
 }  // namespace

@@ -118,20 +118,15 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   add_plusargs(files);
   VerilatedMixedFpga fpga;
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / cfg.clk_hz)));
-  eskin::vboard::VirtualBoard board("board", fpga, pty, cfg);
-
-  eskin::vboard::print_ready(json, pty, VBOARD_PARAMS_KEY, cfg.clk_hz, cfg.baud,
-                             {{"top", "mixed_top"},
-                              {"sample_hz", scene.skin.adc.rate_hz},
-                              {"samples", cfg.samples},
-                              {"scene_samples", scene_samples},
-                              {"sensors", sensors.size()},
-                              {"buses", sensors.bus_count()}});
-  sc_core::sc_start();
-  fpga.close_trace();
-  eskin::vboard::print_done(json, board.stats(), {{"drdy_ns", eskin::vboard::drdy_times_ns(sensors)}});
-  eskin::vboard::hang_up_when_read(pty, board.stats(), a.reader_timeout_s);
-  return 0;
+  return eskin::vboard::run_to_end(
+      a, json, fpga, pty, cfg, VBOARD_PARAMS_KEY,
+      {{"top", "mixed_top"},
+       {"sample_hz", scene.skin.adc.rate_hz},
+       {"samples", cfg.samples},
+       {"scene_samples", scene_samples},
+       {"sensors", sensors.size()},
+       {"buses", sensors.bus_count()}},
+      [&sensors] { return nlohmann::json{{"drdy_ns", eskin::vboard::drdy_times_ns(sensors)}}; });
 }
 
 }  // namespace
