@@ -185,6 +185,18 @@ nlohmann::json drdy_times_ns(const sim::HallSensorArray& sensors) {
   return drdy;
 }
 
+nlohmann::json dtmf_board_config(const VboardArgs& a, const sim::Scene& scene, double clk_hz,
+                                 double baud, int adc_shift, BoardConfig& cfg) {
+  cfg.clk_hz = clk_hz;
+  cfg.baud = baud;
+  apply_start_options(a, cfg, scene.skin.rows + scene.skin.cols, 0);
+  const size_t scene_samples = load_skin_samples(cfg, scene, adc_shift, a.tail_s);
+  return {{"top", "dtmf_top"},
+          {"sample_hz", scene.skin.adc.rate_hz},
+          {"samples", cfg.samples},
+          {"scene_samples", scene_samples}};
+}
+
 int run_to_end(const VboardArgs& a, FILE* json, FpgaModel& fpga, PtyPort& pty,
                const BoardConfig& cfg, const std::string& key, const nlohmann::json& ready_extra,
                const std::function<nlohmann::json()>& done_extra) {

@@ -89,6 +89,12 @@ void print_done(FILE* json, const BoardStats& s, const nlohmann::json& extra);
 // `timeout_s` (then it says so on stderr).
 void hang_up_when_read(PtyPort& pty, const BoardStats& s, double timeout_s);
 
+// A DTMF board's configuration: the build's clock and UART rate, the start
+// options (faults), the skin's samples with `adc_shift` (FpgaBuild's);
+// returns the ready line's fields (top, sample_hz, samples, scene_samples).
+nlohmann::json dtmf_board_config(const VboardArgs& a, const sim::Scene& scene, double clk_hz,
+                                 double baud, int adc_shift, BoardConfig& cfg);
+
 // Every board's run from its ready line to its hang-up: the board on `fpga`
 // and `pty` with `cfg`, the ready line (build `key`, ready_extra), the
 // simulation, the FPGA's trace closed, the done line (done_extra(), read

@@ -30,19 +30,13 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   eskin::cycle::DtmfTop fpga(params.plan);  // refuses a build it does not model
 
   eskin::vboard::BoardConfig cfg;
-  cfg.clk_hz = params.clk_hz();
-  cfg.baud = params.baud();
-  eskin::vboard::apply_start_options(a, cfg, scene.skin.rows + scene.skin.cols, 0);
-  const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, params.adc_shift(), a.tail_s);
+  nlohmann::json ready =
+      eskin::vboard::dtmf_board_config(a, scene, params.clk_hz(), params.baud(), params.adc_shift(), cfg);
+  ready["fidelity"] = "cycle";
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);
-  return eskin::vboard::run_to_end(a, json, fpga, pty, cfg, params.key,
-                                   {{"top", "dtmf_top"},
-                                    {"fidelity", "cycle"},
-                                    {"sample_hz", scene.skin.adc.rate_hz},
-                                    {"samples", cfg.samples},
-                                    {"scene_samples", scene_samples}},
+  return eskin::vboard::run_to_end(a, json, fpga, pty, cfg, params.key, ready,
                                    [] { return nlohmann::json{{"fidelity", "cycle"}}; });
 }
 

@@ -88,10 +88,8 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   eskin::vboard::require_build(a.scene, "FPGA", params.key, VBOARD_PARAMS_KEY);
 
   eskin::vboard::BoardConfig cfg;
-  cfg.clk_hz = params.clk_hz();
-  cfg.baud = params.baud();
-  eskin::vboard::apply_start_options(a, cfg, scene.skin.rows + scene.skin.cols, 0);
-  const size_t scene_samples = eskin::vboard::load_skin_samples(cfg, scene, params.adc_shift(), a.tail_s);
+  const nlohmann::json ready =
+      eskin::vboard::dtmf_board_config(a, scene, params.clk_hz(), params.baud(), params.adc_shift(), cfg);
 
   eskin::vboard::PtyPort pty;
   if (!a.pty_link.empty()) pty.link(a.pty_link);
@@ -101,11 +99,7 @@ int run(const eskin::vboard::VboardArgs& a, FILE* json) {
   add_plusargs(files);
   VerilatedFpga fpga;
   fpga.set_half_period_ps(uint64_t(std::llround(0.5e12 / params.clk_hz())));
-  return eskin::vboard::run_to_end(a, json, fpga, pty, cfg, VBOARD_PARAMS_KEY,
-                                   {{"top", "dtmf_top"},
-                                    {"sample_hz", scene.skin.adc.rate_hz},
-                                    {"samples", cfg.samples},
-                                    {"scene_samples", scene_samples}});
+  return eskin::vboard::run_to_end(a, json, fpga, pty, cfg, VBOARD_PARAMS_KEY, ready);
 }
 
 }  // namespace
