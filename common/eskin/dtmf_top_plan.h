@@ -489,11 +489,15 @@ inline std::string dtmf_top_sdft_problem(int ks, int lanes, long step, int fifo,
          n(period) + at + ": " + why;
 }
 
+// adc_ad7476's SCLK_DIV as rtl/dtmf_top.v sets it on an ADC clock of
+// adc_hz: clocks per SCLK half period, SCLK at most 20 MHz.
+inline long dtmf_top_sclk_div(long adc_hz) { return (adc_hz + 39999999) / 40000000; }
+
 // What keeps adc_ad7476 on a clock of adc_hz from converting at fs (above),
 // empty when nothing does.
 inline std::string dtmf_top_adc_problem(double fs, long adc_hz) {
   const long period = std::lround(double(adc_hz) / fs);
-  const long h = (adc_hz + 39999999) / 40000000;
+  const long h = dtmf_top_sclk_div(adc_hz);
   const double ns = 1e9 / double(adc_hz);
   const double acq = double(period - 28 * h) * ns, quiet = double(period - 31 * h) * ns;
   const double t1 = double(period - 32 * h) * ns;
@@ -519,7 +523,7 @@ inline DtmfTopClockBudget dtmf_top_clock_budget(const DtmfTopPlan& p, long clk_h
   b.clk_hz = clk_hz;
   b.adc_clk_hz = p.spec.adc_clk_hz > 0 ? p.spec.adc_clk_hz : clk_hz;
   b.adc_period = std::lround(double(b.adc_clk_hz) / fs);
-  b.sclk_div = (b.adc_clk_hz + 39999999) / 40000000;
+  b.sclk_div = dtmf_top_sclk_div(b.adc_clk_hz);
   const int lanes = p.spec.sdft_lanes;
   b.sdft_clocks = dtmf_top_sdft_clocks(p.ks, lanes);
   b.sdft_skip_clocks = dtmf_top_sdft_skip_clocks(p.ks, lanes);

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sim/cycle/crc16.h"
+
 namespace eskin::cycle {
 
 class CmdDecoder {
@@ -118,11 +120,6 @@ class CmdDecoder {
   }
 
  private:
-  static uint16_t crc16(uint16_t crc, uint8_t data) {  // rtl/crc16.v
-    crc = uint16_t(crc ^ (uint16_t(data) << 8));
-    for (int i = 0; i < 8; ++i) crc = uint16_t((crc & 0x8000) ? (crc << 1) ^ 0x1021 : crc << 1);
-    return crc;
-  }
   static uint16_t sat_inc(uint16_t x) { return x == 0xFFFF ? x : uint16_t(x + 1); }
 
   uint32_t depth_;

@@ -23,9 +23,6 @@ namespace eskin::cycle {
 
 namespace {
 
-// adc_ad7476's SCLK_DIV as rtl/dtmf_top.v sets it: SCLK at most 20 MHz.
-int sclk_div(long clk_hz) { return int((clk_hz + 39999999) / 40000000); }
-
 // The 12-bit code as the DFT takes it: code - 2048, sign in bit 11.
 int32_t centred(uint16_t code) { return int32_t(code & 0x0FFFu) - 2048; }
 
@@ -39,7 +36,7 @@ std::string DtmfTop::unsupported(const hls::DtmfTopPlan& p) {
   if (s.adc_clk_hz != 0) return "ADC_CLK_HZ: the ADC on a clock of its own";
   if (s.neuron_lanes != 0) return "NEURON_LANES " + std::to_string(s.neuron_lanes) + ": the neuron unit's lanes";
   try {
-    const AdcAd7476 adc(s.clk_hz, std::llround(s.sample_hz), sclk_div(s.clk_hz));
+    const AdcAd7476 adc(s.clk_hz, std::llround(s.sample_hz), int(hls::dtmf_top_sclk_div(s.clk_hz)));
     if (adc.lag() != 0) return "CLK_HZ " + std::to_string(s.clk_hz) + ": the ADC's SDATA taken at a falling edge";
   } catch (const std::invalid_argument& e) {
     return std::string("CLK_HZ / SAMPLE_HZ: ") + e.what();
@@ -63,7 +60,7 @@ class Top final : public DtmfTop::Impl {
 
  public:
   explicit Top(const hls::DtmfTopPlan& p)
-      : adc_(p.spec.clk_hz, std::llround(p.spec.sample_hz), sclk_div(p.spec.clk_hz)),
+      : adc_(p.spec.clk_hz, std::llround(p.spec.sample_hz), int(hls::dtmf_top_sclk_div(p.spec.clk_hz))),
         sdft_(p.ks, p.N, p.acc_w),
         cap_(p.ks, p.acc_w, p.N, p.step),
         rx_(uint64_t(p.spec.clk_hz), uint64_t(p.spec.baud)),

@@ -10,6 +10,8 @@
 #include <array>
 #include <cstdint>
 
+#include "sim/cycle/crc16.h"
+
 namespace eskin::cycle {
 
 class LinkFramer {
@@ -154,11 +156,6 @@ class LinkFramer {
   enum RState : uint8_t { kIdle, kOut, kFetch };
   enum Kind : uint8_t { kCode, kData, kDelim };
 
-  static uint16_t crc16(uint16_t crc, uint8_t data) {  // rtl/crc16.v
-    crc = uint16_t(crc ^ (uint16_t(data) << 8));
-    for (int i = 0; i < 8; ++i) crc = uint16_t((crc & 0x8000) ? (crc << 1) ^ 0x1021 : crc << 1);
-    return crc;
-  }
   bool from_input() const { return astate_ == kType || astate_ == kHdr || astate_ == kPay; }
   bool enc_ready() const { return !full_[size_t(wbank_)]; }
 

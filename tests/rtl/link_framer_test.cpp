@@ -140,15 +140,20 @@ void check_decoded(const std::vector<uint8_t>& out, const std::vector<Pkt>& pk) 
   EXPECT_EQ(i, pk.size());
 }
 
+// Three clocks of reset with the input idle.
+void reset(Vlink_framer& m) {
+  m.clk = 0; m.rst = 1; m.s_valid = 0; m.m_ready = 0;
+  for (int i = 0; i < 3; ++i) { m.clk = 1; m.eval(); m.clk = 0; m.eval(); }
+  m.rst = 0;
+}
+
 void run_direct(double p_valid, double p_ready, uint64_t seed) {
   const auto pk = make_packets(300, seed);
   auto m = std::make_unique<Vlink_framer>();
   Source src(pk, seed + 1, p_valid);
   std::mt19937_64 rng(seed + 2);
   std::bernoulli_distribution ready(p_ready);
-  m->clk = 0; m->rst = 1; m->s_valid = 0; m->m_ready = 0;
-  for (int i = 0; i < 3; ++i) { m->clk = 1; m->eval(); m->clk = 0; m->eval(); }
-  m->rst = 0;
+  reset(*m);
   const auto want = expected_stream(pk);
   std::vector<uint8_t> out;
   bool stalled = false;
@@ -182,9 +187,7 @@ void same_as_model(double p_valid, double p_ready, uint64_t seed) {
   Source src(pk, seed + 1, p_valid);
   std::mt19937_64 rng(seed + 2);
   std::bernoulli_distribution ready(p_ready);
-  m->clk = 0; m->rst = 1; m->s_valid = 0; m->m_ready = 0;
-  for (int i = 0; i < 3; ++i) { m->clk = 1; m->eval(); m->clk = 0; m->eval(); }
-  m->rst = 0;
+  reset(*m);
   const size_t want = expected_stream(pk).size();
   size_t out = 0;
   for (uint64_t cyc = 0; out < want; ++cyc) {
